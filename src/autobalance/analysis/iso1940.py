@@ -1,0 +1,126 @@
+"""ISO 1940-1 balance quality grade G (rigid rotors).
+
+004 section 4 (ISO 1940-11:2016 as quoted there): the grade G is the product of the permissible
+residual specific unbalance (mass-centre eccentricity) e_per = U/m in [mm] and the highest
+nominal operating speed Omega in [rad/s], expressed in [mm/s]:
+
+    G = e_per[mm] * Omega[rad/s] = 1000 * (U[kg*m] / m[kg]) * Omega[rad/s].
+
+Check (004 Table 1 footnote): e = 19.3 um at 167 Hz gives G = 0.0193 * 2 pi 167 = 20.3 -> "G20".
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..models import ParameterError
+
+__all__ = ["GRADES", "grade", "grade_class", "permissible_eccentricity", "unbalance_for_grade"]
+
+#: The standard ISO 1940-1 series of balance quality grades G [mm/s] (ratio 2.5 between steps).
+GRADES = (0.4, 1.0, 2.5, 6.3, 16.0, 40.0, 100.0, 250.0, 630.0, 1600.0, 4000.0)
+
+_M_TO_MM = 1000.0
+
+
+def _array(field: str, value, *, strict: bool) -> np.ndarray:
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(field, value, "must be a real number or an array of them") from None
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(field, value, "must be finite (not NaN or inf)")
+    bad = a <= 0.0 if strict else a < 0.0
+    if np.any(bad):
+        raise ParameterError(field, float(a[bad].flat[0]) if a.ndim else float(a),
+                             "must be > 0" if strict else "must be >= 0")
+    return a
+
+
+def _out(a):
+    return float(a) if np.ndim(a) == 0 else a
+
+
+def grade(residual_unbalance, mass, nominal_speed):
+    """Balance quality grade G = e_per[mm] * Omega[rad/s] (004 section 4, ISO 1940-1).
+
+    Parameters
+    ----------
+    residual_unbalance : float or array_like
+        Residual static unbalance U [kg*m], >= 0 (e.g. |M e + sum m_i R e^{i alpha_i}|).
+    mass : float or array_like
+        Rotor mass m [kg], > 0 (004 uses the shaft mass M = 16.53 kg).
+    nominal_speed : float or array_like
+        Highest nominal operating speed Omega [rad/s], > 0.
+
+    Returns
+    -------
+    G : float or ndarray
+        Grade [mm/s] (broadcast shape of the inputs).
+
+    Examples
+    --------
+    >>> round(grade(16.53 * 19.3e-6, 16.53, 2 * 3.141592653589793 * 167), 1)
+    20.3
+    """
+    u = _array("residual_unbalance", residual_unbalance, strict=False)
+    m = _array("mass", mass, strict=True)
+    w = _array("nominal_speed", nominal_speed, strict=True)
+    return _out(_M_TO_MM * (u / m) * w)
+
+
+def unbalance_for_grade(G, mass, nominal_speed):
+    """Static unbalance U [kg*m] that corresponds to grade G (inverse of :func:`grade`).
+
+    Parameters
+    ----------
+    G : float or array_like
+        Balance quality grade [mm/s], >= 0.
+    mass : float or array_like
+        Rotor mass m [kg], > 0.
+    nominal_speed : float or array_like
+        Highest nominal operating speed Omega [rad/s], > 0.
+
+    Returns
+    -------
+    U : float or ndarray
+        Permissible residual unbalance U = m * G / (1000 * Omega) [kg*m].
+    """
+    g = _array("G", G, strict=False)
+    m = _array("mass", mass, strict=True)
+    w = _array("nominal_speed", nominal_speed, strict=True)
+    return _out(m * g / (_M_TO_MM * w))
+
+
+def permissible_eccentricity(G, nominal_speed):
+    """Permissible mass-centre eccentricity e_per = G / Omega [m] for grade G [mm/s].
+
+    Parameters
+    ----------
+    G : float or array_like
+        Balance quality grade [mm/s], >= 0.
+    nominal_speed : float or array_like
+        Highest nominal operating speed Omega [rad/s], > 0.
+    """
+    g = _array("G", G, strict=False)
+    w = _array("nominal_speed", nominal_speed, strict=True)
+    return _out(g / (_M_TO_MM * w))
+
+
+def grade_class(G):
+    """Smallest standard grade of :data:`GRADES` that G [mm/s] satisfies (G <= class).
+
+    Parameters
+    ----------
+    G : float or array_like
+        Achieved grade [mm/s], >= 0.
+
+    Returns
+    -------
+    float or ndarray
+        The ISO class [mm/s]; inf when G exceeds G4000.
+    """
+    g = _array("G", G, strict=False)
+    series = np.asarray(GRADES + (np.inf,))
+    # small tolerance so that a computed 16.000000001 still counts as G16
+    idx = np.searchsorted(series, g * (1.0 - 1e-9), side="left")
+    return _out(series[idx])

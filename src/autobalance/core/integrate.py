@@ -1,0 +1,498 @@
+"""Adaptive Dormand-Prince 5(4) integration with exact Coulomb stick-slip (switch model).
+
+The mode of every ball (stuck, or slipping in direction sgn) is frozen during a step, so the right
+hand side is smooth inside a step and the error control is honest. After an accepted step the
+switching functions are checked:
+  * slipping ball i: g = sgn_i * alpha_dot_i crosses zero  -> the ball stops (stick candidate);
+  * stuck ball i:    g = mu_s N_i R - |lambda_i| < 0        -> the ball breaks away;
+  * motor-driven spin: psi_dot reaches the hold speed      -> the controller takes over.
+The earliest crossing is located on the cubic Hermite interpolant of the step (Illinois method),
+the step is redone up to that instant, and the modes are re-resolved: stuck balls are released one
+at a time, largest |lambda|/limit first, until every stuck ball's required friction is within its
+static limit (coupled stuck balls are solved together because lambda comes from the full
+constrained system). References: Leine, van Campen, van de Vrande, Nonlinear Dyn. 16 (1998)
+41-54 (switch model); Hairer, Norsett, Wanner, Solving ODEs I, sec. II.5 (DOPRI5) and II.6
+(dense output, event location).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from .layout import (B_MUS, N_S, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_KX, P_KY, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
+                     S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
+                     S_YMAX, P_DELTA)
+from .rhs import profile_segment, rhs
+
+# Dormand-Prince 5(4) tableau
+C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
+A21 = 1 / 5
+A31, A32 = 3 / 40, 9 / 40
+A41, A42, A43 = 44 / 45, -56 / 15, 32 / 9
+A51, A52, A53, A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
+A61, A62, A63, A64, A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
+A71, A73, A74, A75, A76 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
+E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+
+
+@njit(cache=True)
+def _hermite(y0, f0, y1, f1, h, th, j):
+    """Cubic Hermite interpolant of component j at fraction th of a step of size h."""
+    th2 = th * th
+    th3 = th2 * th
+    h00 = 2 * th3 - 3 * th2 + 1
+    h10 = th3 - 2 * th2 + th
+    h01 = -2 * th3 + 3 * th2
+    h11 = th3 - th2
+    return h00 * y0[j] + h10 * h * f0[j] + h01 * y1[j] + h11 * h * f1[j]
+
+
+@njit(cache=True)
+def _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx):
+    """One DOPRI5 step; returns (ok); y1, f1 (FSAL) and the error vector err are filled."""
+    n = y.shape[0]
+    for j in range(n):
+        ytmp[j] = y[j] + h * A21 * f0[j]
+    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+             K[1], lam, Mm, fv, A, bb, idx)
+    for j in range(n):
+        ytmp[j] = y[j] + h * (A31 * f0[j] + A32 * K[1, j])
+    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+              K[2], lam, Mm, fv, A, bb, idx)
+    for j in range(n):
+        ytmp[j] = y[j] + h * (A41 * f0[j] + A42 * K[1, j] + A43 * K[2, j])
+    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+              K[3], lam, Mm, fv, A, bb, idx)
+    for j in range(n):
+        ytmp[j] = y[j] + h * (A51 * f0[j] + A52 * K[1, j] + A53 * K[2, j] + A54 * K[3, j])
+    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+              K[4], lam, Mm, fv, A, bb, idx)
+    for j in range(n):
+        ytmp[j] = y[j] + h * (A61 * f0[j] + A62 * K[1, j] + A63 * K[2, j] + A64 * K[3, j]
+                              + A65 * K[4, j])
+    ok &= rhs(t + h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+              K[5], lam, Mm, fv, A, bb, idx)
+    for j in range(n):
+        y1[j] = y[j] + h * (A71 * f0[j] + A73 * K[2, j] + A74 * K[3, j] + A75 * K[4, j]
+                            + A76 * K[5, j])
+    ok &= rhs(t + h, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+              f1, lam, Mm, fv, A, bb, idx)
+    for j in range(n):
+        err[j] = h * (E1 * f0[j] + E3 * K[2, j] + E4 * K[3, j] + E5 * K[4, j] + E6 * K[5, j]
+                      + E7 * f1[j])
+    return ok
+
+
+@njit(cache=True)
+def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f,
+             lam, Mm, fv, A, bb, idx):
+    """Release stuck balls whose required friction exceeds the static limit, worst first."""
+    for _ in range(N + 1):
+        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f, lam, Mm,
+            fv, A, bb, idx)
+        worst = -1
+        wr = 1.0
+        for i in range(N):
+            if stuck[i] == 1:
+                lim = lam[N + i]
+                need = abs(lam[i])
+                if need > lim * (1.0 + 1e-12) + 1e-300:
+                    r = need / lim if lim > 0.0 else 1e300
+                    if r > wr:
+                        wr = r
+                        worst = i
+        if worst < 0:
+            return
+        stuck[worst] = 0
+        sgn[worst] = -1.0 if lam[worst] > 0.0 else 1.0
+
+
+@njit(cache=True)
+def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
+             unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx):
+    """Switching function of event (kind, i) at fraction th of the step."""
+    nq = N + 3
+    if kind == 0:      # slipping ball stops
+        return sgn[i] * _hermite(y0, f0, y1, f1, h, th, nq + 2 + i)
+    if kind == 2:      # driven spin reaches hold speed
+        return P[P_WHOLD] - _hermite(y0, f0, y1, f1, h, th, 2 * nq - 1)
+    for j in range(y0.shape[0]):   # stuck ball breaks away
+        ytmp[j] = _hermite(y0, f0, y1, f1, h, th, j)
+    rhs(t + th * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+        ftmp, lam, Mm, fv, A, bb, idx)
+    return lam[N + i] - abs(lam[i])
+
+
+@njit(cache=True)
+def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_max,
+              max_steps, out_t, out_y, stats):
+    """Integrate one run from t = 0 to t_end.
+
+    Parameters
+    ----------
+    P, B, N : parameters (layout.py) and number of balls.
+    prof_t, prof_w : piecewise-linear speed profile knots [s], [rad/s].
+    unb_t, unb_u : unbalance table [s], [kg*m].
+    y0 : initial state (layout.py).
+    t_end : end time [s].
+    rtol : relative tolerance [-]; atol : absolute tolerance per state component.
+    h_max : largest step [s].
+    max_steps : step budget.
+    out_t : sorted output times [s]; out_y : (len(out_t), 2*nq) filled with the state there.
+    stats : (N_S,) filled with the run statistics (layout.S_*).
+    """
+    nq = N + 3
+    n = 2 * nq
+    ip = nq - 1
+    K = np.zeros((6, n))
+    ytmp = np.zeros(n)
+    y = y0.copy()
+    y1 = np.zeros(n)
+    f0 = np.zeros(n)
+    f1 = np.zeros(n)
+    ftmp = np.zeros(n)
+    err = np.zeros(n)
+    ysave = np.zeros(n)
+    lam = np.zeros(3 * N + 1)
+    Mm = np.zeros((nq, nq))
+    fv = np.zeros(nq)
+    A = np.zeros((nq, nq))
+    bb = np.zeros(nq)
+    idx = np.zeros(nq, dtype=np.int64)
+    stuck = np.zeros(N, dtype=np.int64)
+    sgn = np.ones(N)
+    spin = np.zeros(2)
+    spin[0] = P[P_SPIN]
+    for j in range(N_S):
+        stats[j] = 0.0
+    stats[S_THOLD] = -1.0
+    nout = out_t.shape[0]
+    kout = 0
+    t = 0.0
+    exact = P[P_FLAW] == 0.0
+    # isotropic, no gravity, no base motion: max|x| = max|y| = max|w| (no sub-sampling needed)
+    symmetric = (P[P_KX] == P[P_KY] and P[P_CX] == P[P_CY] and P[P_G] == 0.0
+                 and P[P_BW] == 0.0 and P[P_FDRY] == 0.0)
+    # initial modes: balls at rest relative to the race start stuck if they can
+    if exact:
+        for i in range(N):
+            if B[i, B_MUS] > 0.0 and y[nq + 2 + i] == 0.0:
+                stuck[i] = 1
+            else:
+                sgn[i] = 1.0 if y[nq + 2 + i] >= 0.0 else -1.0
+    seg = profile_segment(t, prof_t)
+    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+             lam, Mm, fv, A, bb, idx)
+    nrhs = N + 1
+    while kout < nout and out_t[kout] <= t:
+        for j in range(n):
+            out_y[kout, j] = y[j]
+        kout += 1
+    amax = math.sqrt(y[0] ** 2 + y[1] ** 2)
+    stats[S_AMAX] = amax
+    # initial step: a fraction of a revolution / of the fastest natural period
+    h = min(h_max, 1e-4)
+    nsteps = 0
+    nrej = 0
+    nev = 0
+    stall = 0
+    in_contact = np.zeros(N, dtype=np.int64)
+    status = 0
+    while t < t_end:
+        if nsteps + nrej >= max_steps:
+            status = 1
+            break
+        # hard stops at profile knots
+        t_stop = t_end
+        if spin[0] == 0.0 and seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_stop:
+            t_stop = prof_t[seg + 1]
+        last = False
+        if t + h >= t_stop - 1e-12 * max(1.0, abs(t_stop)):
+            h = t_stop - t
+            last = True
+        if h < 1e-14 * max(1.0, t):
+            status = 2
+            break
+        ok = _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                         spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx)
+        nrhs += 6
+        en = 0.0
+        finite = ok
+        for j in range(n):
+            if j == ip or (j == n - 1 and spin[0] != 1.0):
+                continue
+            sc = atol[j] + rtol * max(abs(y[j]), abs(y1[j]))
+            q = err[j] / sc
+            en += q * q
+            if not math.isfinite(y1[j]):
+                finite = False
+        en = math.sqrt(en / (n - 2))
+        if not finite:
+            if h < 1e-12:
+                status = 3
+                break
+            h *= 0.25
+            nrej += 1
+            continue
+        if en > 1.0:
+            h *= max(0.2, 0.9 * en ** -0.2)
+            nrej += 1
+            continue
+        # ---- accepted trial step: events ------------------------------------------------
+        ev_kind = -1
+        ev_i = -1
+        th_ev = 2.0
+        if exact:
+            for i in range(N):
+                if stuck[i] == 0 and B[i, B_MUS] > 0.0:
+                    g1 = sgn[i] * y1[nq + 2 + i]
+                    if g1 < 0.0:
+                        g0 = sgn[i] * y[nq + 2 + i]
+                        # Illinois on the Hermite interpolant
+                        a_ = 0.0
+                        b_ = 1.0
+                        ga = g0
+                        gb = g1
+                        if ga <= 0.0 and sgn[i] * f0[nq + 2 + i] > 0.0:
+                            # freshly released ball (alpha_dot = 0): bracket a positive value
+                            thp = 0.5
+                            for _ in range(30):
+                                gp = _event_g(0, i, thp, t, h, y, f0, y1, f1, ytmp, P, B, N,
+                                              seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                              spin, ftmp, lam, Mm, fv, A, bb, idx)
+                                if gp > 0.0:
+                                    a_ = thp
+                                    ga = gp
+                                    break
+                                thp *= 0.5
+                        if ga <= 0.0:
+                            th = 0.0
+                        else:
+                            side = 0
+                            th = 1.0
+                            for _ in range(40):
+                                th = (a_ * gb - b_ * ga) / (gb - ga)
+                                gt = _event_g(0, i, th, t, h, y, f0, y1, f1, ytmp, P, B, N,
+                                              seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                              spin, ftmp, lam, Mm, fv, A, bb, idx)
+                                if gt > 0.0:
+                                    a_ = th
+                                    ga = gt
+                                    if side == 1:
+                                        gb *= 0.5
+                                    side = 1
+                                else:
+                                    b_ = th
+                                    gb = gt
+                                    if side == -1:
+                                        ga *= 0.5
+                                    side = -1
+                                if b_ - a_ < 1e-10 or gt == 0.0:
+                                    break
+                            th = b_
+                        if th < th_ev:
+                            th_ev = th
+                            ev_kind = 0
+                            ev_i = i
+            any_stuck = False
+            for i in range(N):
+                if stuck[i] == 1:
+                    any_stuck = True
+            if any_stuck:
+                # lam is from the FSAL evaluation f1 = f(t+h, y1) with the current modes
+                for i in range(N):
+                    if stuck[i] == 1 and abs(lam[i]) > lam[N + i]:
+                        a_ = 0.0
+                        b_ = 1.0
+                        ga = _event_g(1, i, 0.0, t, h, y, f0, y1, f1, ytmp, P, B, N, seg,
+                                      prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp,
+                                      lam, Mm, fv, A, bb, idx)
+                        gb = _event_g(1, i, 1.0, t, h, y, f0, y1, f1, ytmp, P, B, N, seg,
+                                      prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp,
+                                      lam, Mm, fv, A, bb, idx)
+                        nrhs += 2
+                        if ga <= 0.0 or gb >= 0.0:
+                            th = 0.0 if ga <= 0.0 else 1.0
+                        else:
+                            side = 0
+                            for _ in range(40):
+                                th = (a_ * gb - b_ * ga) / (gb - ga)
+                                gt = _event_g(1, i, th, t, h, y, f0, y1, f1, ytmp, P, B, N,
+                                              seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                              spin, ftmp, lam, Mm, fv, A, bb, idx)
+                                nrhs += 1
+                                if gt > 0.0:
+                                    a_ = th
+                                    ga = gt
+                                    if side == 1:
+                                        gb *= 0.5
+                                    side = 1
+                                else:
+                                    b_ = th
+                                    gb = gt
+                                    if side == -1:
+                                        ga *= 0.5
+                                    side = -1
+                                if b_ - a_ < 1e-10 or gt == 0.0:
+                                    break
+                            th = b_
+                        if th < th_ev:
+                            th_ev = th
+                            ev_kind = 1
+                            ev_i = i
+        if spin[0] == 1.0 and y1[2 * nq - 1] >= P[P_WHOLD]:
+            g0 = P[P_WHOLD] - y[2 * nq - 1]
+            g1 = P[P_WHOLD] - y1[2 * nq - 1]
+            th = g0 / (g0 - g1) if g0 > g1 else 1.0
+            if th < th_ev:
+                th_ev = th
+                ev_kind = 2
+                ev_i = -1
+        h_acc = h
+        if ev_kind >= 0:
+            nev += 1
+            if th_ev <= 1e-12:
+                stall += 1
+            else:
+                stall = 0
+            if th_ev < 1.0:
+                h_ev = th_ev * h
+                if h_ev > 1e-15 * max(1.0, t):
+                    _dopri_step(t, y, f0, h_ev, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                                stuck, sgn, spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx)
+                    nrhs += 6
+                else:
+                    for j in range(n):
+                        y1[j] = y[j]
+                        f1[j] = f0[j]
+                    h_ev = 0.0
+                h_acc = h_ev
+                last = False
+        # ---- output and monitors on (t, t + h_acc] ------------------------------------
+        t1 = t + h_acc
+        if last:
+            t1 = t_stop
+        while kout < nout and out_t[kout] <= t1:
+            th = (out_t[kout] - t) / h_acc if h_acc > 0.0 else 1.0
+            for j in range(n):
+                out_y[kout, j] = _hermite(y, f0, y1, f1, h_acc, th, j)
+            kout += 1
+        if h_acc > 0.0 and symmetric:
+            a1 = math.sqrt(y1[0] ** 2 + y1[1] ** 2)
+            if a1 > stats[S_AMAX]:
+                stats[S_AMAX] = a1
+                stats[S_TAMAX] = t1
+                stats[S_XMAX] = a1
+                stats[S_YMAX] = a1
+        elif h_acc > 0.0:
+            psid = abs(y1[2 * nq - 1])
+            nsub = 1 + int(psid * h_acc * 2.5)
+            if nsub > 64:
+                nsub = 64
+            for ks in range(1, nsub + 1):
+                th = ks / nsub
+                uu = _hermite(y, f0, y1, f1, h_acc, th, 0)
+                vv = _hermite(y, f0, y1, f1, h_acc, th, 1)
+                ps = _hermite(y, f0, y1, f1, h_acc, th, ip)
+                c = math.cos(ps)
+                s = math.sin(ps)
+                xx = abs(uu * c - vv * s)
+                yy = abs(uu * s + vv * c)
+                if xx > stats[S_XMAX]:
+                    stats[S_XMAX] = xx
+                if yy > stats[S_YMAX]:
+                    stats[S_YMAX] = yy
+            a1 = math.sqrt(y1[0] ** 2 + y1[1] ** 2)
+            if a1 > stats[S_AMAX]:
+                stats[S_AMAX] = a1
+                stats[S_TAMAX] = t1
+        # contact bookkeeping (counts contacts started)
+        if N > 1:
+            for i in range(N):
+                j = i + 1
+                wrap = 0.0
+                if j == N:
+                    j = 0
+                    wrap = 2.0 * math.pi
+                gap = y1[2 + j] + wrap - y1[2 + i] - P[P_DELTA]
+                if gap < 0.0 and in_contact[i] == 0:
+                    in_contact[i] = 1
+                    stats[S_IMPACTS] += 1.0
+                elif gap >= 0.0:
+                    in_contact[i] = 0
+        t = t1
+        for j in range(n):
+            y[j] = y1[j]
+            f0[j] = f1[j]
+        nsteps += 1
+        if last and spin[0] == 0.0:
+            seg = profile_segment(t, prof_t)
+        # ---- mode changes ----------------------------------------------------------------
+        if ev_kind >= 0 or last:
+            if ev_kind == 0:
+                y[nq + 2 + ev_i] = 0.0
+                stuck[ev_i] = 1
+            elif ev_kind == 1:
+                stuck[ev_i] = 0
+                sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
+            elif ev_kind == 2:
+                spin[0] = 2.0
+                spin[1] = y[2 * nq - 1]
+                stats[S_THOLD] = t
+            if exact:
+                # any other slipping ball that stopped within round-off joins the stuck set
+                for i in range(N):
+                    if stuck[i] == 0 and B[i, B_MUS] > 0.0 and sgn[i] * y[nq + 2 + i] <= 0.0:
+                        y[nq + 2 + i] = 0.0
+                        stuck[i] = 1
+                if ev_kind == 1:
+                    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                             spin, f0, lam, Mm, fv, A, bb, idx)
+                    # the released ball must stay released even if lambda is marginal now
+                    if stuck[ev_i] == 1:
+                        stuck[ev_i] = 0
+                        sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
+                _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                         f0, lam, Mm, fv, A, bb, idx)
+                nrhs += N + 1
+            else:
+                rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+                    lam, Mm, fv, A, bb, idx)
+                nrhs += 1
+            if stall > 50:
+                status = 2
+                break
+            if ev_kind >= 0:
+                continue
+        # ---- next step size ---------------------------------------------------------------
+        fac = 5.0 if en == 0.0 else min(5.0, max(0.2, 0.9 * en ** -0.2))
+        h = min(h_max, h_acc * fac if h_acc > 0.0 else h)
+        if h <= 0.0:
+            h = 1e-6
+    # fill any remaining outputs (t_end reached exactly)
+    while kout < nout:
+        for j in range(n):
+            out_y[kout, j] = y[j]
+        kout += 1
+    stats[S_STATUS] = status
+    stats[S_STEPS] = nsteps
+    stats[S_REJECTED] = nrej
+    stats[S_EVENTS] = nev
+    stats[S_RHS] = nrhs
+    stats[S_TFINAL] = t
+    return y
+
+
+@njit(cache=True, parallel=True)
+def integrate_batch(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_max,
+                    max_steps, out_t, out_y, stats):
+    """Many runs in one call, in parallel threads: P (n, N_P), B (n, N, N_B), y0 (n, 2nq),
+    atol (n, 2nq), out_y (n, len(out_t), 2nq), stats (n, N_S); profile and unbalance tables
+    shared."""
+    nrun = P.shape[0]
+    for r in prange(nrun):
+        integrate(P[r], B[r], N, prof_t, prof_w, unb_t, unb_u, y0[r], t_end, rtol, atol[r],
+                  h_max, max_steps, out_t, out_y[r], stats[r])

@@ -1,0 +1,112 @@
+"""Strip units/objects into the flat float arrays of the kernels (layout.py), and back."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
+from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
+                     P_BETA, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
+                     P_FLAW, P_G, P_GDIR, P_GDRY, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
+                     P_R, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
+
+LAW_ID = {"constant": 0.0, "linear": 1.0, "harmonic": 2.0}
+
+
+def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray, float]:
+    """Profile knots (times [s], speeds [rad/s]) and the end time [s]."""
+    if isinstance(spin, MotorDrive):
+        return np.array([0.0, spin.duration]), np.array([spin.initial_speed] * 2), spin.duration
+    t, w = spin.arrays()
+    return t, w, spin.duration
+
+
+def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[np.ndarray, np.ndarray]:
+    """Scalar vector P (N_P,) and ball table B (N, N_B) in SI."""
+    r, s, b, g = system.rotor, system.suspension, system.balancer, system.gravity
+    P = np.zeros(N_P)
+    P[P_MT] = system.total_mass
+    P[P_MROT] = r.mass
+    P[P_KX], P[P_KY], P[P_CX], P[P_CY] = s.kx, s.ky, s.cx, s.cy
+    P[P_FDRY], P[P_GDRY], P[P_VDRY] = s.dry_friction_force, s.dry_friction_angle, s.dry_friction_velocity
+    P[P_BAX], P[P_BAY], P[P_BW] = s.base_amplitude_x, s.base_amplitude_y, s.base_frequency
+    P[P_BPX], P[P_BPY] = s.base_phase_x, s.base_phase_y
+    P[P_R] = b.race_radius if b.n_balls else 0.0
+    P[P_RHO], P[P_BETA] = b.eccentricity, b.eccentricity_angle
+    P[P_G], P[P_GDIR] = g.g, g.direction
+    P[P_BZ], P[P_CPHI] = r.polar_inertia, r.spin_damping
+    P[P_WNOM] = spin.nominal_speed
+    if isinstance(spin, MotorDrive):
+        if r.polar_inertia <= 0.0:
+            from ..models import ParameterError
+            raise ParameterError("rotor.polar_inertia", r.polar_inertia,
+                                 "must be > 0 when the spin is driven by a motor torque")
+        P[P_SPIN] = 1.0
+        P[P_LAW] = LAW_ID[spin.law]
+        P[P_T0], P[P_WF] = spin.torque, spin.final_speed
+        P[P_WHOLD] = spin.hold_fraction * spin.final_speed
+    P[P_FLAW] = 0.0 if options.friction_law == "stick" else 1.0
+    P[P_VSAT] = options.v_sat
+    P[P_NMODEL] = 0.0 if options.normal_force == "ball" else 1.0
+    P[P_DELTA] = b.contact_angle
+    n = b.n_balls
+    B = np.zeros((n, N_B))
+    if n:
+        B[:, B_M] = b.masses
+        B[:, B_I] = b.inertias
+        B[:, B_RR] = b.race_radius / b.ball_radius
+        B[:, B_D] = b.damping
+        B[:, B_MU] = b.rolling_resistance
+        B[:, B_MUS] = b.stiction
+        J = B[:, B_M] * b.race_radius**2 + B[:, B_I] * B[:, B_RR] ** 2
+        Jn = np.roll(J, -1)
+        jeff = J * Jn / (J + Jn)
+        wc = b.contact_frequency or 5.0 * spin.nominal_speed
+        e = b.restitution
+        zeta = 1.0 if e <= 0.0 else -math.log(e) / math.sqrt(math.pi**2 + math.log(e) ** 2)
+        B[:, B_KC] = jeff * wc**2
+        B[:, B_CC] = 2.0 * zeta * jeff * wc
+    return P, B
+
+
+def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: InitialState) -> tuple[np.ndarray, np.ndarray]:
+    """State y0 (2*nq,) and the ball order (kernel index -> user index).
+
+    The kernel keeps balls sorted by angle (they cannot pass each other); alpha is unwrapped so
+    that alpha_0 <= alpha_1 <= ... < alpha_0 + 2 pi.
+    """
+    b = system.balancer
+    n = b.n_balls
+    nq = n + 3
+    a = initial.angles_for(b)
+    ad = initial.speeds_for(b)
+    order = np.argsort(np.mod(a, 2 * np.pi), kind="stable")
+    a_sorted = np.mod(a[order], 2 * np.pi)
+    y = np.zeros(2 * nq)
+    if isinstance(spin, MotorDrive):
+        w0 = spin.initial_speed
+    else:
+        w0 = float(spin.speeds[0])
+    # initial rotor position/velocity given in the inertial frame at psi = 0
+    y[0], y[1] = initial.x, initial.y
+    y[nq], y[nq + 1] = initial.vx + w0 * initial.y, initial.vy - w0 * initial.x
+    y[2:2 + n] = a_sorted
+    y[nq + 2:nq + 2 + n] = ad[order]
+    y[nq - 1] = 0.0
+    y[2 * nq - 1] = w0
+    return y, order
+
+
+def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:
+    """Absolute tolerances: atol_scale times a length, an angle and their rates."""
+    b = system.balancer
+    nq = b.n_balls + 3
+    L = max(system.rotor.unbalance, b.capacity, 1e-9) / system.total_mass
+    W = max(spin.nominal_speed, 1.0)
+    a = np.empty(2 * nq)
+    a[:2] = L
+    a[2:nq] = 1.0
+    a[nq:nq + 2] = L * W
+    a[nq + 2:] = W
+    return options.atol_scale * a

@@ -1,0 +1,346 @@
+"""Equations of motion of a rotor with an N-ball balancer, in the rotor-fixed frame.
+
+Derivation: docs/model.md. Lagrange's equations in the coordinates q = (u, v, alpha_1..N, psi),
+x + i y = (u + i v) e^{i psi}, written as M(q) q'' = f(q, q', t) + friction. They reduce to
+000 eq (2)-(4) (constant speed, rho = 0, translate to the inertial frame), 000 eq (15)-(18)
+(motor-driven spin), 000 eq (33)-(36) (race eccentricity rho, beta), 000 eq (50) (gravity on the
+balls) and 004 eq (8)-(10) (Jeffcott rotor, isotropic suspension). Rolling resistance is Coulomb
+(000 eq 20, 004 "mu F_n") with exact stick (switch model, Leine et al. 1998) or the 004 tanh law.
+
+Units: SI throughout ([m], [kg], [rad], [s], [N], [N*m]).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
+                     P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
+                     P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
+                     P_VSAT, P_WF)
+
+
+@njit(cache=True)
+def profile_eval(t, seg, prof_t, prof_w):
+    """Speed [rad/s] and acceleration [rad/s^2] of a piecewise-linear profile on segment seg."""
+    n = prof_t.shape[0]
+    if seg >= n - 1:
+        return prof_w[n - 1], 0.0
+    t0 = prof_t[seg]
+    t1 = prof_t[seg + 1]
+    slope = (prof_w[seg + 1] - prof_w[seg]) / (t1 - t0)
+    return prof_w[seg] + slope * (t - t0), slope
+
+
+@njit(cache=True)
+def profile_segment(t, prof_t):
+    """Index k of the segment with prof_t[k] <= t < prof_t[k+1] (last knot -> n-1)."""
+    n = prof_t.shape[0]
+    k = 0
+    while k < n - 1 and t >= prof_t[k + 1]:
+        k += 1
+    return k
+
+
+@njit(cache=True)
+def table_interp(t, tt, vv):
+    """Linear interpolation in a short table, held constant outside."""
+    n = tt.shape[0]
+    if n == 1 or t <= tt[0]:
+        return vv[0]
+    if t >= tt[n - 1]:
+        return vv[n - 1]
+    k = 0
+    while t >= tt[k + 1]:
+        k += 1
+    a = (t - tt[k]) / (tt[k + 1] - tt[k])
+    return vv[k] + a * (vv[k + 1] - vv[k])
+
+
+@njit(cache=True)
+def motor_torque(law, t0, wf, w):
+    """000 Table 1 torque laws T_m(w) [N*m]: constant, linear T0(1 - w/w_f), harmonic."""
+    if law == 0:
+        return t0
+    if law == 1:
+        return t0 * (1.0 - w / wf)
+    return t0 * (1.0 - math.sin(0.5 * math.pi * w / wf))
+
+
+@njit(cache=True)
+def cholesky_solve(A, b, n):
+    """Solve A x = b in place (x returned in b) for the leading n x n SPD block of A."""
+    for j in range(n):
+        s = A[j, j]
+        for k in range(j):
+            s -= A[j, k] * A[j, k]
+        if s <= 0.0:
+            return False
+        d = math.sqrt(s)
+        A[j, j] = d
+        for i in range(j + 1, n):
+            s = A[i, j]
+            for k in range(j):
+                s -= A[i, k] * A[j, k]
+            A[i, j] = s / d
+    for i in range(n):
+        s = b[i]
+        for k in range(i):
+            s -= A[i, k] * b[k]
+        b[i] = s / A[i, i]
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for k in range(i + 1, n):
+            s -= A[k, i] * b[k]
+        b[i] = s / A[i, i]
+    return True
+
+
+@njit(cache=True)
+def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+        dy, lam, Mm, fv, A, bb, idx):
+    """Time derivative dy of the state y; also the friction bookkeeping in lam.
+
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    y : ndarray (2*nq,)
+        State (layout.py).
+    P, B : ndarray
+        Scalar and per-ball parameters (layout.py), SI.
+    seg : int
+        Segment of the speed profile the current step lies in.
+    stuck : int array (N,)
+        1 if ball i is stuck to the race (alpha_i'' = 0, friction from the constraint).
+    sgn : float array (N,)
+        Direction of sliding of a slipping ball (+1/-1); kinetic friction opposes it.
+    spin : float array (2,)
+        spin[0]: 0 prescribed profile, 1 motor-driven, 2 held at constant speed spin[1] [rad/s].
+    dy : ndarray (2*nq,)
+        Output derivative.
+    lam : ndarray (3N,)
+        Output: lam[i] = friction torque a stuck ball needs [N*m]; lam[N+i] = static limit
+        mu_s*N_i*R [N*m]; lam[2N+i] = normal force N_i [N].
+
+    Returns
+    -------
+    ok : bool
+        False if the mass matrix is not positive definite (non-physical parameters).
+    """
+    nq = N + 3
+    ip = nq - 1
+    u = y[0]
+    v = y[1]
+    psi = y[ip]
+    ud = y[nq]
+    vd = y[nq + 1]
+    R = P[P_R]
+    Mt = P[P_MT]
+    rho = P[P_RHO]
+    beta = P[P_BETA]
+    g = P[P_G]
+    gdir = P[P_GDIR]
+    U = table_interp(t, unb_t, unb_u)
+
+    mode = spin[0]
+    if mode == 0.0:
+        psid, psidd = profile_eval(t, seg, prof_t, prof_w)
+    elif mode == 2.0:
+        psid = spin[1]
+        psidd = 0.0
+    else:
+        psid = y[2 * nq - 1]
+        psidd = 0.0
+    cp = math.cos(psi)
+    sp = math.sin(psi)
+
+    # --- suspension force in the inertial frame (000 eq 2-3, 48), rotated to (u, v) -----------
+    x = u * cp - v * sp
+    yy = u * sp + v * cp
+    wr = ud - psid * v
+    wi = vd + psid * u
+    xd = wr * cp - wi * sp
+    yd = wr * sp + wi * cp
+    xb = 0.0
+    yb = 0.0
+    xbd = 0.0
+    ybd = 0.0
+    if P[P_BW] > 0.0:
+        wb = P[P_BW]
+        xb = P[P_BAX] * math.cos(wb * t + P[P_BPX])
+        yb = P[P_BAY] * math.cos(wb * t + P[P_BPY])
+        xbd = -P[P_BAX] * wb * math.sin(wb * t + P[P_BPX])
+        ybd = -P[P_BAY] * wb * math.sin(wb * t + P[P_BPY])
+    Fx = -P[P_KX] * (x - xb) - P[P_CX] * (xd - xbd)
+    Fy = -P[P_KY] * (yy - yb) - P[P_CY] * (yd - ybd)
+    if P[P_FDRY] > 0.0:
+        cg = math.cos(P[P_GDRY])
+        sg = math.sin(P[P_GDRY])
+        for side in (-1.0, 1.0):
+            vs = cg * xd + side * sg * yd
+            ff = -P[P_FDRY] * math.tanh(vs / P[P_VDRY])
+            Fx += ff * cg
+            Fy += ff * side * sg
+    Fu = Fx * cp + Fy * sp
+    Fv = -Fx * sp + Fy * cp
+
+    cb = math.cos(beta)
+    sb = math.sin(beta)
+    driven = mode == 1.0
+    has_g = g > 0.0
+    for i in range(nq):
+        fv[i] = 0.0
+    for i in range(N):       # ball-ball entries of the mass matrix are zero
+        for j in range(N):
+            Mm[2 + i, 2 + j] = 0.0
+
+    Sm = 0.0
+    SmS = 0.0
+    SmC = 0.0
+    cent_u = 0.0
+    cent_v = 0.0
+    a_u = 2.0 * psid * vd + psid * psid * u       # -(Re of velocity part of rotated accel.)
+    a_v = 2.0 * psid * ud - psid * psid * v       # +(Im of velocity part of rotated accel.)
+    # psi row, old (inertial) form: accumulated below
+    Mpp = P[P_BZ] + U * u
+    fpp = -U * a_v
+    for i in range(N):
+        a = y[2 + i]
+        ad = y[nq + 2 + i]
+        m = B[i, B_M]
+        Ii = B[i, B_I]
+        rr = B[i, B_RR]
+        c = math.cos(a)
+        s = math.sin(a)
+        thd = psid + ad
+        th = psi + a
+        Sm += m
+        SmS += m * s
+        SmC += m * c
+        cent_u += m * thd * thd * c
+        cent_v += m * thd * thd * s
+        k = 2 + i
+        # ball row (Lagrange in alpha_i; 000 eq 4/18/36/50, 004 eq 10)
+        Mm[k, 0] = -m * R * s
+        Mm[k, 1] = m * R * c
+        Mm[k, k] = m * R * R + Ii * rr * rr
+        cab = math.cos(a - beta)
+        sab = math.sin(a - beta)
+        Mm[k, ip] = m * R * (u * c + v * s) + m * R * R - Ii * rr + m * R * rho * cab
+        fk = -m * R * (s * a_u + c * a_v) - m * R * rho * psid * psid * sab
+        fk -= B[i, B_D] * ad
+        sthg = 0.0
+        cthg = 0.0
+        if has_g:
+            sthg = math.sin(th - gdir)
+            cthg = math.cos(th - gdir)
+        # gravity, tangential to the race: m R g.e_t (000 eq 50, 004 eq 10)
+        fk -= m * R * g * sthg
+        # normal force of the race on the ball
+        if P[P_NMODEL] == 0.0:
+            nf = m * (R * thd * thd + g * cthg)
+        else:
+            nf = m * R * psid * psid
+        if nf < 0.0:
+            nf = 0.0
+        lam[2 * N + i] = nf
+        lam[N + i] = B[i, B_MUS] * nf * R
+        lam[i] = 0.0
+        if P[P_FLAW] == 1.0:
+            fk -= B[i, B_MU] * nf * R * math.tanh(ad / P[P_VSAT])
+        elif stuck[i] == 0:
+            fk -= sgn[i] * B[i, B_MU] * nf * R
+        fv[k] = fk
+        if driven:
+            # psi row contributions (old form), see docs/model.md
+            tb = sb * a_u + cb * a_v
+            ta = s * a_u + c * a_v
+            Mm[ip, k] = m * rho * R * cab + m * R * R - Ii * rr
+            Mpp += m * (rho * (v * sb + u * cb) + rho * rho + 2.0 * rho * R * cab
+                        + R * (v * s + u * c) + R * R) + Ii
+            fpp -= m * (rho * (tb - R * thd * thd * sab) + R * (ta + rho * psid * psid * sab))
+            if has_g:
+                fpp -= m * g * (rho * math.sin(psi + beta - gdir) + R * sthg)
+
+    # ball-ball contact: compliant spring-dashpot between neighbours (order preserved)
+    if N > 1:
+        for i in range(N):
+            j = i + 1
+            wrap = 0.0
+            if j == N:
+                j = 0
+                wrap = 2.0 * math.pi
+            gap = y[2 + j] + wrap - y[2 + i] - P[P_DELTA]
+            if gap < 0.0:
+                pen_rate = y[nq + 2 + i] - y[nq + 2 + j]
+                fc = B[i, B_KC] * (-gap) + B[i, B_CC] * pen_rate
+                if fc > 0.0:
+                    fv[2 + j] += fc
+                    fv[2 + i] -= fc
+
+    # translational rows (000 eq 2-3/16-17/34-35, 004 eq 8-9 in the rotor frame)
+    Mm[0, 0] = Mt
+    Mm[1, 1] = Mt
+    for i in range(N):
+        Mm[0, 2 + i] = Mm[2 + i, 0]
+        Mm[1, 2 + i] = Mm[2 + i, 1]
+    Mm[0, ip] = -Mt * v - Sm * rho * sb - R * SmS
+    Mm[1, ip] = Mt * u + U + Sm * rho * cb + R * SmC
+    fv[0] = Fu + Mt * a_u + U * psid * psid + Sm * rho * psid * psid * cb + R * cent_u
+    fv[1] = Fv - Mt * a_v + Sm * rho * psid * psid * sb + R * cent_v
+
+    # free unknowns: u'', v'', alpha'' of slipping balls, psi'' if driven
+    nf_ = 0
+    idx[nf_] = 0
+    nf_ += 1
+    idx[nf_] = 1
+    nf_ += 1
+    for i in range(N):
+        if P[P_FLAW] == 1.0 or stuck[i] == 0:
+            idx[nf_] = 2 + i
+            nf_ += 1
+    if driven:
+        # psi row = old psi row + u*(v row) - v*(u row)  (coordinate change, docs/model.md)
+        Mm[ip, 0] = -Sm * rho * sb - R * SmS
+        Mm[ip, 1] = U + Sm * rho * cb + R * SmC
+        Mm[ip, ip] = Mpp
+        fpp += motor_torque(P[P_LAW], P[P_T0], P[P_WF], psid) - P[P_CPHI] * psid
+        if has_g:
+            fpp -= g * U * math.sin(psi - gdir)
+        for j in range(nq):
+            Mm[ip, j] += u * Mm[1, j] - v * Mm[0, j]
+        fv[ip] = fpp + u * fv[1] - v * fv[0]
+        idx[nf_] = ip
+        nf_ += 1
+    for a_ in range(nf_):
+        ia = idx[a_]
+        rhs_a = fv[ia]
+        if not driven:
+            rhs_a -= Mm[ia, ip] * psidd
+        bb[a_] = rhs_a
+        for b_ in range(nf_):
+            A[a_, b_] = Mm[ia, idx[b_]]
+    ok = cholesky_solve(A, bb, nf_)
+
+    for j in range(nq):
+        dy[j] = y[nq + j]
+        dy[nq + j] = 0.0
+    for a_ in range(nf_):
+        dy[nq + idx[a_]] = bb[a_]
+    if not driven:
+        dy[nq + ip] = psidd
+        dy[ip] = psid
+    # required friction of stuck balls: lam_i = M[k,:] q'' - f_k
+    if P[P_FLAW] == 0.0:
+        for i in range(N):
+            if stuck[i] == 1:
+                k = 2 + i
+                s_ = -fv[k]
+                for j in range(nq):
+                    s_ += Mm[k, j] * dy[nq + j]
+                lam[i] = s_
+                dy[k] = 0.0
+    return ok

@@ -1,0 +1,67 @@
+"""Validation helpers shared by the parameter dataclasses.
+
+Every check raises :class:`ParameterError` whose message is one line naming the field, the value
+and what is allowed, so the CLI can print it verbatim (exit code 2, no traceback).
+"""
+from __future__ import annotations
+
+import math
+
+
+class ParameterError(ValueError):
+    """A physical parameter is out of its allowed range (one-line message)."""
+
+    def __init__(self, field: str, value, allowed: str):
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{field} = {value!r}: {allowed}")
+
+
+def finite(field: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(field, value, "must be a real number") from None
+    if not math.isfinite(v):
+        raise ParameterError(field, value, "must be a finite number (not NaN or inf)")
+    return v
+
+
+def positive(field: str, value) -> float:
+    v = finite(field, value)
+    if v <= 0.0:
+        raise ParameterError(field, value, "must be > 0")
+    return v
+
+
+def nonneg(field: str, value) -> float:
+    v = finite(field, value)
+    if v < 0.0:
+        raise ParameterError(field, value, "must be >= 0")
+    return v
+
+
+def in_range(field: str, value, lo: float, hi: float) -> float:
+    v = finite(field, value)
+    if not (lo <= v <= hi):
+        raise ParameterError(field, value, f"must be within [{lo:g}, {hi:g}]")
+    return v
+
+
+def count(field: str, value, lo: int = 0) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value:
+        raise ParameterError(field, value, f"must be an integer >= {lo}")
+    v = int(value)
+    if v < lo:
+        raise ParameterError(field, value, f"must be an integer >= {lo}")
+    return v
+
+
+def per_ball(field: str, value, n: int, check) -> tuple[float, ...]:
+    """A scalar (same for all balls) or a sequence of length n, each element checked."""
+    if isinstance(value, (list, tuple)):
+        if len(value) != n:
+            raise ParameterError(field, list(value), f"needs {n} values (one per ball) or one scalar")
+        return tuple(check(f"{field}[{i}]", v) for i, v in enumerate(value))
+    return tuple(check(field, value) for _ in range(n))

@@ -1,0 +1,123 @@
+"""Ball/roller balancer parameters, SI units (000 eq 2-4, 19-20, 33-36; 004 eq 8-10, Table 1)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import ParameterError, count, finite, in_range, nonneg, per_ball, positive
+
+#: Rotational inertia factor kappa in I = kappa*m*r^2 for the rolling elements.
+INERTIA_FACTOR = {"ball": 0.4, "roller": 0.5, "point": 0.0}
+
+
+@dataclass(frozen=True)
+class BallBalancer:
+    """N balls or rollers running in one circular race fixed to the rotor.
+
+    Parameters
+    ----------
+    n_balls : int
+        Number of balls N (0 = rotor without balancer).
+    ball_mass : float or tuple
+        Mass m_i of each ball [kg] (004: 7.6 g; 000: m = Me/R for mR = Me).
+    race_radius : float
+        Radius R of the circle of the ball centres [m] (000: 0.28 m; 004: 35 mm).
+    ball_radius : float
+        Rolling radius r of the element [m]; sets the contact angle between neighbours and the
+        rolling inertia (000: m_z = m + I/r^2).
+    element : str
+        "ball" (I = 2/5 m r^2), "roller" (I = 1/2 m r^2) or "point" (I = 0, 004's point masses).
+    damping : float or tuple
+        Viscous damping D_i of the ball motion relative to the race [N*m*s/rad]
+        (004 Table 1: 2.7 N*mm*s/rad; 000 writes it c_i*m*R^2 with c_i in 1/s).
+    rolling_resistance : float or tuple
+        Coefficient of the resisting force F_r = coef * N_i (000 eq 20: f/r; 004: mu) [-].
+    stiction : float or tuple, optional
+        Static (break-away) coefficient >= rolling_resistance [-]; defaults to it.
+    eccentricity : float
+        Distance rho between the race centre and the spin axis [m] (000 eq 33).
+    eccentricity_angle : float
+        Angle beta of that offset from the unbalance direction [rad] (000 eq 33).
+    restitution : float
+        Coefficient of restitution of ball-ball impacts [-] (000: impacts between balls).
+    contact_frequency : float
+        Natural frequency of the compliant ball-ball contact [rad/s]; 0 = 5x the run's top speed.
+    """
+
+    n_balls: int
+    ball_mass: float | tuple = 0.0
+    race_radius: float = 0.0
+    ball_radius: float = 0.0
+    element: str = "ball"
+    damping: float | tuple = 0.0
+    rolling_resistance: float | tuple = 0.0
+    stiction: float | tuple | None = None
+    eccentricity: float = 0.0
+    eccentricity_angle: float = 0.0
+    restitution: float = 0.5
+    contact_frequency: float = 0.0
+
+    def __post_init__(self):
+        n = count("balancer.n_balls", self.n_balls, 0)
+        object.__setattr__(self, "n_balls", n)
+        if self.element not in INERTIA_FACTOR:
+            raise ParameterError("balancer.element", self.element,
+                                 f"must be one of {sorted(INERTIA_FACTOR)}")
+        if n == 0:
+            for name in ("ball_mass", "damping", "rolling_resistance"):
+                object.__setattr__(self, name, ())
+            object.__setattr__(self, "stiction", ())
+            if self.race_radius:
+                positive("balancer.race_radius", self.race_radius)
+            return
+        object.__setattr__(self, "ball_mass", per_ball("balancer.ball_mass", self.ball_mass, n, positive))
+        positive("balancer.race_radius", self.race_radius)
+        positive("balancer.ball_radius", self.ball_radius)
+        if self.ball_radius >= self.race_radius:
+            raise ParameterError("balancer.ball_radius", self.ball_radius,
+                                 f"must be < race_radius = {self.race_radius}")
+        if n * 2 * math.asin(self.ball_radius / self.race_radius) > 2 * math.pi + 1e-12:
+            raise ParameterError("balancer.n_balls", n,
+                                 "that many balls of this radius do not fit in the race")
+        object.__setattr__(self, "damping", per_ball("balancer.damping", self.damping, n, nonneg))
+        mu = per_ball("balancer.rolling_resistance", self.rolling_resistance, n, nonneg)
+        object.__setattr__(self, "rolling_resistance", mu)
+        st = mu if self.stiction is None else per_ball("balancer.stiction", self.stiction, n, nonneg)
+        for i, (a, b) in enumerate(zip(mu, st)):
+            if b < a:
+                raise ParameterError(f"balancer.stiction[{i}]", b,
+                                     f"must be >= rolling_resistance = {a}")
+        object.__setattr__(self, "stiction", st)
+        nonneg("balancer.eccentricity", self.eccentricity)
+        if self.eccentricity >= self.race_radius:
+            raise ParameterError("balancer.eccentricity", self.eccentricity,
+                                 f"must be < race_radius = {self.race_radius}")
+        finite("balancer.eccentricity_angle", self.eccentricity_angle)
+        in_range("balancer.restitution", self.restitution, 0.0, 1.0)
+        nonneg("balancer.contact_frequency", self.contact_frequency)
+
+    # -- derived quantities -------------------------------------------------------------------
+    @property
+    def masses(self) -> np.ndarray:
+        return np.asarray(self.ball_mass, float)
+
+    @property
+    def total_mass(self) -> float:
+        return float(np.sum(self.masses)) if self.n_balls else 0.0
+
+    @property
+    def inertias(self) -> np.ndarray:
+        """Rolling inertia I_i = kappa*m_i*r^2 [kg*m^2]."""
+        return INERTIA_FACTOR[self.element] * self.masses * self.ball_radius**2
+
+    @property
+    def capacity(self) -> float:
+        """Total ball unbalance sum(m_i)*R [kg*m] (all balls in phase)."""
+        return self.total_mass * self.race_radius
+
+    @property
+    def contact_angle(self) -> float:
+        """Smallest centre-angle between neighbouring balls, 2*asin(r/R) [rad]."""
+        return 2 * math.asin(self.ball_radius / self.race_radius) if self.n_balls else 0.0

@@ -1,0 +1,201 @@
+"""Spin of the rotor: prescribed speed profiles (piecewise linear) or a motor torque law.
+
+Every prescribed profile is compiled to a piecewise-linear table of (time [s], speed [rad/s]); the
+spin angle is its exact integral. The 004 profiles (Fig. 3, "standardized speed profile") are not
+given numerically in the paper; the shape we use is documented in docs/model.md section 5.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import ParameterError, finite, in_range, nonneg, positive
+
+TWO_PI = 2.0 * math.pi
+
+
+@dataclass(frozen=True)
+class SpeedProfile:
+    """Prescribed spin speed, piecewise linear in time.
+
+    Parameters
+    ----------
+    times : tuple of float
+        Knot times [s], strictly increasing, starting at 0; the last is the end of the run.
+    speeds : tuple of float
+        Spin speed at each knot [rad/s], >= 0.
+    nominal_speed : float, optional
+        Highest nominal operating speed for the ISO 1940 grade [rad/s]; default max(speeds).
+    checkpoints : tuple of float
+        Times [s] at which the balancing quality is reported (004: 20 % and 100 % of the run).
+    name : str
+        Label for reports.
+    """
+
+    times: tuple
+    speeds: tuple
+    nominal_speed: float | None = None
+    checkpoints: tuple = ()
+    name: str = "table"
+
+    def __post_init__(self):
+        t = tuple(finite("profile.times", v) for v in self.times)
+        w = tuple(nonneg("profile.speeds", v) for v in self.speeds)
+        if len(t) < 2:
+            raise ParameterError("profile.times", list(t), "needs at least 2 knots (start and end)")
+        if len(t) != len(w):
+            raise ParameterError("profile.speeds", list(w), f"needs {len(t)} values, one per time")
+        if t[0] != 0.0:
+            raise ParameterError("profile.times", list(t), "must start at 0 s")
+        if any(b <= a for a, b in zip(t, t[1:])):
+            raise ParameterError("profile.times", list(t), "must be strictly increasing")
+        object.__setattr__(self, "times", t)
+        object.__setattr__(self, "speeds", w)
+        nom = max(w) if self.nominal_speed is None else positive("profile.nominal_speed", self.nominal_speed)
+        if nom <= 0:
+            raise ParameterError("profile.speeds", list(w), "at least one speed must be > 0")
+        object.__setattr__(self, "nominal_speed", nom)
+        cps = tuple(in_range("profile.checkpoints", c, 0.0, t[-1]) for c in self.checkpoints)
+        object.__setattr__(self, "checkpoints", cps or (t[-1],))
+
+    @property
+    def duration(self) -> float:
+        return self.times[-1]
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.asarray(self.times, float), np.asarray(self.speeds, float)
+
+    def speed(self, t):
+        """Spin speed at time t [rad/s] (linear interpolation)."""
+        tt, ww = self.arrays()
+        return np.interp(t, tt, ww)
+
+    # -- constructors -------------------------------------------------------------------------
+    @classmethod
+    def constant(cls, speed: float, duration: float, *, start_speed: float | None = None) -> "SpeedProfile":
+        """Constant speed [rad/s] for ``duration`` [s] (000 Figs. 5, 13, 16, 18 at 1000 rpm)."""
+        positive("profile.speed", speed)
+        positive("profile.duration", duration)
+        return cls((0.0, duration), (speed, speed), name="constant")
+
+    @classmethod
+    def ramp(cls, start_speed: float, end_speed: float, ramp_time: float, duration: float) -> "SpeedProfile":
+        """Linear ramp from start to end speed [rad/s] over ramp_time [s], then hold to duration."""
+        nonneg("profile.start_speed", start_speed)
+        positive("profile.end_speed", end_speed)
+        positive("profile.ramp_time", ramp_time)
+        positive("profile.duration", duration)
+        if duration < ramp_time:
+            raise ParameterError("profile.duration", duration, f"must be >= ramp_time = {ramp_time}")
+        if duration == ramp_time:
+            return cls((0.0, ramp_time), (start_speed, end_speed), name="ramp")
+        return cls((0.0, ramp_time, duration), (start_speed, end_speed, end_speed), name="ramp")
+
+    @classmethod
+    def standard_runup(cls, nominal: float = TWO_PI * 167.0, duration: float = 90.0,
+                       runup_fraction: float = 0.2, runup_time: float | None = None) -> "SpeedProfile":
+        """004 standard (STD) profile: linear run-up from rest to ``nominal`` [rad/s] and hold.
+
+        The run-up takes ``runup_time`` [s] (default: the first ``runup_fraction`` of the run, 18 s of
+        90 s, so that the STD outcome is read at 20 %); quality is read at the end of the run-up
+        phase and at the end.
+        """
+        positive("profile.nominal", nominal)
+        positive("profile.duration", duration)
+        in_range("profile.runup_fraction", runup_fraction, 1e-6, 1.0)
+        t_read = runup_fraction * duration
+        t_ru = t_read if runup_time is None else in_range("profile.runup_time", runup_time, 1e-9, t_read)
+        times = [0.0, t_ru] + ([duration] if duration > t_ru else [])
+        speeds = [0.0, nominal] + ([nominal] if duration > t_ru else [])
+        return cls(tuple(times), tuple(speeds), nominal_speed=nominal,
+                   checkpoints=(t_read, duration), name="std")
+
+    @classmethod
+    def tsr(cls, nominal: float = TWO_PI * 167.0, plateau: float = TWO_PI * 100.0,
+            duration: float = 90.0, runup_fraction: float = 0.2, runup_time: float | None = None,
+            down_time: float = 10.0, plateau_time: float = 20.0, up_time: float = 10.0) -> "SpeedProfile":
+        """004 temporary-speed-reduction profile (Fig. 3), piecewise linear.
+
+        0 .. t_ru: run-up from rest to ``nominal``; hold to 20 % of ``duration`` (STD read-out);
+        then ramp down to ``plateau`` in ``down_time``, hold ``plateau_time``, ramp back up in
+        ``up_time`` and hold ``nominal`` to the end (TSR read-out at 100 %). Times [s], speeds
+        [rad/s].
+        """
+        std = cls.standard_runup(nominal, duration, runup_fraction, runup_time)
+        positive("profile.plateau", plateau)
+        for name, v in (("profile.down_time", down_time), ("profile.plateau_time", plateau_time),
+                        ("profile.up_time", up_time)):
+            positive(name, v)
+        t_read = std.checkpoints[0]
+        t1 = t_read + down_time
+        t2 = t1 + plateau_time
+        t3 = t2 + up_time
+        if t3 >= duration:
+            raise ParameterError("profile.duration", duration,
+                                 f"must exceed run-up + reduction phases = {t3:g} s")
+        times = [t for t in std.times if t <= t_read] + [t1, t2, t3, duration]
+        speeds = list(std.speeds[:len(times) - 4]) + [plateau, plateau, nominal, nominal]
+        return cls(tuple(times), tuple(speeds), nominal_speed=nominal,
+                   checkpoints=(t_read, duration), name="tsr")
+
+
+@dataclass(frozen=True)
+class MotorDrive:
+    """Spin driven by a motor torque law with the spin as a degree of freedom (000 eq 15-18).
+
+    Parameters
+    ----------
+    law : str
+        "constant": T = T0; "linear": T = T0 (1 - w/w_f); "harmonic": T = T0 (1 - sin(pi w / 2 w_f))
+        (000 Table 1).
+    torque : float
+        T0 [N*m] (000 Tables 1-2: 25 N*m).
+    final_speed : float
+        w_f [rad/s] (000: n_f = 1000 rpm).
+    duration : float
+        Length of the simulation [s].
+    hold_fraction : float
+        When the speed first reaches hold_fraction*w_f the speed controller takes over and holds
+        that speed (prescribed from then on); t_f is that instant. 1 = exactly w_f.
+    initial_speed : float
+        Spin speed at t = 0 [rad/s].
+    """
+
+    law: str
+    torque: float
+    final_speed: float
+    duration: float
+    hold_fraction: float = 1.0
+    initial_speed: float = 0.0
+
+    LAWS = ("constant", "linear", "harmonic")
+
+    def __post_init__(self):
+        if self.law not in self.LAWS:
+            raise ParameterError("drive.law", self.law, f"must be one of {list(self.LAWS)}")
+        positive("drive.torque", self.torque)
+        positive("drive.final_speed", self.final_speed)
+        positive("drive.duration", self.duration)
+        in_range("drive.hold_fraction", self.hold_fraction, 0.01, 1.0)
+        nonneg("drive.initial_speed", self.initial_speed)
+
+    @property
+    def nominal_speed(self) -> float:
+        return self.final_speed
+
+    @property
+    def checkpoints(self) -> tuple:
+        return (self.duration,)
+
+    name = "motor"
+
+    def torque_at(self, w):
+        """Motor torque [N*m] at spin speed w [rad/s] (000 Table 1 laws)."""
+        w = np.asarray(w, float)
+        if self.law == "constant":
+            return np.full_like(w, self.torque)
+        if self.law == "linear":
+            return self.torque * (1.0 - w / self.final_speed)
+        return self.torque * (1.0 - np.sin(np.pi * w / (2.0 * self.final_speed)))

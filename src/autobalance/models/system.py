@@ -1,0 +1,147 @@
+"""The assembled machine, its initial state and the numerical options of a run."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validate import ParameterError, finite, in_range, nonneg, positive
+from .balancer import BallBalancer
+from .rotor import Gravity, Rotor, Suspension
+
+FRICTION_LAWS = ("stick", "tanh")
+NORMAL_FORCES = ("ball", "drum")
+
+
+@dataclass(frozen=True)
+class System:
+    """Rotor on its suspension with a ball balancer, in a gravity field.
+
+    ``dataclasses.replace`` makes sweep points; validation happens in each part.
+    """
+
+    rotor: Rotor
+    suspension: Suspension
+    balancer: BallBalancer = field(default_factory=lambda: BallBalancer(0))
+    gravity: Gravity = field(default_factory=Gravity)
+    name: str = ""
+    description: str = ""
+
+    @property
+    def total_mass(self) -> float:
+        """M_t = M + sum(m_i) [kg], the mass carried by the suspension (004: M_t)."""
+        return self.rotor.mass + self.balancer.total_mass
+
+    @property
+    def natural_frequencies(self) -> tuple[float, float]:
+        """Undamped natural frequencies sqrt(kx/M_t), sqrt(ky/M_t) [rad/s]."""
+        mt = self.total_mass
+        return float(np.sqrt(self.suspension.kx / mt)), float(np.sqrt(self.suspension.ky / mt))
+
+
+@dataclass(frozen=True)
+class InitialState:
+    """State at t = 0.
+
+    Parameters
+    ----------
+    ball_angles : tuple of float
+        alpha_i(0) relative to the unbalance [rad]; default: equispaced starting at pi/4.
+    ball_speeds : tuple of float
+        d(alpha_i)/dt at t = 0 [rad/s].
+    x, y : float
+        Rotor displacement from static equilibrium [m].
+    vx, vy : float
+        Rotor velocity [m/s] (inertial frame).
+    """
+
+    ball_angles: tuple | None = None
+    ball_speeds: tuple | None = None
+    x: float = 0.0
+    y: float = 0.0
+    vx: float = 0.0
+    vy: float = 0.0
+
+    def __post_init__(self):
+        for name in ("x", "y", "vx", "vy"):
+            finite(f"initial.{name}", getattr(self, name))
+        if self.ball_angles is not None:
+            object.__setattr__(self, "ball_angles",
+                               tuple(finite("initial.ball_angles", a) for a in self.ball_angles))
+        if self.ball_speeds is not None:
+            object.__setattr__(self, "ball_speeds",
+                               tuple(finite("initial.ball_speeds", a) for a in self.ball_speeds))
+
+    def angles_for(self, balancer: BallBalancer) -> np.ndarray:
+        n = balancer.n_balls
+        if self.ball_angles is None:
+            return np.pi / 4 + 2 * np.pi * np.arange(n) / max(n, 1)
+        if len(self.ball_angles) != n:
+            raise ParameterError("initial.ball_angles", list(self.ball_angles),
+                                 f"needs {n} values, one per ball")
+        a = np.asarray(self.ball_angles, float)
+        order = np.sort(np.mod(a, 2 * np.pi))
+        gaps = np.diff(np.concatenate([order, order[:1] + 2 * np.pi]))
+        if n > 1 and gaps.min() < balancer.contact_angle * (1 - 1e-9):
+            raise ParameterError("initial.ball_angles", list(self.ball_angles),
+                                 f"balls overlap: neighbours must be >= {np.degrees(balancer.contact_angle):.3g} deg apart")
+        return a
+
+    def speeds_for(self, balancer: BallBalancer) -> np.ndarray:
+        n = balancer.n_balls
+        if self.ball_speeds is None:
+            return np.zeros(n)
+        if len(self.ball_speeds) != n:
+            raise ParameterError("initial.ball_speeds", list(self.ball_speeds),
+                                 f"needs {n} values, one per ball")
+        return np.asarray(self.ball_speeds, float)
+
+
+@dataclass(frozen=True)
+class SimOptions:
+    """Numerical options of one run.
+
+    Parameters
+    ----------
+    friction_law : str
+        "stick": exact Coulomb stick-slip (switch model with event location, default);
+        "tanh": 004's regularised law mu*N*tanh(alpha_dot/v_sat) (stiff; for comparison).
+    v_sat : float
+        Saturation speed of the tanh law [rad/s] (004: 1e-6 rad/s).
+    normal_force : str
+        "ball": N_i = m_i (R (psi_dot + alpha_dot_i)^2 - g.e_r) (our default, docs/model.md);
+        "drum": N_i = m_i R psi_dot^2 (000 eq 20 as printed).
+    rtol : float
+        Relative tolerance of the adaptive Dormand-Prince 5(4) integrator [-].
+    atol_scale : float
+        Absolute tolerances are atol_scale times characteristic scales (docs/numerics.md) [-].
+    max_step : float
+        Largest step [s]; 0 = automatic.
+    save_dt : float
+        Spacing of the stored time history [s]; 0 = automatic (about 20 samples per revolution at
+        the nominal speed, at most 200 000 samples); < 0 = store only the checkpoints.
+    max_steps : int
+        Step budget; exceeding it ends the run with status "max_steps".
+    """
+
+    friction_law: str = "stick"
+    v_sat: float = 1e-6
+    normal_force: str = "ball"
+    rtol: float = 1e-6
+    atol_scale: float = 1e-6
+    max_step: float = 0.0
+    save_dt: float = 0.0
+    max_steps: int = 20_000_000
+
+    def __post_init__(self):
+        if self.friction_law not in FRICTION_LAWS:
+            raise ParameterError("options.friction_law", self.friction_law, f"must be one of {list(FRICTION_LAWS)}")
+        if self.normal_force not in NORMAL_FORCES:
+            raise ParameterError("options.normal_force", self.normal_force, f"must be one of {list(NORMAL_FORCES)}")
+        positive("options.v_sat", self.v_sat)
+        in_range("options.rtol", self.rtol, 1e-13, 1e-1)
+        positive("options.atol_scale", self.atol_scale)
+        nonneg("options.max_step", self.max_step)
+        finite("options.save_dt", self.save_dt)
+        if int(self.max_steps) != self.max_steps or self.max_steps < 1:
+            raise ParameterError("options.max_steps", self.max_steps, "must be an integer >= 1")

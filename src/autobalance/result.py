@@ -1,0 +1,208 @@
+"""Results of a run (`Simulation`) and of a batch (`BatchResult`): arrays + derived quantities."""
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+
+from . import __version__
+from .core.layout import (S_AMAX, S_EVENTS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
+                          S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, STATUS)
+from .models import MotorDrive
+
+MESSAGES = {
+    "ok": "completed",
+    "max_steps": "step budget exhausted before the end time (options.max_steps)",
+    "step_size_underflow": "step size underflow (stiff or chattering dynamics)",
+    "non_finite": "the state became non-finite (NaN/inf)",
+}
+
+
+class SimulationError(RuntimeError):
+    """A numerical failure of a run (raised only when throw=True)."""
+
+
+def residual_unbalance(system, alpha, t):
+    """Complex residual unbalance in the rotor frame [kg*m]:
+    U(t) + sum_i m_i (R e^{i alpha_i} + rho e^{i beta}) (000 eq 22, 47 generalised)."""
+    b = system.balancer
+    unb_t, unb_u = system.rotor.unbalance_table()
+    U = np.interp(t, unb_t, unb_u) if unb_t.size > 1 else np.full(np.shape(t), unb_u[0])
+    res = U.astype(complex)
+    if b.n_balls:
+        m = b.masses
+        res = res + (m * b.race_radius * np.exp(1j * alpha)).sum(axis=-1)
+        res = res + m.sum() * b.eccentricity * np.exp(1j * b.eccentricity_angle)
+    return res
+
+
+def grade_G(unbalance_abs, total_mass, nominal_speed):
+    """ISO 1940-1 grade G [mm/s] = e_per [mm] * Omega [rad/s], e_per = |U_res| / M_t (004 sec. 4)."""
+    return np.asarray(unbalance_abs) / total_mass * 1e3 * nominal_speed
+
+
+def _asdict(obj):
+    d = dataclasses.asdict(obj)
+    return json.loads(json.dumps(d, default=lambda o: list(o) if isinstance(o, tuple) else str(o)))
+
+
+@dataclasses.dataclass
+class Simulation:
+    """Time histories of one run. Angles [rad], lengths [m], unbalance [kg*m], G [mm/s]."""
+
+    system: object
+    spin: object
+    initial: object
+    options: object
+    t: np.ndarray
+    states: np.ndarray
+    stats: np.ndarray
+    order: np.ndarray
+
+    def __post_init__(self):
+        n = self.system.balancer.n_balls
+        nq = n + 3
+        y = self.states
+        inv = np.argsort(self.order) if n else np.zeros(0, int)
+        self.u = y[:, 0]
+        self.v = y[:, 1]
+        self.psi = y[:, nq - 1]
+        self.speed = y[:, 2 * nq - 1]
+        self.alpha = y[:, 2:2 + n][:, inv]
+        self.alpha_dot = y[:, nq + 2:nq + 2 + n][:, inv]
+        c, s = np.cos(self.psi), np.sin(self.psi)
+        self.x = self.u * c - self.v * s
+        self.y = self.u * s + self.v * c
+        self.amplitude = np.hypot(self.u, self.v)
+        res = residual_unbalance(self.system, self.alpha, self.t)
+        self.residual_unbalance = np.abs(res)
+        self.residual_angle = np.angle(res)
+        self.grade_G = grade_G(self.residual_unbalance, self.system.total_mass, self.spin.nominal_speed)
+        self.status = STATUS.get(int(self.stats[S_STATUS]), "unknown")
+        self.message = MESSAGES.get(self.status, self.status)
+        if self.status != "ok":
+            self.message += f" at t = {self.stats[S_TFINAL]:.6g} s"
+        self.title = f"{self.system.name or 'system'} - {getattr(self.spin, 'name', 'profile')}"
+
+    # -- derived scalars -------------------------------------------------------------------
+    @property
+    def n_balls(self) -> int:
+        return self.system.balancer.n_balls
+
+    def settle(self, threshold: float | None = None):
+        """Per ball: settling time [s] (last time |alpha_dot| > threshold [rad/s], default
+        1e-3 x nominal speed) and net revolutions relative to the rotor before it [-]."""
+        thr = threshold if threshold is not None else 1e-3 * self.spin.nominal_speed
+        times, revs = [], []
+        for i in range(self.n_balls):
+            moving = np.nonzero(np.abs(self.alpha_dot[:, i]) > thr)[0]
+            k = moving[-1] if moving.size else 0
+            times.append(float(self.t[k]))
+            revs.append(float((self.alpha[k, i] - self.alpha[0, i]) / (2 * np.pi)))
+        return times, revs
+
+    def at(self, time: float) -> dict:
+        """Balancing quality at the output sample closest to ``time`` [s]."""
+        k = int(np.argmin(np.abs(self.t - time)))
+        return {
+            "time_s": float(self.t[k]),
+            "grade_G_mm_s": float(self.grade_G[k]),
+            "residual_unbalance_kg_m": float(self.residual_unbalance[k]),
+            "ball_angles_deg": [float(a) for a in np.degrees(self.alpha[k])],
+            "amplitude_m": float(self.amplitude[k]),
+            "speed_rad_s": float(self.speed[k]),
+        }
+
+    def summary(self) -> dict:
+        """JSON-able summary in SI (unit-suffixed keys)."""
+        st = self.stats
+        settle_t, revs = self.settle()
+        out = {
+            "status": self.status,
+            "message": self.message,
+            "system": self.system.name,
+            "profile": getattr(self.spin, "name", ""),
+            "n_balls": self.n_balls,
+            "duration_s": float(self.t[-1]),
+            "nominal_speed_rad_s": float(self.spin.nominal_speed),
+            "initial_grade_G_mm_s": float(self.grade_G[0]),
+            "final": self.at(self.t[-1]),
+            "checkpoints": [self.at(c) for c in self.spin.checkpoints],
+            "max_amplitude_m": float(st[S_AMAX]),
+            "time_of_max_amplitude_s": float(st[S_TAMAX]),
+            "x_max_m": float(st[S_XMAX]),
+            "y_max_m": float(st[S_YMAX]),
+            "ball_settle_time_s": settle_t,
+            "ball_revolutions": revs,
+            "ball_contacts": int(st[S_IMPACTS]),
+            "solver": {"steps": int(st[S_STEPS]), "rejected": int(st[S_REJECTED]),
+                       "events": int(st[S_EVENTS]), "rhs_evaluations": int(st[S_RHS])},
+        }
+        if isinstance(self.spin, MotorDrive):
+            out["time_to_final_speed_s"] = float(st[S_THOLD]) if st[S_THOLD] >= 0 else None
+        return out
+
+    def to_xarray(self):
+        """xarray.Dataset with dims (time, ball), units and long names; parameters in attrs."""
+        import xarray as xr
+
+        ball = np.arange(self.n_balls)
+
+        def var(data, dims, units, long):
+            return xr.Variable(dims, data, {"units": units, "long_name": long})
+
+        ds = xr.Dataset(
+            {
+                "x": var(self.x, "time", "m", "rotor displacement x (inertial)"),
+                "y": var(self.y, "time", "m", "rotor displacement y (inertial)"),
+                "u": var(self.u, "time", "m", "rotor displacement along the unbalance (rotor frame)"),
+                "v": var(self.v, "time", "m", "rotor displacement across the unbalance (rotor frame)"),
+                "amplitude": var(self.amplitude, "time", "m", "whirl amplitude |x + i y|"),
+                "alpha": var(self.alpha, ("time", "ball"), "rad", "ball angle from the unbalance"),
+                "alpha_dot": var(self.alpha_dot, ("time", "ball"), "rad/s", "ball speed relative to the rotor"),
+                "psi": var(self.psi, "time", "rad", "spin angle"),
+                "speed": var(self.speed, "time", "rad/s", "spin speed"),
+                "residual_unbalance": var(self.residual_unbalance, "time", "kg*m", "residual unbalance |U + sum m R e^(i alpha)|"),
+                "residual_angle": var(self.residual_angle, "time", "rad", "direction of the residual unbalance"),
+                "grade_G": var(self.grade_G, "time", "mm/s", "ISO 1940-1 balance grade G"),
+            },
+            coords={"time": ("time", self.t, {"units": "s"}), "ball": ("ball", ball)},
+        )
+        ds.attrs.update({
+            "title": self.title,
+            "autobalance_version": __version__,
+            "status": self.status,
+            "message": self.message,
+            "system": json.dumps(_asdict(self.system)),
+            "spin": json.dumps(_asdict(self.spin)),
+            "initial": json.dumps(_asdict(self.initial)),
+            "options": json.dumps(_asdict(self.options)),
+            "summary": json.dumps(self.summary()),
+        })
+        return ds
+
+
+@dataclasses.dataclass
+class BatchResult:
+    """States at the output times of many runs: states (n_runs, n_times, 2*nq)."""
+
+    systems: list
+    spin: object
+    options: object
+    t: np.ndarray
+    states: np.ndarray
+    stats: np.ndarray
+    orders: np.ndarray
+    status: list
+
+    def __post_init__(self):
+        n = self.systems[0].balancer.n_balls
+        inv = np.argsort(self.orders, axis=1) if n else self.orders
+        a = self.states[:, :, 2:2 + n]
+        self.alpha = np.take_along_axis(a, inv[:, None, :], axis=2) if n else a
+        res = np.stack([residual_unbalance(s, self.alpha[k], self.t) for k, s in enumerate(self.systems)])
+        self.residual_unbalance = np.abs(res)
+        mt = np.array([s.total_mass for s in self.systems])
+        self.grade_G = self.residual_unbalance / mt[:, None] * 1e3 * self.spin.nominal_speed
+        self.max_amplitude = self.stats[:, S_AMAX]
