@@ -88,14 +88,35 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
         w0 = spin.initial_speed
     else:
         w0 = float(spin.speeds[0])
+    x0, y0_, vx, vy = initial.x, initial.y, initial.vx, initial.vy
+    if initial.steady_state and w0 > 0.0:
+        x0, y0_, vx, vy = steady_orbit_start(system, w0, a)
     # initial rotor position/velocity given in the inertial frame at psi = 0
-    y[0], y[1] = initial.x, initial.y
-    y[nq], y[nq + 1] = initial.vx + w0 * initial.y, initial.vy - w0 * initial.x
+    y[0], y[1] = x0, y0_
+    y[nq], y[nq + 1] = vx + w0 * y0_, vy - w0 * x0
     y[2:2 + n] = a_sorted
     y[nq + 2:nq + 2 + n] = ad[order]
     y[nq - 1] = 0.0
     y[2 * nq - 1] = w0
     return y, order
+
+
+def steady_orbit_start(system: System, w: float, alpha) -> tuple[float, float, float, float]:
+    """x, y [m] and vx, vy [m/s] at psi = 0 on the steady orbit of the rotor spinning at w
+    [rad/s] with the balls fixed at alpha [rad] (000 eq 6-7; each axis a 1-DOF oscillator)::
+
+        x = Re(Hx w^2 Ut e^{i w t}),  y = Re(-i Hy w^2 Ut e^{i w t}),
+        H = 1 / (k - M_t w^2 + i c w),  Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}).
+    """
+    s, b = system.suspension, system.balancer
+    ut = complex(system.rotor.unbalance_table()[1][0])
+    if b.n_balls:
+        ut += complex(np.sum(b.masses * (b.race_radius * np.exp(1j * np.asarray(alpha))
+                                          + b.eccentricity * np.exp(1j * b.eccentricity_angle))))
+    mt = system.total_mass
+    fx = w * w * ut / (s.kx - mt * w * w + 1j * s.cx * w)
+    fy = -1j * w * w * ut / (s.ky - mt * w * w + 1j * s.cy * w)
+    return fx.real, fy.real, (1j * w * fx).real, (1j * w * fy).real
 
 
 def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:

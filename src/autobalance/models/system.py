@@ -53,6 +53,10 @@ class InitialState:
         Rotor displacement from static equilibrium [m].
     vx, vy : float
         Rotor velocity [m/s] (inertial frame).
+    steady_state : bool
+        If True, x, y, vx, vy are ignored and the rotor starts on its steady harmonic orbit for
+        the initial speed and ball positions (000 eq 6-7), i.e. the drum is already vibrating
+        when the balls are released, as in 000 Fig. 5.
     """
 
     ball_angles: tuple | None = None
@@ -61,6 +65,7 @@ class InitialState:
     y: float = 0.0
     vx: float = 0.0
     vy: float = 0.0
+    steady_state: bool = False
 
     def __post_init__(self):
         for name in ("x", "y", "vx", "vy"):

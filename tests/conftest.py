@@ -1,0 +1,35 @@
+"""Shared systems built from the models directly (the presets are tested in test_config.py)."""
+import numpy as np
+import pytest
+
+import autobalance as ab
+
+RPM = 2 * np.pi / 60
+
+
+def vub_004(mu=0.002, c=1510.0, n=2, unbalance=16.53 * 19.3e-6, **kw):
+    """004 Table 1 Jeffcott rig (point-mass balls, no gravity)."""
+    return ab.System(
+        ab.Rotor(mass=16.53, unbalance=unbalance),
+        ab.Suspension.isotropic(5.8e6, c),
+        ab.BallBalancer(n, 0.0076, 0.035, 0.00614, element="point", damping=2.7e-3,
+                        rolling_resistance=mu, **kw),
+        name="vub_004")
+
+
+def washer_000(Me=0.025, c_i=2.0, f_r=0.0, g=9.81, rho=0.0, beta=np.pi / 2, n=2,
+               normal="drum", **rotor_kw):
+    """000 washer with mR = Me per ball; ball damping D = c_i m R^2 (000 eq 4 writes c_i m R)."""
+    R = 0.28
+    m = Me / R
+    return ab.System(
+        ab.Rotor(mass=37.0, unbalance=Me, **rotor_kw),
+        ab.Suspension(kx=20e3, ky=6e3, cx=200.0, cy=110.0),
+        ab.BallBalancer(n, m, R, 0.014, element="ball", damping=c_i * m * R * R,
+                        rolling_resistance=f_r, eccentricity=rho, eccentricity_angle=beta),
+        ab.Gravity(g, np.pi), name="washer_000")
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(12345)
