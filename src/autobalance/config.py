@@ -17,7 +17,7 @@ File layout (sections and their keys: :data:`SECTIONS` and :data:`PROFILE_KINDS`
     [balancer]    n_balls, ball_mass, race_radius, ball_radius, element, damping, ...
     [gravity]     g, direction
     [profile]     kind = constant | ramp | table | std | tsr | motor, and the kind's keys
-    [initial]     ball_angles, ball_speeds, x, y, vx, vy
+    [initial]     ball_angles, ball_speeds, x, y, vx, vy, steady_state
     [options]     friction_law, v_sat, normal_force, rtol, atol_scale, max_step, save_dt, max_steps
 
 Keys left out take the defaults of the model dataclasses.
@@ -159,6 +159,8 @@ class F:
     def need(self) -> str:
         if self.kind == "int":
             return "(an integer)"
+        if self.kind == "bool":
+            return "(true or false)"
         if self.kind == "text":
             return f"(one of {', '.join(self.choices)})" if self.choices else "(a string)"
         unit = UNIT_LABEL[self.kind] if self.shape != "pairs" else \
@@ -191,6 +193,7 @@ SECTIONS: dict[str, dict[str, F]] = {
     "initial": {
         "ball_angles": F("angle", "list"), "ball_speeds": F("speed", "list"),
         "x": F("length"), "y": F("length"), "vx": F("velocity"), "vy": F("velocity"),
+        "steady_state": F("bool"),
     },
     "options": {
         "friction_law": F("text", choices=FRICTION_LAWS), "v_sat": F("speed"),
@@ -235,6 +238,10 @@ def _one(spec: F, value: Any, sub: str = "") -> Any:
             except ValueError:
                 raise _fail("expected an integer", value, sub) from None
         return value  # the models check integrality and range
+    if spec.kind == "bool":
+        if not isinstance(value, bool):
+            raise _fail("expected true or false", value, sub)
+        return value
     if spec.kind == "text":
         if not isinstance(value, str):
             raise _fail("expected a string", value, sub)
