@@ -141,7 +141,7 @@ def _write(sim, out: Optional[Path], plot: Optional[Path]) -> dict:
     """Write the NetCDF file and the figure; returns {"netcdf": path, "plot": path}."""
     files = {}
     if out is not None:
-        sim.to_xarray().to_netcdf(out)
+        sim.to_netcdf(out)
         files["netcdf"] = str(out)
     if plot is not None:
         import matplotlib

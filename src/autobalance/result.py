@@ -153,6 +153,12 @@ class Simulation:
             out["time_to_final_speed_s"] = float(st[S_THOLD]) if st[S_THOLD] >= 0 else None
         return out
 
+    def to_netcdf(self, path) -> None:
+        """Write :meth:`to_xarray` to a NetCDF-4 file with zlib-compressed variables."""
+        ds = self.to_xarray()
+        enc = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
+        ds.to_netcdf(path, engine="netcdf4", encoding=enc)
+
     def to_xarray(self):
         """xarray.Dataset with dims (time, ball), units and long names; parameters in attrs."""
         import xarray as xr

@@ -21,7 +21,9 @@ def _time_grid(spin, options: SimOptions) -> np.ndarray:
         dt = max(dt, t_end / 200_000)
     n = int(np.floor(t_end / dt + 1e-9)) + 1
     grid = np.arange(n) * dt
-    return np.unique(np.concatenate([grid, cps, [t_end]]))
+    t = np.sort(np.concatenate([grid[grid < t_end], cps, [t_end]]))
+    keep = np.concatenate([[True], np.diff(t) > 1e-9 * max(t_end, 1.0)])
+    return t[keep]
 
 
 def _h_max(spin, options: SimOptions) -> float:
