@@ -39,13 +39,13 @@ def test_washer_000_values_si():
     assert b.n_balls == 2 and b.element == "ball"
     assert b.ball_mass == pytest.approx((0.08929, 0.08929))
     assert b.race_radius == pytest.approx(0.28) and b.ball_radius == pytest.approx(0.014)
-    assert b.damping == pytest.approx((0.07, 0.07))
+    assert b.damping == pytest.approx((0.014, 0.014))
     assert b.rolling_resistance == (0.0, 0.0) and b.eccentricity == 0.0
     assert b.eccentricity_angle == pytest.approx(math.pi / 2) and b.restitution == 0.5
     assert s.gravity.g == pytest.approx(9.81) and s.gravity.direction == pytest.approx(math.pi)
     assert isinstance(cfg.spin, SpeedProfile)
     assert cfg.spin.speeds == pytest.approx((1000 * TWO_PI / 60,) * 2)
-    assert cfg.spin.duration == 5.0
+    assert cfg.spin.duration == 8.0
     assert cfg.initial.ball_angles == pytest.approx((math.radians(30), math.radians(60)))
     assert cfg.source == "washer_000" and s.name == "washer_000"
 
@@ -182,7 +182,7 @@ def test_profile_kind_switch_drops_preset_keys():
     assert cfg.spin.nominal_speed == pytest.approx(TWO_PI * 167)
     cfg = load_config("washer_000", ["profile.kind=motor", "profile.law=constant",
                                      "profile.torque=25 N*m", "profile.final_speed=1000 rpm"])
-    assert isinstance(cfg.spin, MotorDrive) and cfg.spin.duration == 5.0
+    assert isinstance(cfg.spin, MotorDrive) and cfg.spin.duration == 8.0
 
 
 def test_profile_kind_switch_keeps_set_keys_and_rejects_them():

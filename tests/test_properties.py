@@ -98,8 +98,9 @@ def test_converges_under_tolerance_refinement(a1, gap, f):
     e1 = np.abs(res[0] - res[2]).max()
     e2 = np.abs(res[1] - res[2]).max()
     # 100x tighter tolerance must buy at least 10x less error (observed 16x-100x; the finest
-    # run is itself the reference, and contact kinks lower the local order)
-    assert e2 <= max(0.1 * e1, 1e-9)
+    # run is itself the reference, and contact kinks lower the local order) - unless the coarse
+    # run was already at the fine tolerance's level (within 100 x 1e-8)
+    assert e2 <= max(0.1 * e1, 100 * 1e-8)
     assert e1 < 1e-3
 
 
