@@ -46,7 +46,8 @@ def test_washer_000_values_si():
     assert isinstance(cfg.spin, SpeedProfile)
     assert cfg.spin.speeds == pytest.approx((1000 * TWO_PI / 60,) * 2)
     assert cfg.spin.duration == 8.0
-    assert cfg.initial.ball_angles == pytest.approx((math.radians(30), math.radians(60)))
+    assert cfg.initial.ball_angles == pytest.approx((math.radians(90), math.radians(150)))
+    assert cfg.initial.steady_state is True
     assert cfg.source == "washer_000" and s.name == "washer_000"
 
 
