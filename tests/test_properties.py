@@ -130,3 +130,26 @@ def test_failure_is_a_status_not_an_exception():
         simulate(s, prof, options=ab.SimOptions(max_steps=20), throw=True)
     b = simulate_batch([s, s], prof, options=ab.SimOptions(max_steps=20))
     assert b.status == ["max_steps", "max_steps"]
+
+
+@pytest.mark.parametrize("mu,angles", [(0.002, (0.8, 2.4)), (0.004, (0.3, 3.5)), (0.0, None)])
+def test_exact_hold_equals_integrated_hold(mu, angles):
+    """core/hold.py (closed-form constant-speed hold with stuck balls) vs integrating the same
+    hold with DOPRI5 at tight tolerance: same states at every output time."""
+    n = 0 if angles is None else 2
+    s = vub_004(mu=mu, n=n)
+    prof = ab.SpeedProfile((0.0, 3.0, 4.0, 6.0), (0.0, 2 * np.pi * 150, 2 * np.pi * 150,
+                                                   2 * np.pi * 120))
+    ini = ab.InitialState(ball_angles=angles)
+    exact = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
+                                                                  atol_scale=1e-10))
+    integ = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
+                                                                  atol_scale=1e-10, exact_holds=False))
+    assert exact.summary()["solver"]["exact_holds"] >= 1
+    assert integ.summary()["solver"]["exact_holds"] == 0
+    scale = max(np.abs(integ.u).max(), np.abs(integ.v).max())
+    assert np.abs(exact.u - integ.u).max() < 1e-6 * scale
+    assert np.abs(exact.v - integ.v).max() < 1e-6 * scale
+    if n:
+        assert np.abs(exact.alpha - integ.alpha).max() < 1e-8
+    assert exact.summary()["max_amplitude_m"] == pytest.approx(integ.summary()["max_amplitude_m"], rel=1e-6)

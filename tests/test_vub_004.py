@@ -74,3 +74,25 @@ def test_tsr_run_reports_both_checkpoints(cfg):
     for c in S["checkpoints"]:
         assert 0.0 <= c["grade_G_mm_s"] <= 20.3 + 33.8 + 0.1     # within the operating bounds
     assert S["max_amplitude_m"] > 5 * S["final"]["amplitude_m"]   # resonance crossed
+
+
+def test_kernel_equals_004_eq_8_10_transcription(rng):
+    """Our general right-hand side reduces to 004 eq (8)-(10) (transcribed literally in NumPy in
+    core/reference.py) for the Jeffcott rig: random states, run-up (psi'' != 0) and hold."""
+    from autobalance.core.reference import make_rhs, paper_004_rhs
+    s = vub_004()
+    prof = ab.SpeedProfile((0.0, 10.0, 20.0), (0.0, 900.0, 900.0))
+    fk = make_rhs(s, prof, v_sat=1e-3)
+    fp = paper_004_rhs(s, prof, v_sat=1e-3)
+    for _ in range(50):
+        y = np.zeros(10)
+        y[0:2] = rng.normal(0, 5e-5, 2)
+        y[2:4] = np.sort(rng.uniform(0, 2 * np.pi, 2))
+        y[5:7] = rng.normal(0, 0.05, 2)
+        y[7:9] = rng.normal(0, 2.0, 2)
+        t = rng.uniform(0, 19.9)
+        y[9] = prof.speed(t)
+        if abs(np.angle(np.exp(1j * (y[3] - y[2])))) < s.balancer.contact_angle:
+            continue   # contact forces are ours, not 004's
+        a, b = fk(t, y), fp(t, y)
+        assert np.allclose(a, b, rtol=1e-9, atol=1e-12 * np.abs(b).max())

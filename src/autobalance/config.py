@@ -199,7 +199,7 @@ SECTIONS: dict[str, dict[str, F]] = {
         "friction_law": F("text", choices=FRICTION_LAWS), "v_sat": F("speed"),
         "normal_force": F("text", choices=NORMAL_FORCES),
         "rtol": F("ratio"), "atol_scale": F("ratio"), "max_step": F("time"),
-        "save_dt": F("time"), "max_steps": F("int"),
+        "save_dt": F("time"), "max_steps": F("int"), "exact_holds": F("bool"),
     },
 }
 

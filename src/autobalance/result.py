@@ -7,7 +7,7 @@ import json
 import numpy as np
 
 from . import __version__
-from .core.layout import (S_AMAX, S_EVENTS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
+from .core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
                           S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, STATUS)
 from .models import MotorDrive
 
@@ -147,7 +147,8 @@ class Simulation:
             "ball_revolutions": revs,
             "ball_contacts": int(st[S_IMPACTS]),
             "solver": {"steps": int(st[S_STEPS]), "rejected": int(st[S_REJECTED]),
-                       "events": int(st[S_EVENTS]), "rhs_evaluations": int(st[S_RHS])},
+                       "events": int(st[S_EVENTS]), "rhs_evaluations": int(st[S_RHS]),
+                       "exact_holds": int(st[S_HOLDS])},
         }
         if isinstance(self.spin, MotorDrive):
             out["time_to_final_speed_s"] = float(st[S_THOLD]) if st[S_THOLD] >= 0 else None

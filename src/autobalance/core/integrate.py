@@ -24,6 +24,9 @@ from numba import njit, prange
 from .layout import (B_MUS, N_S, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_KX, P_KY, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
                      S_YMAX, P_DELTA)
+from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_possible, hold_roots,
+                   hold_state)
+from .layout import P_BETA, P_R, P_RHO, S_HOLDS
 from .rhs import profile_segment, rhs
 
 # Dormand-Prince 5(4) tableau
@@ -201,10 +204,84 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     stall = 0
     in_contact = np.zeros(N, dtype=np.int64)
     status = 0
+    can_hold = hold_possible(P, unb_t.shape[0])
+    next_try = 0
+    nhold = 0
     while t < t_end:
         if nsteps + nrej >= max_steps:
             status = 1
             break
+        # ---- constant-speed hold with every ball stuck: exact jump (core/hold.py) --------
+        if can_hold and nsteps >= next_try:
+            flat = seg >= prof_t.shape[0] - 1 or prof_w[seg + 1] == prof_w[seg]
+            all_stuck = True
+            for i in range(N):
+                if stuck[i] == 0:
+                    all_stuck = False
+            t_seg = t_end
+            if seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_end:
+                t_seg = prof_t[seg + 1]
+            if flat and all_stuck and t_seg - t > 20.0 * h:
+                W = prof_w[seg] if seg < prof_t.shape[0] else prof_w[prof_t.shape[0] - 1]
+                ut = ball_unbalance(y, B, N, P[P_R], P[P_RHO], P[P_BETA], unb_u[0])
+                s1, s2, Hk = hold_roots(P, W)
+                wss = W * W * ut * Hk
+                c1, c2 = hold_coeffs(complex(y[0], y[1]), complex(y[nq], y[nq + 1]), wss, s1, s2)
+                for j in range(n):
+                    ytmp[j] = y[j]
+                ytmp[0] = wss.real
+                ytmp[1] = wss.imag
+                ytmp[nq] = 0.0
+                ytmp[nq + 1] = 0.0
+                rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                    ftmp, lam, Mm, fv, A, bb, idx)
+                nrhs += 1
+                p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
+                p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
+                if hold_margin_ok(lam, lam[N:2 * N], N, B, P[P_R], abs(p1) + abs(p2)):
+                    tau_end = t_seg - t
+                    while kout < nout and out_t[kout] <= t_seg:
+                        tau = out_t[kout] - t
+                        w, wd = hold_state(tau, wss, s1, s2, c1, c2)
+                        for j in range(n):
+                            out_y[kout, j] = y[j]
+                        out_y[kout, 0] = w.real
+                        out_y[kout, 1] = w.imag
+                        out_y[kout, nq] = wd.real
+                        out_y[kout, nq + 1] = wd.imag
+                        out_y[kout, ip] = y[ip] + W * tau
+                        kout += 1
+                    # amplitude monitor over the decaying transient
+                    rate = min(-s1.real, -s2.real)
+                    span = tau_end if rate <= 0.0 else min(tau_end, 10.0 / rate)
+                    for ks in range(1, 129):
+                        tau = span * ks / 128.0
+                        w, wd = hold_state(tau, wss, s1, s2, c1, c2)
+                        a1 = abs(w)
+                        if a1 > stats[S_AMAX]:
+                            stats[S_AMAX] = a1
+                            stats[S_TAMAX] = t + tau
+                            stats[S_XMAX] = a1
+                            stats[S_YMAX] = a1
+                    w, wd = hold_state(tau_end, wss, s1, s2, c1, c2)
+                    y[0] = w.real
+                    y[1] = w.imag
+                    y[nq] = wd.real
+                    y[nq + 1] = wd.imag
+                    y[ip] += W * tau_end
+                    t = t_seg
+                    nhold += 1
+                    seg = profile_segment(t, prof_t)
+                    if exact:
+                        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                 spin, f0, lam, Mm, fv, A, bb, idx)
+                        nrhs += N + 1
+                    else:
+                        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                            f0, lam, Mm, fv, A, bb, idx)
+                        nrhs += 1
+                    continue
+                next_try = nsteps + 20
         # hard stops at profile knots
         t_stop = t_end
         if spin[0] == 0.0 and seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_stop:
@@ -483,6 +560,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     stats[S_EVENTS] = nev
     stats[S_RHS] = nrhs
     stats[S_TFINAL] = t
+    stats[S_HOLDS] = nhold
     return y
 
 

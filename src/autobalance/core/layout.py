@@ -40,7 +40,8 @@ P_NMODEL = 27     # normal force: 0 ball (centrifugal of the ball + gravity), 1 
 P_DELTA = 28      # contact angle between neighbouring balls [rad]
 P_WNOM = 29       # nominal speed for the grade [rad/s]
 P_MROT = 30       # rotor mass M (without balls) [kg]
-N_P = 31
+P_HOLDS = 31      # 1: solve stuck constant-speed holds in closed form (hold.py)
+N_P = 32
 
 # --- per-ball table B ---------------------------------------------------------------------
 B_M = 0           # mass [kg]
@@ -66,6 +67,7 @@ S_XMAX = 8        # max |x| [m]
 S_YMAX = 9        # max |y| [m]
 S_THOLD = 10      # time the motor-driven spin reached the hold speed [s] (-1 never)
 S_IMPACTS = 11    # number of ball-ball contacts started
-N_S = 12
+S_HOLDS = 12      # constant-speed holds solved in closed form (core/hold.py)
+N_S = 13
 
 STATUS = {0: "ok", 1: "max_steps", 2: "step_size_underflow", 3: "non_finite", 4: "running"}

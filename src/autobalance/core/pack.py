@@ -8,7 +8,7 @@ import numpy as np
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
                      P_BETA, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
-                     P_FLAW, P_G, P_GDIR, P_GDRY, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
+                     P_FLAW, P_G, P_GDIR, P_GDRY, P_HOLDS, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
                      P_R, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
 
 LAW_ID = {"constant": 0.0, "linear": 1.0, "harmonic": 2.0}
@@ -50,6 +50,7 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     P[P_VSAT] = options.v_sat
     P[P_NMODEL] = 0.0 if options.normal_force == "ball" else 1.0
     P[P_DELTA] = b.contact_angle
+    P[P_HOLDS] = 1.0 if options.exact_holds else 0.0
     n = b.n_balls
     B = np.zeros((n, N_B))
     if n:

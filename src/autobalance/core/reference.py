@@ -46,14 +46,88 @@ def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-
 def solve_reference(system: System, spin: SpeedProfile | MotorDrive, t_end: float, *,
                     initial: InitialState | None = None, v_sat: float = 1e-6,
                     method: str = "Radau", rtol: float = 1e-6, atol: float = 1e-9,
-                    t_eval=None, normal_force: str = "ball"):
-    """solve_ivp on the tanh-law equations from t = 0 to t_end [s]; returns the OdeResult with
-    y re-ordered so that balls follow the user's order (like `simulate`)."""
+                    t_eval=None, normal_force: str = "ball", equations: str = "kernel"):
+    """solve_ivp on the tanh-law equations from t = 0 to t_end [s].
+
+    ``equations="kernel"`` uses the compiled right-hand side of `rhs.py`; ``"paper"`` the NumPy
+    transcription of 004 eq (8)-(10) (`paper_004_rhs`). The state keeps the kernel's ball order
+    (`sol.order` maps it to the user's order)."""
     y0, order = initial_vector(system, spin, initial or InitialState())
-    f = make_rhs(system, spin, v_sat, normal_force)
+    if equations == "paper":
+        f = paper_004_rhs(system, spin, v_sat)
+    elif equations == "kernel":
+        f = make_rhs(system, spin, v_sat, normal_force)
+    else:
+        raise ValueError(f"equations = {equations!r}: must be 'kernel' or 'paper'")
     sol = solve_ivp(f, (0.0, t_end), y0, method=method, rtol=rtol, atol=atol, t_eval=t_eval)
     sol.order = order
     return sol
 
 
-__all__ = ["make_rhs", "solve_reference", "N_S"]
+
+
+def paper_004_rhs(system: System, spin: SpeedProfile, v_sat: float = 1e-6):
+    """f(t, y) transcribing 004 eq (8)-(10) literally in NumPy (Jeffcott rotor, isotropic k, c,
+    point-mass balls, tanh friction F_f = mu F_n tanh(phi_dot / v_sat) with F_n = m R (psi_dot +
+    phi_dot)^2, gravity omitted as in 004 sec. 3.1). Same state layout as the kernel.
+
+    Independent of `rhs.py`: it is what a researcher would write from the paper, used as the
+    scipy baseline of the benchmark and to check the kernel against the printed equations.
+    """
+    b = system.balancer
+    n = b.n_balls
+    if system.suspension.kx != system.suspension.ky or system.suspension.cx != system.suspension.cy:
+        raise ValueError("paper_004_rhs: 004's model has an isotropic suspension")
+    Mt = system.total_mass
+    Me = system.rotor.unbalance
+    k, c = system.suspension.kx, system.suspension.cx
+    m = b.masses
+    R = b.race_radius
+    D = np.asarray(b.damping, float)
+    mu = np.asarray(b.rolling_resistance, float)
+    tt, ww = spin.arrays()
+    nq = n + 3
+
+    def f(t, y):
+        u, v = y[0], y[1]
+        phi = y[2:2 + n]
+        ud, vd = y[nq], y[nq + 1]
+        phid = y[nq + 2:nq + 2 + n]
+        kseg = min(np.searchsorted(tt, t, side="right") - 1, len(tt) - 2)
+        psid = np.interp(t, tt, ww)
+        psidd = (ww[kseg + 1] - ww[kseg]) / (tt[kseg + 1] - tt[kseg]) if t < tt[-1] else 0.0
+        s, co = np.sin(phi), np.cos(phi)
+        th = psid + phid
+        Ff = mu * m * R * th**2 * np.tanh(phid / v_sat)
+        # unknowns a = (u'', v'', phi''); rows = eq (8), (9), (10) moved to A a = rhs
+        A = np.zeros((n + 2, n + 2))
+        r = np.zeros(n + 2)
+        A[0, 0] = Mt
+        A[0, 2:] = -m * R * s
+        r[0] = (Mt * psidd * v + 2 * Mt * psid * vd + Mt * psid**2 * u + Me * psid**2 - k * u
+                - c * (ud - v * psid) + np.sum(m * R * s * psidd) + np.sum(m * R * th**2 * co))
+        A[1, 1] = Mt
+        A[1, 2:] = m * R * co
+        r[1] = (-Mt * psidd * u - 2 * Mt * psid * ud + Mt * psid**2 * v - Me * psidd - k * v
+                - c * (vd + u * psid) - np.sum(m * R * co * psidd) + np.sum(m * R * th**2 * s))
+        for i in range(n):
+            A[2 + i, 2 + i] = m[i] * R**2
+            A[2 + i, 0] = -m[i] * R * s[i]
+            A[2 + i, 1] = m[i] * R * co[i]
+            r[2 + i] = (-m[i] * R * psidd * (u * co[i] + v * s[i])
+                        - 2 * m[i] * R * psid * (ud * co[i] + vd * s[i])
+                        + m[i] * R * psid**2 * (-u * s[i] + v * co[i]) - D[i] * phid[i]
+                        - Ff[i] * R - m[i] * R**2 * psidd)
+        a = np.linalg.solve(A, r)
+        dy = np.empty(2 * nq)
+        dy[:nq] = y[nq:]
+        dy[nq - 1] = psid
+        dy[nq:nq + 2] = a[:2]
+        dy[nq + 2:nq + 2 + n] = a[2:]
+        dy[2 * nq - 1] = psidd
+        return dy
+
+    return f
+
+
+__all__ = ["make_rhs", "paper_004_rhs", "solve_reference"]

@@ -99,6 +99,41 @@ def cholesky_solve(A, b, n):
 
 
 @njit(cache=True)
+def _suspension_force(t, u, v, ud, vd, psi, psid, P):
+    """Suspension force (000 eq 2-3, 48: anisotropic springs and dampers, base motion, dry
+    friction of two dampers at +-gamma) in the inertial frame, rotated to the rotor frame [N]."""
+    cp = math.cos(psi)
+    sp = math.sin(psi)
+    x = u * cp - v * sp
+    yy = u * sp + v * cp
+    wr = ud - psid * v
+    wi = vd + psid * u
+    xd = wr * cp - wi * sp
+    yd = wr * sp + wi * cp
+    xb = 0.0
+    yb = 0.0
+    xbd = 0.0
+    ybd = 0.0
+    if P[P_BW] > 0.0:
+        wb = P[P_BW]
+        xb = P[P_BAX] * math.cos(wb * t + P[P_BPX])
+        yb = P[P_BAY] * math.cos(wb * t + P[P_BPY])
+        xbd = -P[P_BAX] * wb * math.sin(wb * t + P[P_BPX])
+        ybd = -P[P_BAY] * wb * math.sin(wb * t + P[P_BPY])
+    Fx = -P[P_KX] * (x - xb) - P[P_CX] * (xd - xbd)
+    Fy = -P[P_KY] * (yy - yb) - P[P_CY] * (yd - ybd)
+    if P[P_FDRY] > 0.0:
+        cg = math.cos(P[P_GDRY])
+        sg = math.sin(P[P_GDRY])
+        for side in (-1.0, 1.0):
+            vs = cg * xd + side * sg * yd
+            ff = -P[P_FDRY] * math.tanh(vs / P[P_VDRY])
+            Fx += ff * cg
+            Fy += ff * side * sg
+    return Fx * cp + Fy * sp, -Fx * sp + Fy * cp
+
+
+@njit(cache=True)
 def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         dy, lam, Mm, fv, A, bb, idx):
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
@@ -154,38 +189,15 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     else:
         psid = y[2 * nq - 1]
         psidd = 0.0
-    cp = math.cos(psi)
-    sp = math.sin(psi)
+    iso = (P[P_KX] == P[P_KY] and P[P_CX] == P[P_CY] and P[P_BW] == 0.0
+           and P[P_FDRY] == 0.0)
+    if iso:
+        # isotropic suspension in the rotor frame: F = -k w - c (w' + i psi' w)  (004 eq 8-9)
+        Fu = -P[P_KX] * u - P[P_CX] * (ud - psid * v)
+        Fv = -P[P_KX] * v - P[P_CX] * (vd + psid * u)
+    else:
+        Fu, Fv = _suspension_force(t, u, v, ud, vd, psi, psid, P)
 
-    # --- suspension force in the inertial frame (000 eq 2-3, 48), rotated to (u, v) -----------
-    x = u * cp - v * sp
-    yy = u * sp + v * cp
-    wr = ud - psid * v
-    wi = vd + psid * u
-    xd = wr * cp - wi * sp
-    yd = wr * sp + wi * cp
-    xb = 0.0
-    yb = 0.0
-    xbd = 0.0
-    ybd = 0.0
-    if P[P_BW] > 0.0:
-        wb = P[P_BW]
-        xb = P[P_BAX] * math.cos(wb * t + P[P_BPX])
-        yb = P[P_BAY] * math.cos(wb * t + P[P_BPY])
-        xbd = -P[P_BAX] * wb * math.sin(wb * t + P[P_BPX])
-        ybd = -P[P_BAY] * wb * math.sin(wb * t + P[P_BPY])
-    Fx = -P[P_KX] * (x - xb) - P[P_CX] * (xd - xbd)
-    Fy = -P[P_KY] * (yy - yb) - P[P_CY] * (yd - ybd)
-    if P[P_FDRY] > 0.0:
-        cg = math.cos(P[P_GDRY])
-        sg = math.sin(P[P_GDRY])
-        for side in (-1.0, 1.0):
-            vs = cg * xd + side * sg * yd
-            ff = -P[P_FDRY] * math.tanh(vs / P[P_VDRY])
-            Fx += ff * cg
-            Fy += ff * side * sg
-    Fu = Fx * cp + Fy * sp
-    Fv = -Fx * sp + Fy * cp
 
     cb = math.cos(beta)
     sb = math.sin(beta)
@@ -227,8 +239,11 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         Mm[k, 0] = -m * R * s
         Mm[k, 1] = m * R * c
         Mm[k, k] = m * R * R + Ii * rr * rr
-        cab = math.cos(a - beta)
-        sab = math.sin(a - beta)
+        cab = 0.0
+        sab = 0.0
+        if rho != 0.0:
+            cab = math.cos(a - beta)
+            sab = math.sin(a - beta)
         Mm[k, ip] = m * R * (u * c + v * s) + m * R * R - Ii * rr + m * R * rho * cab
         fk = -m * R * (s * a_u + c * a_v) - m * R * rho * psid * psid * sab
         fk -= B[i, B_D] * ad

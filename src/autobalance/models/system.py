@@ -127,6 +127,9 @@ class SimOptions:
         the nominal speed, at most 200 000 samples); < 0 = store only the checkpoints.
     max_steps : int
         Step budget; exceeding it ends the run with status "max_steps".
+    exact_holds : bool
+        Solve constant-speed holds with every ball stuck in closed form (isotropic rotor without
+        gravity, base motion or dry friction; docs/numerics.md). False integrates them.
     """
 
     friction_law: str = "stick"
@@ -137,6 +140,7 @@ class SimOptions:
     max_step: float = 0.0
     save_dt: float = 0.0
     max_steps: int = 20_000_000
+    exact_holds: bool = True
 
     def __post_init__(self):
         if self.friction_law not in FRICTION_LAWS:
@@ -148,5 +152,7 @@ class SimOptions:
         positive("options.atol_scale", self.atol_scale)
         nonneg("options.max_step", self.max_step)
         finite("options.save_dt", self.save_dt)
+        if not isinstance(self.exact_holds, bool):
+            raise ParameterError("options.exact_holds", self.exact_holds, "must be true or false")
         if int(self.max_steps) != self.max_steps or self.max_steps < 1:
             raise ParameterError("options.max_steps", self.max_steps, "must be an integer >= 1")

@@ -1,0 +1,100 @@
+"""Exact solution of a constant-speed hold with every ball stuck (isotropic rotor).
+
+With all balls stuck (alpha_dot = alpha_ddot = 0), a constant spin speed W, an isotropic linear
+suspension (k, c), no gravity, no base motion, no dry friction and a constant unbalance, the u, v
+rows of the equations of motion (004 eq 8-9 with phi_dot = phi_ddot = 0) are, with w = u + i v,
+
+    M_t w'' + (c + 2 i W M_t) w' + (k - M_t W^2 + i c W) w = W^2 Ut,                      (H1)
+    Ut = U + sum_i m_i (R e^{i alpha_i} + rho e^{i beta})          [kg*m, constant]
+
+a constant-coefficient equation (the Jeffcott rotor in its rotating frame). Its exact solution is
+w = w_ss + A e^{s1 tau} + B e^{s2 tau} with w_ss = W^2 Ut / (k - M_t W^2 + i c W) and s1, s2 the
+roots of M_t s^2 + (c + 2 i W M_t) s + (k - M_t W^2 + i c W) = 0 (the inertial roots shifted by
+-iW). The friction torque a stuck ball needs (004 eq 10 with phi'' = 0) is affine in
+X = w'' + 2 i W w' - W^2 w:  lambda_i = m_i R Im(e^{-i alpha_i} X) + const_i, so
+
+    |lambda_i(tau)| <= |lambda_i,ss| + m_i R sum_j |(s_j^2 + 2 i W s_j - W^2) C_j|       (H2)
+
+for all tau >= 0 (Re s_j < 0). If (H2) is within every ball's static limit mu_s N_i R (N_i =
+m_i R W^2 constant), the balls stay stuck for the whole hold and the state at any time follows
+from (H1) in closed form: the integrator jumps to the end of the segment.
+"""
+from __future__ import annotations
+
+import cmath
+import math
+
+from numba import njit
+
+from .layout import (B_M, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_HOLDS, P_KX, P_KY, P_MT,
+                     P_R, P_SPIN)
+
+
+@njit(cache=True)
+def hold_possible(P, unb_n):
+    """Static part of the conditions: isotropic, no gravity/base/dry friction, exact stick law,
+    prescribed spin, constant unbalance."""
+    return (P[P_HOLDS] == 1.0 and P[P_KX] == P[P_KY] and P[P_CX] == P[P_CY] and P[P_G] == 0.0
+            and P[P_BW] == 0.0 and P[P_FDRY] == 0.0 and P[P_FLAW] == 0.0 and P[P_SPIN] == 0.0 and unb_n == 1)
+
+
+@njit(cache=True)
+def hold_roots(P, W):
+    """Roots s1, s2 [1/s] and the static response factor 1/(k - M_t W^2 + i c W) [m/N]."""
+    mt = P[P_MT]
+    k = P[P_KX]
+    c = P[P_CX]
+    b = complex(c, 2.0 * W * mt)
+    k0 = complex(k - mt * W * W, c * W)
+    disc = cmath.sqrt(b * b - 4.0 * mt * k0)
+    s1 = (-b + disc) / (2.0 * mt)
+    s2 = (-b - disc) / (2.0 * mt)
+    return s1, s2, 1.0 / k0
+
+
+@njit(cache=True)
+def hold_coeffs(w0, wd0, wss, s1, s2):
+    """C1, C2 of w - w_ss = C1 e^{s1 t} + C2 e^{s2 t} from w(0) = w0, w'(0) = wd0."""
+    z0 = w0 - wss
+    c1 = (wd0 - s2 * z0) / (s1 - s2)
+    return c1, z0 - c1
+
+
+@njit(cache=True)
+def hold_state(tau, wss, s1, s2, c1, c2):
+    """w(tau), w'(tau) [m, m/s]."""
+    e1 = cmath.exp(s1 * tau)
+    e2 = cmath.exp(s2 * tau)
+    return wss + c1 * e1 + c2 * e2, s1 * c1 * e1 + s2 * c2 * e2
+
+
+@njit(cache=True)
+def hold_transient_bound(W, s1, s2, c1, c2):
+    """sum_j |(s_j^2 + 2 i W s_j - W^2) C_j|: bound of |X - X_ss| for tau >= 0 (eq H2) [m/s^2]."""
+    p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
+    p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
+    return abs(p1) + abs(p2)
+
+
+@njit(cache=True)
+def ball_unbalance(y, B, N, R, rho, beta, U):
+    """Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}) [kg*m] (eq H1)."""
+    ut = complex(U, 0.0)
+    for i in range(N):
+        m = B[i, B_M]
+        ut += m * (R * cmath.exp(1j * y[2 + i]) + rho * cmath.exp(1j * beta))
+    return ut
+
+
+@njit(cache=True)
+def hold_margin_ok(lam_ss, lim, N, B, R, bound):
+    """(H2) for every ball with a relative margin of 1e-9."""
+    for i in range(N):
+        need = abs(lam_ss[i]) + B[i, B_M] * R * bound
+        if need > lim[i] * (1.0 - 1e-9):
+            return False
+    return True
+
+
+__all__ = ["hold_possible", "hold_roots", "hold_coeffs", "hold_state", "hold_transient_bound",
+           "ball_unbalance", "hold_margin_ok", "math", "P_R"]
