@@ -124,7 +124,9 @@ def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:
     """Absolute tolerances: atol_scale times a length, an angle and their rates."""
     b = system.balancer
     nq = b.n_balls + 3
-    L = max(system.rotor.unbalance, b.capacity, 1e-9) / system.total_mass
+    sus = system.suspension
+    L = max(max(system.rotor.unbalance, b.capacity, 1e-9) / system.total_mass,
+            sus.base_amplitude_x, sus.base_amplitude_y)
     W = max(spin.nominal_speed, 1.0)
     a = np.empty(2 * nq)
     a[:2] = L
