@@ -27,3 +27,4 @@ bench: setup
 
 clean:
 	rm -rf $(VENV) out .pytest_cache
+	find src -name '*.nbi' -delete -o -name '*.nbc' -delete

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..models import ParameterError
+from ..models._validate import array as _array
 
 __all__ = ["GRADES", "grade", "grade_class", "permissible_eccentricity", "unbalance_for_grade"]
 
@@ -22,18 +23,6 @@ GRADES = (0.4, 1.0, 2.5, 6.3, 16.0, 40.0, 100.0, 250.0, 630.0, 1600.0, 4000.0)
 _M_TO_MM = 1000.0
 
 
-def _array(field: str, value, *, strict: bool) -> np.ndarray:
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(field, value, "must be a real number or an array of them") from None
-    if not np.all(np.isfinite(a)):
-        raise ParameterError(field, value, "must be finite (not NaN or inf)")
-    bad = a <= 0.0 if strict else a < 0.0
-    if np.any(bad):
-        raise ParameterError(field, float(a[bad].flat[0]) if a.ndim else float(a),
-                             "must be > 0" if strict else "must be >= 0")
-    return a
 
 
 def _out(a):

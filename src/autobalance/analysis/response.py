@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..models import ParameterError
+from ..models._validate import array as _array
 
 __all__ = [
     "BallInfluence", "HarmonicResponse", "axis_response", "ball_influence", "damped_peak_speeds",
@@ -39,19 +40,6 @@ __all__ = [
 
 
 # -- validation --------------------------------------------------------------------------------
-def _array(field: str, value, *, strict: bool) -> np.ndarray:
-    """Float array, finite, > 0 (strict) or >= 0; ParameterError naming ``field`` otherwise."""
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(field, value, "must be a real number or an array of them") from None
-    if not np.all(np.isfinite(a)):
-        raise ParameterError(field, value, "must be finite (not NaN or inf)")
-    bad = a <= 0.0 if strict else a < 0.0
-    if np.any(bad):
-        worst = float(a[bad].flat[0]) if a.ndim else float(a)
-        raise ParameterError(field, worst, "must be > 0" if strict else "must be >= 0")
-    return a
 
 
 def _out(a: np.ndarray):

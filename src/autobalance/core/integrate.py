@@ -27,7 +27,7 @@ from .layout import (B_MUS, N_S, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_KX, P_
 from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_possible, hold_roots,
                    hold_state)
 from .layout import P_BETA, P_R, P_RHO, S_HOLDS
-from .rhs import profile_segment, rhs
+from .rhs import neighbour_gap, profile_segment, rhs
 
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -130,6 +130,38 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof
 
 
 @njit(cache=True)
+def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
+            unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx):
+    """Step fraction in (a_, 1] where the switching function (kind, i) crosses from g(a_) = ga
+    > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-10 in fraction).
+    Returns (fraction, number of evaluations)."""
+    b_ = 1.0
+    side = 0
+    nev = 0
+    th = b_
+    for _ in range(40):
+        th = (a_ * gb - b_ * ga) / (gb - ga)
+        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
+                      unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx)
+        nev += 1
+        if gt > 0.0:
+            a_ = th
+            ga = gt
+            if side == 1:
+                gb *= 0.5
+            side = 1
+        else:
+            b_ = th
+            gb = gt
+            if side == -1:
+                ga *= 0.5
+            side = -1
+        if b_ - a_ < 1e-10 or gt == 0.0:
+            break
+    return b_, nev
+
+
+@njit(cache=True)
 def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_max,
               max_steps, out_t, out_y, stats):
     """Integrate one run from t = 0 to t_end.
@@ -203,6 +235,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     nev = 0
     stall = 0
     in_contact = np.zeros(N, dtype=np.int64)
+    viol = np.zeros(N, dtype=np.int64)
     status = 0
     can_hold = hold_possible(P, unb_t.shape[0])
     next_try = 0
@@ -328,9 +361,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                     g1 = sgn[i] * y1[nq + 2 + i]
                     if g1 < 0.0:
                         g0 = sgn[i] * y[nq + 2 + i]
-                        # Illinois on the Hermite interpolant
                         a_ = 0.0
-                        b_ = 1.0
                         ga = g0
                         gb = g1
                         if ga <= 0.0 and sgn[i] * f0[nq + 2 + i] > 0.0:
@@ -348,28 +379,9 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                         if ga <= 0.0:
                             th = 0.0
                         else:
-                            side = 0
-                            th = 1.0
-                            for _ in range(40):
-                                th = (a_ * gb - b_ * ga) / (gb - ga)
-                                gt = _event_g(0, i, th, t, h, y, f0, y1, f1, ytmp, P, B, N,
-                                              seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                              spin, ftmp, lam, Mm, fv, A, bb, idx)
-                                if gt > 0.0:
-                                    a_ = th
-                                    ga = gt
-                                    if side == 1:
-                                        gb *= 0.5
-                                    side = 1
-                                else:
-                                    b_ = th
-                                    gb = gt
-                                    if side == -1:
-                                        ga *= 0.5
-                                    side = -1
-                                if b_ - a_ < 1e-10 or gt == 0.0:
-                                    break
-                            th = b_
+                            th, ne = _locate(0, i, ga, gb, a_, t, h, y, f0, y1, f1, ytmp, P, B,
+                                             N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                             spin, ftmp, lam, Mm, fv, A, bb, idx)
                         if th < th_ev:
                             th_ev = th
                             ev_kind = 0
@@ -379,11 +391,12 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                 if stuck[i] == 1:
                     any_stuck = True
             if any_stuck:
-                # lam is from the FSAL evaluation f1 = f(t+h, y1) with the current modes
+                # lam is from the FSAL evaluation f1 = f(t+h, y1) with the current modes;
+                # snapshot the violations first: locating one event overwrites lam
                 for i in range(N):
-                    if stuck[i] == 1 and abs(lam[i]) > lam[N + i]:
-                        a_ = 0.0
-                        b_ = 1.0
+                    viol[i] = 1 if stuck[i] == 1 and abs(lam[i]) > lam[N + i] else 0
+                for i in range(N):
+                    if viol[i] == 1:
                         ga = _event_g(1, i, 0.0, t, h, y, f0, y1, f1, ytmp, P, B, N, seg,
                                       prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp,
                                       lam, Mm, fv, A, bb, idx)
@@ -394,28 +407,10 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                         if ga <= 0.0 or gb >= 0.0:
                             th = 0.0 if ga <= 0.0 else 1.0
                         else:
-                            side = 0
-                            for _ in range(40):
-                                th = (a_ * gb - b_ * ga) / (gb - ga)
-                                gt = _event_g(1, i, th, t, h, y, f0, y1, f1, ytmp, P, B, N,
-                                              seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                              spin, ftmp, lam, Mm, fv, A, bb, idx)
-                                nrhs += 1
-                                if gt > 0.0:
-                                    a_ = th
-                                    ga = gt
-                                    if side == 1:
-                                        gb *= 0.5
-                                    side = 1
-                                else:
-                                    b_ = th
-                                    gb = gt
-                                    if side == -1:
-                                        ga *= 0.5
-                                    side = -1
-                                if b_ - a_ < 1e-10 or gt == 0.0:
-                                    break
-                            th = b_
+                            th, ne = _locate(1, i, ga, gb, 0.0, t, h, y, f0, y1, f1, ytmp, P,
+                                             B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
+                                             sgn, spin, ftmp, lam, Mm, fv, A, bb, idx)
+                            nrhs += ne
                         if th < th_ev:
                             th_ev = th
                             ev_kind = 1
@@ -489,12 +484,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
         # contact bookkeeping (counts contacts started)
         if N > 1:
             for i in range(N):
-                j = i + 1
-                wrap = 0.0
-                if j == N:
-                    j = 0
-                    wrap = 2.0 * math.pi
-                gap = y1[2 + j] + wrap - y1[2 + i] - P[P_DELTA]
+                j, gap = neighbour_gap(y1, i, N, P[P_DELTA])
                 if gap < 0.0 and in_contact[i] == 0:
                     in_contact[i] = 1
                     stats[S_IMPACTS] += 1.0

@@ -70,6 +70,18 @@ def motor_torque(law, t0, wf, w):
 
 
 @njit(cache=True)
+def neighbour_gap(y, i, N, delta):
+    """Next ball j after ball i (cyclic order) and their free angular gap beyond the contact
+    angle delta [rad]; negative = overlap (balls in one race keep their order)."""
+    j = i + 1
+    wrap = 0.0
+    if j == N:
+        j = 0
+        wrap = 2.0 * math.pi
+    return j, y[2 + j] + wrap - y[2 + i] - delta
+
+
+@njit(cache=True)
 def cholesky_solve(A, b, n):
     """Solve A x = b in place (x returned in b) for the leading n x n SPD block of A."""
     for j in range(n):
@@ -283,12 +295,7 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     # ball-ball contact: compliant spring-dashpot between neighbours (order preserved)
     if N > 1:
         for i in range(N):
-            j = i + 1
-            wrap = 0.0
-            if j == N:
-                j = 0
-                wrap = 2.0 * math.pi
-            gap = y[2 + j] + wrap - y[2 + i] - P[P_DELTA]
+            j, gap = neighbour_gap(y, i, N, P[P_DELTA])
             if gap < 0.0:
                 pen_rate = y[nq + 2 + i] - y[nq + 2 + j]
                 fc = B[i, B_KC] * (-gap) + B[i, B_CC] * pen_rate

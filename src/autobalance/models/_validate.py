@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 
 class ParameterError(ValueError):
     """A physical parameter is out of its allowed range (one-line message)."""
@@ -65,3 +67,18 @@ def per_ball(field: str, value, n: int, check) -> tuple[float, ...]:
             raise ParameterError(field, list(value), f"needs {n} values (one per ball) or one scalar")
         return tuple(check(f"{field}[{i}]", v) for i, v in enumerate(value))
     return tuple(check(field, value) for _ in range(n))
+
+
+def array(field: str, value, *, strict: bool) -> np.ndarray:
+    """Float array, finite, > 0 (strict) or >= 0; ParameterError naming ``field`` otherwise."""
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(field, value, "must be a real number or an array of them") from None
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(field, value, "must be finite (not NaN or inf)")
+    bad = a <= 0.0 if strict else a < 0.0
+    if np.any(bad):
+        worst = float(a[bad].flat[0]) if a.ndim else float(a)
+        raise ParameterError(field, worst, "must be > 0" if strict else "must be >= 0")
+    return a
