@@ -133,7 +133,7 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof
 def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
             unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx):
     """Step fraction in (a_, 1] where the switching function (kind, i) crosses from g(a_) = ga
-    > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-10 in fraction).
+    > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-7 in fraction).
     Returns (fraction, number of evaluations)."""
     b_ = 1.0
     side = 0
@@ -156,7 +156,7 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
             if side == -1:
                 ga *= 0.5
             side = -1
-        if b_ - a_ < 1e-10 or gt == 0.0:
+        if b_ - a_ < 1e-7 or gt == 0.0:
             break
     return b_, nev
 
@@ -199,6 +199,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     idx = np.zeros(nq, dtype=np.int64)
     stuck = np.zeros(N, dtype=np.int64)
     sgn = np.ones(N)
+    gs = np.zeros(N)     # stick margin mu_s N R - |lambda| at the start of the step
+    ge = np.zeros(N)     # ... at the end of the trial step (from its FSAL evaluation)
     spin = np.zeros(2)
     spin[0] = P[P_SPIN]
     for j in range(N_S):
@@ -222,6 +224,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
              lam, Mm, fv, A, bb, idx)
     nrhs = N + 1
+    for i in range(N):
+        gs[i] = lam[N + i] - abs(lam[i])
     while kout < nout and out_t[kout] <= t:
         for j in range(n):
             out_y[kout, j] = y[j]
@@ -313,6 +317,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                         rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
                             f0, lam, Mm, fv, A, bb, idx)
                         nrhs += 1
+                    for i in range(N):
+                        gs[i] = lam[N + i] - abs(lam[i])
                     continue
                 next_try = nsteps + 20
         # hard stops at profile knots
@@ -352,6 +358,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
             nrej += 1
             continue
         # ---- accepted trial step: events ------------------------------------------------
+        for i in range(N):
+            ge[i] = lam[N + i] - abs(lam[i])
         ev_kind = -1
         ev_i = -1
         th_ev = 2.0
@@ -397,13 +405,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                     viol[i] = 1 if stuck[i] == 1 and abs(lam[i]) > lam[N + i] else 0
                 for i in range(N):
                     if viol[i] == 1:
-                        ga = _event_g(1, i, 0.0, t, h, y, f0, y1, f1, ytmp, P, B, N, seg,
-                                      prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp,
-                                      lam, Mm, fv, A, bb, idx)
-                        gb = _event_g(1, i, 1.0, t, h, y, f0, y1, f1, ytmp, P, B, N, seg,
-                                      prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp,
-                                      lam, Mm, fv, A, bb, idx)
-                        nrhs += 2
+                        ga = gs[i]
+                        gb = ge[i]
                         if ga <= 0.0 or gb >= 0.0:
                             th = 0.0 if ga <= 0.0 else 1.0
                         else:
@@ -495,6 +498,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
             y[j] = y1[j]
             f0[j] = f1[j]
         nsteps += 1
+        for i in range(N):
+            gs[i] = ge[i]
         if last and spin[0] == 0.0:
             seg = profile_segment(t, prof_t)
         # ---- mode changes ----------------------------------------------------------------
@@ -529,6 +534,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                 rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
                     lam, Mm, fv, A, bb, idx)
                 nrhs += 1
+            for i in range(N):
+                gs[i] = lam[N + i] - abs(lam[i])
             if stall > 50:
                 status = 2
                 break

@@ -211,8 +211,11 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         Fu, Fv = _suspension_force(t, u, v, ud, vd, psi, psid, P)
 
 
-    cb = math.cos(beta)
-    sb = math.sin(beta)
+    cb = 0.0       # every use of cos/sin(beta) is multiplied by rho
+    sb = 0.0
+    if rho != 0.0:
+        cb = math.cos(beta)
+        sb = math.sin(beta)
     driven = mode == 1.0
     has_g = g > 0.0
     for i in range(nq):
