@@ -1,7 +1,6 @@
 """Command line: JSON output, exit codes and one-line errors (autobalance.cli)."""
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
 import subprocess
@@ -14,9 +13,6 @@ from autobalance.cli import app
 from autobalance.config import preset_path
 
 runner = CliRunner()
-
-needs_simulate = pytest.mark.skipif(importlib.util.find_spec("autobalance.simulate") is None,
-                                    reason="autobalance.simulate not written yet")
 
 
 def run(*args):
@@ -188,7 +184,6 @@ def test_main_entry_point_presets_json():
 
 
 # -- end to end (need the physics modules) ----------------------------------------------------
-@needs_simulate
 def test_simulate_json_and_files(tmp_path):
     nc, png = tmp_path / "w.nc", tmp_path / "w.png"
     r = run("simulate", "washer_000", "--set", "profile.duration=1 s", "--out", str(nc),
@@ -204,14 +199,12 @@ def test_simulate_json_and_files(tmp_path):
         assert "time" in ds.dims
 
 
-@needs_simulate
 def test_simulate_text_summary():
     r = run("simulate", "washer_000", "--set", "profile.duration=1 s")
     assert r.exit_code in (0, 1)
     assert "washer_000" in r.stdout and "status" in r.stdout
 
 
-@needs_simulate
 def test_simulate_failure_exit_1():
     r = run("simulate", "washer_000", "--set", "profile.duration=1 s",
             "--set", "options.max_steps=3", "--json")
@@ -219,7 +212,6 @@ def test_simulate_failure_exit_1():
     assert d["status"] != "ok" and r.exit_code == 1
 
 
-@needs_simulate
 def test_response_json():
     r = run("response", "vub_jeffcott_004", "--json")
     assert r.exit_code == 0, r.stderr
@@ -233,7 +225,6 @@ def test_response_json():
     assert d["speed_rad_s"][-1] == pytest.approx(2000 * math.pi / 30)
 
 
-@needs_simulate
 @pytest.mark.slow
 def test_demo(tmp_path):
     out = tmp_path / "demo"

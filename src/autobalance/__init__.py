@@ -1,22 +1,17 @@
-"""autobalance: simulation and design of passive automatic balancers for rotors."""
+"""autobalance: simulation and design of passive automatic balancers for rotors.
+
+Public API: the parameter dataclasses, :func:`simulate` (one run) and :func:`simulate_batch`
+(many runs in one compiled call). Configs and presets: :mod:`autobalance.config`.
+"""
 __version__ = "0.1.0"
 
 from .models import (BallBalancer, Gravity, InitialState, MotorDrive, ParameterError, Rotor,  # noqa: E402
                      SimOptions, SpeedProfile, Suspension, System)
+# Bind the functions after importing the submodule of the same name, so that the package
+# attribute stays the function even after ``import autobalance.simulate``.
+from .simulate import simulate, simulate_batch  # noqa: E402
+from .result import BatchResult, Simulation, SimulationError  # noqa: E402
 
-
-def simulate(*args, **kwargs):
-    """Lazy alias of :func:`autobalance.simulate.simulate` (keeps `import autobalance` light)."""
-    from .simulate import simulate as _simulate
-    return _simulate(*args, **kwargs)
-
-
-def simulate_batch(*args, **kwargs):
-    """Lazy alias of :func:`autobalance.simulate.simulate_batch`."""
-    from .simulate import simulate_batch as _sb
-    return _sb(*args, **kwargs)
-
-
-__all__ = ["BallBalancer", "Gravity", "InitialState", "MotorDrive", "ParameterError", "Rotor",
-           "SimOptions", "SpeedProfile", "Suspension", "System", "simulate", "simulate_batch",
-           "__version__"]
+__all__ = ["BallBalancer", "BatchResult", "Gravity", "InitialState", "MotorDrive",
+           "ParameterError", "Rotor", "SimOptions", "Simulation", "SimulationError",
+           "SpeedProfile", "Suspension", "System", "simulate", "simulate_batch", "__version__"]
