@@ -235,6 +235,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     # initial step: a fraction of a revolution / of the fastest natural period
     h = min(h_max, 1e-4)
     nsteps = 0
+    en_old = 1e-4
     nrej = 0
     nev = 0
     stall = 0
@@ -542,7 +543,11 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
             if ev_kind >= 0:
                 continue
         # ---- next step size ---------------------------------------------------------------
-        fac = 5.0 if en == 0.0 else min(5.0, max(0.2, 0.9 * en ** -0.2))
+        # PI step control (Hairer, Norsett, Wanner I, II.4, DOPRI5 code: beta = 0.04) keeps
+        # the step smooth where the stability boundary limits it
+        en_c = max(en, 1e-10)
+        fac = min(5.0, max(0.2, 0.9 * en_c ** -(0.2 - 0.75 * 0.04) * en_old ** 0.04))
+        en_old = max(en_c, 1e-4)
         h = min(h_max, h_acc * fac if h_acc > 0.0 else h)
         if h <= 0.0:
             h = 1e-6
