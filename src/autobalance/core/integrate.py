@@ -29,6 +29,11 @@ from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_possible, h
 from .layout import P_BETA, P_R, P_RHO, S_HOLDS
 from .rhs import neighbour_gap, profile_segment, rhs
 
+#: relative tolerance of the static friction limit: a stuck ball breaks away when the friction it
+#: needs exceeds mu_s N R (1 + STICK_TOL); the same bound is used by the event function and by
+#: the mode resolution, so a ball at the limit neither chatters nor stalls the integrator
+STICK_TOL = 1e-9
+
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
 A21 = 1 / 5
@@ -92,8 +97,12 @@ def _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, 
 @njit(cache=True)
 def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f,
              lam, Mm, fv, A, bb, idx):
-    """Release stuck balls whose required friction exceeds the static limit, worst first."""
-    for _ in range(N + 1):
+    """Consistent stick/slip modes at a switching instant (a small friction complementarity
+    problem solved by pivoting): release the stuck ball whose required friction exceeds its
+    static limit by the largest ratio; re-stick a ball at zero relative speed whose
+    acceleration opposes its assigned sliding direction (it cannot slide that way); repeat."""
+    nq = N + 3
+    for _ in range(4 * N + 4):
         rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f, lam, Mm,
             fv, A, bb, idx)
         worst = -1
@@ -102,15 +111,24 @@ def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
             if stuck[i] == 1:
                 lim = lam[N + i]
                 need = abs(lam[i])
-                if need > lim * (1.0 + 1e-12) + 1e-300:
+                if need > lim * (1.0 + STICK_TOL) + 1e-300:
                     r = need / lim if lim > 0.0 else 1e300
                     if r > wr:
                         wr = r
                         worst = i
-        if worst < 0:
+        if worst >= 0:
+            stuck[worst] = 0
+            sgn[worst] = -1.0 if lam[worst] > 0.0 else 1.0
+            continue
+        back = -1
+        for i in range(N):
+            if (stuck[i] == 0 and B[i, B_MUS] > 0.0 and y[nq + 2 + i] == 0.0
+                    and sgn[i] * f[nq + 2 + i] < 0.0):
+                back = i
+                break
+        if back < 0:
             return
-        stuck[worst] = 0
-        sgn[worst] = -1.0 if lam[worst] > 0.0 else 1.0
+        stuck[back] = 1
 
 
 @njit(cache=True)
@@ -126,7 +144,7 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof
         ytmp[j] = _hermite(y0, f0, y1, f1, h, th, j)
     rhs(t + th * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         ftmp, lam, Mm, fv, A, bb, idx)
-    return lam[N + i] - abs(lam[i])
+    return lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
 
 
 @njit(cache=True)
@@ -225,7 +243,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
              lam, Mm, fv, A, bb, idx)
     nrhs = N + 1
     for i in range(N):
-        gs[i] = lam[N + i] - abs(lam[i])
+        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
     while kout < nout and out_t[kout] <= t:
         for j in range(n):
             out_y[kout, j] = y[j]
@@ -319,7 +337,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                             f0, lam, Mm, fv, A, bb, idx)
                         nrhs += 1
                     for i in range(N):
-                        gs[i] = lam[N + i] - abs(lam[i])
+                        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
                     continue
                 next_try = nsteps + 20
         # hard stops at profile knots
@@ -360,10 +378,11 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
             continue
         # ---- accepted trial step: events ------------------------------------------------
         for i in range(N):
-            ge[i] = lam[N + i] - abs(lam[i])
+            ge[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
         ev_kind = -1
         ev_i = -1
         th_ev = 2.0
+        shrink = False
         if exact:
             for i in range(N):
                 if stuck[i] == 0 and B[i, B_MUS] > 0.0:
@@ -385,6 +404,9 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                                     ga = gp
                                     break
                                 thp *= 0.5
+                        if ga <= 0.0 and g0 == 0.0 and h > 1e-9 * max(1.0, t):
+                            shrink = True     # released ball reverses within the step
+                            break
                         if ga <= 0.0:
                             th = 0.0
                         else:
@@ -395,6 +417,10 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                             th_ev = th
                             ev_kind = 0
                             ev_i = i
+            if shrink:
+                h *= 0.1
+                nrej += 1
+                continue
             any_stuck = False
             for i in range(N):
                 if stuck[i] == 1:
@@ -403,7 +429,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                 # lam is from the FSAL evaluation f1 = f(t+h, y1) with the current modes;
                 # snapshot the violations first: locating one event overwrites lam
                 for i in range(N):
-                    viol[i] = 1 if stuck[i] == 1 and abs(lam[i]) > lam[N + i] else 0
+                    viol[i] = 1 if stuck[i] == 1 and abs(lam[i]) > lam[N + i] * (1.0 + STICK_TOL) else 0
                 for i in range(N):
                     if viol[i] == 1:
                         ga = gs[i]
@@ -536,7 +562,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                     lam, Mm, fv, A, bb, idx)
                 nrhs += 1
             for i in range(N):
-                gs[i] = lam[N + i] - abs(lam[i])
+                gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
             if stall > 50:
                 status = 2
                 break

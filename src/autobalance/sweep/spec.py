@@ -1,0 +1,236 @@
+"""Sweep description: base system, swept grid, Monte-Carlo dimension, outputs.
+
+TOML form (every value with units where it has them)::
+
+    [sweep]
+    name = "tsr-start-positions"
+    base = "vub_jeffcott_004"            # preset name or path of a config .toml
+    set = ["balancer.rolling_resistance=0.002"]   # overrides applied to the base
+    batch_size = 64                      # runs per task (amortises scheduling)
+
+    [grid]                               # swept parameters, dims in this order
+    "rotor.unbalance" = ["0.1 g*m", "0.2 g*m"]
+    "balancer.rolling_resistance" = { start = 0.001, stop = 0.004, num = 4 }
+
+    [monte_carlo]                        # the "sample" dimension
+    kind = "start_grid"                  # 004 sec. 4.2: n equispaced start positions per ball,
+    n = 50                               #   symmetric duplicates removed (50 -> 1275 for 2 balls)
+    # kind = "random"; samples = 200; seed = 1   (uniform independent start angles)
+
+    [outputs]
+    history_dt = "0.5 s"                 # optional decimated time histories (0 = none)
+
+The same description is a :class:`SweepSpec` in Python. Its canonical JSON (``spec.canonical()``)
+identifies a sweep: a durable store made from another description is refused.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..config import PROFILE_KINDS, SECTIONS, ConfigError, parse_quantity
+
+MC_KINDS = ("start_grid", "random", "none")
+_TOP = ("sweep", "grid", "monte_carlo", "outputs")
+_SWEEP_KEYS = ("name", "base", "set", "batch_size", "description")
+_MC_KEYS = {"start_grid": ("kind", "n"), "random": ("kind", "samples", "seed"), "none": ("kind",)}
+_OUT_KEYS = ("history_dt",)
+
+
+class SweepError(ConfigError):
+    """A bad sweep description (one-line message naming the field)."""
+
+
+def _toml_literal(v: Any) -> str:
+    """A value as the right-hand side of a ``path=value`` override."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml_literal(x) for x in v) + "]"
+    raise SweepError(f"value {v!r}: expected a number, a string with units or a list")
+
+
+def field_kind(path: str) -> str:
+    """The quantity kind (config.SECTIONS) of a dotted config path, for SI coordinates."""
+    parts = path.split(".")
+    if len(parts) != 2:
+        raise SweepError(f"grid.{path}: unknown path; use section.key, e.g. rotor.unbalance")
+    section, key = parts
+    if section == "profile":
+        for kinds in PROFILE_KINDS.values():
+            if key in kinds:
+                return kinds[key].kind
+        raise SweepError(f"grid.{path}: unknown profile key")
+    if section not in SECTIONS or key not in SECTIONS[section]:
+        raise SweepError(f"grid.{path}: unknown path; sections: {', '.join(SECTIONS)}")
+    return SECTIONS[section][key].kind
+
+
+@dataclass(frozen=True)
+class GridAxis:
+    """One swept parameter: dotted config path, raw values (as in TOML), SI values."""
+
+    path: str
+    values: tuple
+    si: tuple
+    unit_kind: str
+
+    @property
+    def dim(self) -> str:
+        return self.path.replace(".", "__")
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A sweep: ``base`` config with ``overrides``, a grid, a Monte-Carlo dimension, outputs."""
+
+    name: str
+    base: str
+    overrides: tuple = ()
+    grid: tuple = ()                 # of GridAxis
+    mc_kind: str = "none"
+    mc_n: int = 0                    # start_grid: positions per ball
+    mc_samples: int = 1              # random: number of samples
+    seed: int = 0
+    batch_size: int = 64
+    history_dt: float = 0.0          # [s], 0 = no histories
+    description: str = ""
+    extra: dict = field(default_factory=dict)
+
+    def canonical(self) -> str:
+        """Deterministic JSON of everything that determines the results."""
+        d = {
+            "base": self.base, "overrides": list(self.overrides),
+            "grid": [[a.path, list(a.values)] for a in self.grid],
+            "mc_kind": self.mc_kind, "mc_n": self.mc_n, "mc_samples": self.mc_samples,
+            "seed": self.seed, "history_dt": self.history_dt,
+        }
+        return json.dumps(d, sort_keys=True)
+
+    def digest(self) -> str:
+        return hashlib.sha256(self.canonical().encode()).hexdigest()[:16]
+
+    @property
+    def shape(self) -> tuple:
+        return tuple(len(a.values) for a in self.grid)
+
+
+def _axis(path: str, spec: Any) -> GridAxis:
+    kind = field_kind(path)
+    if isinstance(spec, dict):
+        unknown = set(spec) - {"start", "stop", "num"}
+        if unknown:
+            raise SweepError(f"grid.{path}: unknown key {sorted(unknown)[0]!r}; allowed: start, stop, num")
+        for k in ("start", "stop", "num"):
+            if k not in spec:
+                raise SweepError(f"grid.{path}.{k}: missing; a range needs start, stop, num")
+        num = spec["num"]
+        if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+            raise SweepError(f"grid.{path}.num = {num!r}: must be an integer >= 1")
+        lo = parse_quantity(spec["start"], kind, f"grid.{path}.start")
+        hi = parse_quantity(spec["stop"], kind, f"grid.{path}.stop")
+        si = tuple(float(v) for v in np.linspace(lo, hi, num))
+        return GridAxis(path, si, si, kind)
+    if not isinstance(spec, list):
+        raise SweepError(f"grid.{path} = {spec!r}: expected a list of values or {{start, stop, num}}")
+    if not spec:
+        raise SweepError(f"grid.{path} = []: empty grid; give at least one value")
+    si = []
+    for i, v in enumerate(spec):
+        if isinstance(v, list):
+            raise SweepError(f"grid.{path}[{i}] = {v!r}: grid values must be scalars")
+        if kind in ("int", "text", "bool"):
+            si.append(v)
+        else:
+            si.append(parse_quantity(v, kind, f"grid.{path}[{i}]"))
+    if len(set(map(str, spec))) != len(spec):
+        raise SweepError(f"grid.{path} = {spec!r}: values must be distinct")
+    return GridAxis(path, tuple(spec), tuple(si), kind)
+
+
+def spec_from_dict(d: dict, label: str = "<dict>") -> SweepSpec:
+    """Validate a parsed sweep TOML; one-line SweepError naming the field on bad input."""
+    for k in d:
+        if k not in _TOP:
+            raise SweepError(f"{k}: unknown section; allowed: {', '.join(_TOP)}")
+    sw = d.get("sweep")
+    if not isinstance(sw, dict):
+        raise SweepError("sweep: missing; required table [sweep] with base = PRESET|CONFIG")
+    for k in sw:
+        if k not in _SWEEP_KEYS:
+            raise SweepError(f"sweep.{k}: unknown key; allowed: {', '.join(_SWEEP_KEYS)}")
+    if "base" not in sw or not isinstance(sw["base"], str):
+        raise SweepError("sweep.base: missing; required, a preset name or a config .toml path")
+    sets = sw.get("set", [])
+    if not isinstance(sets, list) or not all(isinstance(s, str) for s in sets):
+        raise SweepError(f"sweep.set = {sets!r}: expected a list of 'path=value' strings")
+    bs = sw.get("batch_size", 64)
+    if isinstance(bs, bool) or not isinstance(bs, int) or bs < 1:
+        raise SweepError(f"sweep.batch_size = {bs!r}: must be an integer >= 1")
+    grid_d = d.get("grid", {})
+    if not isinstance(grid_d, dict):
+        raise SweepError(f"grid = {grid_d!r}: expected a table of path = values")
+    grid = tuple(_axis(p, v) for p, v in grid_d.items())
+    mc = d.get("monte_carlo", {"kind": "none"})
+    if not isinstance(mc, dict):
+        raise SweepError(f"monte_carlo = {mc!r}: expected a table")
+    kind = mc.get("kind", "none")
+    if kind not in MC_KINDS:
+        raise SweepError(f"monte_carlo.kind = {kind!r}: must be one of {list(MC_KINDS)}")
+    for k in mc:
+        if k not in _MC_KEYS[kind]:
+            raise SweepError(f"monte_carlo.{k}: unknown key for kind {kind!r}; allowed: "
+                             f"{', '.join(_MC_KEYS[kind])}")
+    n = mc.get("n", 0)
+    samples = mc.get("samples", 1)
+    seed = mc.get("seed", 0)
+    if kind == "start_grid" and (isinstance(n, bool) or not isinstance(n, int) or n < 1):
+        raise SweepError(f"monte_carlo.n = {n!r}: must be an integer >= 1 (positions per ball)")
+    if kind == "random":
+        if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
+            raise SweepError(f"monte_carlo.samples = {samples!r}: must be an integer >= 1")
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise SweepError(f"monte_carlo.seed = {seed!r}: must be an integer >= 0")
+    out = d.get("outputs", {})
+    if not isinstance(out, dict):
+        raise SweepError(f"outputs = {out!r}: expected a table")
+    for k in out:
+        if k not in _OUT_KEYS:
+            raise SweepError(f"outputs.{k}: unknown key; allowed: {', '.join(_OUT_KEYS)}")
+    hdt = parse_quantity(out.get("history_dt", 0.0), "time", "outputs.history_dt")
+    if hdt < 0 or not math.isfinite(hdt):
+        raise SweepError(f"outputs.history_dt = {out.get('history_dt')!r}: must be >= 0")
+    return SweepSpec(name=str(sw.get("name", Path(label).stem)), base=sw["base"],
+                     overrides=tuple(sets), grid=grid, mc_kind=kind, mc_n=n,
+                     mc_samples=samples if kind == "random" else 1, seed=seed, batch_size=bs,
+                     history_dt=hdt, description=str(sw.get("description", "")))
+
+
+def load_spec(path: str | Path) -> SweepSpec:
+    """Read and validate a sweep TOML file. A relative ``base`` path is taken relative to it."""
+    p = Path(path)
+    try:
+        d = tomllib.loads(p.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise SweepError(f"cannot read sweep file {str(path)!r}: {e.strerror or e}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise SweepError(f"{path}: invalid TOML: {e}") from None
+    base = d.get("sweep", {}).get("base") if isinstance(d.get("sweep"), dict) else None
+    if isinstance(base, str) and base.endswith(".toml") and not Path(base).is_absolute():
+        d["sweep"]["base"] = str((p.parent / base).resolve())
+    return spec_from_dict(d, str(p))
+
+
+__all__ = ["GridAxis", "MC_KINDS", "SweepError", "SweepSpec", "field_kind", "load_spec",
+           "spec_from_dict", "_toml_literal"]
