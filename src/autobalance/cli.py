@@ -309,6 +309,49 @@ def _row(name: str, status: str, wall: Any, summary: dict) -> str:
             f" {_num(final.get('grade_G_mm_s')):>10} {_num(summary.get('max_amplitude_m'), 1e3):>12}")
 
 
+@app.command("sweep")
+def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
+                                                   help="Sweep description (TOML).")],
+              store: Annotated[Path, typer.Option("--store", help="Store directory (durable, "
+                                                  "resumable).")],
+              scheduler: Annotated[Optional[str], typer.Option(
+                  "--scheduler", help="Dask scheduler address (default: $DASK_SCHEDULER_ADDRESS)"
+                  "; runs on that cluster.")] = None,
+              workers: Annotated[Optional[int], typer.Option(
+                  "--workers", help="Local worker processes (default: all cores).")] = None,
+              executor: Annotated[Optional[str], typer.Option(
+                  "--executor", help="serial, local (default) or dask.")] = None,
+              resume: Annotated[bool, typer.Option(
+                  "--resume", help="Continue an interrupted sweep in STORE.")] = False,
+              grade: Annotated[float, typer.Option(
+                  "--grade", help="Grade limit G [mm/s] for the share in the summary.")] = 16.0,
+              json_: JsonOpt = False) -> None:
+    """Run a grid / Monte-Carlo sweep into a durable store; print its summary."""
+    from .sweep import SweepError, load_spec, summary_dict, sweep
+
+    with _guard():
+        try:
+            sp = load_spec(spec)
+            t0 = time.perf_counter()
+            ds = sweep(sp, store, executor=executor, workers=workers, scheduler=scheduler,
+                       resume=resume, progress=True)
+        except SweepError as e:
+            _fail(str(e))
+        wall = time.perf_counter() - t0
+        summary = summary_dict(ds, grade)
+        summary.update({"store": str(store), "result": str(Path(store) / "result.zarr"),
+                        "wall_time_s": wall, "dims": {k: int(v) for k, v in ds.sizes.items()}})
+    if json_:
+        _print_json(summary)
+        return
+    typer.echo(f"sweep {summary['name']}: {summary['runs']} runs ({summary['failed_runs']} "
+               f"failed) in {wall:.1f} s -> {summary['result']}")
+    for c in summary["checkpoints"]:
+        typer.echo(f"  t = {c['time_s']:g} s: G p5/p50/p95 = {c['grade_G_p5_mm_s']:.2f} / "
+                   f"{c['grade_G_p50_mm_s']:.2f} / {c['grade_G_p95_mm_s']:.2f} mm/s, "
+                   f"share <= G{grade:g}: {100 * c['share_below_limit']:.1f} %")
+
+
 @app.command()
 def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("demo"),
          json_: JsonOpt = False) -> None:

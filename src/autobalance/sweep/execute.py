@@ -86,7 +86,8 @@ def _run_dask(payloads, on_result, address: str):
     with Client(address, set_as_default=False) as client:
         client.run(_init_worker)
         futs = [client.submit(run_task, p, pure=False, retries=3) for p in payloads]
-        for f in as_completed(futs):
+        # the client is not the default one: as_completed needs its loop explicitly
+        for f in as_completed(futs, loop=client.loop):
             on_result(f.result())
             f.release()
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..config import _read, apply_overrides, from_dict
+from ..config import ConfigError, _read, apply_overrides, from_dict
 from ..models import InitialState, SimOptions
 from .spec import SweepError, SweepSpec, _toml_literal
 
@@ -76,8 +76,18 @@ def separate(angles: np.ndarray, delta: float) -> np.ndarray:
 
 def make_plan(spec: SweepSpec) -> Plan:
     """Build the configs of every grid cell (validated like --set) and the samples."""
-    raw, label, _ = _read(spec.base)
-    base_raw = apply_overrides(raw, list(spec.overrides))
+    try:
+        raw, label, _ = _read(spec.base)
+    except SweepError:
+        raise
+    except ConfigError as e:
+        raise SweepError(f"sweep.base: {e}") from None
+    try:
+        base_raw = apply_overrides(raw, list(spec.overrides))
+    except SweepError:
+        raise
+    except ConfigError as e:
+        raise SweepError(f"sweep.set: {e}") from None
     cells = []
     for combo in itertools.product(*[range(len(a.values)) for a in spec.grid]):
         sets = [f"{a.path}={_toml_literal(a.values[i])}" for a, i in zip(spec.grid, combo)]

@@ -61,6 +61,16 @@ def _toml_literal(v: Any) -> str:
     raise SweepError(f"value {v!r}: expected a number, a string with units or a list")
 
 
+def _quantity(value: Any, kind: str, where: str) -> float:
+    """parse_quantity, raising SweepError (a bad sweep description) instead of ConfigError."""
+    try:
+        return parse_quantity(value, kind, where)
+    except SweepError:
+        raise
+    except ConfigError as e:
+        raise SweepError(str(e)) from None
+
+
 def field_kind(path: str) -> str:
     """The quantity kind (config.SECTIONS) of a dotted config path, for SI coordinates."""
     parts = path.split(".")
@@ -138,8 +148,8 @@ def _axis(path: str, spec: Any) -> GridAxis:
         num = spec["num"]
         if isinstance(num, bool) or not isinstance(num, int) or num < 1:
             raise SweepError(f"grid.{path}.num = {num!r}: must be an integer >= 1")
-        lo = parse_quantity(spec["start"], kind, f"grid.{path}.start")
-        hi = parse_quantity(spec["stop"], kind, f"grid.{path}.stop")
+        lo = _quantity(spec["start"], kind, f"grid.{path}.start")
+        hi = _quantity(spec["stop"], kind, f"grid.{path}.stop")
         si = tuple(float(v) for v in np.linspace(lo, hi, num))
         return GridAxis(path, si, si, kind)
     if not isinstance(spec, list):
@@ -153,7 +163,7 @@ def _axis(path: str, spec: Any) -> GridAxis:
         if kind in ("int", "text", "bool"):
             si.append(v)
         else:
-            si.append(parse_quantity(v, kind, f"grid.{path}[{i}]"))
+            si.append(_quantity(v, kind, f"grid.{path}[{i}]"))
     if len(set(map(str, spec))) != len(spec):
         raise SweepError(f"grid.{path} = {spec!r}: values must be distinct")
     return GridAxis(path, tuple(spec), tuple(si), kind)
@@ -208,7 +218,7 @@ def spec_from_dict(d: dict, label: str = "<dict>") -> SweepSpec:
     for k in out:
         if k not in _OUT_KEYS:
             raise SweepError(f"outputs.{k}: unknown key; allowed: {', '.join(_OUT_KEYS)}")
-    hdt = parse_quantity(out.get("history_dt", 0.0), "time", "outputs.history_dt")
+    hdt = _quantity(out.get("history_dt", 0.0), "time", "outputs.history_dt")
     if hdt < 0 or not math.isfinite(hdt):
         raise SweepError(f"outputs.history_dt = {out.get('history_dt')!r}: must be >= 0")
     return SweepSpec(name=str(sw.get("name", Path(label).stem)), base=sw["base"],

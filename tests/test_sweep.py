@@ -1,0 +1,389 @@
+"""Sweep engine (autobalance.sweep): plan, reproducibility, executors, durable store and resume,
+refusals, one-line errors for bad descriptions, summaries. Real simulations, tiny sweeps."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from autobalance.cli import app
+from autobalance.sweep import (SweepError, load_spec, make_plan, open_sweep, percentiles,
+                               reduce_over, spec_from_dict, start_grid, summary_dict, sweep)
+from autobalance.sweep.plan import separate
+
+# A short run-up / plateau / run-down profile (12 s) so that a sweep of 20 runs takes ~1 s.
+SHORT_PROFILE = ('["profile.duration=12 s", "profile.runup_fraction=0.5", '
+                 '"profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]')
+
+# 2 grid values x start_grid n = 4 (10 samples for 2 identical balls) = 20 runs, 7 tasks of <= 3.
+TINY = f"""
+[sweep]
+name = "tiny"
+base = "vub_jeffcott_004"
+set = {SHORT_PROFILE}
+batch_size = 3
+
+[grid]
+"balancer.rolling_resistance" = [0.001, 0.002]
+
+[monte_carlo]
+kind = "start_grid"
+n = 4
+"""
+
+# The example description of the brief, made longer: 55 runs in 28 tasks of 2 (a few seconds).
+RESUMABLE = """
+[sweep]
+name = "resumable"
+base = "vub_jeffcott_004"
+set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
+batch_size = 2
+
+[monte_carlo]
+kind = "start_grid"
+n = 10
+"""
+
+
+def write(tmp_path: Path, text: str, name: str = "sweep.toml") -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def spec_of(text: str):
+    return spec_from_dict(tomllib.loads(text))
+
+
+def run_main(*args, timeout=300):
+    """The real entry point in a subprocess (python -m autobalance.cli)."""
+    return subprocess.run([sys.executable, "-m", "autobalance.cli", *args],
+                          capture_output=True, text=True, timeout=timeout)
+
+
+def assert_one_line_error(stderr: str, *needles: str):
+    lines = stderr.strip().splitlines()
+    assert len(lines) == 1, stderr
+    assert lines[0].startswith("error:"), stderr
+    for n in needles:
+        assert n in lines[0], stderr
+    assert "Traceback" not in stderr
+
+
+def assert_bit_identical(a, b):
+    """Same data variables, dims, dtypes and bytes (not approx); same coordinates."""
+    assert set(a.data_vars) == set(b.data_vars)
+    assert dict(a.sizes) == dict(b.sizes)
+    for v in a.data_vars:
+        x, y = a[v], b[v]
+        assert x.dims == y.dims, v
+        assert x.dtype == y.dtype, v
+        assert x.values.tobytes() == y.values.tobytes(), f"{v} differs"
+    for c in a.coords:
+        assert np.array_equal(a[c].values, b[c].values), c
+
+
+def snapshot(root: Path) -> dict:
+    """Every file below root: relative path -> (bytes, mtime_ns)."""
+    return {str(p.relative_to(root)): (p.read_bytes(), p.stat().st_mtime_ns)
+            for p in sorted(root.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="module")
+def tiny_ds(tmp_path_factory):
+    """The TINY sweep run serially once (reference for the other tests)."""
+    store = tmp_path_factory.mktemp("tiny") / "store"
+    ds = sweep(spec_of(TINY), store, executor="serial", progress=False)
+    return ds, store
+
+
+# -- plan -------------------------------------------------------------------------------------
+def test_start_grid_004_counts():
+    """004 sec. 4.2: 50 positions per ball, 2 identical balls -> 50*51/2 = 1275 samples."""
+    base = {"sweep": {"base": "vub_jeffcott_004"}}
+    plan50 = make_plan(spec_from_dict({**base, "monte_carlo": {"kind": "start_grid", "n": 50}}))
+    assert plan50.n_balls == 2
+    assert plan50.n_samples == 1275 and plan50.n_runs == 1275
+    plan8 = make_plan(spec_from_dict({**base, "monte_carlo": {"kind": "start_grid", "n": 8}}))
+    assert plan8.n_samples == 36
+    # the raw grid: every unordered pair of the 8 positions once (swapped duplicates removed)
+    raw = start_grid(8, 2, identical=True)
+    assert raw.shape == (36, 2)
+    pairs = {tuple(sorted(np.round(r / (2 * np.pi / 8)).astype(int))) for r in raw}
+    assert len(pairs) == 36
+    assert start_grid(8, 2, identical=False).shape == (64, 2)
+    # every task is consecutive and covers the runs exactly once
+    covered = [r for first, cnt in plan50.tasks for r in range(first, first + cnt)]
+    assert covered == list(range(plan50.n_runs))
+    assert all(cnt <= plan50.spec.batch_size for _, cnt in plan50.tasks)
+
+
+def _circular_gaps(a):
+    s = np.sort(np.mod(a, 2 * np.pi))
+    return np.mod(np.diff(np.r_[s, s[0] + 2 * np.pi]), 2 * np.pi)
+
+
+def test_separate_coinciding_to_contact_angle():
+    delta = 0.352682147263204
+    a = separate(np.array([1.0, 1.0]), delta)
+    assert a[1] - a[0] == pytest.approx(delta, rel=1e-8)       # exactly the contact angle
+    assert a.mean() == pytest.approx(1.0, abs=1e-15)            # centroid kept
+    # balls that are already apart are not moved
+    far = np.array([0.0, 2.0])
+    assert np.array_equal(separate(far, delta), far)
+    # the start grid: the coinciding samples (i, i) become pairs exactly delta apart, and no
+    # sample of the plan has two balls closer than the contact angle
+    plan = make_plan(spec_from_dict({"sweep": {"base": "vub_jeffcott_004"},
+                                     "monte_carlo": {"kind": "start_grid", "n": 8}}))
+    d = plan.cells[0].system.balancer.contact_angle
+    raw = start_grid(8, 2, identical=True)
+    same = raw[:, 0] == raw[:, 1]
+    assert same.sum() == 8
+    for r, s in zip(raw[same], plan.start_angles[same]):
+        assert np.mod(s[1] - s[0], 2 * np.pi) == pytest.approx(d, rel=1e-8)
+        assert s.mean() == pytest.approx(r.mean(), abs=1e-12)
+    assert np.array_equal(plan.start_angles[~same], raw[~same])
+    for s in plan.start_angles:
+        assert _circular_gaps(s).min() >= d * (1 - 1e-9)
+
+
+# -- reproducibility --------------------------------------------------------------------------
+def test_same_description_same_dataset_serial(tiny_ds, tmp_path):
+    ds1, store1 = tiny_ds
+    assert ds1.attrs["n_runs"] == 20 and ds1.attrs["n_missing_runs"] == 0
+    assert dict(ds1.sizes)["balancer__rolling_resistance"] == 2
+    assert dict(ds1.sizes)["sample"] == 10
+    assert len(list((store1 / "tasks").glob("*.npz"))) == 7
+    assert (ds1["status"] == 0).all()
+    ds2 = sweep(spec_of(TINY), tmp_path / "s2", executor="serial", progress=False)
+    assert ds1.identical(ds2)
+    assert_bit_identical(ds1, ds2)
+    # the stored Zarr holds the same bits
+    assert_bit_identical(open_sweep(store1), ds1)
+    assert_bit_identical(open_sweep(tmp_path / "s2"), ds2)
+
+
+def test_serial_equals_local_processes(tiny_ds, tmp_path):
+    ds1, _ = tiny_ds
+    ds2 = sweep(spec_of(TINY), tmp_path / "local", executor="local", workers=2, progress=False)
+    assert ds1.identical(ds2)
+    assert_bit_identical(ds1, ds2)
+
+
+RANDOM = f"""
+[sweep]
+name = "random"
+base = "vub_jeffcott_004"
+set = {SHORT_PROFILE}
+batch_size = 3
+
+[monte_carlo]
+kind = "random"
+samples = 3
+seed = SEED
+"""
+
+
+def test_random_monte_carlo_seeded(tmp_path):
+    s1 = spec_of(RANDOM.replace("SEED", "1"))
+    s2 = spec_of(RANDOM.replace("SEED", "2"))
+    p1, p1b, p2 = make_plan(s1), make_plan(spec_of(RANDOM.replace("SEED", "1"))), make_plan(s2)
+    assert p1.start_angles.shape == (3, 2)
+    assert np.array_equal(p1.start_angles, p1b.start_angles)
+    assert not np.array_equal(p1.start_angles, p2.start_angles)
+    assert s1.digest() != s2.digest()
+    a = sweep(s1, tmp_path / "a", executor="serial", progress=False)
+    b = sweep(spec_of(RANDOM.replace("SEED", "1")), tmp_path / "b", executor="serial",
+              progress=False)
+    c = sweep(s2, tmp_path / "c", executor="serial", progress=False)
+    assert_bit_identical(a, b)
+    assert not np.array_equal(a["start_angle"].values, c["start_angle"].values)
+    assert not np.array_equal(a["initial_grade_G"].values, c["initial_grade_G"].values)
+    assert not np.array_equal(a["grade_G"].values, c["grade_G"].values)
+
+
+# -- durable store: kill -9 and resume --------------------------------------------------------
+def test_resume_after_kill9(tmp_path):
+    desc = write(tmp_path, RESUMABLE)
+    n_tasks = len(make_plan(load_spec(desc)).tasks)
+    assert n_tasks == 28
+    store = tmp_path / "S"
+    tasks = store / "tasks"
+    proc = subprocess.Popen([sys.executable, "-m", "autobalance.cli", "sweep", str(desc),
+                             "--store", str(store), "--executor", "serial"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 120
+        while True:
+            n = len(list(tasks.glob("*.npz"))) if tasks.exists() else 0
+            if n >= 2:
+                break
+            assert proc.poll() is None, "sweep ended before it could be killed"
+            assert time.monotonic() < deadline, "no task finished in time"
+            time.sleep(0.005)
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait(timeout=30)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert proc.returncode == -signal.SIGKILL
+    finished = {p.name: (p.read_bytes(), p.stat().st_mtime_ns) for p in tasks.glob("*.npz")}
+    assert 2 <= len(finished) < n_tasks, len(finished)
+    assert not (store / "result.zarr").exists()
+    # the interrupted store reads as a partial dataset (unfinished runs NaN, status -1)
+    part = open_sweep(store, desc)
+    assert 0 < part.attrs["n_missing_runs"] < part.attrs["n_runs"]
+    assert int((part["status"] == -1).sum()) == part.attrs["n_missing_runs"]
+
+    r = run_main("sweep", str(desc), "--store", str(store), "--executor", "serial", "--resume",
+                 "--json")
+    assert r.returncode == 0, r.stderr
+    assert "Traceback" not in r.stderr
+    # finished tasks were kept as they were, not recomputed or rewritten
+    for name, (data, mtime) in finished.items():
+        p = tasks / name
+        assert p.stat().st_mtime_ns == mtime, name
+        assert p.read_bytes() == data, name
+    assert len(list(tasks.glob("*.npz"))) == n_tasks
+    assert not list(store.rglob("*.tmp")), list(store.rglob("*.tmp"))
+    resumed = open_sweep(store)
+    assert resumed.attrs["n_missing_runs"] == 0
+    # an uninterrupted run into another store gives the same bits
+    ref = sweep(load_spec(desc), tmp_path / "ref", executor="serial", progress=False)
+    assert_bit_identical(resumed, ref)
+    assert_bit_identical(resumed, open_sweep(tmp_path / "ref"))
+
+
+# -- refusals ---------------------------------------------------------------------------------
+def test_store_refusals_change_nothing(tiny_ds, tmp_path):
+    _, store = tiny_ds
+    before = snapshot(store)
+    desc = write(tmp_path, TINY)
+    # an existing store without --resume
+    r = run_main("sweep", str(desc), "--store", str(store), "--executor", "serial")
+    assert r.returncode == 2
+    assert_one_line_error(r.stderr, str(store), "--resume")
+    # a store of another description (one grid value changed) with --resume
+    other = write(tmp_path, TINY.replace("[0.001, 0.002]", "[0.001, 0.003]"), "other.toml")
+    r = run_main("sweep", str(other), "--store", str(store), "--executor", "serial", "--resume")
+    assert r.returncode == 2
+    assert_one_line_error(r.stderr, str(store), "different sweep description")
+    assert snapshot(store) == before
+    # the same refusals from the Python API
+    with pytest.raises(SweepError, match="exists"):
+        sweep(load_spec(desc), store, executor="serial", progress=False)
+    with pytest.raises(SweepError, match="different sweep description"):
+        sweep(load_spec(other), store, executor="serial", progress=False, resume=True)
+    assert snapshot(store) == before
+
+
+def test_resume_of_finished_store_reruns_nothing(tiny_ds):
+    ds, store = tiny_ds
+    tasks_before = snapshot(store / "tasks")
+    again = sweep(spec_of(TINY), store, executor="serial", resume=True, progress=False)
+    assert snapshot(store / "tasks") == tasks_before
+    assert_bit_identical(ds, again)
+
+
+# -- bad sweep files --------------------------------------------------------------------------
+BASE = '[sweep]\nbase = "vub_jeffcott_004"\n'
+BAD = [
+    ("unknown-grid-path", BASE + '[grid]\n"rotor.foo" = [1.0]\n', "grid.rotor.foo"),
+    ("bad-grid-section", BASE + '[grid]\n"nosuch.mass" = [1.0]\n', "grid.nosuch.mass"),
+    ("empty-grid", BASE + '[grid]\n"rotor.mass" = []\n', "grid.rotor.mass"),
+    ("wrong-units", BASE + '[grid]\n"suspension.kx" = ["5 kg"]\n', "grid.suspension.kx"),
+    ("mc-n-zero", BASE + '[monte_carlo]\nkind = "start_grid"\nn = 0\n', "monte_carlo.n"),
+    ("mc-samples-negative", BASE + '[monte_carlo]\nkind = "random"\nsamples = -3\n',
+     "monte_carlo.samples"),
+    ("batch-size-zero", '[sweep]\nbase = "vub_jeffcott_004"\nbatch_size = 0\n',
+     "sweep.batch_size"),
+    ("unknown-mc-kind", BASE + '[monte_carlo]\nkind = "sobol"\n', "monte_carlo.kind"),
+    ("missing-base", '[sweep]\nname = "x"\n', "sweep.base"),
+    ("missing-sweep", '[grid]\n"rotor.mass" = ["1 kg"]\n', "sweep"),
+    ("unknown-section", BASE + '[foo]\nx = 1\n', "foo"),
+    ("model-rejects-grid-value", BASE + '[grid]\n"rotor.mass" = ["-1 kg"]\n',
+     "grid point rotor.mass"),
+    ("range-wrong-units", BASE + '[grid]\n"rotor.mass" = { start = "1 kg", stop = "2 s", num = 3 }\n',
+     "grid.rotor.mass.stop"),
+    ("unknown-base", '[sweep]\nbase = "no_such_preset"\n', "sweep.base"),
+    ("bad-set", '[sweep]\nbase = "vub_jeffcott_004"\nset = ["rotor.foo=1"]\n', "sweep.set"),
+    ("history-dt-units", BASE + '[outputs]\nhistory_dt = "1 kg"\n', "outputs.history_dt"),
+]
+# errors found while expanding the description into configs (make_plan), not while parsing it
+PLAN_ERRORS = ("grid point rotor.mass", "sweep.base", "sweep.set")
+
+
+@pytest.mark.parametrize("text, field", [b[1:] for b in BAD], ids=[b[0] for b in BAD])
+def test_bad_sweep_file_exit_2_one_line(tmp_path, text, field):
+    desc = write(tmp_path, text)
+    store = tmp_path / "store"
+    r = CliRunner().invoke(app, ["sweep", str(desc), "--store", str(store),
+                                 "--executor", "serial"])
+    assert r.exit_code == 2, (r.stdout, r.stderr, r.exception)
+    assert_one_line_error(r.stderr, field)
+    assert r.stdout == ""
+    assert not store.exists()        # nothing was created for a rejected description
+    with pytest.raises(SweepError, match=field.replace(".", r"\.")):
+        load_spec(desc) if field not in PLAN_ERRORS else make_plan(load_spec(desc))
+
+
+@pytest.mark.parametrize("name", ["unknown-grid-path", "wrong-units", "model-rejects-grid-value"])
+def test_bad_sweep_file_real_entry_point(tmp_path, name):
+    """The real process: exit 2, one line on stderr, no traceback."""
+    _, text, field = next(b for b in BAD if b[0] == name)
+    desc = write(tmp_path, text)
+    r = run_main("sweep", str(desc), "--store", str(tmp_path / "store"))
+    assert r.returncode == 2
+    assert_one_line_error(r.stderr, field)
+    assert not (tmp_path / "store").exists()
+
+
+def test_bad_executor_and_workers(tmp_path):
+    desc = write(tmp_path, TINY)
+    for args, field in [(["--executor", "threads"], "executor"), (["--workers", "0"], "workers"),
+                        (["--executor", "dask"], "scheduler")]:
+        r = CliRunner().invoke(app, ["sweep", str(desc), "--store", str(tmp_path / "st"), *args],
+                               env={"DASK_SCHEDULER_ADDRESS": ""})
+        assert r.exit_code == 2, (args, r.stderr, r.exception)
+        assert_one_line_error(r.stderr, field)
+        assert not (tmp_path / "st").exists()
+
+
+# -- summaries --------------------------------------------------------------------------------
+def test_summary_dict_ordered_and_shares(tiny_ds):
+    ds, _ = tiny_ds
+    s = summary_dict(ds, grade=16.0)
+    assert s["runs"] == 20 and s["missing_runs"] == 0 and s["failed_runs"] == 0
+    assert len(s["checkpoints"]) == ds.sizes["checkpoint"] >= 1
+    for c in s["checkpoints"]:
+        assert np.isfinite([c["grade_G_p5_mm_s"], c["grade_G_p50_mm_s"], c["grade_G_p95_mm_s"]]).all()
+        assert c["grade_G_p5_mm_s"] <= c["grade_G_p50_mm_s"] <= c["grade_G_p95_mm_s"]
+        assert 0.0 <= c["share_below_limit"] <= 1.0
+    # the share is the fraction of runs at or below the limit at that checkpoint
+    g = ds["grade_G"].values.reshape(-1, ds.sizes["checkpoint"])
+    for i, c in enumerate(s["checkpoints"]):
+        assert c["share_below_limit"] == pytest.approx(np.mean(g[:, i] <= 16.0))
+    assert summary_dict(ds, grade=1e9)["checkpoints"][-1]["share_below_limit"] == 1.0
+    assert summary_dict(ds, grade=0.0)["checkpoints"][-1]["share_below_limit"] == 0.0
+
+
+def test_percentiles_dim(tiny_ds):
+    ds, _ = tiny_ds
+    p = percentiles(ds)
+    assert "percentile" in p.dims and list(p["percentile"].values) == [5, 50, 95]
+    assert "sample" not in p.dims
+    assert "balancer__rolling_resistance" in p.dims and "checkpoint" in p.dims
+    v = p.transpose("percentile", ...).values
+    assert (np.diff(v, axis=0) >= 0).all()
+    r = reduce_over(ds, keep="balancer__rolling_resistance", q=(10, 90))
+    assert set(r.dims) == {"percentile", "balancer__rolling_resistance", "checkpoint"}
+    assert list(r["percentile"].values) == [10, 90]

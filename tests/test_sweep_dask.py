@@ -1,0 +1,171 @@
+"""Sweeps on a real Dask cluster (distributed.LocalCluster, 2 worker processes on loopback):
+bit-identical to the serial executor, robust to a worker killed mid-sweep, selected by
+DASK_SCHEDULER_ADDRESS."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import tomllib
+
+import numpy as np
+import pytest
+from distributed import Client, LocalCluster
+
+from autobalance.sweep import make_plan, open_sweep, spec_from_dict, sweep
+
+TINY = """
+[sweep]
+name = "tiny"
+base = "vub_jeffcott_004"
+set = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]
+batch_size = 3
+
+[grid]
+"balancer.rolling_resistance" = [0.001, 0.002]
+
+[monte_carlo]
+kind = "start_grid"
+n = 4
+"""
+
+# 55 runs in 28 tasks of 2 (about 0.1 s each): long enough to kill a worker in the middle.
+LONGER = """
+[sweep]
+name = "longer"
+base = "vub_jeffcott_004"
+set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
+batch_size = 2
+
+[monte_carlo]
+kind = "start_grid"
+n = 10
+"""
+
+
+def spec_of(text: str):
+    return spec_from_dict(tomllib.loads(text))
+
+
+def assert_bit_identical(a, b):
+    """Same data variables, dims, dtypes and bytes (not approx); same coordinates."""
+    assert set(a.data_vars) == set(b.data_vars)
+    assert dict(a.sizes) == dict(b.sizes)
+    for v in a.data_vars:
+        x, y = a[v], b[v]
+        assert x.dims == y.dims, v
+        assert x.dtype == y.dtype, v
+        assert x.values.tobytes() == y.values.tobytes(), f"{v} differs"
+    for c in a.coords:
+        assert np.array_equal(a[c].values, b[c].values), c
+
+
+def run_task_counts(cluster):
+    """How often the scheduler saw run_task finish (memory) and lose its worker (suspicious)."""
+    pre = cluster.scheduler.task_prefixes.get("run_task")
+    if pre is None:
+        return 0, 0
+    return pre.state_counts["memory"], pre.suspicious
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address=None) as c:
+        with Client(c) as client:
+            client.wait_for_workers(2, timeout=120)
+        yield c
+
+
+@pytest.fixture(scope="module")
+def serial_tiny(tmp_path_factory):
+    return sweep(spec_of(TINY), tmp_path_factory.mktemp("serial") / "s", executor="serial",
+                 progress=False)
+
+
+def test_dask_equals_serial(cluster, serial_tiny, tmp_path):
+    m0, _ = run_task_counts(cluster)
+    ds = sweep(spec_of(TINY), tmp_path / "dask", executor="dask",
+               scheduler=cluster.scheduler_address, progress=False)
+    m1, _ = run_task_counts(cluster)
+    assert m1 - m0 == len(make_plan(spec_of(TINY)).tasks) == 7   # really ran on the cluster
+    assert ds.attrs["n_missing_runs"] == 0
+    assert ds.identical(serial_tiny)
+    assert_bit_identical(ds, serial_tiny)
+    assert_bit_identical(open_sweep(tmp_path / "dask"), serial_tiny)
+
+
+def test_dask_scheduler_address_env_api(cluster, serial_tiny, tmp_path, monkeypatch):
+    monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", cluster.scheduler_address)
+    m0, _ = run_task_counts(cluster)
+    ds = sweep(spec_of(TINY), tmp_path / "env", progress=False)     # no executor, no scheduler
+    m1, _ = run_task_counts(cluster)
+    assert m1 - m0 == 7
+    assert_bit_identical(ds, serial_tiny)
+
+
+def test_dask_scheduler_address_env_cli(cluster, serial_tiny, tmp_path):
+    desc = tmp_path / "tiny.toml"
+    desc.write_text(TINY)
+    env = dict(os.environ, DASK_SCHEDULER_ADDRESS=cluster.scheduler_address)
+    m0, _ = run_task_counts(cluster)
+    r = subprocess.run([sys.executable, "-m", "autobalance.cli", "sweep", str(desc),
+                        "--store", str(tmp_path / "cli"), "--json"],
+                       capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stderr
+    m1, _ = run_task_counts(cluster)
+    assert m1 - m0 == 7
+    assert_bit_identical(open_sweep(tmp_path / "cli"), serial_tiny)
+
+
+def test_worker_killed_mid_sweep(cluster, tmp_path):
+    """SIGKILL one worker process while it holds tasks: the scheduler reschedules them (the
+    nanny restarts the worker) and the sweep completes with the serial result."""
+    spec = spec_of(LONGER)
+    n_tasks = len(make_plan(spec).tasks)
+    store = tmp_path / "dask"
+    box: dict = {}
+
+    def target():
+        try:
+            box["ds"] = sweep(spec, store, executor="dask", scheduler=cluster.scheduler_address,
+                              progress=False)
+        except BaseException as e:   # noqa: BLE001 - reported by the test thread
+            box["error"] = e
+
+    _, s0 = run_task_counts(cluster)
+    th = threading.Thread(target=target, daemon=True)
+    with Client(cluster.scheduler_address, set_as_default=False) as client:
+        th.start()
+        tasks = store / "tasks"
+        deadline = time.monotonic() + 120
+        victim = None
+        while victim is None:
+            assert th.is_alive(), box
+            assert time.monotonic() < deadline, "the sweep did not start on the cluster"
+            done = len(list(tasks.glob("*.npz"))) if tasks.exists() else 0
+            if done >= 2:
+                busy = [w for w, keys in client.processing().items()
+                        if any(str(k).startswith("run_task") for k in keys)]
+                if busy:
+                    victim = busy[0]
+            time.sleep(0.005)
+        pid = client.run(os.getpid, workers=[victim])[victim]
+        os.kill(pid, signal.SIGKILL)
+        done_at_kill = len(list(tasks.glob("*.npz")))
+        th.join(timeout=240)
+        assert not th.is_alive(), "the sweep hangs after a worker was killed"
+    assert "error" not in box, repr(box.get("error"))
+    assert done_at_kill < n_tasks                      # the kill happened mid-sweep
+    _, s1 = run_task_counts(cluster)
+    assert s1 > s0                                     # a task was lost with the worker ...
+    ds = box["ds"]                                     # ... and rerun elsewhere
+    assert ds.attrs["n_missing_runs"] == 0
+    assert len(list(tasks.glob("*.npz"))) == n_tasks
+    assert not list(store.rglob("*.tmp"))
+    ref = sweep(spec, tmp_path / "serial", executor="serial", progress=False)
+    assert_bit_identical(ds, ref)
+    assert_bit_identical(open_sweep(store), ref)
