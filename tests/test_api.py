@@ -45,3 +45,9 @@ def test_summary_is_strict_json():
                 "ball_revolutions", "ball_settle_time_s", "solver"):
         assert key in d
     assert d["final"]["ball_angles_deg"][0] == sim.at(8.0)["ball_angles_deg"][0]
+
+
+def test_sweep_is_the_function_and_the_package_still_imports():
+    import autobalance.sweep as pkg  # noqa: F401
+    from autobalance.sweep import SweepSpec  # noqa: F401
+    assert callable(ab.sweep)

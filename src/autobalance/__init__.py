@@ -11,7 +11,9 @@ from .models import (BallBalancer, Gravity, InitialState, MotorDrive, ParameterE
 # attribute stays the function even after ``import autobalance.simulate``.
 from .simulate import simulate, simulate_batch  # noqa: E402
 from .result import BatchResult, Simulation, SimulationError  # noqa: E402
+from .sweep import sweep  # noqa: E402  (the function; autobalance.sweep.* stays importable)
 
 __all__ = ["BallBalancer", "BatchResult", "Gravity", "InitialState", "MotorDrive",
            "ParameterError", "Rotor", "SimOptions", "Simulation", "SimulationError",
-           "SpeedProfile", "Suspension", "System", "simulate", "simulate_batch", "__version__"]
+           "SpeedProfile", "Suspension", "System", "simulate", "simulate_batch", "sweep",
+           "__version__"]
