@@ -79,8 +79,8 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
                    out_times=None) -> BatchResult:
     """Run many parameter / initial-condition sets of the same ball count in one compiled call.
 
-    All runs share the spin profile and the unbalance schedule of the first system; they run in
-    parallel threads (numba prange). Only the states at ``out_times`` [s] (default: the
+    All runs share the spin profile; everything else (parameters, unbalance schedule, initial
+    state) is per run. They run in parallel threads (numba prange). Only the states at ``out_times`` [s] (default: the
     profile's checkpoints) and the run statistics are kept. A failed run is a status in the
     result, never an exception.
     """
@@ -103,11 +103,18 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     orders = np.stack([o for _, o in inits]) if N else np.zeros((n_runs, 0), int)
     atol = np.stack([atol_vector(s, spin, options) for s in systems])
     prof_t, prof_w, t_end = spin_arrays(spin)
-    unb_t, unb_u = systems[0].rotor.unbalance_table()
+    tables = [s.rotor.unbalance_table() for s in systems]
+    unb_n = np.array([t.size for t, _ in tables], np.int64)
+    K = int(unb_n.max())
+    unb_t = np.zeros((n_runs, K))
+    unb_u = np.zeros((n_runs, K))
+    for r, (t, u) in enumerate(tables):
+        unb_t[r, :t.size], unb_t[r, t.size:] = t, t[-1]
+        unb_u[r, :u.size], unb_u[r, u.size:] = u, u[-1]
     out_t = np.asarray(spin.checkpoints if out_times is None else out_times, float)
     out_y = np.zeros((n_runs, out_t.size, y0.shape[1]))
     stats = np.zeros((n_runs, N_S))
-    integrate_batch(Ps, Bs, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, options.rtol, atol,
-                    _h_max(spin, options), int(options.max_steps), out_t, out_y, stats)
+    integrate_batch(Ps, Bs, N, prof_t, prof_w, unb_t, unb_u, unb_n, y0, t_end, options.rtol,
+                    atol, _h_max(spin, options), int(options.max_steps), out_t, out_y, stats)
     status = [STATUS.get(int(s), "unknown") for s in stats[:, S_STATUS]]
     return BatchResult(systems, spin, options, out_t, out_y, stats, orders, status)
