@@ -412,3 +412,24 @@ def test_unbalance_grid_matches_individual_runs(tmp_path):
                               initial=ab.InitialState(ball_angles=tuple(plan.start_angles[s])))
             got = ds["grade_G"].isel(rotor__unbalance=i, sample=s).values
             assert got[-1] == sim.at(12.0)["grade_G_mm_s"]
+
+
+def test_store_from_another_package_version_is_refused(tmp_path):
+    import json
+
+    from autobalance.sweep import StoreMismatch, spec_from_dict, sweep
+
+    d = {"sweep": {"name": "v", "base": "vub_jeffcott_004",
+                   "set": ["profile.duration=12 s", "profile.runup_fraction=0.5",
+                           "profile.down_time=1 s", "profile.plateau_time=2 s",
+                           "profile.up_time=1 s"]},
+         "monte_carlo": {"kind": "start_grid", "n": 2}}
+    store = tmp_path / "s"
+    sweep(spec_from_dict(d), store, executor="serial", progress=False)
+    meta = json.loads((store / "sweep.json").read_text())
+    meta["autobalance_version"] = "0.0.1"
+    (store / "sweep.json").write_text(json.dumps(meta))
+    before = {p: p.read_bytes() for p in (store / "tasks").iterdir()}
+    with pytest.raises(StoreMismatch, match="0.0.1"):
+        sweep(spec_from_dict(d), store, executor="serial", progress=False, resume=True)
+    assert {p: p.read_bytes() for p in (store / "tasks").iterdir()} == before
