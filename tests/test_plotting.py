@@ -68,3 +68,22 @@ def test_plot_response_png(tmp_path):
     assert out.stat().st_size > 10_000
     fig = plot_response(response_table(s, np.linspace(1.0, 60.0, 50)), log_amplitude=True)
     fig.savefig(tmp_path / "resp_log.png")
+
+
+def test_plot_sweep_png(tmp_path):
+    """A real (tiny) sweep: figure with the PDF, the checkpoint scatter and one grid panel."""
+    from autobalance.plotting import plot_sweep
+    from autobalance.sweep import spec_from_dict, sweep
+
+    d = {"sweep": {"name": "p", "base": "vub_jeffcott_004",
+                   "set": ["profile.duration=12 s", "profile.runup_fraction=0.5",
+                           "profile.down_time=1 s", "profile.plateau_time=2 s",
+                           "profile.up_time=1 s"]},
+         "grid": {"balancer.rolling_resistance": [0.001, 0.003]},
+         "monte_carlo": {"kind": "start_grid", "n": 3}}
+    ds = sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False)
+    fig = plot_sweep(ds)
+    assert len(fig.axes) == 3
+    out = tmp_path / "sweep.png"
+    fig.savefig(out, dpi=80)
+    assert out.stat().st_size > 10_000

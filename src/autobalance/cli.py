@@ -325,10 +325,14 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
                   "--resume", help="Continue an interrupted sweep in STORE.")] = False,
               grade: Annotated[float, typer.Option(
                   "--grade", help="Grade limit G [mm/s] for the share in the summary.")] = 16.0,
+              plot: Annotated[Optional[Path], typer.Option(
+                  "--plot", help="Write a summary figure (PNG/SVG/PDF).")] = None,
               json_: JsonOpt = False) -> None:
     """Run a grid / Monte-Carlo sweep into a durable store; print its summary."""
     from .sweep import SweepError, load_spec, summary_dict, sweep
 
+    if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
+        _fail(f"--plot {str(plot)!r}: must end in .png, .svg or .pdf")
     with _guard():
         try:
             sp = load_spec(spec)
@@ -341,6 +345,11 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
         summary = summary_dict(ds, grade)
         summary.update({"store": str(store), "result": str(Path(store) / "result.zarr"),
                         "wall_time_s": wall, "dims": {k: int(v) for k, v in ds.sizes.items()}})
+        if plot is not None:
+            from .plotting import plot_sweep
+
+            plot_sweep(ds, grade).savefig(plot, dpi=110)
+            summary["plot"] = str(plot)
     if json_:
         _print_json(summary)
         return
