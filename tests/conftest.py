@@ -33,3 +33,35 @@ def washer_000(Me=0.025, c_i=2.0, f_r=0.0, g=9.81, rho=0.0, beta=np.pi / 2, n=2,
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+
+
+# Sweep descriptions shared by tests/test_sweep*.py.
+# 2 grid values x start_grid n = 4 (10 samples for 2 identical balls) = 20 runs, 7 tasks of <= 3,
+# on a 12 s run-up / plateau / run-down profile (~1 s for the whole sweep).
+TINY_SWEEP = """
+[sweep]
+name = "tiny"
+base = "vub_jeffcott_004"
+set = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]
+batch_size = 3
+
+[grid]
+"balancer.rolling_resistance" = [0.001, 0.002]
+
+[monte_carlo]
+kind = "start_grid"
+n = 4
+"""
+
+# 55 runs in 28 tasks of 2 (~0.1 s each): long enough to interrupt in the middle.
+LONG_SWEEP = """
+[sweep]
+name = "resumable"
+base = "vub_jeffcott_004"
+set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
+batch_size = 2
+
+[monte_carlo]
+kind = "start_grid"
+n = 10
+"""

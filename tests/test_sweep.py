@@ -19,38 +19,11 @@ from autobalance.sweep import (SweepError, load_spec, make_plan, open_sweep, per
                                reduce_over, spec_from_dict, start_grid, summary_dict, sweep)
 from autobalance.sweep.plan import separate
 
-# A short run-up / plateau / run-down profile (12 s) so that a sweep of 20 runs takes ~1 s.
+from conftest import LONG_SWEEP as RESUMABLE  # noqa: E402
+from conftest import TINY_SWEEP as TINY  # noqa: E402
+
 SHORT_PROFILE = ('["profile.duration=12 s", "profile.runup_fraction=0.5", '
                  '"profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]')
-
-# 2 grid values x start_grid n = 4 (10 samples for 2 identical balls) = 20 runs, 7 tasks of <= 3.
-TINY = f"""
-[sweep]
-name = "tiny"
-base = "vub_jeffcott_004"
-set = {SHORT_PROFILE}
-batch_size = 3
-
-[grid]
-"balancer.rolling_resistance" = [0.001, 0.002]
-
-[monte_carlo]
-kind = "start_grid"
-n = 4
-"""
-
-# The example description of the brief, made longer: 55 runs in 28 tasks of 2 (a few seconds).
-RESUMABLE = """
-[sweep]
-name = "resumable"
-base = "vub_jeffcott_004"
-set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
-batch_size = 2
-
-[monte_carlo]
-kind = "start_grid"
-n = 10
-"""
 
 
 def write(tmp_path: Path, text: str, name: str = "sweep.toml") -> Path:

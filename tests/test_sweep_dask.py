@@ -17,33 +17,8 @@ from distributed import Client, LocalCluster
 
 from autobalance.sweep import make_plan, open_sweep, spec_from_dict, sweep
 
-TINY = """
-[sweep]
-name = "tiny"
-base = "vub_jeffcott_004"
-set = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]
-batch_size = 3
-
-[grid]
-"balancer.rolling_resistance" = [0.001, 0.002]
-
-[monte_carlo]
-kind = "start_grid"
-n = 4
-"""
-
-# 55 runs in 28 tasks of 2 (about 0.1 s each): long enough to kill a worker in the middle.
-LONGER = """
-[sweep]
-name = "longer"
-base = "vub_jeffcott_004"
-set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
-batch_size = 2
-
-[monte_carlo]
-kind = "start_grid"
-n = 10
-"""
+from conftest import LONG_SWEEP as LONGER  # noqa: E402
+from conftest import TINY_SWEEP as TINY  # noqa: E402
 
 
 def spec_of(text: str):
