@@ -19,16 +19,14 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from .config import ConfigError, describe, list_presets, load_config, parse_quantity
-from .models import ParameterError
-
-#: Exceptions that are the user's input errors: one line on stderr, exit code 2.
-USER_ERRORS = (ConfigError, ParameterError, OSError)
+from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line, _print_json  # noqa: F401
+from .config import ConfigError, describe, list_presets, load_config, parse_quantity  # noqa: F401
+from .models import ParameterError  # noqa: F401
 
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
-                  help="Simulate passive ball balancers on rotors (presets, show, simulate, "
-                       "response, demo).")
+                  help="Simulate and design passive automatic balancers: presets, show, simulate, "
+                       "response, sweep, analyze, liquid, demo.")
 
 SetOpt = Annotated[Optional[list[str]], typer.Option(
     "--set", "-s", metavar="PATH=VALUE",
@@ -39,51 +37,6 @@ ProfileOpt = Annotated[Optional[str], typer.Option(
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI) on stdout.")]
 SourceArg = Annotated[str, typer.Argument(metavar="PRESET|CONFIG",
                                           help="Preset name or path of a .toml file.")]
-
-
-# -- helpers ----------------------------------------------------------------------------------
-def _one_line(exc: BaseException) -> str:
-    msg = " ".join(str(exc).split())
-    if isinstance(exc, OSError) and exc.filename and exc.strerror:
-        msg = f"{exc.strerror}: {exc.filename!s}"
-    return msg or type(exc).__name__
-
-
-def _fail(message: str, code: int = 2):
-    typer.echo(f"error: {' '.join(message.split())}", err=True)
-    raise typer.Exit(code)
-
-
-@contextmanager
-def _guard():
-    """Turn input errors into ``error: <message>`` on stderr and exit code 2."""
-    try:
-        yield
-    except USER_ERRORS as exc:
-        _fail(_one_line(exc))
-
-
-def _clean(obj: Any) -> Any:
-    """JSON-able copy: numpy -> Python, tuples -> lists, NaN/inf -> None, Paths -> str."""
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if hasattr(obj, "tolist") and not isinstance(obj, (str, bytes)):
-        return _clean(obj.tolist())
-    if isinstance(obj, float):
-        return obj if math.isfinite(obj) else None
-    if isinstance(obj, (str, int, bool)) or obj is None:
-        return obj
-    if isinstance(obj, Path):
-        return str(obj)
-    if hasattr(obj, "item"):
-        return _clean(obj.item())
-    return str(obj)
-
-
-def _print_json(obj: dict) -> None:
-    typer.echo(json.dumps(_clean(obj), allow_nan=False))
 
 
 def _fmt(v: Any, width: int = 6) -> str:
@@ -390,6 +343,22 @@ def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] =
         typer.echo(f"wrote {out / 'summary.json'}")
     if not ok:
         raise typer.Exit(1)
+
+
+def _register_subapps() -> None:
+    """Sub-command groups living in their own modules."""
+    from .cli_analyze import app as analyze_app
+    from .cli_liquid import app as liquid_app
+
+    app.add_typer(analyze_app, name="analyze",
+                  help="Washer analysis (seed 000): response, vibratory forces, equilibria, "
+                       "error bounds, tolerance design, kinetic-static model, studies.")
+    app.add_typer(liquid_app, name="liquid",
+                  help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "
+                       "entrainment speeds, kinetostatics, run-up simulation.")
+
+
+_register_subapps()
 
 
 def main(argv: Optional[list[str]] = None) -> None:

@@ -1,0 +1,380 @@
+"""Position-error bounds of the balls and the residual unbalance they leave (seed 000).
+
+* Rolling resistance, 000 eq (20)-(32): a ball cannot move while |F_i| <= F_ir = m R w^2 f/r.
+* Race eccentricity, 000 eq (44)-(47): the equilibrium itself moves.
+* Suspension dry friction, 000 eq (48)-(49): a small residual force cannot move the tub.
+* Ball natural frequency about its equilibrium, 000 eq (52)-(55).
+
+Pure functions of SI floats/arrays (angles [rad], speeds [rad/s], lengths [m], forces [N],
+unbalances [kg*m]); a System is passed where the harmonic response is needed.
+"""
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+
+import numpy as np
+
+from ..models import ParameterError
+from ..models._validate import array as _array
+from ..models._validate import finite as _finite
+from ..models._validate import nonneg as _nonneg
+from ..models._validate import positive as _positive
+from .equilibria import find_equilibria
+from .vibratory import _speed, force_jacobian, gain_phase
+
+__all__ = [
+    "ball_natural_frequencies", "ball_natural_frequency_approx", "ball_natural_frequency_single",
+    "eccentricity_deviation_single", "eccentricity_equilibrium", "eccentricity_residual_linear",
+    "friction_force_for_deviation", "rolling_deadband", "rolling_deadband_single",
+    "rolling_resistance_force", "symmetric_rolling_deviation", "suspension_friction_deviation",
+    "suspension_is_stuck",
+]
+
+
+def _out(a):
+    return float(a) if np.ndim(a) == 0 else a
+
+
+# -- rolling resistance ------------------------------------------------------------------------
+def rolling_resistance_force(ball_mass, race_radius, speed, f_r):
+    """Rolling resistance of a ball F_ir = m R w^2 f/r [N] (000 eq 20).
+
+    Parameters
+    ----------
+    ball_mass : float or array_like
+        m [kg], > 0.
+    race_radius : float
+        R [m], > 0.
+    speed : float or array_like
+        w [rad/s], >= 0.
+    f_r : float or array_like
+        Coefficient of rolling resistance over ball radius f/r [-], >= 0.
+    """
+    m = _array("ball_mass", ball_mass, strict=True)
+    R = _positive("race_radius", race_radius)
+    w = _array("speed", speed, strict=False)
+    fr = _array("f_r", f_r, strict=False)
+    return _out(m * R * w * w * fr)
+
+
+def rolling_deadband_single(system, speed, f_r, static_moment=None):
+    """Largest position error of one ball from rolling resistance (000 eq 24, Fig. 12) [rad].
+
+    |Delta alpha_r| <= 2 R (f/r) / |a_x cos(phi_x) + a_y cos(phi_y)|, with a_x, a_y the drum
+    amplitudes for the ball's static moment S = m R (= Me in 000). Between the suspension
+    frequencies the denominator crosses zero and the bound is infinite (no balancing).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Drum and suspension (M_t [kg], kx, ky [N/m], cx, cy [N*s/m]); R [m] of its balancer.
+    speed : float or array_like
+        Spin speed w [rad/s], > 0.
+    f_r : float
+        f/r [-], >= 0.
+    static_moment : float, optional
+        S [kg*m]; default the unbalance Me (000: mR = Me).
+
+    Returns
+    -------
+    float or ndarray
+        Delta alpha_max [rad] (inf where the denominator vanishes).
+    """
+    w = _array("speed", speed, strict=True)
+    fr = _nonneg("f_r", f_r)
+    S = system.rotor.unbalance if static_moment is None else _positive("static_moment", static_moment)
+    R = system.balancer.race_radius
+    gx, px, gy, py = gain_phase(system, w)
+    den = np.abs(S * (np.asarray(gx) * np.cos(px) + np.asarray(gy) * np.cos(py)))
+    with np.errstate(divide="ignore"):
+        return _out(np.where(den > 0, 2.0 * R * fr / den, np.inf))
+
+
+def symmetric_rolling_deviation(race_radius, eccentricity, f_r) -> float:
+    """Symmetric deviation of two balls at +-120 deg, 000 eq (32): 2 (R/e)(f/r) [rad].
+
+    Eq (30)-(31) are |d1 - d2/2| <= (R/e)(f/r) and |d2 - d1/2| <= (R/e)(f/r) (w >> w_x, w_y,
+    a = e, phi = pi); d1 = d2 gives eq (32).
+
+    Parameters
+    ----------
+    race_radius : float
+        R [m], > 0.
+    eccentricity : float
+        e = Me/M [m], > 0.
+    f_r : float
+        f/r [-], >= 0.
+    """
+    R = _positive("race_radius", race_radius)
+    e = _positive("eccentricity", eccentricity)
+    return 2.0 * R / e * _nonneg("f_r", f_r)
+
+
+def rolling_deadband(system, speed, f_r, alpha_eq=None) -> dict:
+    """Dead band of N balls about their equilibrium from rolling resistance (000 eq 21-22, 27-31).
+
+    Linearising F_i about the equilibrium, |sum_j J_ij d_j| <= m_i R w^2 f/r for every ball
+    (eq 27-29 with the exact Jacobian instead of a = e, phi = pi). The dead band is the
+    parallelotope d = J^-1 (F_r * s), |s_i| <= 1; its vertices s in {-1, 1}^N give the largest
+    deviations. The residual unbalance at each vertex is eq (22), evaluated exactly.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (N >= 1 balls).
+    speed : float
+        w [rad/s], > 0.
+    f_r : float
+        f/r [-], >= 0.
+    alpha_eq : array_like (N,), optional
+        Equilibrium [rad]; default the stable equilibrium of least residual unbalance.
+
+    Returns
+    -------
+    dict
+        "alpha_eq_rad", "vertices_rad" (2^N, N), "max_deviation_rad" (N,) (eq 28-29),
+        "residual_unbalance_kg_m" (2^N,) (eq 22), "max_residual_unbalance_kg_m",
+        "max_amplitude_x_m", "max_amplitude_y_m" (eq 25-26 on the worst vertex).
+    """
+    w = _speed(speed)
+    fr = _nonneg("f_r", f_r)
+    b = system.balancer
+    if alpha_eq is None:
+        stable = [e for e in find_equilibria(system, w) if e.ks_stable and not e.overlap]
+        if not stable:
+            raise ParameterError("speed", w, "no stable equilibrium of the balls at this speed")
+        alpha_eq = stable[0].alpha
+    a = np.asarray(alpha_eq, float)
+    J = force_jacobian(system, w, a)
+    Fr = b.masses * b.race_radius * w * w * fr
+    S = np.array(list(itertools.product((-1.0, 1.0), repeat=b.n_balls)))
+    V = np.linalg.solve(J, (Fr * S).T).T
+    U = system.rotor.unbalance + b.total_mass * b.eccentricity * np.exp(1j * b.eccentricity_angle)
+    res = np.abs(U + (b.masses * b.race_radius * np.exp(1j * (a + V))).sum(axis=-1))
+    gx, _, gy, _ = gain_phase(system, w)
+    rmax = float(res.max())
+    return {"alpha_eq_rad": a, "vertices_rad": V, "max_deviation_rad": np.abs(V).max(axis=0),
+            "residual_unbalance_kg_m": res, "max_residual_unbalance_kg_m": rmax,
+            "max_amplitude_x_m": rmax * gx, "max_amplitude_y_m": rmax * gy}
+
+
+# -- eccentricity ------------------------------------------------------------------------------
+def eccentricity_deviation_single(eccentricity, rho, beta):
+    """Deviation of one ball from alpha_f = pi caused by a race eccentricity, 000 eq (45) [rad].
+
+    Delta alpha_rho = -rho sin(beta) / (e + rho cos(beta))  (w >> w_x, w_y, rho << R).
+
+    Parameters
+    ----------
+    eccentricity : float
+        e = Me/M [m], > 0.
+    rho : float
+        Race eccentricity [m], >= 0.
+    beta : float or array_like
+        Angle of the eccentricity from the unbalance [rad].
+    """
+    e = _positive("eccentricity", eccentricity)
+    r = _nonneg("rho", rho)
+    b = np.asarray(beta, float)
+    if not np.all(np.isfinite(b)):
+        raise ParameterError("beta", beta, "must be finite [rad]")
+    return _out(-r * np.sin(b) / (e + r * np.cos(b)))
+
+
+def eccentricity_equilibrium(system, speed) -> dict:
+    """Ball positions with a race eccentricity, 000 eq (46), and the residual unbalance (eq 47).
+
+    Solves F_i(alpha) = 0 with rho, beta of the balancer (:func:`find_equilibria`) and takes the
+    stable equilibrium nearest the ideal one (same system with rho = 0).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine with ``balancer.eccentricity`` rho [m] and ``eccentricity_angle`` beta [rad].
+    speed : float
+        w [rad/s], > 0.
+
+    Returns
+    -------
+    dict
+        "alpha_ideal_rad", "alpha_rad", "deviation_rad" (alpha - ideal, wrapped),
+        "residual_unbalance_kg_m" (exact |W|), "residual_linear_kg_m" (eq 47, from the
+        deviations only), "amplitude_x_m", "amplitude_y_m".
+    """
+    w = _speed(speed)
+    b = system.balancer
+    ideal_sys = dataclasses.replace(system, balancer=dataclasses.replace(b, eccentricity=0.0))
+    ideal = [e for e in find_equilibria(ideal_sys, w) if e.ks_stable and not e.overlap]
+    cands = [e for e in find_equilibria(system, w) if e.ks_stable and not e.overlap]
+    if not ideal or not cands:
+        raise ParameterError("speed", w, "no stable equilibrium of the balls at this speed")
+    a0 = ideal[0].alpha
+    best = min(cands, key=lambda e: np.abs(np.angle(np.exp(1j * (e.alpha - a0)))).max())
+    dev = np.angle(np.exp(1j * (best.alpha - a0)))
+    lin = eccentricity_residual_linear(b.masses * b.race_radius, a0, dev)
+    gx, _, gy, _ = gain_phase(system, w)
+    return {"alpha_ideal_rad": a0, "alpha_rad": best.alpha, "deviation_rad": dev,
+            "residual_unbalance_kg_m": best.residual_unbalance, "residual_linear_kg_m": lin,
+            "amplitude_x_m": best.residual_unbalance * gx,
+            "amplitude_y_m": best.residual_unbalance * gy}
+
+
+def eccentricity_residual_linear(static_moments, alpha_f, deviation) -> float:
+    """Residual unbalance from small ball deviations, 000 eq (47) [kg*m].
+
+    dMe_x = -sum m_i R sin(alpha_if) d_i, dMe_y = sum m_i R cos(alpha_if) d_i; returns |dMe|.
+
+    Parameters
+    ----------
+    static_moments : array_like (N,)
+        m_i R [kg*m].
+    alpha_f : array_like (N,)
+        Ideal positions [rad].
+    deviation : array_like (N,)
+        Deviations d_i [rad].
+    """
+    S = np.asarray(static_moments, float)
+    a = np.asarray(alpha_f, float)
+    d = np.asarray(deviation, float)
+    if not (S.shape == a.shape == d.shape):
+        raise ParameterError("deviation", d.tolist(), f"needs {S.size} values like static_moments")
+    return float(abs(np.sum(S * d * (-np.sin(a) + 1j * np.cos(a)))))
+
+
+# -- suspension dry friction -------------------------------------------------------------------
+def suspension_friction_deviation(friction_force, angle, unbalance, speed, alpha_f=2 * math.pi / 3):
+    """Largest ball error that the suspension dry friction can hold, 000 eq (48)-(49) [rad].
+
+    Two balls of mR = Me near +-alpha_f: w^2 |Me + 2 m R cos(alpha_f + d)| <= 2 F cos(gamma)
+    linearises to |d| < F cos(gamma) / (Me sin(alpha_f) w^2) (eq 49).
+
+    Parameters
+    ----------
+    friction_force : float
+        F of one damper [N] (000: 2F = 140 N), >= 0.
+    angle : float
+        gamma, damper inclination to x [rad] (000: 61 deg).
+    unbalance : float
+        Me [kg*m], > 0.
+    speed : float or array_like
+        w [rad/s], > 0.
+    alpha_f : float
+        Ideal ball angle [rad] (2 pi/3 for two balls with mR = Me).
+    """
+    F = _nonneg("friction_force", friction_force)
+    g = _finite("angle", angle)
+    U = _positive("unbalance", unbalance)
+    w = _array("speed", speed, strict=True)
+    af = _finite("alpha_f", alpha_f)
+    s = math.sin(af)
+    if abs(s) < 1e-12:
+        raise ParameterError("alpha_f", alpha_f, "must not be a multiple of pi")
+    return _out(F * math.cos(g) / (U * abs(s) * w * w))
+
+
+def friction_force_for_deviation(deviation, angle, unbalance, speed, alpha_f=2 * math.pi / 3) -> float:
+    """Inverse of eq (49): the damper force F [N] that holds a ball error d [rad] (000 eq 64-66).
+
+    Parameters
+    ----------
+    deviation : float
+        d [rad], >= 0.
+    angle : float
+        gamma [rad].
+    unbalance : float
+        Me [kg*m], > 0.
+    speed : float
+        w [rad/s], > 0.
+    alpha_f : float
+        Ideal ball angle [rad].
+    """
+    d = _nonneg("deviation", deviation)
+    g = _finite("angle", angle)
+    c = math.cos(g)
+    if abs(c) < 1e-12:
+        raise ParameterError("angle", angle, "cos(angle) must not be 0")
+    return d * _positive("unbalance", unbalance) * abs(math.sin(_finite("alpha_f", alpha_f))) \
+        * _positive("speed", speed) ** 2 / abs(c)
+
+
+def suspension_is_stuck(residual_x, speed, friction_force, angle) -> bool:
+    """000 eq (48): the tub cannot move along x when w^2 |dMe_x| <= 2 F cos(gamma).
+
+    Parameters
+    ----------
+    residual_x : float
+        x component of the residual unbalance [kg*m].
+    speed : float
+        w [rad/s], > 0.
+    friction_force : float
+        F per damper [N], >= 0.
+    angle : float
+        gamma [rad].
+    """
+    return bool(_positive("speed", speed) ** 2 * abs(_finite("residual_x", residual_x))
+                <= 2 * _nonneg("friction_force", friction_force) * math.cos(_finite("angle", angle)))
+
+
+# -- ball natural frequency --------------------------------------------------------------------
+def ball_natural_frequency_single(system, speed, static_moment=None) -> float:
+    """Natural frequency of one ball about alpha = pi, 000 eq (53)-(54) [rad/s].
+
+    w_alpha = w sqrt((-a_0x cos(phi_x) - a_0y cos(phi_y)) / (2 R)); NaN when the radicand is
+    negative (alpha = pi unstable, eq 12).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Drum (Me [kg*m], M_t [kg], suspension) and R [m] of its balancer.
+    speed : float
+        w [rad/s], > 0.
+    static_moment : float, optional
+        Unused by eq 54 except to state mR = Me [kg*m]; kept for symmetry (default Me).
+    """
+    w = _speed(speed)
+    gx, px, gy, py = gain_phase(system, w)
+    U = system.rotor.unbalance
+    rad = (-U * gx * math.cos(px) - U * gy * math.cos(py)) / (2.0 * system.balancer.race_radius)
+    return w * math.sqrt(rad) if rad >= 0 else math.nan
+
+
+def ball_natural_frequency_approx(speed, eccentricity, race_radius) -> float:
+    """000 eq (55): w_alpha ~ w sqrt(e/R) for w >> w_x, w_y [rad/s].
+
+    Parameters
+    ----------
+    speed : float
+        w [rad/s], > 0.
+    eccentricity : float
+        e = Me/M [m], > 0.
+    race_radius : float
+        R [m], > 0.
+    """
+    return _positive("speed", speed) * math.sqrt(_positive("eccentricity", eccentricity)
+                                                 / _positive("race_radius", race_radius))
+
+
+def ball_natural_frequencies(system, speed, alpha) -> np.ndarray:
+    """Natural frequencies of N balls about an equilibrium, 000 eq (52) with m_z [rad/s].
+
+    Undamped: I_eff d'' = R J d with I_eff = m R^2 + I (R/r)^2; w_k = sqrt(-eig(R J / I_eff))
+    (NaN for a non-negative or complex eigenvalue; 0 for the neutral direction of N >= 3).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    speed : float
+        w [rad/s], > 0.
+    alpha : array_like (N,)
+        Equilibrium [rad].
+    """
+    b = system.balancer
+    R = b.race_radius
+    ieff = b.masses * R * R + b.inertias * (R / b.ball_radius) ** 2
+    lam = np.linalg.eigvals(R * force_jacobian(system, speed, alpha) / ieff[:, None])
+    out = np.where((np.abs(lam.imag) < 1e-9 * np.abs(lam).max()) & (lam.real <= 0),
+                   np.sqrt(np.abs(np.minimum(lam.real, 0.0))), np.nan)
+    return np.sort(out)

@@ -1,0 +1,284 @@
+"""``autobalance analyze ...``: the seed-000 washer analysis on the command line (typer).
+
+Subcommands: response, forces, equilibria, bounds, tolerance, kinetic-static, washer-study.
+Every one takes ``--json`` (one JSON object, SI, unit-suffixed keys) and, where useful,
+``--plot FILE.png``. Machines come from ``load_config(PRESET|CONFIG, --set overrides)``.
+Input errors print one line ``error: ...`` on stderr and exit with code 2.
+"""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line
+from .config import ConfigError, load_config, parse_quantity
+
+app = typer.Typer(name="analyze", no_args_is_help=True, add_completion=False,
+                  pretty_exceptions_enable=False,
+                  help="Seed-000 analysis: harmonic response, vibratory forces, equilibria and "
+                       "stability, error bounds, tolerance design, kinetic-static model, studies.")
+
+SourceArg = Annotated[str, typer.Argument(metavar="PRESET|CONFIG", help="Preset name or .toml file.")]
+SetOpt = Annotated[Optional[list[str]], typer.Option("--set", "-s", metavar="PATH=VALUE",
+                                                     help="Override a config value (repeatable).")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI) on stdout.")]
+SpeedOpt = Annotated[Optional[str], typer.Option(
+    "--speed", help="Spin speed, e.g. '1000 rpm' (bare number: rad/s); default the preset's.")]
+AnglesOpt = Annotated[Optional[str], typer.Option(
+    "--angles", help="Ball angles, comma separated, e.g. '120 deg,-120 deg' (bare: rad).")]
+PlotOpt = Annotated[Optional[Path], typer.Option("--plot", metavar="FILE.png", help="Write a figure.")]
+
+
+def _print(obj: dict) -> None:
+    typer.echo(json.dumps(_clean(obj), allow_nan=False))
+
+
+def _cfg(source, sets):
+    return load_config(source, list(sets or []))
+
+
+def _speed(cfg, spec) -> float:
+    w = cfg.spin.nominal_speed if spec is None else parse_quantity(spec, "speed", "--speed")
+    if not (math.isfinite(w) and w > 0):
+        raise ConfigError(f"--speed = {spec!r}: must be > 0, e.g. '1000 rpm'")
+    return w
+
+
+def _angles(cfg, spec):
+    import numpy as np
+
+    if spec is None:
+        return np.asarray(cfg.initial.angles_for(cfg.system.balancer), float)
+    vals = [parse_quantity(p.strip(), "angle", "--angles") for p in spec.split(",") if p.strip()]
+    n = cfg.system.balancer.n_balls
+    if len(vals) != n:
+        raise ConfigError(f"--angles = {spec!r}: needs {n} angles, one per ball")
+    return np.asarray(vals, float)
+
+
+def _save(fig, path: Optional[Path]) -> Optional[str]:
+    if path is None:
+        return None
+    if path.suffix.lower() != ".png":
+        raise ConfigError(f"--plot = {str(path)!r}: expected a .png file name")
+    fig.savefig(path, dpi=110)
+    return str(path)
+
+
+def _guarded(fn):
+    """Also catch user errors raised while building the output."""
+    try:
+        return fn()
+    except USER_ERRORS as exc:
+        _fail(_one_line(exc))
+
+
+@app.command()
+def response(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angles: AnglesOpt = None,
+             json_: JsonOpt = False) -> None:
+    """Drum response to the unbalance, each ball and the eccentricity (000 eq 6-7, 37-38)."""
+    with _guard():
+        cfg = _cfg(source, set_)
+        from .analysis.vibratory import drum_response, speed_regime
+
+        w = _speed(cfg, speed)
+        r = drum_response(cfg.system, w, _angles(cfg, angles))
+        out = {"name": cfg.name, **r.as_dict(), "regime": speed_regime(cfg.system, w),
+               "natural_frequencies_rad_s": list(cfg.system.natural_frequencies)}
+    if json_:
+        _print(out)
+        return
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s ({out['regime']} the suspension frequencies)")
+    for k in ("a_0x_m", "a_0y_m", "a_ix_m", "a_iy_m", "phi_x_rad", "phi_y_rad", "amplitude_x_m",
+              "amplitude_y_m", "residual_unbalance_kg_m"):
+        typer.echo(f"  {k}: {out[k]}")
+
+
+@app.command()
+def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angles: AnglesOpt = None,
+           plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+    """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: Fig. 6."""
+    with _guard():
+        cfg = _cfg(source, set_)
+        from .analysis.vibratory import force_jacobian, vibratory_components
+
+        w = _speed(cfg, speed)
+        a = _angles(cfg, angles)
+        comp = vibratory_components(cfg.system, w, a)
+        out = {"name": cfg.name, "speed_rad_s": w, "ball_angles_rad": a,
+               **{f"{k}_n": v for k, v in comp.items()},
+               "jacobian_n_per_rad": force_jacobian(cfg.system, w, a)}
+        if plot is not None:
+            from .plotting.washer import plot_vibratory_force
+
+            wx, wy = cfg.system.natural_frequencies
+            out["plot"] = _save(plot_vibratory_force(cfg.system, [w, 0.5 * (wx + wy)]), plot)
+    if json_:
+        _print(out)
+        return
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s: F = {list(map(float, comp['F']))} N")
+
+
+@app.command()
+def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
+               full: Annotated[bool, typer.Option("--full", help="Also Floquet multipliers of the "
+                                                  "full model (shooting).")] = False,
+               json_: JsonOpt = False) -> None:
+    """All ball equilibria and their stability (000 eq 12, linearised KS and full model)."""
+    with _guard():
+        cfg = _cfg(source, set_)
+        from .analysis.equilibria import balancing_onset_speed, find_equilibria, floquet_full
+        from .analysis.vibratory import speed_regime
+
+        w = _speed(cfg, speed)
+        eqs = find_equilibria(cfg.system, w)
+        rows = []
+        for e in eqs:
+            d = e.as_dict()
+            if full and not e.overlap:
+                f = floquet_full(cfg.system, w, e.alpha)
+                d["full_max_multiplier"] = f["max_modulus"]
+                d["full_stable"] = f["stable"]
+            rows.append(d)
+        out = {"name": cfg.name, "speed_rad_s": w, "regime": speed_regime(cfg.system, w),
+               "balancing_onset_speed_rad_s": balancing_onset_speed(cfg.system), "equilibria": rows}
+    if json_:
+        _print(out)
+        return
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s ({out['regime']}): {len(rows)} equilibria")
+    for d in rows:
+        typer.echo(f"  alpha = {[round(v, 2) for v in d['alpha_deg']]} deg  static_stable = "
+                   f"{d['static_stable']}  ks_stable = {d['ks_stable']}"
+                   + (f"  full_stable = {d['full_stable']}" if "full_stable" in d else "")
+                   + ("  (balls overlap)" if d["overlap"] else ""))
+
+
+@app.command()
+def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
+           f_r: Annotated[Optional[float], typer.Option("--f-r", help="f/r (default: the preset's "
+                                                        "rolling_resistance).")] = None,
+           plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+    """Position-error bounds: rolling resistance, eccentricity, dry friction, ball frequency."""
+    with _guard():
+        cfg = _cfg(source, set_)
+        import dataclasses
+
+        import numpy as np
+
+        from .analysis import error_bounds as eb
+
+        s, w = cfg.system, _speed(cfg, speed)
+        b = s.balancer
+        fr = b.rolling_resistance[0] if f_r is None else f_r
+        if not (math.isfinite(fr) and fr >= 0):
+            raise ConfigError(f"--f-r = {f_r!r}: must be >= 0")
+        e = s.rotor.unbalance / s.rotor.mass
+        ideal = dataclasses.replace(s, balancer=dataclasses.replace(b, eccentricity=0.0))
+        db = eb.rolling_deadband(ideal, w, fr)
+        ecc = eb.eccentricity_equilibrium(s, w)
+        sus = s.suspension
+        out = {
+            "name": cfg.name, "speed_rad_s": w, "f_r": fr,
+            "rolling_single_ball_rad": eb.rolling_deadband_single(s, w, fr),
+            "rolling_eq32_rad": eb.symmetric_rolling_deviation(b.race_radius, e, fr),
+            "rolling_max_deviation_rad": db["max_deviation_rad"],
+            "rolling_max_residual_unbalance_kg_m": db["max_residual_unbalance_kg_m"],
+            "eccentricity_deviation_rad": ecc["deviation_rad"],
+            "eccentricity_residual_unbalance_kg_m": ecc["residual_unbalance_kg_m"],
+            "eccentricity_eq45_single_rad": eb.eccentricity_deviation_single(
+                e, b.eccentricity, b.eccentricity_angle),
+            "friction_eq49_rad": eb.suspension_friction_deviation(
+                sus.dry_friction_force, sus.dry_friction_angle, s.rotor.unbalance, w),
+            "ball_frequency_eq54_rad_s": eb.ball_natural_frequency_single(s, w),
+            "ball_frequency_eq55_rad_s": eb.ball_natural_frequency_approx(w, e, b.race_radius),
+            "ball_frequencies_rad_s": eb.ball_natural_frequencies(ideal, w, db["alpha_eq_rad"]),
+        }
+        if plot is not None:
+            from .plotting.washer import plot_rolling_deviation
+
+            out["plot"] = _save(plot_rolling_deviation(s, np.linspace(1.0, 2 * w, 400)), plot)
+    if json_:
+        _print(out)
+        return
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s, f/r = {fr:g}")
+    for k, v in out.items():
+        if k not in ("name",):
+            typer.echo(f"  {k}: {v}")
+
+
+@app.command()
+def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
+              fraction: Annotated[float, typer.Option("--fraction", help="Required residual "
+                                                      "unbalance / Me (000: 0.1).")] = 0.1,
+              json_: JsonOpt = False) -> None:
+    """Tolerance design (000 eq 56-66) and the residual predicted for the preset's tolerances."""
+    with _guard():
+        cfg = _cfg(source, set_)
+        from .analysis.tolerance import design_tolerances, predict_residual
+
+        s, w = cfg.system, _speed(cfg, speed)
+        d = design_tolerances(s.rotor.unbalance, s.rotor.mass, s.balancer.race_radius, w,
+                              residual_fraction=fraction,
+                              friction_angle=s.suspension.dry_friction_angle)
+        p = predict_residual(s, w)
+        out = {"name": cfg.name, "speed_rad_s": w, "design": d, "predicted": p}
+    if json_:
+        _print(out)
+        return
+    typer.echo(f"{cfg.name}: rho_max = {d['rho_max_m'] * 1e6:.3g} um, f/r max = {d['f_r_max']:.3g}, "
+               f"F max = {d['friction_force_max_n']:.3g} N; predicted RMe (worst) = "
+               f"{p['rme_worst'] * 100:.1f} %")
+
+
+@app.command("kinetic-static")
+def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
+                   angles: AnglesOpt = None,
+                   duration: Annotated[str, typer.Option("--duration", help="Length, e.g. '6 s'.")] = "6 s",
+                   plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+    """Kinetic-static model (000 eq 13) vs the full model (Fig. 9 differences)."""
+    with _guard():
+        cfg = _cfg(source, set_)
+        from .analysis.kinetic_static import compare_with_full
+
+        w = _speed(cfg, speed)
+        dur = parse_quantity(duration, "time", "--duration")
+        if not (math.isfinite(dur) and 0 < dur <= 600):
+            raise ConfigError(f"--duration = {duration!r}: must be within (0, 600] s")
+        c = compare_with_full(cfg.system, w, _angles(cfg, angles), dur)
+        out = {"name": cfg.name, "speed_rad_s": w, "duration_s": dur,
+               **{k: v for k, v in c.items() if k.startswith(("max_", "final_"))},
+               "ks_final_alpha_rad": c["ks_alpha_rad"][-1], "full_final_alpha_rad": c["full_alpha_rad"][-1]}
+        if plot is not None:
+            from .plotting.washer import plot_ks_comparison
+
+            out["plot"] = _save(plot_ks_comparison(c), plot)
+    if json_:
+        _print(out)
+        return
+    typer.echo(f"{cfg.name}: max |D_x| = {out['max_D_x_m'] * 1e6:.3g} um, max |D_y| = "
+               f"{out['max_D_y_m'] * 1e6:.3g} um, max |D_alpha| = {out['max_D_alpha_rad']:.3g} rad; "
+               f"last second: {out['final_D_alpha_rad']:.2g} rad")
+
+
+@app.command("washer-study")
+def washer_study(which: Annotated[str, typer.Argument(help="fig13, fig16, fig18, table3, table4 or all")] = "all",
+                 json_: JsonOpt = False) -> None:
+    """Full simulations of 000 Fig. 13, 16, 18 and Tables 3-4 against the published numbers."""
+    names = ("fig13", "fig16", "fig18", "table3", "table4")
+    if which != "all" and which not in names:
+        _fail(f"which = {which!r}: must be one of {', '.join(names)} or all")
+    from .studies.washer_000 import compare
+
+    rows = compare(names if which == "all" else (which,))
+    n_ok = sum(r["ok"] for r in rows)
+    if json_:
+        _print({"study": "washer_000", "rows": rows, "ok": n_ok, "total": len(rows)})
+        return
+    for r in rows:
+        typer.echo(f"{'ok  ' if r['ok'] else 'MISS'} {r['quantity']}: published {r['published']}, "
+                   f"ours {r['computed']} ({r['tolerance']})")
+    typer.echo(f"{n_ok} of {len(rows)} within tolerance")

@@ -1,0 +1,260 @@
+"""Seed 000 washer: full simulations of Fig. 13, 16, 18 and Tables 3-4 against the paper.
+
+Each ``compute_*`` returns plain data (SI); :data:`PUBLISHED` holds the paper's numbers;
+``compare_*`` return rows ``{quantity, published, computed, tolerance, ok, note}``.
+
+Choices (the paper omits them; docs/washer-analysis.md):
+
+* machine: the ``washer_000`` preset (M = 37 kg, R = 0.28 m, kx = 20 N/mm, ky = 6 N/mm,
+  cx = 200 kg/s, cy = 110 kg/s), two balls with m R = Me, ball damping c_i = 2 1/s;
+* start: balls at rest at 90 deg and 150 deg, the drum on its harmonic orbit (as the Fig. 5
+  preset); rolling resistance by 000 eq 20 (normal_force = "drum"), exact stick-slip;
+* gravity (000 eq 50): off for Fig. 13, 16, 18 (they illustrate one cause each); on for
+  Tables 3-4 (Fig. 19 lists "ball gravity, eccentricity and rolling resistance");
+* speed: 1000 rpm for Fig. 13, 16, 18; w = 100 rad/s for Tables 3-4 (Fig. 19's caption; the
+  table captions give none); f/r = 0 in Fig. 16 and Fig. 18 (not given);
+* Fig. 18: 2F = 140 N, gamma = 61 deg (000 eq 48), i.e. F = 70 N per damper.
+
+Tolerances: a ball with rolling resistance may stop anywhere in the dead band about its
+equilibrium (000 eq 21, 27-31), and where it stops depends on the start, which the paper does
+not give. A published angle or efficiency is therefore "ok" when it lies inside the dead band
+that we compute about our equilibrium (:func:`autobalance.analysis.error_bounds.rolling_deadband`,
+exact Jacobian), and our simulation must lie inside the same band. Deterministic quantities (no
+friction) get +-1.2 deg, the f/r = 1e-4 half band (R/e)(f/r) of eq 30-31.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..analysis.equilibria import find_equilibria
+from ..analysis.error_bounds import rolling_deadband, suspension_friction_deviation
+from ..analysis.vibratory import gain_phase
+
+__all__ = ["PUBLISHED", "START_DEG", "compare", "compare_fig13", "compare_fig16", "compare_fig18",
+           "compare_table", "compute_fig13", "compute_fig16", "compute_fig18", "compute_table",
+           "washer"]
+
+RPM = 2 * math.pi / 60
+W1000 = 1000 * RPM
+#: Start positions of the balls [deg] (our choice; the paper gives none).
+START_DEG = (90.0, 150.0)
+
+PUBLISHED = {
+    "fig13": {"deviation_deg": (25.0, 21.0), "impact_time_wt": 35.0,
+              "source": "000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3"},
+    "fig16": {"deviation_deg": (45.0, 34.0), "amplitude_m": 1.2e-3,
+              "source": "000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m"},
+    "fig18": {"deviation_rad": (0.22, 0.12), "eq49_bound_rad": 0.071,
+              "source": "000 Fig. 18 and eq 49: 2F = 140 N, gamma = 61 deg, 1000 rpm"},
+    # rho [m]: (A [m], d_alpha1 [deg], d_alpha2 [deg], RMe [-])
+    "table3": {"f_r": 1e-3, "rows": {0.0: (0.35e-3, 3.5, 12.3, 0.745),
+                                     0.05e-3: (0.34e-3, 4.7, 10.9, 0.752),
+                                     0.1e-3: (0.334e-3, 6.0, 9.4, 0.757),
+                                     0.5e-3: (0.34e-3, 17.3, 0.3, 0.689),
+                                     1e-3: (0.38e-3, 37.5, 7.8, 0.444)}},
+    "table4": {"f_r": 1e-4, "rows": {0.0: (0.05e-3, 0.1, 0.1, 0.998),
+                                     0.05e-3: (0.05e-3, 2.0, 1.5, 0.964),
+                                     0.1e-3: (0.1e-3, 4.1, 3.9, 0.93),
+                                     0.5e-3: (0.5e-3, 18.4, 21.1, 0.647),
+                                     1e-3: (1e-3, 29.9, 42.9, 0.293)}},
+}
+
+_IDEAL = np.radians([120.0, -120.0])
+
+
+def washer(Me=0.05, f_r=0.0, rho=0.0, beta=math.pi / 2, g=0.0, c_i=2.0, friction_force=0.0,
+           friction_angle=math.radians(61.0)):
+    """The washer_000 preset with two balls of m R = Me [kg*m], f/r [-], rho [m], beta [rad],
+    gravity g [m/s^2], ball damping c_i [1/s], damper friction F [N] at gamma [rad]."""
+    from ..config import load_config
+
+    base = load_config("washer_000").system
+    R = base.balancer.race_radius
+    m = Me / R
+    bal = dataclasses.replace(base.balancer, ball_mass=m, damping=c_i * m * R * R,
+                              rolling_resistance=f_r, stiction=None, eccentricity=rho,
+                              eccentricity_angle=beta)
+    sus = dataclasses.replace(base.suspension, dry_friction_force=friction_force,
+                              dry_friction_angle=friction_angle)
+    return dataclasses.replace(base, rotor=dataclasses.replace(base.rotor, unbalance=Me),
+                               balancer=bal, suspension=sus, gravity=dataclasses.replace(base.gravity, g=g))
+
+
+def _run(system, w, duration, start_deg=START_DEG):
+    from ..models import InitialState, SimOptions, SpeedProfile
+    from ..simulate import simulate
+
+    sim = simulate(system, SpeedProfile.constant(w, duration),
+                   initial=InitialState(ball_angles=tuple(np.radians(start_deg)), steady_state=True),
+                   options=SimOptions(normal_force="drum", save_dt=2 * math.pi / w / 10))
+    last = sim.t >= sim.t[-1] - 0.5
+    a = np.angle(np.exp(1j * sim.alpha[-1]))
+    dev = np.angle(np.exp(1j * (a - _IDEAL)))
+    return {
+        "t_s": sim.t, "x_m": sim.x, "y_m": sim.y, "alpha_rad": sim.alpha,
+        "final_alpha_rad": a, "deviation_rad": dev,
+        "amplitude_m": float(max(np.abs(sim.x[last]).max(), np.abs(sim.y[last]).max())),
+        "residual_unbalance_kg_m": float(sim.residual_unbalance[-1]),
+        "rme": float(1 - sim.residual_unbalance[-1] / system.rotor.unbalance),
+        "ball_contacts": int(sim.summary()["ball_contacts"]),
+    }
+
+
+def _band(system, w, f_r):
+    """Equilibrium (with rho) and the dead band about it for f/r."""
+    eqs = [e for e in find_equilibria(system, w) if e.ks_stable and not e.overlap]
+    e = min(eqs, key=lambda q: np.abs(np.angle(np.exp(1j * (q.alpha - _IDEAL)))).max())
+    db = rolling_deadband(system, w, f_r, e.alpha) if f_r > 0 else None
+    dev = np.angle(np.exp(1j * (e.alpha - _IDEAL)))
+    res = db["residual_unbalance_kg_m"] if db else np.array([e.residual_unbalance])
+    gx, _, gy, _ = gain_phase(system, w)
+    return {"eq_alpha_rad": e.alpha, "eq_deviation_rad": dev,
+            "half_band_rad": db["max_deviation_rad"] if db else np.zeros(2),
+            "eq_residual_kg_m": e.residual_unbalance, "max_residual_kg_m": float(res.max()),
+            "gain_max": max(gx, gy)}
+
+
+# -- computations ------------------------------------------------------------------------------
+def compute_fig13(duration=10.0) -> dict:
+    """000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3, no gravity."""
+    s = washer(Me=0.05, f_r=1e-3)
+    out = _run(s, W1000, duration)
+    out["band"] = _band(s, W1000, 1e-3)
+    return out
+
+
+def compute_fig16(duration=15.0) -> dict:
+    """000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m, f/r = 0, no gravity."""
+    s = washer(Me=0.05, rho=1e-3)
+    out = _run(s, W1000, duration)
+    out["band"] = _band(s, W1000, 0.0)
+    return out
+
+
+def compute_fig18(duration=10.0) -> dict:
+    """000 Fig. 18: damper friction 2F = 140 N at gamma = 61 deg, 1000 rpm, Me = 0.05 kg m."""
+    s = washer(Me=0.05, friction_force=70.0)
+    out = _run(s, W1000, duration)
+    out["eq49_bound_rad"] = suspension_friction_deviation(70.0, math.radians(61), 0.05, W1000)
+    return out
+
+
+def compute_table(which: int, duration=12.0, speed=100.0) -> dict:
+    """000 Table 3 (f = 1e-3 r) or Table 4 (f = 1e-4 r): rho = 0..1 mm, beta = pi/2, Me = mR =
+    0.05 kg m, gravity on, w = 100 rad/s. Returns {rho: run dict with 'band'}."""
+    if which not in (3, 4):
+        from ..models import ParameterError
+        raise ParameterError("which", which, "must be 3 or 4")
+    pub = PUBLISHED[f"table{which}"]
+    out = {}
+    for rho in pub["rows"]:
+        s = washer(Me=0.05, f_r=pub["f_r"], rho=rho, g=9.81)
+        r = _run(s, speed, duration)
+        r.pop("t_s"), r.pop("x_m"), r.pop("y_m"), r.pop("alpha_rad")
+        r["band"] = _band(s, speed, pub["f_r"])
+        out[rho] = r
+    return out
+
+
+# -- comparisons -------------------------------------------------------------------------------
+def _row(quantity, published, computed, tolerance, ok, note=""):
+    return {"quantity": quantity, "published": published, "computed": computed,
+            "tolerance": tolerance, "ok": bool(ok), "note": note}
+
+
+def _angle_rows(label, pub_deg, sim_dev, band):
+    rows = []
+    eq = np.abs(np.degrees(band["eq_deviation_rad"]))
+    hb = np.degrees(band["half_band_rad"])
+    tol_det = 1.2
+    for i in range(2):
+        half = max(hb[i], tol_det)
+        lo, hi = max(eq[i] - half, 0.0), eq[i] + half
+        ours = abs(math.degrees(sim_dev[i]))
+        ok = lo <= pub_deg[i] <= hi
+        rows.append(_row(f"{label} d_alpha{i + 1} [deg]", pub_deg[i], round(ours, 2),
+                         f"[{lo:.1f}, {hi:.1f}]", ok,
+                         f"equilibrium {eq[i]:.1f} deg +- dead band {half:.1f} deg"
+                         + ("" if lo <= ours <= hi + 0.3 else "; our run outside the band")))
+    return rows
+
+
+def compare_fig13(data=None) -> list:
+    d = data or compute_fig13()
+    pub = PUBLISHED["fig13"]
+    rows = _angle_rows("000 Fig. 13 (f/r = 1e-3)", pub["deviation_deg"], d["deviation_rad"], d["band"])
+    for r in rows:
+        r["note"] += "; published values exceed the paper's own eq 32 bound 2(R/e)(f/r) = 23.7 deg" \
+            if r["published"] > 23.7 else ""
+    return rows
+
+
+def compare_fig16(data=None) -> list:
+    d = data or compute_fig16()
+    pub = PUBLISHED["fig16"]
+    sim = sorted(np.abs(d["deviation_rad"]))[::-1]
+    eq = sorted(np.abs(d["band"]["eq_deviation_rad"]))[::-1]
+    rows = []
+    for i, p in enumerate(pub["deviation_deg"]):
+        ours = math.degrees(sim[i])
+        ok = abs(p - math.degrees(eq[i])) <= 1.2
+        rows.append(_row(f"000 Fig. 16 d_alpha{i + 1} [deg] (larger first)", p, round(ours, 2),
+                         "+-1.2", ok, f"deterministic equilibrium {math.degrees(eq[i]):.1f} deg; the"
+                         " paper's own Table 4 (rho = 1 mm) gives 42.9 / 29.9"))
+    amp = d["amplitude_m"]
+    rows.append(_row("000 Fig. 16 residual amplitude [mm]", 1.2, round(amp * 1e3, 3), "+-10 %",
+                     abs(amp * 1e3 - 1.2) <= 0.12, "max(|x|, |y|) over the last 0.5 s; |W| g = rho-"
+                     "driven; Table 4 (rho = 1 mm) gives A = 1 mm"))
+    return rows
+
+
+def compare_fig18(data=None) -> list:
+    d = data or compute_fig18()
+    pub = PUBLISHED["fig18"]
+    rows = [_row("000 eq 49 bound [rad]", 0.071, round(d["eq49_bound_rad"], 4), "+-0.0005",
+                 abs(d["eq49_bound_rad"] - 0.071) <= 5e-4, "F cos(gamma)/(Me sin(2pi/3) w^2), F = 70 N")]
+    dev = np.abs(d["deviation_rad"])
+    for i in range(2):
+        rows.append(_row(f"000 Fig. 18 d_alpha{i + 1} [rad]", pub["deviation_rad"][i],
+                         round(float(dev[i]), 3), "+-0.03", abs(dev[i] - pub["deviation_rad"][i]) <= 0.03,
+                         "start-dependent: the tub sticks wherever the residual force drops below the "
+                         "friction; both the paper's and our runs exceed eq 49, which checks only x"))
+    return rows
+
+
+def compare_table(which: int, data=None) -> list:
+    d = data or compute_table(which)
+    pub = PUBLISHED[f"table{which}"]
+    rows = []
+    for rho, (A, d1, d2, rme) in pub["rows"].items():
+        r = d[rho]
+        lab = f"000 Table {which} rho = {rho * 1e3:g} mm"
+        rows += _angle_rows(lab, (d1, d2), r["deviation_rad"], r["band"])
+        b = r["band"]
+        U = 0.05
+        lo = 1 - b["max_residual_kg_m"] / U
+        hi = 1 - max(b["eq_residual_kg_m"] - (b["max_residual_kg_m"] - b["eq_residual_kg_m"]), 0.0) / U
+        rows.append(_row(f"{lab} RMe [%]", rme * 100, round(r["rme"] * 100, 1),
+                         f"[{lo * 100:.1f}, {min(hi, 1) * 100:.1f}]", lo - 1e-3 <= rme <= min(hi, 1) + 1e-3,
+                         "range of RMe over the dead band"))
+        amax = b["max_residual_kg_m"] * b["gain_max"]
+        amin = max(b["eq_residual_kg_m"] - (b["max_residual_kg_m"] - b["eq_residual_kg_m"]), 0.0) * b["gain_max"]
+        rows.append(_row(f"{lab} A [mm]", A * 1e3, round(r["amplitude_m"] * 1e3, 3),
+                         f"[{amin * 1e3:.3f}, {amax * 1e3:.3f}] +- 0.01",
+                         amin - 1e-5 <= A <= amax + 1e-5,
+                         "range of the residual amplitude over the dead band (ours includes the "
+                         "gravity wobble)"))
+    return rows
+
+
+def compare(which=("fig13", "fig16", "fig18", "table3", "table4")) -> list:
+    """All comparison rows of the requested studies."""
+    fns = {"fig13": compare_fig13, "fig16": compare_fig16, "fig18": compare_fig18,
+           "table3": lambda: compare_table(3), "table4": lambda: compare_table(4)}
+    rows = []
+    for w in which:
+        rows += fns[w]()
+    return rows
