@@ -1,0 +1,159 @@
+"""Kinetostatic steady state of a liquid (Leblanc) balancer on a vertical rotor (seed 001).
+
+Notation of 001: rotor unbalance D (angle 0), liquid unbalance D0 at angle alpha from D,
+k = D0/D, resultant D_c; the eccentricities e = D/(M+m), e_c = D_c/(M+m); delta is the rotor's
+phase angle between the unbalance force and the deflection ("external resistance").
+
+All functions are pure and vectorise over numpy arrays.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..models._validate import ParameterError, positive
+
+__all__ = ["alpha0", "alpha0_residual", "balancing_efficiency", "eccentricity_ratio",
+           "friction_angle", "friction_force", "friction_tan_bound", "jeffcott_phase",
+           "residual_lambda0"]
+
+
+def _k(k):
+    k = np.asarray(k, dtype=float)
+    if np.any(~np.isfinite(k)) or np.any(k <= 0.0):
+        raise ParameterError("k", k.tolist(), "k = D0/D must be > 0 and finite")
+    return k
+
+
+def eccentricity_ratio(k, alpha):
+    """e_c / e = sqrt(1 + 2 k cos(alpha) + k^2) [-] (001, formula before eq 1).
+
+    Parameters
+    ----------
+    k : float or array
+        D0/D [-].
+    alpha : float or array
+        Angle of the liquid's unbalance from the rotor's [rad].
+    """
+    k = np.asarray(k, dtype=float)
+    return np.sqrt(np.maximum(1.0 + 2.0 * k * np.cos(alpha) + k * k, 0.0))
+
+
+def alpha0(delta, k):
+    """Liquid equilibrium angle alpha0 [rad] in (pi/2, pi] (001 eq 3).
+
+    alpha0 = pi - arccos((sin^2 d + sqrt((sin^2 d - 1)(sin^2 d - k^2))) / k), the root of
+    001 eq 2 that 001 selects. 001 states it for delta in (0, pi/2) and k >= sin(delta); it
+    depends on sin^2(delta) only, so it is used unchanged for delta in (pi/2, pi). Where
+    k < |sin delta| (001 eq 2 has no root) the square root is clipped at 0 (our choice: the
+    continuous extension, cos alpha0 = -sin^2(delta)/k clipped to [-1, 1]).
+
+    Parameters
+    ----------
+    delta : float or array
+        Rotor phase angle [rad].
+    k : float or array
+        D0/D [-] > 0.
+    """
+    k = _k(k)
+    s2 = np.sin(delta) ** 2
+    root = np.sqrt(np.maximum((s2 - 1.0) * (s2 - k * k), 0.0))
+    return math.pi - np.arccos(np.clip((s2 + root) / k, -1.0, 1.0))
+
+
+def alpha0_residual(alpha, delta, k):
+    """Residual of 001 eq 2: sin(alpha) - sin(delta) sqrt(1 + 2k cos(alpha) + k^2)/k [-]."""
+    k = _k(k)
+    return np.sin(alpha) - np.sin(delta) * eccentricity_ratio(k, alpha) / k
+
+
+def residual_lambda0(k, alpha):
+    """lambda0 = k / sqrt(1 + 2 k cos(alpha0) + k^2) = D0/D_c [-] (001 eq 4).
+
+    Infinite (complete balance) at k = 1, alpha0 = pi (001, after eq 4).
+    """
+    k = _k(k)
+    with np.errstate(divide="ignore"):
+        return k / eccentricity_ratio(k, alpha)
+
+
+def friction_force(mu, radius, arc_deg, omega, offset):
+    """Laminar viscous friction force F_T [N] on the liquid (001 eq 5).
+
+    F_T = 8 pi mu l v with l = pi R xi/180 (wetted arc) and v = omega |O1C| (Hagen-Poiseuille,
+    lambda = 64/Re, as 001 derives it): F_T = 8 pi^2 mu R xi omega |O1C| / 180.
+
+    Parameters
+    ----------
+    mu : float
+        Dynamic viscosity [Pa*s] > 0.
+    radius : float
+        Chamber radius R [m].
+    arc_deg : float
+        Arc xi occupied by the liquid [deg].
+    omega : float
+        Rotation speed [rad/s].
+    offset : float
+        |O1C|, distance of the liquid's mass centre from the rotation axis [m].
+    """
+    if np.any(np.asarray(mu) <= 0):
+        raise ParameterError("mu", mu, "viscosity must be > 0")
+    return 8.0 * math.pi ** 2 * np.asarray(mu) * radius * arc_deg * omega * offset / 180.0
+
+
+def friction_angle(mu, radius, arc_deg, liquid_mass, omega):
+    """Friction angle beta [rad] of the liquid, sin(beta) = F_T / F (001 eq 6).
+
+    sin(beta) = 8 pi^2 mu R xi / (180 m omega), with F = m omega^2 |O1C| the centrifugal force
+    (|O1C| cancels). With mu = rho nu and m = rho V the density cancels: beta depends on the
+    kinematic viscosity only -- 001's "viscosity matters more than density". Where
+    sin(beta) >= 1 friction holds the liquid and beta = pi/2 (our clip).
+
+    Parameters
+    ----------
+    mu : float or array
+        Dynamic viscosity [Pa*s] > 0.
+    radius : float
+        R [m].
+    arc_deg : float
+        xi [deg].
+    liquid_mass : float
+        m = rho V [kg] > 0.
+    omega : float or array
+        [rad/s] > 0.
+    """
+    if np.any(np.asarray(mu) <= 0):
+        raise ParameterError("mu", mu, "viscosity must be > 0")
+    positive("liquid_mass", liquid_mass)
+    s = 8.0 * math.pi ** 2 * np.asarray(mu) * radius * arc_deg / (180.0 * liquid_mass
+                                                                   * np.asarray(omega, float))
+    return np.arcsin(np.clip(s, 0.0, 1.0))
+
+
+def friction_tan_bound(mu, radius, arc_deg, liquid_mass, omega):
+    """|tan(beta)| bound of 001 eq 7: s / sqrt(1 - s^2), s = sin(beta) of eq 6 [-]."""
+    return np.tan(friction_angle(mu, radius, arc_deg, liquid_mass, omega))
+
+
+def jeffcott_phase(ratio, zeta):
+    """Phase angle delta [rad] of a damped rotor, tan d = 2 zeta r / (1 - r^2) (textbook).
+
+    Parameters
+    ----------
+    ratio : float or array
+        omega / omega_n [-].
+    zeta : float or array
+        Damping ratio [-].
+    """
+    r = np.asarray(ratio, dtype=float)
+    return np.arctan2(2.0 * np.asarray(zeta) * r, 1.0 - r * r)
+
+
+def balancing_efficiency(k, delta, beta=0.0):
+    """e / e_c for the liquid at alpha0(delta, k) - beta (001 eq 3 and 6) [-].
+
+    The ratio of the eccentricity without and with the liquid, i.e. 003's empirical efficiency
+    (amplitude without / with liquid) when the liquid does not change the rotor's dynamics.
+    """
+    return 1.0 / eccentricity_ratio(k, alpha0(delta, k) - np.asarray(beta))

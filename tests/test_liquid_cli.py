@@ -1,0 +1,76 @@
+"""CLI of the liquid balancer (typer app, before registration as ``autobalance liquid``)."""
+import json
+import subprocess
+import sys
+
+import pytest
+from typer.testing import CliRunner
+
+from autobalance.cli_liquid import app
+from autobalance.config import ConfigError
+from autobalance.models import ParameterError
+
+runner = CliRunner()
+
+
+def _json(args):
+    r = runner.invoke(app, args + ["--json"])
+    assert r.exit_code == 0, r.output
+    return json.loads(r.stdout)
+
+
+def test_speeds_json_reproduces_003_with_g10():
+    """003 eq 6 numbers (tolerance: half a unit of the last printed digit, g = 10 m/s^2)."""
+    d = _json(["speeds", "--volume", "100, 200, 300 ml", "--g", "10 m/s^2"])
+    w0 = [r["omega_0_rad_s"] for r in d["speeds"]]
+    assert w0 == pytest.approx([28.0, 19.8, 16.2], abs=0.05 + 0.45 * (w0[0] > 27))
+    assert d["speeds"][0]["bottom_touch_rad_s"] == pytest.approx(0.89, abs=0.005)
+
+
+def test_surface_json_and_plot(tmp_path):
+    png = tmp_path / "s.png"
+    d = _json(["surface", "--omega", "0, 0.6, 10, 28, 60 1/s", "--plot", str(png)])
+    assert [s["mode"] for s in d["surfaces"]] == [1, 2, 3, 4, 4]  # 28 > omega_0 = 27.75 (standard g)
+    for s in d["surfaces"]:
+        assert s["volume_check_m3"] == pytest.approx(d["volume_m3"], rel=1e-9)
+    assert png.stat().st_size > 10_000
+
+
+def test_modes_and_kinetostatic_json():
+    d = _json(["modes", "--omega", "0:40 1/s:5"])
+    assert d["mode"] == sorted(d["mode"]) and d["mode"][-1] == 4
+    k = _json(["kinetostatic", "--delta", "10, 30 deg", "--k", "1.2", "--liquid", "viscous_97"])
+    assert all(abs(x) < 1e-9 for x in k["eq2_residual"]) and k["beta_deg"] > 5
+
+
+def test_simulate_json_and_plots(tmp_path):
+    png = tmp_path / "r.png"
+    d = _json(["simulate", "--omega", "10:90 1/s:9", "--plot", str(png)])
+    assert d["k"] == pytest.approx(1.0) and len(d["amplitude_m"]) == 9
+    assert png.stat().st_size > 10_000
+    f = _json(["simulate", "--omega", "54 1/s", "--fill-sweep", "--plot", str(tmp_path / "f.png")])
+    assert all(s["optimum_volume_m3"] == pytest.approx(150e-6) for s in f["fill_sweep"][1:])
+
+
+@pytest.mark.parametrize("args, exc", [
+    (["surface", "--volume", "7 l"], ParameterError),          # larger than the chamber
+    (["surface", "--radius", "-0.2 m"], ParameterError),       # negative size
+    (["speeds", "--volume", "100 kg"], ConfigError),           # wrong unit
+    (["kinetostatic", "--k", "-1"], ParameterError),
+    (["simulate", "--liquid", "honey"], ConfigError),
+    (["simulate", "--placement", "magic"], ParameterError),
+])
+def test_bad_input_raises_one_line(args, exc):
+    r = runner.invoke(app, args)
+    assert isinstance(r.exception, exc)
+    assert "\n" not in str(r.exception)
+
+
+def test_standalone_bad_input_exit_2_no_traceback():
+    """Subprocess: one ``error:`` line, exit code 2 (cli.py's main() does the same once the
+    sub-app is registered as ``autobalance liquid``)."""
+    p = subprocess.run([sys.executable, "-m", "autobalance.cli_liquid", "surface", "--volume",
+                        "7 l"], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 2
+    assert p.stderr.startswith("error: volume") and p.stderr.count("\n") == 1
+    assert "Traceback" not in p.stderr
