@@ -243,8 +243,11 @@ def simulate(preset: Annotated[str, typer.Argument(help="Bench preset or .toml."
             title = (f"R = {bal.chamber.radius:g} m, V = {bal.volume * 1e6:.4g} ml "
                      f"{bal.liquid.name}, D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
             if fill:
+                # the fill sweep varies V: name the fixed quantities only
+                fixed = (f"R = {bal.chamber.radius:g} m, {bal.liquid.name}, "
+                         f"D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
                 plot_fill(plot, sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
-                          "Amplitude vs fill (003 Fig. 5)\n" + title)
+                          "Amplitude vs fill (003 Fig. 5)\n" + fixed)
             else:
                 plot_response(plot, st, w0, wn, ru, title)
             out["plot"] = plot
