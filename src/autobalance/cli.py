@@ -26,7 +26,7 @@ from .models import ParameterError  # noqa: F401
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
                   help="Simulate and design passive automatic balancers: presets, show, simulate, "
-                       "response, sweep, analyze, liquid, demo.")
+                       "response, sweep, analyze, liquid, reproduce, demo.")
 
 SetOpt = Annotated[Optional[list[str]], typer.Option(
     "--set", "-s", metavar="PATH=VALUE",
@@ -349,10 +349,17 @@ def _register_subapps() -> None:
     """Sub-command groups living in their own modules."""
     from .cli_analyze import app as analyze_app
     from .cli_liquid import app as liquid_app
+    from .cli_reproduce import app as reproduce_app
+    from .cli_reproduce import immobility_cmd
+
+    analyze_app.command("immobility")(immobility_cmd)
 
     app.add_typer(analyze_app, name="analyze",
                   help="Washer analysis (seed 000): response, vibratory forces, equilibria, "
                        "error bounds, tolerance design, kinetic-static model, studies.")
+    app.add_typer(reproduce_app, name="reproduce",
+                  help="Reproduce the seeds' studies: 004 TSR single run, Monte Carlo, unbalance "
+                       "sweep, speed profile, plateau map, immobility (--quick / --full).")
     app.add_typer(liquid_app, name="liquid",
                   help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "
                        "entrainment speeds, kinetostatics, run-up simulation.")

@@ -1,0 +1,169 @@
+"""Figures of the seed-004 TSR studies (autobalance.studies.tsr_004): read the study datasets,
+compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
+
+* :func:`plot_single` - 004 Fig. 4: amplitude with/without balancer, ball positions, COG (grade);
+* :func:`plot_monte_carlo` - Fig. 5-6: PDFs of G_STD and G_TSR, each run's TSR vs STD grade;
+* :func:`plot_unbalance` - Fig. 7, 11-12: 5/95 % isolines against G_ini, operating boundaries;
+* :func:`plot_profile` - Fig. 9: 95 % isolines of STD, TSR and a 3x slower run-up;
+* :func:`plot_immobility` - Fig. 8, 10: immobility against speed for the mu_r x c_r sets;
+* :func:`plot_plateau` - Fig. 14-15: 95 % residual grade over lower plateau x G_ini.
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+G_LIMIT = 16.0
+
+
+def _fig(n, w=5.0, h=4.2, polar=()):
+    fig = Figure(figsize=(w * n, h), constrained_layout=True)
+    FigureCanvasAgg(fig)
+    axes = [fig.add_subplot(1, n, i + 1, projection="polar" if i in polar else None)
+            for i in range(n)]
+    return fig, axes
+
+
+def plot_single(ds) -> Figure:
+    """004 Fig. 4 from :func:`compute_single`."""
+    fig, (a1, a2, a3) = _fig(3, polar=(1, 2))
+    t = ds["time"].values
+    a1.plot(t, ds["amplitude"].values * 1e6, lw=0.8, label="with balancer")
+    a1.plot(t, ds["amplitude_no_balancer"].values * 1e6, "--", lw=0.8, label="without balancer")
+    a1.set_xlabel("time [s]")
+    a1.set_ylabel("amplitude [um]")
+    ax2 = a1.twinx()
+    ax2.plot(t, ds["speed"].values / (2 * np.pi), "k:", lw=0.8)
+    ax2.set_ylabel("speed [Hz]")
+    a1.legend(fontsize=8)
+    a1.set_title("amplitude")
+    for b in range(ds.sizes["ball"]):
+        a2.plot(ds["ball_angle"].values[:, b], t, lw=0.8, label=f"ball {b + 1}")
+    a2.set_title("ball position (radius = time [s])", fontsize=9)
+    a2.legend(fontsize=7, loc="lower left")
+    G = ds["grade_G"].values
+    a3.plot(ds["cog_angle"].values, G, lw=0.8)
+    a3.plot(np.linspace(0, 2 * np.pi, 200), np.full(200, G_LIMIT), "r--", lw=0.8)
+    k = int(np.argmin(np.abs(t - ds.attrs["t_std_s"])))
+    a3.plot(ds["cog_angle"].values[0], G[0], "o", mfc="none", label=f"start G{G[0]:.1f}")
+    a3.plot(ds["cog_angle"].values[k], G[k], "ko", label=f"STD G{G[k]:.1f}")
+    a3.plot(ds["cog_angle"].values[-1], G[-1], "k*", ms=10, label=f"TSR G{G[-1]:.1f}")
+    a3.set_title("COG location (radius = G [mm/s])", fontsize=9)
+    a3.legend(fontsize=7, loc="lower left")
+    fig.suptitle(f"004 Fig. 4: single TSR run, G_ini = G{ds.attrs['G_ini']:.1f}")
+    return fig
+
+
+def plot_monte_carlo(ds) -> Figure:
+    """004 Fig. 5-6 from :func:`compute_monte_carlo`."""
+    fig, (a1, a2) = _fig(2)
+    ok = ds["status"].values == 0
+    s, t = ds["G_STD"].values[ok], ds["G_TSR"].values[ok]
+    gi = ds.attrs["G_ini"]
+    top = max(s.max(), t.max(), gi) * 1.05
+    bins = np.arange(0, top + 1, 1.0)
+    a1.hist(s, bins, density=True, color="0.6", alpha=0.8,
+            label=f"STD: {100 * np.mean(s <= G_LIMIT):.1f} % <= G16")
+    a1.hist(t, bins, density=True, histtype="step", color="k", lw=1.5,
+            label=f"TSR: {100 * np.mean(t <= G_LIMIT):.1f} % <= G16")
+    a1.axvline(gi, color="k", ls="--", lw=1, label=f"G_ini = G{gi:.1f}")
+    a1.axvline(G_LIMIT, color="r", ls=":", lw=1)
+    a1.set_xlabel("grade G [mm/s]")
+    a1.set_ylabel("probability density [s/mm]")
+    a1.legend(fontsize=8)
+    a1.set_title(f"PDF of G ({ok.sum()} runs)")
+    a2.scatter(s, t, s=5, alpha=0.5)
+    a2.plot([0, top], [0, top], "k:", lw=1)
+    a2.axhline(gi, color="k", ls="--", lw=1)
+    a2.axvline(gi, color="k", ls="--", lw=1)
+    a2.set_xlim(0, top)
+    a2.set_ylim(0, top)
+    a2.set_xlabel("G_STD [mm/s]")
+    a2.set_ylabel("G_TSR [mm/s]")
+    regs = ", ".join(f"{k} {100 * ds.attrs[f'region_{k}']:.1f}%" for k in ("I.A", "I.B", "II", "III", "IV"))
+    a2.set_title(regs, fontsize=8)
+    fig.suptitle("004 Fig. 5-6: start-position Monte Carlo")
+    return fig
+
+
+def plot_unbalance(ds) -> Figure:
+    """004 Fig. 7 (and 11-12 per case) from :func:`compute_unbalance`."""
+    cases = list(ds["case"].values)
+    fig, axes = _fig(len(cases))
+    G = ds["G_ini"].values
+    Gb = ds.attrs["G_balls"]
+    for ax, case in zip(axes, cases):
+        for proc, col in (("STD", "0.5"), ("TSR", "k")):
+            d = ds["grade_G"].sel(case=case, procedure=proc)
+            ax.plot(G, d.sel(percentile=95.0), color=col, lw=1.6, label=f"{proc} 95 %")
+            ax.plot(G, d.sel(percentile=5.0), color=col, lw=1.0, ls="--", label=f"{proc} 5 %")
+        ax.plot(G, G, "k:", lw=0.8, label="G = G_ini")
+        ax.plot(G, np.abs(G - Gb), "k-.", lw=0.8, label="balls out/in of phase")
+        ax.plot(G, G + Gb, "k-.", lw=0.8)
+        ax.axhline(G_LIMIT, color="r", lw=0.8)
+        ax.set_xlabel("initial unbalance G_ini [mm/s]")
+        ax.set_ylabel("residual G [mm/s]")
+        mr, cr = float(ds["mu_r"].sel(case=case)), float(ds["c_r"].sel(case=case))
+        ax.set_title(f"mu_r = {mr:g}, c_r = {cr:g}")
+        ax.legend(fontsize=7)
+    fig.suptitle("004 Fig. 7: residual grade against initial unbalance")
+    return fig
+
+
+def plot_profile(ds) -> Figure:
+    """004 Fig. 9 from :func:`compute_profile`."""
+    fig, (ax,) = _fig(1, w=6.0)
+    G = ds["G_ini"].values
+    for proc, st in (("STD", "0.5"), ("TSR", "k"), ("slow", "C1")):
+        ax.plot(G, ds["grade_G"].sel(procedure=proc, percentile=95.0), color=st, lw=1.6,
+                label=f"{proc} 95 %")
+    ax.plot(G, G, "k:", lw=0.8)
+    ax.axhline(G_LIMIT, color="r", lw=0.8)
+    ax.axvspan(10, 21, color="C1", alpha=0.1, label="004: slow worse in [G10, G21]")
+    ax.set_xlabel("initial unbalance G_ini [mm/s]")
+    ax.set_ylabel("residual G [mm/s]")
+    ax.legend(fontsize=8)
+    ax.set_title("004 Fig. 9: speed profile")
+    return fig
+
+
+def plot_immobility(ds) -> Figure:
+    """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1."""
+    fig, (ax,) = _fig(1, w=6.5)
+    f = ds["speed"].values
+    im = ds["immobility"]
+    for k, mr in enumerate(ds["mu_r"].values):
+        d = im.sel(mu_r=mr).values
+        line = None
+        if 1.0 in ds["c_r"].values:
+            line, = ax.plot(f, im.sel(mu_r=mr, c_r=1.0), lw=1.4, label=f"mu_r = {mr:g}")
+        ax.fill_between(f, d.min(axis=0), d.max(axis=0), alpha=0.2,
+                        color=line.get_color() if line is not None else None)
+    for x in (ds.attrs["plateau_hz"], ds.attrs["nominal_hz"]):
+        ax.axvline(x, color="k", ls="--", lw=0.8)
+    ax.axvline(ds.attrs["f_n_hz"], color="r", ls=":", lw=0.8)
+    ax.set_xlabel("speed [Hz]")
+    ax.set_ylabel("immobility [-]")
+    ax.set_title(f"004 Fig. 8/10: immobility, G_ini = G{ds.attrs['G_ini']:g} "
+                 f"(bands: c_r {', '.join(f'{c:g}' for c in ds['c_r'].values)})", fontsize=9)
+    ax.legend(fontsize=8)
+    return fig
+
+
+def plot_plateau(ds) -> Figure:
+    """004 Fig. 14-15 from :func:`compute_plateau`."""
+    cases = list(ds["case"].values)
+    fig, axes = _fig(len(cases))
+    for ax, case, ideal in zip(axes, cases, ds.attrs["ideal"]):
+        d = ds["grade_G_p95"].sel(case=case)
+        m = ax.pcolormesh(ds["G_ini"].values, ds["plateau_ratio"].values, d.values,
+                          cmap="Greys", shading="nearest")
+        fig.colorbar(m, ax=ax, label="95 % residual G [mm/s]")
+        ax.axhline(ideal, color="r", ls="--", lw=1, label=f"ideal {ideal:g}")
+        ax.set_xlabel("initial unbalance G_ini [mm/s]")
+        ax.set_ylabel("lower plateau / Omega_n [-]")
+        ax.set_title(f"case {case}")
+        ax.legend(fontsize=8)
+    fig.suptitle("004 Fig. 14-15: lower TSR plateau map")
+    return fig

@@ -1,0 +1,327 @@
+"""Seed-004 TSR studies (studies/tsr_004.py, cli_reproduce.py): quick variants only.
+
+Checks the comparison-row machinery, that every published number is compared (never silently
+skipped), the immobility closed form against the kernel, and the CLI end to end."""
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from autobalance.cli_reproduce import app
+from autobalance.studies import tsr_004 as t
+
+ROW_KEYS = {"quantity", "published", "computed", "tolerance", "ok", "note"}
+
+
+def _check_rows(rows):
+    assert rows
+    for r in rows:
+        assert set(r) == ROW_KEYS
+        assert isinstance(r["ok"], bool)
+        json.dumps(r, default=float)
+        if r["computed"] is None:          # not computed: must be reported as a miss
+            assert r["ok"] is False and "not computed" in r["note"]
+
+
+def _published_numbers(d):
+    """Every number in a PUBLISHED entry (source strings excluded)."""
+    if isinstance(d, dict):
+        return [x for k, v in d.items() if k != "source" for x in _published_numbers(v)]
+    if isinstance(d, (list, tuple)):
+        return [x for v in d for x in _published_numbers(v)]
+    return [d] if isinstance(d, (int, float)) else []
+
+
+# -- immobility: closed form vs kernel ---------------------------------------------------------
+@pytest.mark.parametrize("alpha", [(0.3, 2.0), (1.0, -2.5), (3.0, 3.6), (-1.2, 0.4)])
+@pytest.mark.parametrize("f_hz", [60.0, 94.2, 100.0, 167.0])
+def test_immobility_closed_form_equals_kernel(alpha, f_hz):
+    s = t._cfg().system
+    w = 2 * np.pi * f_hz
+    a = np.array(alpha)
+    lam, lim, acc = t.kernel_required_friction(s, w, a)
+    Ft = t.tangential_force(s, w, a)
+    R = s.balancer.race_radius
+    # required friction torque = -(driving torque F_t R), 004 eq 1 / eq 10 ball row
+    np.testing.assert_allclose(lam, -Ft * R, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(lim, 0.002 * s.balancer.masses * R * R * w * w, rtol=1e-12)
+    assert np.all(np.abs(acc) < 1e-9)       # steady orbit: the rotor does not accelerate
+    stuck = bool(np.all(np.abs(lam) <= lim))
+    assert stuck == bool(t.immobile_mask(s, w, a))
+
+
+def test_steady_deflection_matches_pack_orbit():
+    from autobalance.core.pack import steady_orbit_start
+
+    s = t._cfg().system
+    a = np.array([0.4, 2.9])
+    for w in (300.0, 592.0, 1049.0):
+        x, y, _, _ = steady_orbit_start(s, w, a)
+        z = t.steady_deflection(s, w, a)
+        assert abs(z - complex(x, y)) < 1e-12 * max(abs(z), 1e-12)
+
+
+def test_immobility_limits_and_eq1_direction():
+    s = t._cfg().system
+    # far below resonance the deflection is tiny: nothing moves; near resonance most can
+    im = t.immobility(s, 2 * np.pi * np.array([30.0, 95.0]), n_conf=40)
+    assert im[0] == 1.0 and im[1] < 0.5
+    # 004 eq 1: the force drives a ball towards the deflection (gamma > 0 -> F_t > 0)
+    a = np.array([0.0, np.pi])
+    w = 2 * np.pi * 80.0
+    z = t.steady_deflection(s, w, a)
+    g = np.angle(z * np.exp(-1j * a))
+    assert np.all(np.sign(t.tangential_force(s, w, a)) == np.sign(np.sin(g)))
+
+
+def test_compute_immobility_rows_quick():
+    ds = t.compute_immobility(quick=True)
+    assert ds["immobility"].dims == ("mu_r", "c_r", "speed")
+    assert ds["immobility"].shape == (5, 4, 91)
+    rows = t.compare_immobility(ds)
+    _check_rows(rows)
+    assert len(rows) == 4
+
+
+# -- statistics helpers ------------------------------------------------------------------------
+def test_regions_partition_and_table2():
+    rng = np.random.default_rng(1)
+    s, u = rng.uniform(0, 40, 500), rng.uniform(0, 40, 500)
+    r = t.regions(s, u, 20.0)
+    assert math.isclose(sum(r.values()), 1.0)
+    # a hand case per region
+    assert t.regions([10], [12], 20)["I.A"] == 1 and t.regions([12], [10], 20)["I.B"] == 1
+    assert t.regions([25], [10], 20)["II"] == 1 and t.regions([25], [30], 20)["III"] == 1
+    assert t.regions([10], [25], 20)["IV"] == 1
+
+
+def test_valid_ranges_interpolation():
+    G = np.array([0.0, 10, 20, 30, 40, 50])
+    p95 = np.array([12.0, 20, 20, 14, 14, 30])
+    r, eff = t.valid_ranges(G, p95)
+    assert len(r) == 2
+    assert r[0] == (0.0, 5.0)
+    assert math.isclose(r[1][0], 20 + 10 * 4 / 6) and math.isclose(r[1][1], 40 + 10 * 2 / 16)
+    assert math.isclose(eff, (5 + (r[1][1] - r[1][0])) / 50)
+    assert t.valid_ranges(G, np.full(6, 30.0)) == ([], 0.0)
+    assert t.valid_ranges(G, np.full(6, 1.0)) == ([(0.0, 50.0)], 1.0)
+
+
+def test_share_tolerance_is_binomial():
+    # 2 sigma of the difference of two binomial shares, 1275 runs each
+    assert math.isclose(t._share_tol(0.85, 1275), 2 * math.sqrt(0.85 * 0.15 * 2 / 1275))
+
+
+def test_grade_conversion_roundtrip():
+    cfg = t._cfg()
+    s, w = cfg.system, cfg.spin.nominal_speed
+    U = t.grade_to_unbalance(20.0, s.total_mass, w)
+    assert math.isclose(float(t._grade(U, s.total_mass, w)), 20.0)
+    assert abs(float(t._grade(s.rotor.unbalance, s.total_mass, w)) - 20.0) < 0.5
+
+
+# -- every published number is compared ---------------------------------------------------------
+def test_unbalance_rows_cover_every_case_even_when_not_computed():
+    import xarray as xr
+
+    G = np.array([0.0, 10, 20, 30, 40, 50])
+    data = np.full((1, 6, 2, 3), 30.0)
+    data[0, :2, 1, 2] = 10.0                              # TSR p95 fine at G0-G10
+    ds = xr.Dataset({"grade_G": (("case", "G_ini", "procedure", "percentile"), data)},
+                    coords={"case": ["nominal"], "G_ini": G, "procedure": ["STD", "TSR"],
+                            "percentile": [5.0, 50.0, 95.0], "mu_r": ("case", [1.0]),
+                            "c_r": ("case", [1.0])})
+    ds.attrs.update({"grid_step": 10.0, "G_balls": 33.7})
+    rows = t.compare_unbalance(ds)
+    _check_rows(rows)
+    # 5 cases x 2 procedures x (range, efficiency)
+    assert len(rows) == 20
+    pub = [r["published"] for r in rows if "efficiency" in r["quantity"]]
+    want = [100 * v[p][1] for k, v in t.PUBLISHED["unbalance"].items() if k != "source"
+            for p in ("STD", "TSR")]
+    assert sorted(pub) == sorted(want)
+    missing = [r for r in rows if r["computed"] is None]
+    assert len(missing) == 16 and not any(r["ok"] for r in missing)
+    std_eff = next(r for r in rows if "mu_r=1 c_r=1 STD efficiency" in r["quantity"])
+    assert std_eff["computed"] == 0.0 and std_eff["ok"]       # '/' published, none computed
+
+
+def test_plateau_rows_cover_both_published_ideals():
+    import xarray as xr
+
+    ratios = np.array([0.98, 1.02, 1.06])
+    ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), np.ones((1, 3, 2)))},
+                    coords={"case": ["nominal"], "plateau_ratio": ratios, "G_ini": [5.0, 15.0]})
+    ds.attrs.update({"ideal": [1.02], "ratio_step": 0.04, "f_n_hz": 94.23})
+    rows = t.compare_plateau(ds)
+    _check_rows(rows)
+    pubs = [r["published"] for r in rows]
+    assert 1.02 in pubs and 1.03 in pubs
+    assert [r["ok"] for r in rows] == [True, True, False]   # c0.5 not computed -> miss
+
+
+def test_monte_carlo_rows_cover_table2_and_shares():
+    import xarray as xr
+
+    rng = np.random.default_rng(0)
+    n = 10
+    s = rng.uniform(5, 25, n * (n + 1) // 2)
+    ds = xr.Dataset({"G_STD": ("sample", s), "G_TSR": ("sample", s * 0.8),
+                     "status": ("sample", np.zeros(s.size, int))})
+    a = {"n": n, "runs": s.size, "G_ini": 20.2, "G_balls": 33.7, "mode_STD": 15.0, "mode_STD_se": 0.5,
+         "mode_TSR": 11.0, "mode_TSR_se": 0.5, "median_STD": 15.0, "median_TSR": 12.0,
+         "share_G16_STD": 0.85, "share_G16_TSR": 0.8, "success_STD": 0.95, "success_TSR": 0.98}
+    a.update({f"region_{k}": v for k, v in t.regions(s, s * 0.8, 20.2).items()})
+    ds.attrs.update(a)
+    rows = t.compare_monte_carlo(ds)
+    _check_rows(rows)
+    pub = t.PUBLISHED["monte_carlo"]
+    got = {r["published"] for r in rows}
+    for k, v in pub["regions"].items():
+        assert 100 * v in got
+    for k in ("share_G16_STD", "share_G16_TSR", "success_STD", "success_TSR"):
+        assert 100 * pub[k] in got
+    for k in ("mode_STD", "mode_TSR", "G_ini", "G_balls", "runs"):
+        assert pub[k] in got
+    assert len(rows) == 3 + 2 + 4 + 5
+
+
+def test_published_numbers_all_reach_a_row():
+    """Every number in PUBLISHED appears as a published value of some comparison row."""
+    import xarray as xr
+
+    rows = []
+    # single: from a synthetic dataset
+    single = xr.Dataset(attrs={"G_ini": 20.2, "G_start": 14.0, "G_peak_runup": 30.0, "G_STD": 18.0,
+                               "G_TSR": 5.0, "start_angles_deg": [0.0, 160.0], "family_n": 14,
+                               "family_match": 3, "family_peak_gt_ini": 10,
+                               "family_std_in_16_ini": 3, "family_tsr_le_16": 14})
+    rows += t.compare_single(single)
+    rows += t.compare_plateau(xr.Dataset(
+        {"grade_G_p95": (("case", "plateau_ratio", "G_ini"), np.ones((2, 2, 1)))},
+        coords={"case": ["nominal", "c0.5"], "plateau_ratio": [1.02, 1.03], "G_ini": [5.0]},
+        attrs={"ideal": [1.02, 1.03], "ratio_step": 0.01, "f_n_hz": 94.23}))
+    got = set()
+    for r in rows:
+        got.add(r["published"])
+    for k in ("G_ini", "G_start", "G_peak_runup", "G_STD", "G_TSR"):
+        assert t.PUBLISHED["single"][k] in got
+    for v in t.PUBLISHED["plateau"]["ideal"].values():
+        assert v in got
+
+
+# -- the studies themselves, quick variants --------------------------------------------------------
+def test_single_run_quick():
+    ds = t.compute_single(save_dt=0.05, n_family=12)
+    assert ds.attrs["status"] == "ok"
+    assert abs(ds.attrs["G_start"] - 14.0) < 1e-6
+    # without balancer the grade never changes; amplitude peaks at the resonance crossing
+    k = int(np.argmax(ds["amplitude_no_balancer"].values))
+    f = ds["speed"].values[k] / (2 * np.pi)
+    assert 85 < f < 100
+    rows = t.compare_single(ds)
+    _check_rows(rows)
+    assert len(rows) == 6
+    assert rows[0]["ok"] and rows[1]["ok"]
+
+
+@pytest.fixture(scope="module")
+def mc_quick():
+    return t.compute_monte_carlo(n=6, executor="serial")
+
+
+def test_monte_carlo_quick(mc_quick):
+    ds = mc_quick
+    assert ds.attrs["runs"] == 21 and ds.attrs["failed"] == 0
+    reg = sum(ds.attrs[f"region_{k}"] for k in ("I.A", "I.B", "II", "III", "IV"))
+    assert math.isclose(reg, 1.0)
+    rows = t.compare_monte_carlo(ds)
+    _check_rows(rows)
+    assert rows[0]["computed"] == 21 and rows[0]["ok"]
+
+
+def test_unbalance_and_profile_quick():
+    G = np.array([0.0, 20.0, 40.0])
+    ub = t.compute_unbalance(("nominal",), G=G, n=4)
+    assert ub["grade_G"].shape == (1, 3, 2, 3)
+    assert np.all(np.isfinite(ub["grade_G"].values))
+    p = ub["grade_G"].sel(case="nominal", percentile=95.0).values
+    assert np.all(p >= ub["grade_G"].sel(case="nominal", percentile=5.0).values)
+    _check_rows(t.compare_unbalance(ub))
+    pr = t.compute_profile(G=G, n=4, unbalance_ds=ub)
+    assert list(pr["procedure"].values) == ["STD", "TSR", "slow"]
+    np.testing.assert_array_equal(pr["grade_G"].sel(procedure="STD").values,
+                                  ub["grade_G"].sel(case="nominal", procedure="STD").values)
+    rows = t.compare_profile(pr)
+    _check_rows(rows)
+    assert len(rows) == 3
+
+
+def test_plateau_quick():
+    ds = t.compute_plateau(("nominal",), ratios=[1.02, 1.08], G=[10.0], n=3)
+    assert ds["grade_G_p95"].shape == (1, 2, 1)
+    assert ds.attrs["ideal"][0] in (1.02, 1.08)
+    rows = t.compare_plateau(ds)
+    _check_rows(rows)
+    assert rows[0]["ok"]                           # 100 Hz / f_n = 1.06
+
+
+# -- CLI ---------------------------------------------------------------------------------------------
+runner = CliRunner()
+
+
+def test_cli_immobility_json_and_out(tmp_path):
+    r = runner.invoke(app, ["immobility", "--json", "--out", str(tmp_path / "o"), "--mu-r", "0.5,1",
+                            "--c-r", "1,1.4"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["study"] == "immobility" and d["variant"] == "quick"
+    assert d["n_rows"] == len(d["rows"]) == 4
+    for k in ("data", "figure", "rows"):
+        assert (tmp_path / "o").joinpath(d["files"][k].split("/")[-1]).exists()
+    import xarray as xr
+
+    with xr.open_dataset(d["files"]["data"]) as ds:
+        assert ds["immobility"].shape[:2] == (2, 2)
+
+
+def test_cli_single_text(tmp_path):
+    r = runner.invoke(app, ["tsr-single", "--out", str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    assert "rows ok" in r.stdout and (tmp_path / "tsr-single.png").stat().st_size > 1000
+    rows = json.loads((tmp_path / "tsr-single_rows.json").read_text())["rows"]
+    assert len(rows) == 6
+
+
+def test_cli_monte_carlo_json(tmp_path):
+    r = runner.invoke(app, ["tsr-monte-carlo", "--n", "4", "--executor", "serial", "--json",
+                            "--out", str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["runs"] == 10 and d["n_rows"] == 14
+    # the sweep store is reused: a rerun computes nothing new and gives the same rows
+    r2 = runner.invoke(app, ["tsr-monte-carlo", "--n", "4", "--executor", "serial", "--json",
+                             "--out", str(tmp_path)])
+    assert json.loads(r2.stdout)["rows"] == d["rows"]
+
+
+@pytest.mark.parametrize("args,word", [
+    (["tsr-unbalance", "--cases", "bogus"], "--cases"),
+    (["tsr-plateau", "--cases", "mu0.5"], "--cases"),
+    (["tsr-monte-carlo", "--n", "0"], "--n"),
+    (["immobility", "--c-r", "-1"], "--c-r"),
+    (["immobility", "--g-ini", "-3"], "--g-ini"),
+])
+def test_cli_bad_input_one_line_exit_2(args, word):
+    r = runner.invoke(app, args)
+    assert r.exit_code == 2
+    out = r.output.strip()
+    assert out.startswith("error:") and word in out and "\n" not in out
+
+
+def test_cli_every_study_registered():
+    r = runner.invoke(app, ["--help"])
+    for name in t.STUDIES:
+        assert name in r.output
