@@ -370,3 +370,16 @@ def test_cli_bad_input_exit_2(args):
     r = runner.invoke(app, args)
     assert r.exit_code == 2
     assert r.stderr.startswith("error: ") and r.stderr.count("\n") == 1
+
+
+def test_cli_forces_damping_plot_fig7(tmp_path):
+    """000 Fig. 7 from the CLI: the one-ball force for suspension damping x0.5/1/2."""
+    from typer.testing import CliRunner
+
+    from autobalance.cli_analyze import app
+
+    out = tmp_path / "fig7.png"
+    r = CliRunner().invoke(app, ["forces", "washer_000", "--damping-plot", str(out), "--json"])
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.output)["damping_plot"] == str(out)
+    assert out.stat().st_size > 10_000

@@ -100,8 +100,14 @@ def response(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, ang
 
 @app.command()
 def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angles: AnglesOpt = None,
-           plot: PlotOpt = None, json_: JsonOpt = False) -> None:
-    """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: Fig. 6."""
+           plot: PlotOpt = None,
+           damping_plot: Annotated[Optional[Path], typer.Option(
+               "--damping-plot", help="Write 000 Fig. 7: the one-ball force for suspension "
+                                      "damping x0.5/1/2, above both and between the natural "
+                                      "frequencies.")] = None,
+           json_: JsonOpt = False) -> None:
+    """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: Fig. 6;
+    --damping-plot: Fig. 7."""
     with _guard():
         cfg = _cfg(source, set_)
         from .analysis.vibratory import force_jacobian, vibratory_components
@@ -117,6 +123,12 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
 
             wx, wy = cfg.system.natural_frequencies
             out["plot"] = _save(plot_vibratory_force(cfg.system, [w, 0.5 * (wx + wy)]), plot)
+        if damping_plot is not None:
+            from .plotting.washer import plot_vibratory_force_damping
+
+            wx, wy = cfg.system.natural_frequencies
+            out["damping_plot"] = _save(plot_vibratory_force_damping(
+                cfg.system, [w, 0.5 * (wx + wy)]), damping_plot)
     if json_:
         _print(out)
         return
