@@ -65,3 +65,24 @@ batch_size = 2
 kind = "start_grid"
 n = 10
 """
+
+
+def spec_of(text: str):
+    """A SweepSpec from TOML text."""
+    import tomllib
+
+    from autobalance.sweep import spec_from_dict
+    return spec_from_dict(tomllib.loads(text))
+
+
+def assert_bit_identical(a, b):
+    """Same data variables, dims, dtypes and bytes (not approx); same coordinates."""
+    assert set(a.data_vars) == set(b.data_vars)
+    assert dict(a.sizes) == dict(b.sizes)
+    for v in a.data_vars:
+        x, y = a[v], b[v]
+        assert x.dims == y.dims, v
+        assert x.dtype == y.dtype, v
+        assert x.values.tobytes() == y.values.tobytes(), f"{v} differs"
+    for c in a.coords:
+        assert np.array_equal(a[c].values, b[c].values), c

@@ -11,7 +11,7 @@ from autobalance.liquid import (WATER, Chamber, Liquid, LiquidBalancer, LiquidMo
                                 bottom_touch_speed, eccentricity_ratio, entrainment_speed,
                                 fill_sweep, free_surface, friction_angle, friction_force,
                                 jeffcott_phase, lid_touch_speed, liquid_volume, load_bench,
-                                load_liquids, mode_speeds, motion_mode, residual_lambda0,
+                                load_liquids, motion_mode, residual_lambda0,
                                 run_up, steady_response)
 from autobalance.models import ParameterError
 

@@ -7,7 +7,6 @@ import signal
 import subprocess
 import sys
 import time
-import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +20,7 @@ from autobalance.sweep.plan import separate
 
 from conftest import LONG_SWEEP as RESUMABLE  # noqa: E402
 from conftest import TINY_SWEEP as TINY  # noqa: E402
+from conftest import assert_bit_identical, spec_of  # noqa: E402
 
 SHORT_PROFILE = ('["profile.duration=12 s", "profile.runup_fraction=0.5", '
                  '"profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]')
@@ -32,8 +32,7 @@ def write(tmp_path: Path, text: str, name: str = "sweep.toml") -> Path:
     return p
 
 
-def spec_of(text: str):
-    return spec_from_dict(tomllib.loads(text))
+
 
 
 def run_main(*args, timeout=300):
@@ -51,17 +50,7 @@ def assert_one_line_error(stderr: str, *needles: str):
     assert "Traceback" not in stderr
 
 
-def assert_bit_identical(a, b):
-    """Same data variables, dims, dtypes and bytes (not approx); same coordinates."""
-    assert set(a.data_vars) == set(b.data_vars)
-    assert dict(a.sizes) == dict(b.sizes)
-    for v in a.data_vars:
-        x, y = a[v], b[v]
-        assert x.dims == y.dims, v
-        assert x.dtype == y.dtype, v
-        assert x.values.tobytes() == y.values.tobytes(), f"{v} differs"
-    for c in a.coords:
-        assert np.array_equal(a[c].values, b[c].values), c
+
 
 
 def snapshot(root: Path) -> dict:

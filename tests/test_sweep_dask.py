@@ -9,33 +9,21 @@ import subprocess
 import sys
 import threading
 import time
-import tomllib
 
-import numpy as np
 import pytest
 from distributed import Client, LocalCluster
 
-from autobalance.sweep import make_plan, open_sweep, spec_from_dict, sweep
+from autobalance.sweep import make_plan, open_sweep, sweep
 
 from conftest import LONG_SWEEP as LONGER  # noqa: E402
 from conftest import TINY_SWEEP as TINY  # noqa: E402
+from conftest import assert_bit_identical, spec_of  # noqa: E402
 
 
-def spec_of(text: str):
-    return spec_from_dict(tomllib.loads(text))
 
 
-def assert_bit_identical(a, b):
-    """Same data variables, dims, dtypes and bytes (not approx); same coordinates."""
-    assert set(a.data_vars) == set(b.data_vars)
-    assert dict(a.sizes) == dict(b.sizes)
-    for v in a.data_vars:
-        x, y = a[v], b[v]
-        assert x.dims == y.dims, v
-        assert x.dtype == y.dtype, v
-        assert x.values.tobytes() == y.values.tobytes(), f"{v} differs"
-    for c in a.coords:
-        assert np.array_equal(a[c].values, b[c].values), c
+
+
 
 
 def run_task_counts(cluster):

@@ -13,15 +13,13 @@ import json
 import math
 import sys
 import time
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
 import typer
 
-from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line, _print_json  # noqa: F401
-from .config import ConfigError, describe, list_presets, load_config, parse_quantity  # noqa: F401
-from .models import ParameterError  # noqa: F401
+from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line, _print_json
+from .config import ConfigError, describe, list_presets, load_config, parse_quantity
 
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,

@@ -16,7 +16,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from .cli_common import _clean, _fail, _guard, _print_json
+from .cli_common import _clean, _guard, _print_json
 from .config import ConfigError
 
 app = typer.Typer(name="reproduce", no_args_is_help=True, add_completion=False,

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models import ParameterError
 from ..models._validate import array as _array
 
 __all__ = ["GRADES", "grade", "grade_class", "permissible_eccentricity", "unbalance_for_grade"]

@@ -208,7 +208,6 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     f1 = np.zeros(n)
     ftmp = np.zeros(n)
     err = np.zeros(n)
-    ysave = np.zeros(n)
     lam = np.zeros(3 * N + 1)
     Mm = np.zeros((nq, nq))
     fv = np.zeros(nq)

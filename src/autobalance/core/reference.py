@@ -10,7 +10,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
-from .layout import N_S, P_FLAW, P_VSAT
+from .layout import P_FLAW, P_VSAT
 from .pack import initial_vector, pack_params, spin_arrays
 from .rhs import profile_segment, rhs
 

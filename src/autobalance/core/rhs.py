@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
