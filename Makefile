@@ -4,7 +4,10 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test bench clean
+.PHONY: setup run test bench browser validation clean
+
+# Debian's Chromium opens the HTML report in the tests (installed once, with sudo if not root).
+SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
 $(BIN)/python:
 	$(PY) -m venv $(VENV)
@@ -17,10 +20,18 @@ $(STAMP): pyproject.toml | $(BIN)/python
 setup: $(STAMP)
 
 run: setup
-	$(BIN)/autobalance demo --out out/
+	$(BIN)/autobalance reproduce all --quick --out out/
 
-test: setup
+test: setup browser
 	$(BIN)/python -m pytest -q
+
+browser:
+	@command -v chromium >/dev/null 2>&1 || { $(SUDO) apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq chromium >/dev/null; }
+
+# docs/VALIDATION.md is generated from the quick report's rows (tests/test_report.py checks it).
+validation: run
+	cp out/VALIDATION.md docs/VALIDATION.md
 
 bench: setup
 	$(BIN)/python benchmarks/run.py

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from autobalance.cli_reproduce import app
+from autobalance.cli import app
 from autobalance.studies import tsr_004 as t
 
-ROW_KEYS = {"quantity", "published", "computed", "tolerance", "ok", "note"}
+ROW_KEYS = {"key", "quantity", "published", "computed", "tolerance", "ok", "note"}
 
 
 def _check_rows(rows):
@@ -139,7 +139,7 @@ def test_unbalance_rows_cover_every_case_even_when_not_computed():
     # 5 cases x 2 procedures x (range, efficiency)
     assert len(rows) == 20
     pub = [r["published"] for r in rows if "efficiency" in r["quantity"]]
-    want = [100 * v[p][1] for k, v in t.PUBLISHED["unbalance"].items() if k != "source"
+    want = [100 * v[p]["efficiency"] for k, v in t.PUBLISHED["unbalance"].items() if k != "source"
             for p in ("STD", "TSR")]
     assert sorted(pub) == sorted(want)
     missing = [r for r in rows if r["computed"] is None]
@@ -183,9 +183,9 @@ def test_monte_carlo_rows_cover_table2_and_shares():
         assert 100 * v in got
     for k in ("share_G16_STD", "share_G16_TSR", "success_STD", "success_TSR"):
         assert 100 * pub[k] in got
-    for k in ("mode_STD", "mode_TSR", "G_ini", "G_balls", "runs"):
+    for k in ("mode_STD", "mode_TSR", "runs"):
         assert pub[k] in got
-    assert len(rows) == 3 + 2 + 4 + 5
+    assert len(rows) == 1 + 2 + 4 + 5
 
 
 def test_published_numbers_all_reach_a_row():
@@ -272,56 +272,65 @@ def test_plateau_quick():
 runner = CliRunner()
 
 
-def test_cli_immobility_json_and_out(tmp_path):
-    r = runner.invoke(app, ["immobility", "--json", "--out", str(tmp_path / "o"), "--mu-r", "0.5,1",
-                            "--c-r", "1,1.4"])
+def test_cli_immobility_json_and_plot(tmp_path):
+    png = tmp_path / "im.png"
+    r = runner.invoke(app, ["analyze", "immobility", "--json", "--plot", str(png), "--mu-r", "0.5,1",
+                            "--c-r", "1,1.4", "--n-conf", "24"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
-    assert d["study"] == "immobility" and d["variant"] == "quick"
-    assert d["n_rows"] == len(d["rows"]) == 4
-    for k in ("data", "figure", "rows"):
-        assert (tmp_path / "o").joinpath(d["files"][k].split("/")[-1]).exists()
-    import xarray as xr
-
-    with xr.open_dataset(d["files"]["data"]) as ds:
-        assert ds["immobility"].shape[:2] == (2, 2)
+    assert len(d["rows"]) == 4 and np.asarray(d["immobility"]).shape[:2] == (2, 2)
+    assert png.stat().st_size > 1000 and d["plot"] == str(png)
 
 
-def test_cli_single_text(tmp_path):
-    r = runner.invoke(app, ["tsr-single", "--out", str(tmp_path)])
+def test_cli_reproduce_single_target_text(tmp_path):
+    r = runner.invoke(app, ["reproduce", "004-fig4", "--out", str(tmp_path)])
     assert r.exit_code == 0, r.output
-    assert "rows ok" in r.stdout and (tmp_path / "tsr-single.png").stat().st_size > 1000
-    rows = json.loads((tmp_path / "tsr-single_rows.json").read_text())["rows"]
-    assert len(rows) == 6
+    assert "published quantities reproduced" in r.stdout
+    assert (tmp_path / "figures" / "004-fig4-tsr-single.png").stat().st_size > 1000
+    rep = json.loads((tmp_path / "report.json").read_text())
+    assert [x["id"] for x in rep["targets"]] == ["004-fig4"]
+    assert len(rep["targets"][0]["rows"]) == 6 and not rep["targets"][0]["unreported"]
 
 
-def test_cli_monte_carlo_json(tmp_path):
-    r = runner.invoke(app, ["tsr-monte-carlo", "--n", "4", "--executor", "serial", "--json",
-                            "--out", str(tmp_path)])
+def test_cli_reproduce_monte_carlo_json_resumes(tmp_path):
+    args = ["reproduce", "004-fig5-6-table2", "--executor", "serial", "--json", "--out", str(tmp_path)]
+    r = runner.invoke(app, args)
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
-    assert d["runs"] == 10 and d["n_rows"] == 14
+    tg = d["targets"][0]
+    assert tg["rows"][0]["computed"] == 78 and len(tg["rows"]) == 12
+    stores = sorted(p.name for p in (tmp_path / "stores").iterdir())
     # the sweep store is reused: a rerun computes nothing new and gives the same rows
-    r2 = runner.invoke(app, ["tsr-monte-carlo", "--n", "4", "--executor", "serial", "--json",
-                             "--out", str(tmp_path)])
-    assert json.loads(r2.stdout)["rows"] == d["rows"]
+    r2 = runner.invoke(app, args)
+    assert json.loads(r2.stdout)["targets"][0]["rows"] == tg["rows"]
+    assert sorted(p.name for p in (tmp_path / "stores").iterdir()) == stores
 
 
 @pytest.mark.parametrize("args,word", [
-    (["tsr-unbalance", "--cases", "bogus"], "--cases"),
-    (["tsr-plateau", "--cases", "mu0.5"], "--cases"),
-    (["tsr-monte-carlo", "--n", "0"], "--n"),
-    (["immobility", "--c-r", "-1"], "--c-r"),
-    (["immobility", "--g-ini", "-3"], "--g-ini"),
+    (["reproduce", "004-bogus"], "TARGET"),
+    (["reproduce", "004", "--workers", "0"], "--workers"),
+    (["reproduce", "004", "--executor", "threads"], "--executor"),
+    (["reproduce", "004", "--executor", "dask"], "--scheduler"),
+    (["analyze", "immobility", "--c-r", "-1"], "--c-r"),
+    (["analyze", "immobility", "--g-ini", "-3"], "--g-ini"),
 ])
-def test_cli_bad_input_one_line_exit_2(args, word):
+def test_cli_bad_input_one_line_exit_2(args, word, monkeypatch):
+    monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
     r = runner.invoke(app, args)
     assert r.exit_code == 2
     out = r.output.strip()
     assert out.startswith("error:") and word in out and "\n" not in out
 
 
-def test_cli_every_study_registered():
-    r = runner.invoke(app, ["--help"])
-    for name in t.STUDIES:
-        assert name in r.output
+def test_cli_reproduce_out_is_a_file(tmp_path):
+    f = tmp_path / "x"
+    f.write_text("keep")
+    r = runner.invoke(app, ["reproduce", "004-fig8-10", "--out", str(f)])
+    assert r.exit_code == 2 and "--out" in r.output and f.read_text() == "keep"
+
+
+def test_cli_every_target_listed():
+    r = runner.invoke(app, ["reproduce", "004", "--list"])
+    assert r.exit_code == 0
+    for tg in t.TARGETS:
+        assert tg.id in r.output

@@ -347,17 +347,13 @@ def _register_subapps() -> None:
     """Sub-command groups living in their own modules."""
     from .cli_analyze import app as analyze_app
     from .cli_liquid import app as liquid_app
-    from .cli_reproduce import app as reproduce_app
-    from .cli_reproduce import immobility_cmd
-
-    analyze_app.command("immobility")(immobility_cmd)
+    from .cli_reproduce import reproduce
 
     app.add_typer(analyze_app, name="analyze",
                   help="Washer analysis (seed 000): response, vibratory forces, equilibria, "
-                       "error bounds, tolerance design, kinetic-static model, studies.")
-    app.add_typer(reproduce_app, name="reproduce",
-                  help="Reproduce the seeds' studies: 004 TSR single run, Monte Carlo, unbalance "
-                       "sweep, speed profile, plateau map, immobility (--quick / --full).")
+                       "error bounds, tolerance design, kinetic-static model, studies; 004 "
+                       "immobility.")
+    app.command("reproduce")(reproduce)
     app.add_typer(liquid_app, name="liquid",
                   help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "
                        "entrainment speeds, kinetostatics, run-up simulation.")

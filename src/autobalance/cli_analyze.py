@@ -294,3 +294,45 @@ def washer_study(which: Annotated[str, typer.Argument(help="fig13, fig16, fig18,
         typer.echo(f"{'ok  ' if r['ok'] else 'MISS'} {r['quantity']}: published {r['published']}, "
                    f"ours {r['computed']} ({r['tolerance']})")
     typer.echo(f"{n_ok} of {len(rows)} within tolerance")
+
+
+def _floats(spec: str, name: str) -> tuple:
+    try:
+        vals = tuple(float(x) for x in spec.split(",") if x.strip())
+    except ValueError:
+        raise ConfigError(f"{name} = {spec!r}: expected comma-separated numbers, e.g. '0.5,1,2'") from None
+    if not vals or any(not (v > 0) for v in vals):
+        raise ConfigError(f"{name} = {spec!r}: expected positive numbers, e.g. '0.5,1,2'")
+    return vals
+
+
+@app.command("immobility")
+def immobility_cmd(g_ini: Annotated[float, typer.Option("--g-ini", help="Initial unbalance grade "
+                                                                        "[mm/s] (004: 20).")] = 20.0,
+                   mu_r: Annotated[str, typer.Option("--mu-r", help="Friction factors mu/mu_ref.")] = "0.25,0.5,1,2,5",
+                   c_r: Annotated[str, typer.Option("--c-r", help="Damping factors c/c_ref.")] = "0.5,0.6,1,1.4",
+                   n_conf: Annotated[int, typer.Option("--n-conf", help="Positions per ball.")] = 100,
+                   plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+    """004 Fig. 8/10: share of ball configurations at rest that cannot move, vs speed
+    (closed form, no time integration), with the rows checking 004's statements."""
+    from .studies.tsr_004 import compare_immobility, compute_immobility
+
+    with _guard():
+        if not (g_ini >= 0):
+            raise ConfigError(f"--g-ini = {g_ini}: must be >= 0 [mm/s]")
+        if n_conf < 2:
+            raise ConfigError(f"--n-conf = {n_conf}: must be an integer >= 2")
+        ds = compute_immobility(G_ini=g_ini, mu_r=_floats(mu_r, "--mu-r"), c_r=_floats(c_r, "--c-r"),
+                                n_conf=n_conf)
+        rows = compare_immobility(ds)
+        from .plotting.tsr import plot_immobility
+
+        fig = _save(plot_immobility(ds), plot) if plot else None
+    if json_:
+        _print({"G_ini_mm_s": g_ini, "speed_hz": ds["speed"].values,
+                "mu_r": ds["mu_r"].values, "c_r": ds["c_r"].values,
+                "immobility": ds["immobility"].values, "rows": rows, "plot": fig})
+        return
+    for r in rows:
+        typer.echo(f"{'ok  ' if r['ok'] else 'MISS'} {r['quantity']}: published {r['published']}, "
+                   f"ours {r['computed']} ({r['tolerance']})")

@@ -6,7 +6,8 @@ compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
 * :func:`plot_unbalance` - Fig. 7, 11-12: 5/95 % isolines against G_ini, operating boundaries;
 * :func:`plot_profile` - Fig. 9: 95 % isolines of STD, TSR and a 3x slower run-up;
 * :func:`plot_immobility` - Fig. 8, 10: immobility against speed for the mu_r x c_r sets;
-* :func:`plot_plateau` - Fig. 14-15: 95 % residual grade over lower plateau x G_ini.
+* :func:`plot_plateau` - Fig. 13-16: 95 % residual grade over lower plateau x G_ini;
+* :func:`plot_speed_profile` - Fig. 3: the standardised speed profile.
 """
 from __future__ import annotations
 
@@ -152,10 +153,14 @@ def plot_immobility(ds) -> Figure:
 
 
 def plot_plateau(ds) -> Figure:
-    """004 Fig. 14-15 from :func:`compute_plateau`."""
+    """004 Fig. 13-16 from :func:`compute_plateau`: upper row the map (Fig. 14-15), lower row
+    the 95 % residual grade against the plateau for each G_ini (Fig. 13 and 16 are such
+    slices)."""
     cases = list(ds["case"].values)
-    fig, axes = _fig(len(cases))
-    for ax, case, ideal in zip(axes, cases, ds.attrs["ideal"]):
+    fig = Figure(figsize=(5.0 * len(cases), 8.0), constrained_layout=True)
+    FigureCanvasAgg(fig)
+    for i, (case, ideal) in enumerate(zip(cases, ds.attrs["ideal"])):
+        ax = fig.add_subplot(2, len(cases), i + 1)
         d = ds["grade_G_p95"].sel(case=case)
         m = ax.pcolormesh(ds["G_ini"].values, ds["plateau_ratio"].values, d.values,
                           cmap="Greys", shading="nearest")
@@ -165,5 +170,31 @@ def plot_plateau(ds) -> Figure:
         ax.set_ylabel("lower plateau / Omega_n [-]")
         ax.set_title(f"case {case}")
         ax.legend(fontsize=8)
-    fig.suptitle("004 Fig. 14-15: lower TSR plateau map")
+        bx = fig.add_subplot(2, len(cases), len(cases) + i + 1)
+        for g in ds["G_ini"].values:
+            bx.plot(ds["plateau_ratio"].values, d.sel(G_ini=g).values, "o-", ms=3, lw=0.8,
+                    label=f"G_ini = {g:g}")
+        bx.axhline(G_LIMIT, color="r", ls=":", lw=0.8)
+        bx.axvline(ideal, color="r", ls="--", lw=1)
+        bx.set_xlabel("lower plateau / Omega_n [-]")
+        bx.set_ylabel("95 % residual G_TSR [mm/s]")
+        bx.legend(fontsize=7, ncol=2)
+    fig.suptitle("004 Fig. 13-16: lower TSR plateau")
+    return fig
+
+
+def plot_speed_profile(ds) -> Figure:
+    """004 Fig. 3 from :func:`autobalance.studies.tsr_004.compute_table1`: speed [Hz] against
+    time [s] with the STD and TSR read-outs."""
+    fig, (ax,) = _fig(1, w=7.0, h=3.6)
+    ax.plot(ds["time"].values, ds["speed"].values / (2 * np.pi), "k", lw=1.2)
+    f_n = ds.attrs["f_n_hz"]
+    ax.axhline(f_n, color="r", ls="--", lw=0.8, label=f"resonance {f_n:.1f} Hz")
+    for t, lab in zip(ds.attrs["checkpoints_s"], ("STD read-out", "TSR read-out")):
+        ax.axvline(t, color="C0", ls=":", lw=0.8)
+        ax.text(t, 5, f" {lab}", fontsize=8, rotation=90, va="bottom")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("speed [Hz]")
+    ax.set_title("004 Fig. 3: standardised speed profile (our reading)")
+    ax.legend(fontsize=8, loc="lower right")
     return fig

@@ -1,0 +1,153 @@
+"""Run reproduction targets and write the report: ``report.json``, ``report.html``,
+``VALIDATION.md``, figures (PNG + SVG) under ``figures/`` and data (NetCDF) under ``data/``.
+
+A target that raises is recorded with status ``error`` and its message; the others still run
+and the report is still written. A published number a target claims but does not report is
+listed as *unreported* (and counted): nothing is skipped silently. Sweep stores live under
+``<out>/stores`` and are reused on a rerun, so an interrupted ``--full`` run resumes.
+"""
+from __future__ import annotations
+
+import json
+import time
+import traceback
+from pathlib import Path
+from typing import Callable, Optional
+
+from .target import Context, claims, status
+
+__all__ = ["run_targets", "summarize", "write_report"]
+
+STATUSES = ("pass", "miss", "not computed")
+
+
+def _netcdf_safe(ds):
+    """Copy of ``ds`` that NetCDF accepts: list/dict/bool attrs as JSON text, object coords as str."""
+    from ..cli_common import _clean
+
+    clean = ds.copy()
+    clean.attrs = {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
+                   for k, v in ds.attrs.items() if v is not None}
+    for name in list(clean.variables):
+        var = clean[name]
+        var.attrs = {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
+                     for k, v in var.attrs.items() if v is not None}
+        if var.dtype == object:
+            clean = clean.assign({name: var.astype(str)}) if name in clean.data_vars else \
+                clean.assign_coords({name: var.astype(str)})
+    return clean
+
+
+def _save_data(data, out: Path, tid: str) -> list:
+    if data is None:
+        return []
+    items = data.items() if isinstance(data, dict) else [("", data)]
+    paths = []
+    for name, ds in items:
+        rel = Path("data") / f"{tid}{'-' + name if name else ''}.nc"
+        (out / rel).parent.mkdir(parents=True, exist_ok=True)
+        _netcdf_safe(ds).to_netcdf(out / rel)
+        paths.append(rel.as_posix())
+    return paths
+
+
+def _save_figures(figures: dict, out: Path, tid: str) -> list:
+    paths = []
+    for name, fig in figures.items():
+        stem = Path("figures") / f"{tid}-{name}"
+        (out / stem).parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(out / stem.with_suffix(".png"), dpi=100)
+        fig.savefig(out / stem.with_suffix(".svg"))
+        paths.append(stem.with_suffix(".png").as_posix())
+    return paths
+
+
+def _run_one(target, ctx: Context) -> dict:
+    from ..cli_common import _clean
+
+    rec = {"id": target.id, "paper": target.paper, "items": list(target.items),
+           "title": target.title, "notes": target.notes, "quick": target.quick,
+           "claims": claims(target), "rows": [], "figures": [], "data": [], "run_notes": "",
+           "error": None, "unreported": [], "unclaimed": [], "wall_time_s": 0.0}
+    if target.run is None:
+        rec["status"] = "nothing to compute"
+        return rec
+    t0 = time.perf_counter()
+    try:
+        outcome = target.run(ctx)
+        rows = _clean(outcome.rows)
+        for r in rows:
+            r["status"] = status(r)
+        rec.update(rows=rows, run_notes=outcome.notes)
+        if ctx.out is not None:
+            rec["figures"] = _save_figures(outcome.figures, Path(ctx.out), target.id)
+            rec["data"] = _save_data(outcome.data, Path(ctx.out), target.id)
+        keys = [r.get("key") for r in rows]
+        rec["unreported"] = [k for k in rec["claims"] if k not in keys]
+        rec["unclaimed"] = [k for k in keys if k not in rec["claims"]]
+        rec["status"] = "ran"
+        if rec["unclaimed"]:
+            rec["status"] = "error"
+            rec["error"] = f"rows without a published claim: {', '.join(map(str, rec['unclaimed']))}"
+    except Exception as exc:                      # recorded in the report; the run goes on
+        rec["status"] = "error"
+        rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"
+        rec["traceback"] = traceback.format_exc(limit=6)
+        rec["unreported"] = list(rec["claims"])
+    rec["wall_time_s"] = round(time.perf_counter() - t0, 2)
+    return rec
+
+
+def _counts(recs) -> dict:
+    c = {"targets": len(recs), "published": 0, "pass": 0, "miss": 0, "not computed": 0,
+         "unreported": 0, "errors": 0}
+    for rec in recs:
+        c["published"] += len(rec["claims"])
+        c["unreported"] += len(rec["unreported"])
+        c["errors"] += rec["status"] == "error"
+        for r in rec["rows"]:
+            if r.get("key") in rec["claims"]:
+                c[r["status"]] += 1
+    return c
+
+
+def summarize(recs) -> dict:
+    """Counts per paper and in total: published claims, pass, miss, not computed, unreported."""
+    from .registry import PAPERS
+
+    papers = {p: _counts([r for r in recs if r["paper"] == p]) for p in PAPERS
+              if any(r["paper"] == p for r in recs)}
+    return {"papers": papers, "total": _counts(recs)}
+
+
+def run_targets(targets, ctx: Context, progress: Optional[Callable[[int, int, dict], None]] = None) -> dict:
+    """Run ``targets`` in order and return the report dict (nothing written)."""
+    from .. import __version__
+
+    t0 = time.perf_counter()
+    recs = []
+    for i, target in enumerate(targets):
+        rec = _run_one(target, ctx)
+        recs.append(rec)
+        if progress is not None:
+            progress(i + 1, len(targets), rec)
+    return {"autobalance_version": __version__, "variant": "quick" if ctx.quick else "full",
+            "wall_time_s": round(time.perf_counter() - t0, 1),
+            "out": None if ctx.out is None else str(ctx.out),
+            "summary": summarize(recs), "targets": recs}
+
+
+def write_report(report: dict, out: Path) -> dict:
+    """Write report.json, report.html and VALIDATION.md into ``out``; returns their paths."""
+    from ..cli_common import _clean
+    from .html import render_html
+    from .markdown import render_markdown
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = {"json": out / "report.json", "html": out / "report.html",
+             "markdown": out / "VALIDATION.md"}
+    paths["json"].write_text(json.dumps(_clean(report), indent=1, allow_nan=False))
+    paths["html"].write_text(render_html(report), encoding="utf-8")
+    paths["markdown"].write_text(render_markdown(report), encoding="utf-8")
+    return {k: str(v) for k, v in paths.items()}
