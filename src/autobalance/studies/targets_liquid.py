@@ -248,7 +248,7 @@ def _run_003_speeds(ctx: Context) -> Outcome:
                                 ("entrainment ω0 (003 eq 6)", w0, [100, 200, 300],
                                  [28.0, 19.8, 16.2]))]
     fig = lp.curves_figure(pan, f"003 eq 4 and eq 6: R = {R:g} m, h = {h:g} m")
-    return Outcome(rows, {"003 eq 4-6": fig}, ds,
+    return Outcome(rows, {"eq4_6": fig}, ds,
                    f"closed forms of 003 eq 4 and 6 at g = 10 and 9.80665 m/s^2; figure on "
                    f"{vols.size} volumes")
 
@@ -331,7 +331,7 @@ def _run_003_fig4(ctx: Context) -> Outcome:
                     coords={"omega_rad_s": speeds, "r_m": r},
                     attrs={"source": "003 eq 3-5", "volume_m3": V, "radius_m": R,
                            "height_m": h, "g_m_s2": g, "regime_codes": "0=A 1=B 2=C 3=D"})
-    return Outcome(rows, {"003 Fig. 4": fig}, ds,
+    return Outcome(rows, {"fig4": fig}, ds,
                    f"closed-form free surface; volume check on {len(errs)} cases")
 
 
@@ -418,7 +418,7 @@ def _run_003_fig5(ctx: Context) -> Outcome:
                             "volume_ml": vml},
                     attrs={"source": "003 Fig. 5 (steady response of the reduced-order model)",
                            "omega_r_rad_s": wr, "unbalance_kg_m": b.rotor.unbalance})
-    return Outcome(rows, {"003 Fig. 5": fig}, ds,
+    return Outcome(rows, {"fig5": fig}, ds,
                    f"steady response on the 50 ml grid: {amp.size} points")
 
 
@@ -478,7 +478,7 @@ def _run_003_fig6(ctx: Context) -> Outcome:
                             "omega_ratio": list(FIG5_RATIOS)},
                     attrs={"source": "003 Fig. 6 (steady response of the reduced-order model)",
                            "omega_r_rad_s": wr})
-    return Outcome(rows, {"003 Fig. 6": fig}, ds,
+    return Outcome(rows, {"fig6": fig}, ds,
                    f"steady response, {eff.size} points; fills {fills} ml for D = {Ds} g*cm")
 
 
@@ -575,7 +575,7 @@ def _run_003_fig7(ctx: Context) -> Outcome:
                     coords={"volume_ml": [150.0, V / ML], "omega_rad_s": ws, "t_s": ru.t},
                     attrs={"source": "003 Fig. 7 (reduced-order model)", "omega_0_rad_s": w0,
                            "k": k, "engagement_ratio": b.model.engagement_ratio})
-    return Outcome(rows, {"003 Fig. 7": fig}, ds,
+    return Outcome(rows, {"fig7": fig}, ds,
                    f"steady response on {ws.size} speeds (150 and 300 ml), run-up "
                    f"0-{b.omega_end:g} 1/s in {b.duration:g} s ({ru.t.size} samples)")
 
@@ -626,7 +626,7 @@ def _run_001_eq34(ctx: Context) -> Outcome:
     ds = xr.Dataset({"alpha0_deg": (("k", "delta_deg"), ad),
                      "efficiency": (("k", "delta_deg"), ef)},
                     coords={"k": ks, "delta_deg": dd}, attrs={"source": "001 eq 3-4"})
-    return Outcome(rows, {"001 eq 3-4": fig}, ds, f"closed forms on {d.size} phase angles")
+    return Outcome(rows, {"eq3_4": fig}, ds, f"closed forms on {d.size} phase angles")
 
 
 # -- 001 eq 5-7: laminar friction ---------------------------------------------------------------
@@ -680,7 +680,7 @@ def _run_001_eq57(ctx: Context) -> Outcome:
                     coords={"liquid": np.array(names, dtype="U"), "omega_rad_s": ws},
                     attrs={"source": "001 eq 6", "radius_m": R, "arc_deg": b.balancer.arc_deg,
                            "volume_m3": b.balancer.volume})
-    return Outcome(rows, {"001 eq 6": fig}, ds, "closed forms; random algebra check")
+    return Outcome(rows, {"eq6": fig}, ds, "closed forms; random algebra check")
 
 
 # -- 001 Fig. 3-6: experimental trends -----------------------------------------------------------
@@ -765,7 +765,7 @@ def _run_001_fig36(ctx: Context) -> Outcome:
                     coords={"liquid": np.array(names, dtype="U"), "omega_rad_s": ws},
                     attrs={"source": "001 Fig. 3-6 (reduced-order model, bench_003)",
                            "unbalance_kg_m": D, "radius_m": R})
-    return Outcome(rows, {"001 Fig. 3-5": f35, "001 Fig. 6": f6}, ds,
+    return Outcome(rows, {"fig3_5": f35, "fig6": f6}, ds,
                    f"steady response of {len(names)} liquids on {ws.size} speeds")
 
 
