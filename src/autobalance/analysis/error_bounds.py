@@ -26,7 +26,7 @@ from .vibratory import _speed, force_jacobian, gain_phase
 
 __all__ = [
     "ball_natural_frequencies", "ball_natural_frequency_approx", "ball_natural_frequency_single",
-    "eccentricity_deviation_single", "eccentricity_equilibrium", "eccentricity_residual_linear",
+    "eccentricity_deviation_exact", "eccentricity_deviation_single", "eccentricity_equilibrium", "eccentricity_residual_linear",
     "friction_force_for_deviation", "rolling_deadband", "rolling_deadband_single",
     "rolling_resistance_force", "symmetric_rolling_deviation", "suspension_friction_deviation",
     "suspension_is_stuck",
@@ -181,6 +181,46 @@ def eccentricity_deviation_single(eccentricity, rho, beta):
     if not np.all(np.isfinite(b)):
         raise ParameterError("beta", beta, "must be finite [rad]")
     return _out(-r * np.sin(b) / (e + r * np.cos(b)))
+
+
+def eccentricity_deviation_exact(system, speed, rho, betas) -> np.ndarray:
+    """Deviation of one ball from alpha_f = pi for a race eccentricity: the exact root of 000
+    eq (44) [rad], the counterpart of eq (45) (000 Fig. 15).
+
+    For each beta the kinetic-static equilibria of ``system`` with the balancer's eccentricity
+    set to (rho, beta) are found (:func:`find_equilibria`); the stable one nearest pi is taken.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine with one ball (000: m R = Me).
+    speed : float
+        w [rad/s], > 0.
+    rho : float
+        Race eccentricity [m], >= 0.
+    betas : array_like
+        Angles of the eccentricity from the unbalance [rad].
+
+    Returns
+    -------
+    ndarray
+        Delta alpha_rho [rad] per beta, wrapped to (-pi, pi]; NaN where no equilibrium is stable.
+    """
+    w = _speed(speed)
+    r = _nonneg("rho", rho)
+    b = np.atleast_1d(np.asarray(betas, float))
+    if not np.all(np.isfinite(b)):
+        raise ParameterError("betas", betas, "must be finite [rad]")
+    if system.balancer.n_balls != 1:
+        raise ParameterError("balancer.n_balls", system.balancer.n_balls, "must be 1 (000 eq 44)")
+    out = np.full(b.shape, np.nan)
+    for k, beta in enumerate(b):
+        bal = dataclasses.replace(system.balancer, eccentricity=r, eccentricity_angle=float(beta))
+        st = [e for e in find_equilibria(dataclasses.replace(system, balancer=bal), w) if e.ks_stable]
+        dev = [float(np.angle(np.exp(1j * (e.alpha[0] - math.pi)))) for e in st]
+        if dev:
+            out[k] = min(dev, key=abs)
+    return out
 
 
 def eccentricity_equilibrium(system, speed) -> dict:

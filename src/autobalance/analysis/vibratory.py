@@ -40,8 +40,8 @@ from ..models._validate import finite as _finite
 from .response import _transfer
 
 __all__ = [
-    "DrumResponse", "SPEED_REGIMES", "drum_response", "force_jacobian", "gain_phase",
-    "single_ball_force", "speed_regime", "vibratory_components", "vibratory_forces",
+    "DrumResponse", "SPEED_REGIMES", "drum_response", "force_extreme_ratio", "force_jacobian",
+    "gain_phase", "single_ball_force", "speed_regime", "vibratory_components", "vibratory_forces",
 ]
 
 #: Names of the three speed ranges of 000 Fig. 6-7 (relative to the two suspension frequencies).
@@ -354,6 +354,36 @@ def single_ball_force(system, speed, alphas, static_moment=None, damping_scale=1
     fx = -0.5 * (U * gx * np.sin(alphas + px) + S * gx * np.sin(px)) / R
     fy = -0.5 * (U * gy * np.sin(alphas + py) + S * gy * np.sin(py)) / R
     return {"alpha_rad": alphas, "Fx_norm": fx, "Fy_norm": fy, "F_norm": fx + fy}
+
+
+def force_extreme_ratio(system, speeds, n_alpha: int = 721) -> np.ndarray:
+    """Ratio of the negative to the positive extreme of the one-ball vibratory force, 000 Fig. 6.
+
+    -min F_1 / max F_1 over the ball angle, F_1 of 000 eq (11) (:func:`single_ball_force`, one
+    ball with mR = Me): about 1 far above both natural frequencies (Fig. 6a), larger between them
+    (Fig. 6b: "the negative extreme is 2.5 times higher than the positive").
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Drum and suspension.
+    speeds : array_like
+        Spin speeds w [rad/s], > 0.
+    n_alpha : int
+        Points of the angle grid over [0, 2 pi].
+
+    Returns
+    -------
+    ndarray
+        The ratio [-] per speed; inf where the force has no positive part.
+    """
+    w = np.atleast_1d(np.asarray(speeds, float))
+    al = np.linspace(0.0, 2 * np.pi, int(n_alpha))
+    out = np.empty(w.shape)
+    for k, wk in enumerate(w):
+        F = single_ball_force(system, wk, al)["F_norm"]
+        out[k] = -F.min() / F.max() if F.max() > 0 else np.inf
+    return out
 
 
 def speed_regime(system, speed) -> str:

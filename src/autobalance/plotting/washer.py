@@ -1,4 +1,5 @@
-"""Figures of the washer analysis in the style of 000 Fig. 6, 7, 9, 12 and 15.
+"""Figures of the washer analysis and studies in the style of 000 Fig. 3, 5-7, 9-13, 15, 16, 18, 19
+and Tables 1-4.
 
 Matplotlib ``Figure`` objects on an Agg canvas (no pyplot). The physics is computed by
 :mod:`autobalance.analysis` functions called here; this module only converts units and draws.
@@ -11,8 +12,10 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["plot_eccentricity_deviation", "plot_ks_comparison", "plot_rolling_deviation",
-           "plot_vibratory_force", "plot_vibratory_force_damping"]
+__all__ = ["plot_eccentricity_deviation", "plot_force_extreme_ratio", "plot_ks_comparison",
+           "plot_measured_vibration", "plot_published_vs_computed", "plot_rolling_deviation",
+           "plot_runups", "plot_time_histories", "plot_vibratory_force",
+           "plot_vibratory_force_damping"]
 
 
 def _fig(size=(7.0, 4.5)) -> Figure:
@@ -93,10 +96,7 @@ def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
 def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, speed=None) -> Figure:
     """000 Fig. 15: deviation of one ball from alpha = pi versus beta (eq 45) for several rho [m];
     with ``system`` and ``speed`` also the exact kinetic-static root of eq 44 (dots)."""
-    import dataclasses
-
-    from ..analysis.equilibria import find_equilibria
-    from ..analysis.error_bounds import eccentricity_deviation_single
+    from ..analysis.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
 
     b = np.linspace(0, 2 * math.pi, 181) if betas is None else np.asarray(betas, float)
     fig = _fig()
@@ -108,13 +108,7 @@ def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, spe
                         label=f"rho = {rho * 1e3:g} mm (eq 45)")
         if system is not None and speed is not None:
             bb = b[::10]
-            ex = []
-            for beta in bb:
-                bal = dataclasses.replace(system.balancer, eccentricity=rho, eccentricity_angle=beta)
-                s1 = dataclasses.replace(system, balancer=bal)
-                st = [e for e in find_equilibria(s1, speed) if e.ks_stable]
-                dev = [np.angle(np.exp(1j * (e.alpha[0] - math.pi))) for e in st]
-                ex.append(min(dev, key=abs) if dev else np.nan)
+            ex = eccentricity_deviation_exact(system, speed, rho, bb)
             ax.plot(np.degrees(bb), np.degrees(ex), "o", color=line.get_color(), ms=3)
     ax.axhline(0, color="0.6", lw=0.8)
     ax.set_xlabel("beta [deg]")
@@ -142,4 +136,145 @@ def plot_ks_comparison(comparison: dict) -> Figure:
     ax[2].set_xlabel("t [s]")
     ax[2].legend(fontsize=8)
     fig.suptitle("Full model minus kinetic-static model (000 Fig. 9)", fontsize=10)
+    return fig
+
+
+def plot_force_extreme_ratio(system, speeds, published=None) -> Figure:
+    """000 Fig. 6: -min F / max F of the one-ball vibratory force versus the spin speed [rad/s]
+    (:func:`autobalance.analysis.vibratory.force_extreme_ratio`), the range between the natural
+    frequencies shaded and the published ratio as a dashed line."""
+    from ..analysis.vibratory import force_extreme_ratio
+
+    w = np.asarray(speeds, float)
+    fig = _fig()
+    ax = fig.subplots()
+    ax.plot(w, force_extreme_ratio(system, w), "k-", label="ours (eq 11)")
+    wx, wy = system.natural_frequencies
+    ax.axvspan(min(wx, wy), max(wx, wy), color="0.9", label="between w_y and w_x")
+    if published is not None:
+        ax.axhline(published, color="tab:red", ls="--", label=f"000 Fig. 6b: {published:g}")
+    ax.set_yscale("log")
+    ax.set_xlabel("spin speed w [rad/s]")
+    ax.set_ylabel("-min F / max F [-]")
+    ax.legend(fontsize=8)
+    ax.set_title("Negative vs positive extreme of the vibratory force, one ball (000 Fig. 6)",
+                 fontsize=10)
+    return fig
+
+
+def _ideal_lines(ax, alpha_deg, ideal_deg):
+    """Dashed lines at the ideal angles, shifted by whole turns next to where the balls end."""
+    for a_end, ideal in zip(alpha_deg[-1], ideal_deg):
+        ax.axhline(ideal + 360.0 * round((a_end - ideal) / 360.0), color="0.5", ls="--", lw=0.8)
+
+
+def plot_time_histories(runs, title) -> Figure:
+    """Constant-speed runs in the style of 000 Fig. 5, 13, 16, 18, 19: drum displacement x, y [mm]
+    and ball angles alpha [deg] versus w t [rad], one column per run.
+
+    ``runs``: dicts with "label", "t_s", "x_m", "y_m", "alpha_rad" (n_t, N), "speed_rad_s" (float)
+    and optionally "ideal_deg" (dashed lines at the ideal ball angles)."""
+    fig = _fig((4.6 * len(runs), 5.5))
+    axes = fig.subplots(2, len(runs), squeeze=False, sharex="col")
+    for k, r in enumerate(runs):
+        wt = np.asarray(r["t_s"]) * r["speed_rad_s"]
+        ax = axes[0, k]
+        ax.plot(wt, np.asarray(r["x_m"]) * 1e3, lw=0.5, label="x")
+        ax.plot(wt, np.asarray(r["y_m"]) * 1e3, lw=0.5, label="y", alpha=0.8)
+        ax.set_ylabel("drum x, y [mm]")
+        ax.set_title(r["label"], fontsize=9)
+        ax.legend(fontsize=8, loc="upper right")
+        ax = axes[1, k]
+        a = np.degrees(np.asarray(r["alpha_rad"]))
+        for i in range(a.shape[1]):
+            ax.plot(wt, a[:, i], lw=0.9, label=f"ball {i + 1}")
+        if r.get("ideal_deg") is not None:
+            _ideal_lines(ax, a, r["ideal_deg"])
+        ax.set_ylabel("alpha [deg]")
+        ax.set_xlabel("w t [rad]")
+        ax.legend(fontsize=8, loc="upper right")
+    fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def plot_runups(panels, title, envelope=False) -> Figure:
+    """Run-ups in the style of 000 Fig. 10-11 (and the runs of Tables 1-2): spin speed n [rpm],
+    drum x and y [mm] (or, with ``envelope``, the whirl amplitude |x + i y| [mm]) and the ball
+    angles relative to the drum [rev] versus t [s], one column per panel and one line style per run.
+
+    ``panels``: (panel title, runs); a run is a dict with "label", "t_s", "speed_rad_s", "x_m",
+    "y_m", "amplitude_m", "alpha_rad" (n_t, N; N may be 0) and optionally "style" (matplotlib
+    kwargs)."""
+    drum = (("amplitude_m", "whirl amplitude [mm]"),) if envelope else (("x_m", "drum x [mm]"),
+                                                                        ("y_m", "drum y [mm]"))
+    nrow = 2 + len(drum)
+    fig = _fig((5.0 * len(panels), 2.0 * nrow))
+    axes = fig.subplots(nrow, len(panels), squeeze=False, sharex="col")
+    for k, (name, runs) in enumerate(panels):
+        for r in runs:
+            t = np.asarray(r["t_s"])
+            st = {"lw": 0.7, **r.get("style", {})}
+            line, = axes[0, k].plot(t, np.asarray(r["speed_rad_s"]) * 30 / math.pi, label=r["label"], **st)
+            st.setdefault("color", line.get_color())
+            for j, (key, _) in enumerate(drum):
+                axes[1 + j, k].plot(t, np.asarray(r[key]) * 1e3, **{**st, "lw": 0.4})
+            a = np.asarray(r["alpha_rad"])
+            for i in range(a.shape[1] if a.ndim == 2 else 0):
+                axes[-1, k].plot(t, (a[:, i] - a[0, i]) / (2 * math.pi), **st)
+        axes[0, k].set_title(name, fontsize=9)
+        axes[0, k].legend(fontsize=7)
+        axes[-1, k].set_xlabel("t [s]")
+    labels = ("n [rpm]",) + tuple(lab for _, lab in drum) + ("ball angle - start [rev]",)
+    for ax, lab in zip(axes[:, 0], labels):
+        ax.set_ylabel(lab)
+    fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def plot_published_vs_computed(panels, title, ncols=None) -> Figure:
+    """Published numbers (black circles) against ours (red crosses), with each row's acceptance
+    interval as a grey bar; one axes per panel (000 Tables 1-4).
+
+    ``panels``: dicts with "title", "ylabel", "labels" (one per row), "published", "computed"
+    (NaN where not computed) and optionally "xlabel" and "lo", "hi" (the interval in the units
+    of the axis)."""
+    n = len(panels)
+    nc = ncols or min(n, 4)
+    nr = int(math.ceil(n / nc))
+    fig = _fig((3.6 * nc, 3.2 * nr))
+    axes = np.atleast_1d(fig.subplots(nr, nc, squeeze=False)).ravel()
+    for ax, p in zip(axes, panels):
+        x = np.arange(len(p["labels"]))
+        if p.get("lo") is not None:
+            lo, hi = np.asarray(p["lo"], float), np.asarray(p["hi"], float)
+            ax.vlines(x, lo, hi, color="0.75", lw=6, label="tolerance")
+        ax.plot(x, p["published"], "ko", ms=5, mfc="none", label="published")
+        ax.plot(x, np.asarray(p["computed"], float), "rx", ms=6, label="ours")
+        ax.set_xticks(x, p["labels"], fontsize=7, rotation=30 if max(map(len, p["labels"])) > 4 else 0)
+        ax.set_ylabel(p["ylabel"])
+        if p.get("xlabel"):
+            ax.set_xlabel(p["xlabel"])
+        ax.set_title(p["title"], fontsize=9)
+    for ax in axes[n:]:
+        ax.set_visible(False)
+    axes[0].legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def plot_measured_vibration(points, speeds_rpm, model_amplitude_m, model_label) -> Figure:
+    """000 Fig. 3: tub vibration amplitudes converted from the measured accelerations (points)
+    and a model curve, amplitude [mm] versus the spin speed n [rpm].
+
+    ``points``: (n [rpm], amplitude [m], label) of the published measurements."""
+    fig = _fig()
+    ax = fig.subplots()
+    ax.plot(speeds_rpm, np.asarray(model_amplitude_m) * 1e3, "k-", lw=1, label=model_label)
+    for n, a, lab in points:
+        ax.plot(n, a * 1e3, "o", ms=6, label=lab)
+    ax.set_xlabel("spin speed n [rpm]")
+    ax.set_ylabel("tub amplitude [mm]")
+    ax.legend(fontsize=8)
+    ax.set_title("Tub vibration: measured accelerations / w^2 (000 Fig. 3) and the drum model",
+                 fontsize=10)
     return fig
