@@ -11,6 +11,7 @@ import pytest
 
 import autobalance as ab
 from autobalance.simulate import simulate
+from autobalance.studies.runup_000 import PUBLISHED, runup, runup_time_closed_form, settle
 
 from conftest import RPM, washer_000
 
@@ -18,13 +19,8 @@ W1000 = 1000 * RPM
 
 
 def _settle_case(c_i):
-    s = washer_000(c_i=c_i)
-    sim = simulate(s, ab.SpeedProfile.constant(W1000, 10.0),
-                   initial=ab.InitialState(ball_angles=(np.radians(90), np.radians(150)),
-                                           steady_state=True),
-                   options=ab.SimOptions(save_dt=2e-3))
-    k = np.nonzero(sim.amplitude > 0.05 * 0.025 / s.total_mass)[0]
-    return s, sim, sim.t[k[-1]]
+    """000 Fig. 5 run (studies.runup_000.settle): (system, Simulation, balancing time [s])."""
+    return settle(c_i)
 
 
 def test_fig5_balls_balance_the_drum_at_1000rpm():
@@ -57,14 +53,18 @@ TABLES = {
 }
 
 
+def test_study_holds_the_printed_tables():
+    """studies.runup_000.PUBLISHED (what the report compares with) is Tables 1-2 as printed."""
+    for (Me, law), v in TABLES.items():
+        tab = PUBLISHED["table1" if Me == 0.025 else "table2"]
+        assert tab["_Me_kg_m"] == Me
+        assert tuple(tab[law][k] for k in ("t_f_s", "x_max_mm", "y_max_mm", "revolutions")) == v
+
+
 def _runup(Me, law):
-    s = washer_000(Me=Me, polar_inertia=0.532)
-    d = s.balancer.contact_angle
-    drive = ab.MotorDrive(law, 25.0, W1000, 25.0, hold_fraction=1.0 if law == "constant" else 0.99)
-    sim = simulate(s, drive, initial=ab.InitialState(ball_angles=(np.pi - d / 2 - 1e-3,
-                                                                   np.pi + d / 2 + 1e-3)),
-                   options=ab.SimOptions(save_dt=2e-3))
-    return sim.summary()
+    """000 Tables 1-2 run-up (studies.runup_000.runup): B_z = 0.532 kg m^2 (preset), balls together
+    at the bottom, 25 s; the summary dict."""
+    return runup(Me, law).summary()
 
 
 @pytest.mark.parametrize("key", list(TABLES))
@@ -100,6 +100,9 @@ def test_table1_2_linear_and_harmonic_times_are_documented_misses():
     these closed forms (within the unbalance load), which is what we assert.
     """
     tau = 0.532 * W1000 / 25.0
+    assert runup_time_closed_form("linear", 0.99, tau) == pytest.approx(-tau * np.log(1 - 0.99), rel=1e-12)
+    assert runup_time_closed_form("harmonic", 0.95, tau) == pytest.approx(
+        (2 / np.pi) * (np.tan(np.pi * 1.95 / 4) - 1) * tau, rel=1e-12)
     lin = _runup(0.025, "linear")["time_to_final_speed_s"]
     # +3 %: the balls (2 x m R^2 = 2.6 % of B_z once dragged along) and the unbalance load
     assert lin == pytest.approx(-tau * np.log(1 - 0.99), rel=0.05)
