@@ -86,3 +86,22 @@ def assert_bit_identical(a, b):
         assert x.values.tobytes() == y.values.tobytes(), f"{v} differs"
     for c in a.coords:
         assert np.array_equal(a[c].values, b[c].values), c
+
+
+# Reproduction targets (tests/test_targets_*.py): the row contract of autobalance.report.target.
+ROW_FIELDS = {"key", "quantity", "published", "computed", "tolerance", "ok", "note"}
+
+
+def assert_rows_answer_claims(target, rows, allow_not_computed=False):
+    """Each claim of ``target`` has exactly one row with the 7 fields; a miss says why."""
+    from autobalance.report.target import claims, status
+
+    keys = [r["key"] for r in rows]
+    assert len(keys) == len(set(keys)), target.id
+    assert set(keys) == set(claims(target)), target.id
+    allowed = ("pass", "miss", "not computed") if allow_not_computed else ("pass", "miss")
+    for r in rows:
+        assert set(r) == ROW_FIELDS, r
+        assert status(r) in allowed, r
+        if not r["ok"]:
+            assert r["note"], r["key"]
