@@ -76,15 +76,23 @@ def reproduce(targets: TargetsArg = None,
         if workers is not None and workers < 1:
             raise ConfigError(f"--workers = {workers}: must be an integer >= 1")
         if scheduler:
-            os.environ["DASK_SCHEDULER_ADDRESS"] = scheduler
             executor = "dask"
-        if executor == "dask" and not os.environ.get("DASK_SCHEDULER_ADDRESS"):
+        if executor == "dask" and not (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):
             raise ConfigError("--executor = 'dask': needs --scheduler ADDRESS (or "
                               "DASK_SCHEDULER_ADDRESS)")
         out = _check_out(out)
         ctx = Context(quick=quick, out=out, executor=executor, workers=workers,
                       scheduler=scheduler)
-        report = run_targets(chosen, ctx, progress=None if as_json else _progress)
+        saved = os.environ.get("DASK_SCHEDULER_ADDRESS")
+        if scheduler:                   # the studies' sweeps read the address from here
+            os.environ["DASK_SCHEDULER_ADDRESS"] = scheduler
+        try:
+            report = run_targets(chosen, ctx, progress=None if as_json else _progress)
+        finally:
+            if saved is None:
+                os.environ.pop("DASK_SCHEDULER_ADDRESS", None)
+            else:
+                os.environ["DASK_SCHEDULER_ADDRESS"] = saved
         paths = write_report(report, out)
     if as_json:
         _print_json({**report, "files": paths})
