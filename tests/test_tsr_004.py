@@ -286,6 +286,7 @@ def test_cli_reproduce_single_target_text(tmp_path):
     r = runner.invoke(app, ["reproduce", "004-fig4", "--out", str(tmp_path)])
     assert r.exit_code == 0, r.output
     assert "published quantities reproduced" in r.stdout
+    assert r.stderr.startswith("[1/1] 004-fig4")          # progress, one line per target
     assert (tmp_path / "figures" / "004-fig4-tsr-single.png").stat().st_size > 1000
     rep = json.loads((tmp_path / "report.json").read_text())
     assert [x["id"] for x in rep["targets"]] == ["004-fig4"]

@@ -5,7 +5,7 @@ TARGET is ``all`` (default), a paper (``000``, ``001``, ``003``, ``004``), ``liq
 ``balls`` (000 + 004) or a target id (``--list`` shows them). ``--quick`` (default) finishes in a
 few minutes on 2 cores with coarser Monte-Carlo grids (each target states what changes);
 ``--full`` runs the paper-size studies (hours), resumable: the sweep stores under ``OUT/stores``
-are reused by a rerun. Output: ``OUT/report.html`` (figures in ``OUT/figures``, data in
+are reused by a rerun. Progress: one line per target on stderr. Output: ``OUT/report.html`` (figures in ``OUT/figures``, data in
 ``OUT/data``), ``OUT/report.json``, ``OUT/VALIDATION.md``; a summary per paper on the terminal,
 or one JSON object with ``--json``. Input errors: one line on stderr, exit code 2; a target that
 fails is reported in the page and the command exits with code 1.
@@ -87,7 +87,7 @@ def reproduce(targets: TargetsArg = None,
         if scheduler:                   # the studies' sweeps read the address from here
             os.environ["DASK_SCHEDULER_ADDRESS"] = scheduler
         try:
-            report = run_targets(chosen, ctx, progress=None if as_json else _progress)
+            report = run_targets(chosen, ctx, progress=_progress)   # on stderr
         finally:
             if saved is None:
                 os.environ.pop("DASK_SCHEDULER_ADDRESS", None)
