@@ -24,13 +24,12 @@ from __future__ import annotations
 import cmath
 import math
 
-from numba import njit
-
+from .jit import kernel
 from .layout import (B_M, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_HOLDS, P_KX, P_KY, P_MT,
                      P_R, P_SPIN)
 
 
-@njit(cache=True)
+@kernel
 def hold_possible(P, unb_n):
     """Static part of the conditions: isotropic, no gravity/base/dry friction, exact stick law,
     prescribed spin, constant unbalance."""
@@ -38,7 +37,7 @@ def hold_possible(P, unb_n):
             and P[P_BW] == 0.0 and P[P_FDRY] == 0.0 and P[P_FLAW] == 0.0 and P[P_SPIN] == 0.0 and unb_n == 1)
 
 
-@njit(cache=True)
+@kernel
 def hold_roots(P, W):
     """Roots s1, s2 [1/s] and the static response factor 1/(k - M_t W^2 + i c W) [m/N]."""
     mt = P[P_MT]
@@ -52,7 +51,7 @@ def hold_roots(P, W):
     return s1, s2, 1.0 / k0
 
 
-@njit(cache=True)
+@kernel
 def hold_coeffs(w0, wd0, wss, s1, s2):
     """C1, C2 of w - w_ss = C1 e^{s1 t} + C2 e^{s2 t} from w(0) = w0, w'(0) = wd0."""
     z0 = w0 - wss
@@ -60,7 +59,7 @@ def hold_coeffs(w0, wd0, wss, s1, s2):
     return c1, z0 - c1
 
 
-@njit(cache=True)
+@kernel
 def hold_state(tau, wss, s1, s2, c1, c2):
     """w(tau), w'(tau) [m, m/s]."""
     e1 = cmath.exp(s1 * tau)
@@ -68,7 +67,7 @@ def hold_state(tau, wss, s1, s2, c1, c2):
     return wss + c1 * e1 + c2 * e2, s1 * c1 * e1 + s2 * c2 * e2
 
 
-@njit(cache=True)
+@kernel
 def hold_transient_bound(W, s1, s2, c1, c2):
     """sum_j |(s_j^2 + 2 i W s_j - W^2) C_j|: bound of |X - X_ss| for tau >= 0 (eq H2) [m/s^2]."""
     p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
@@ -76,7 +75,7 @@ def hold_transient_bound(W, s1, s2, c1, c2):
     return abs(p1) + abs(p2)
 
 
-@njit(cache=True)
+@kernel
 def ball_unbalance(y, B, N, R, rho, beta, U):
     """Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}) [kg*m] (eq H1)."""
     ut = complex(U, 0.0)
@@ -86,7 +85,7 @@ def ball_unbalance(y, B, N, R, rho, beta, U):
     return ut
 
 
-@njit(cache=True)
+@kernel
 def hold_margin_ok(lam_ss, lim, N, B, R, bound):
     """(H2) for every ball with a relative margin of 1e-9."""
     for i in range(N):

@@ -21,6 +21,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from .jit import kernel
+
 from .layout import (B_MUS, N_S, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_KX, P_KY, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
                      S_YMAX, P_DELTA)
@@ -45,7 +47,7 @@ A71, A73, A74, A75, A76 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
 E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
 
 
-@njit(cache=True)
+@kernel
 def _hermite(y0, f0, y1, f1, h, th, j):
     """Cubic Hermite interpolant of component j at fraction th of a step of size h."""
     th2 = th * th
@@ -57,46 +59,46 @@ def _hermite(y0, f0, y1, f1, h, th, j):
     return h00 * y0[j] + h10 * h * f0[j] + h01 * y1[j] + h11 * h * f1[j]
 
 
-@njit(cache=True)
+@kernel
 def _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx):
+                K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx, trig):
     """One DOPRI5 step; returns (ok); y1, f1 (FSAL) and the error vector err are filled."""
     n = y.shape[0]
     for j in range(n):
         ytmp[j] = y[j] + h * A21 * f0[j]
     ok = rhs(t + C2 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-             K[1], lam, Mm, fv, A, bb, idx)
+             K[1], lam, Mm, fv, A, bb, idx, trig)
     for j in range(n):
         ytmp[j] = y[j] + h * (A31 * f0[j] + A32 * K[1, j])
     ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-              K[2], lam, Mm, fv, A, bb, idx)
+              K[2], lam, Mm, fv, A, bb, idx, trig)
     for j in range(n):
         ytmp[j] = y[j] + h * (A41 * f0[j] + A42 * K[1, j] + A43 * K[2, j])
     ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-              K[3], lam, Mm, fv, A, bb, idx)
+              K[3], lam, Mm, fv, A, bb, idx, trig)
     for j in range(n):
         ytmp[j] = y[j] + h * (A51 * f0[j] + A52 * K[1, j] + A53 * K[2, j] + A54 * K[3, j])
     ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-              K[4], lam, Mm, fv, A, bb, idx)
+              K[4], lam, Mm, fv, A, bb, idx, trig)
     for j in range(n):
         ytmp[j] = y[j] + h * (A61 * f0[j] + A62 * K[1, j] + A63 * K[2, j] + A64 * K[3, j]
                               + A65 * K[4, j])
     ok &= rhs(t + h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-              K[5], lam, Mm, fv, A, bb, idx)
+              K[5], lam, Mm, fv, A, bb, idx, trig)
     for j in range(n):
         y1[j] = y[j] + h * (A71 * f0[j] + A73 * K[2, j] + A74 * K[3, j] + A75 * K[4, j]
                             + A76 * K[5, j])
     ok &= rhs(t + h, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-              f1, lam, Mm, fv, A, bb, idx)
+              f1, lam, Mm, fv, A, bb, idx, trig)
     for j in range(n):
         err[j] = h * (E1 * f0[j] + E3 * K[2, j] + E4 * K[3, j] + E5 * K[4, j] + E6 * K[5, j]
                       + E7 * f1[j])
     return ok
 
 
-@njit(cache=True)
+@kernel
 def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f,
-             lam, Mm, fv, A, bb, idx):
+             lam, Mm, fv, A, bb, idx, trig):
     """Consistent stick/slip modes at a switching instant (a small friction complementarity
     problem solved by pivoting): release the stuck ball whose required friction exceeds its
     static limit by the largest ratio; re-stick a ball at zero relative speed whose
@@ -104,7 +106,7 @@ def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     nq = N + 3
     for _ in range(4 * N + 4):
         rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f, lam, Mm,
-            fv, A, bb, idx)
+            fv, A, bb, idx, trig)
         worst = -1
         wr = 1.0
         for i in range(N):
@@ -131,9 +133,9 @@ def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         stuck[back] = 1
 
 
-@njit(cache=True)
+@kernel
 def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
-             unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx):
+             unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig):
     """Switching function of event (kind, i) at fraction th of the step."""
     nq = N + 3
     if kind == 0:      # slipping ball stops
@@ -143,13 +145,13 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof
     for j in range(y0.shape[0]):   # stuck ball breaks away
         ytmp[j] = _hermite(y0, f0, y1, f1, h, th, j)
     rhs(t + th * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-        ftmp, lam, Mm, fv, A, bb, idx)
+        ftmp, lam, Mm, fv, A, bb, idx, trig)
     return lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
 
 
-@njit(cache=True)
+@kernel
 def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
-            unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx):
+            unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig):
     """Step fraction in (a_, 1] where the switching function (kind, i) crosses from g(a_) = ga
     > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-7 in fraction).
     Returns (fraction, number of evaluations)."""
@@ -160,7 +162,7 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
     for _ in range(40):
         th = (a_ * gb - b_ * ga) / (gb - ga)
         gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
-                      unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx)
+                      unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
         nev += 1
         if gt > 0.0:
             a_ = th
@@ -199,26 +201,27 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     """
     nq = N + 3
     n = 2 * nq
-    ip = nq - 1
-    K = np.zeros((6, n))
-    ytmp = np.zeros(n)
     y = y0.copy()
-    y1 = np.zeros(n)
-    f0 = np.zeros(n)
-    f1 = np.zeros(n)
-    ftmp = np.zeros(n)
-    err = np.zeros(n)
-    lam = np.zeros(3 * N + 1)
-    Mm = np.zeros((nq, nq))
-    fv = np.zeros(nq)
-    A = np.zeros((nq, nq))
-    bb = np.zeros(nq)
-    idx = np.zeros(nq, dtype=np.int64)
-    stuck = np.zeros(N, dtype=np.int64)
-    sgn = np.ones(N)
-    gs = np.zeros(N)     # stick margin mu_s N R - |lambda| at the start of the step
-    ge = np.zeros(N)     # ... at the end of the trial step (from its FSAL evaluation)
-    spin = np.zeros(2)
+    _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
+               out_t, out_y, stats, y, np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n),
+               np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)),
+               np.zeros(nq), np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
+               np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
+               np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan))
+    return y
+
+
+@kernel
+def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
+               out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
+               stuck, sgn, gs, ge, spin, in_contact, viol, trig):
+    """The integration loop of integrate(), on preallocated work arrays (no allocation: the
+    kernel runs without the numba runtime, core/jit.py). y holds the initial state on entry and
+    the final state on return; gs / ge: stick margins mu_s N R - |lambda| at the start / end of
+    the trial step; in_contact, viol: per-ball flags; trig: the cos/sin cache of rhs()."""
+    nq = N + 3
+    n = 2 * nq
+    ip = nq - 1
     spin[0] = P[P_SPIN]
     for j in range(N_S):
         stats[j] = 0.0
@@ -239,7 +242,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                 sgn[i] = 1.0 if y[nq + 2 + i] >= 0.0 else -1.0
     seg = profile_segment(t, prof_t)
     _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
-             lam, Mm, fv, A, bb, idx)
+             lam, Mm, fv, A, bb, idx, trig)
     nrhs = N + 1
     for i in range(N):
         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -256,8 +259,6 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     nrej = 0
     nev = 0
     stall = 0
-    in_contact = np.zeros(N, dtype=np.int64)
-    viol = np.zeros(N, dtype=np.int64)
     status = 0
     can_hold = hold_possible(P, unb_t.shape[0])
     next_try = 0
@@ -289,7 +290,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                 ytmp[nq] = 0.0
                 ytmp[nq + 1] = 0.0
                 rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                    ftmp, lam, Mm, fv, A, bb, idx)
+                    ftmp, lam, Mm, fv, A, bb, idx, trig)
                 nrhs += 1
                 p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
                 p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
@@ -329,11 +330,11 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                     seg = profile_segment(t, prof_t)
                     if exact:
                         _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                 spin, f0, lam, Mm, fv, A, bb, idx)
+                                 spin, f0, lam, Mm, fv, A, bb, idx, trig)
                         nrhs += N + 1
                     else:
                         rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                            f0, lam, Mm, fv, A, bb, idx)
+                            f0, lam, Mm, fv, A, bb, idx, trig)
                         nrhs += 1
                     for i in range(N):
                         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -351,7 +352,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
             status = 2
             break
         ok = _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                         spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx)
+                         spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx, trig)
         nrhs += 6
         en = 0.0
         finite = ok
@@ -397,7 +398,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                             for _ in range(30):
                                 gp = _event_g(0, i, thp, t, h, y, f0, y1, f1, ytmp, P, B, N,
                                               seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                              spin, ftmp, lam, Mm, fv, A, bb, idx)
+                                              spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
                                 if gp > 0.0:
                                     a_ = thp
                                     ga = gp
@@ -411,7 +412,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                         else:
                             th, ne = _locate(0, i, ga, gb, a_, t, h, y, f0, y1, f1, ytmp, P, B,
                                              N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                             spin, ftmp, lam, Mm, fv, A, bb, idx)
+                                             spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
                         if th < th_ev:
                             th_ev = th
                             ev_kind = 0
@@ -438,7 +439,7 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                         else:
                             th, ne = _locate(1, i, ga, gb, 0.0, t, h, y, f0, y1, f1, ytmp, P,
                                              B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
-                                             sgn, spin, ftmp, lam, Mm, fv, A, bb, idx)
+                                             sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
                             nrhs += ne
                         if th < th_ev:
                             th_ev = th
@@ -463,7 +464,8 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                 h_ev = th_ev * h
                 if h_ev > 1e-15 * max(1.0, t):
                     _dopri_step(t, y, f0, h_ev, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                stuck, sgn, spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx)
+                                stuck, sgn, spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx,
+                                trig)
                     nrhs += 6
                 else:
                     for j in range(n):
@@ -548,17 +550,17 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
                         stuck[i] = 1
                 if ev_kind == 1:
                     _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                             spin, f0, lam, Mm, fv, A, bb, idx)
+                             spin, f0, lam, Mm, fv, A, bb, idx, trig)
                     # the released ball must stay released even if lambda is marginal now
                     if stuck[ev_i] == 1:
                         stuck[ev_i] = 0
                         sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
                 _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                         f0, lam, Mm, fv, A, bb, idx)
+                         f0, lam, Mm, fv, A, bb, idx, trig)
                 nrhs += N + 1
             else:
                 rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
-                    lam, Mm, fv, A, bb, idx)
+                    lam, Mm, fv, A, bb, idx, trig)
                 nrhs += 1
             for i in range(N):
                 gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -588,7 +590,6 @@ def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_ma
     stats[S_RHS] = nrhs
     stats[S_TFINAL] = t
     stats[S_HOLDS] = nhold
-    return y
 
 
 @njit(cache=True, parallel=True)

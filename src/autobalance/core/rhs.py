@@ -13,15 +13,14 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from .jit import kernel
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
                      P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
                      P_VSAT, P_WF)
 
 
-@njit(cache=True)
+@kernel
 def profile_eval(t, seg, prof_t, prof_w):
     """Speed [rad/s] and acceleration [rad/s^2] of a piecewise-linear profile on segment seg."""
     n = prof_t.shape[0]
@@ -33,7 +32,7 @@ def profile_eval(t, seg, prof_t, prof_w):
     return prof_w[seg] + slope * (t - t0), slope
 
 
-@njit(cache=True)
+@kernel
 def profile_segment(t, prof_t):
     """Index k of the segment with prof_t[k] <= t < prof_t[k+1] (last knot -> n-1)."""
     n = prof_t.shape[0]
@@ -43,7 +42,7 @@ def profile_segment(t, prof_t):
     return k
 
 
-@njit(cache=True)
+@kernel
 def table_interp(t, tt, vv):
     """Linear interpolation in a short table, held constant outside."""
     n = tt.shape[0]
@@ -58,7 +57,7 @@ def table_interp(t, tt, vv):
     return vv[k] + a * (vv[k + 1] - vv[k])
 
 
-@njit(cache=True)
+@kernel
 def motor_torque(law, t0, wf, w):
     """000 Table 1 torque laws T_m(w) [N*m]: constant, linear T0(1 - w/w_f), harmonic."""
     if law == 0:
@@ -68,7 +67,7 @@ def motor_torque(law, t0, wf, w):
     return t0 * (1.0 - math.sin(0.5 * math.pi * w / wf))
 
 
-@njit(cache=True)
+@kernel
 def neighbour_gap(y, i, N, delta):
     """Next ball j after ball i (cyclic order) and their free angular gap beyond the contact
     angle delta [rad]; negative = overlap (balls in one race keep their order)."""
@@ -80,7 +79,7 @@ def neighbour_gap(y, i, N, delta):
     return j, y[2 + j] + wrap - y[2 + i] - delta
 
 
-@njit(cache=True)
+@kernel
 def cholesky_solve(A, b, n):
     """Solve A x = b in place (x returned in b) for the leading n x n SPD block of A."""
     for j in range(n):
@@ -109,7 +108,7 @@ def cholesky_solve(A, b, n):
     return True
 
 
-@njit(cache=True)
+@kernel
 def _suspension_force(t, u, v, ud, vd, psi, psid, P):
     """Suspension force (000 eq 2-3, 48: anisotropic springs and dampers, base motion, dry
     friction of two dampers at +-gamma) in the inertial frame, rotated to the rotor frame [N]."""
@@ -144,9 +143,9 @@ def _suspension_force(t, u, v, ud, vd, psi, psid, P):
     return Fx * cp + Fy * sp, -Fx * sp + Fy * cp
 
 
-@njit(cache=True)
+@kernel
 def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-        dy, lam, Mm, fv, A, bb, idx):
+        dy, lam, Mm, fv, A, bb, idx, trig=None):
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
 
     Parameters
@@ -170,6 +169,11 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     lam : ndarray (3N,)
         Output: lam[i] = friction torque a stuck ball needs [N*m]; lam[N+i] = static limit
         mu_s*N_i*R [N*m]; lam[2N+i] = normal force N_i [N].
+    Mm, fv, A, bb, idx : work arrays (nq, nq), (nq,), (nq, nq), (nq,), int (nq,).
+    trig : float array (3N,), optional
+        Cache of (alpha_i, cos alpha_i, sin alpha_i) across calls, NaN-initialised: a stuck
+        ball keeps its angle bit for bit through the stages of a step, so its cos/sin are
+        reused (values identical to recomputing them).
 
     Returns
     -------
@@ -239,8 +243,18 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         m = B[i, B_M]
         Ii = B[i, B_I]
         rr = B[i, B_RR]
-        c = math.cos(a)
-        s = math.sin(a)
+        if trig is None:
+            c = math.cos(a)
+            s = math.sin(a)
+        elif a == trig[i]:
+            c = trig[N + i]
+            s = trig[2 * N + i]
+        else:
+            c = math.cos(a)
+            s = math.sin(a)
+            trig[i] = a
+            trig[N + i] = c
+            trig[2 * N + i] = s
         thd = psid + ad
         th = psi + a
         Sm += m
