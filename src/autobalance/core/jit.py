@@ -11,7 +11,14 @@ from __future__ import annotations
 
 from numba import njit
 
+try:        # ``_nrt`` is a CPU target option of numba (numba/core/cpu.py), private by name
+    from numba.core.cpu import CPUTargetOptions
+    _NO_NRT = {"_nrt": False} if hasattr(CPUTargetOptions, "_nrt") else {}
+except ImportError:                                   # pragma: no cover - other numba layouts
+    _NO_NRT = {}
+
 
 def kernel(fn):
-    """njit(cache=True) without the NRT (no allocation inside; see the module docstring)."""
-    return njit(cache=True, _nrt=False)(fn)
+    """njit(cache=True) without the NRT (no allocation inside; see the module docstring). A
+    numba without the option compiles with the NRT: slower, same results."""
+    return njit(cache=True, **_NO_NRT)(fn)
