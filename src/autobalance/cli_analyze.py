@@ -1,6 +1,6 @@
 """``autobalance analyze ...``: the seed-000 washer analysis on the command line (typer).
 
-Subcommands: response, forces, equilibria, bounds, tolerance, kinetic-static, washer-study.
+Subcommands: response, forces, equilibria, bounds, tolerance, kinetic-static, washer-study, immobility (004 Fig. 8, 10).
 Every one takes ``--json`` (one JSON object, SI, unit-suffixed keys) and, where useful,
 ``--plot FILE.png``. Machines come from ``load_config(PRESET|CONFIG, --set overrides)``.
 Input errors print one line ``error: ...`` on stderr and exit with code 2.
