@@ -13,7 +13,7 @@ import pytest
 from autobalance.report import registry
 from autobalance.report.html import render_html
 from autobalance.report.markdown import render_markdown
-from autobalance.report.runner import run_targets, write_report
+from autobalance.report.runner import run_targets, summary_lines, write_report
 from autobalance.report.target import Context, Outcome, Target, claims, not_computed, row
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -170,7 +170,7 @@ def test_html_report_in_headless_chromium(quick_report, tmp_path):
     assert int(check["data-total"]) == n_fig == len(dom.imgs) > 10
     assert int(check["data-broken"]) == 0, re.findall(r"figure missing: [^<]+", p.stdout)
     assert dom.targets == [t["id"] for t in rep["targets"]]
-    for paper, c in list(rep["summary"]["papers"].items()) + [("total", rep["summary"]["total"])]:
+    for paper, c in summary_lines(rep["summary"]):
         attrs = dom.ids[f"summary-{paper}"]
         for k, v in c.items():
             assert int(attrs[f"data-{k.replace(' ', '-')}"]) == v, (paper, k)

@@ -61,7 +61,7 @@ def reproduce(targets: TargetsArg = None,
     import os
 
     from .report.registry import select
-    from .report.runner import run_targets, write_report
+    from .report.runner import run_targets, summary_lines, write_report
     from .report.target import Context, claims
 
     with _guard():
@@ -98,7 +98,7 @@ def reproduce(targets: TargetsArg = None,
         _print_json({**report, "files": paths})
     else:
         s = report["summary"]
-        for paper, c in list(s["papers"].items()) + [("total", s["total"])]:
+        for paper, c in summary_lines(s):
             typer.echo(f"{paper:>5}: {c['pass']:>3} of {c['published']:>3} published quantities "
                        f"reproduced, {c['miss']} miss, {c['not computed']} not computed, "
                        f"{c['unreported']} unreported ({c['targets']} targets, {c['errors']} errors)")

@@ -9,6 +9,7 @@ from __future__ import annotations
 from html import escape
 
 from .registry import PAPERS
+from .runner import _counts, summary_lines
 
 __all__ = ["fmt_value", "render_html"]
 
@@ -86,7 +87,7 @@ def _summary(report: dict) -> str:
     head = ("<tr><th>paper</th><th>targets</th><th>published quantities</th><th>pass</th>"
             "<th>miss</th><th>not computed</th><th>unreported</th><th>errors</th></tr>")
     body = []
-    for paper, c in list(s["papers"].items()) + [("total", s["total"])]:
+    for paper, c in summary_lines(s):
         name = escape(PAPERS[paper][0]) if paper in PAPERS else "<b>total</b>"
         attrs = " ".join(f'data-{k.replace(" ", "-")}="{v}"' for k, v in c.items())
         body.append(f'<tr id="summary-{paper}" {attrs}><td>{paper if paper != "total" else ""} '
@@ -115,8 +116,6 @@ def _rows_table(rec: dict) -> str:
 
 
 def _target(rec: dict, variant: str) -> str:
-    from .runner import _counts
-
     c = _counts([rec])
     parts = [f'<section class="target" id="t-{rec["id"]}" data-target="{rec["id"]}" '
              f'data-status="{escape(rec["status"])}">',

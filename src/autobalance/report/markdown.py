@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .html import fmt_value
 from .registry import PAPERS
+from .runner import summary_lines
 
 __all__ = ["render_markdown"]
 
@@ -24,7 +25,7 @@ def render_markdown(report: dict) -> str:
                                  if v == "quick" else "."), "",
            "| paper | targets | published quantities | pass | miss | not computed | unreported |",
            "|---|---|---|---|---|---|---|"]
-    for paper, c in list(s["papers"].items()) + [("total", s["total"])]:
+    for paper, c in summary_lines(s):
         out.append(f"| {paper} | {c['targets']} | {c['published']} | {c['pass']} | {c['miss']} | "
                    f"{c['not computed']} | {c['unreported']} |")
     out += ["", "A **miss** is a published number we compute but do not reproduce within the "

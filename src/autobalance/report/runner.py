@@ -16,7 +16,7 @@ from typing import Callable, Optional
 
 from .target import Context, claims, status
 
-__all__ = ["run_targets", "summarize", "write_report"]
+__all__ = ["run_targets", "summary_lines", "summarize", "write_report"]
 
 STATUSES = ("pass", "miss", "not computed")
 
@@ -25,13 +25,15 @@ def _netcdf_safe(ds):
     """Copy of ``ds`` that NetCDF accepts: list/dict/bool attrs as JSON text, object coords as str."""
     from ..cli_common import _clean
 
+    def safe(attrs):
+        return {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
+                for k, v in attrs.items() if v is not None}
+
     clean = ds.copy()
-    clean.attrs = {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
-                   for k, v in ds.attrs.items() if v is not None}
+    clean.attrs = safe(ds.attrs)
     for name in list(clean.variables):
         var = clean[name]
-        var.attrs = {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
-                     for k, v in var.attrs.items() if v is not None}
+        var.attrs = safe(var.attrs)
         if var.dtype == object:
             clean = clean.assign({name: var.astype(str)}) if name in clean.data_vars else \
                 clean.assign_coords({name: var.astype(str)})
@@ -118,6 +120,11 @@ def summarize(recs) -> dict:
     papers = {p: _counts([r for r in recs if r["paper"] == p]) for p in PAPERS
               if any(r["paper"] == p for r in recs)}
     return {"papers": papers, "total": _counts(recs)}
+
+
+def summary_lines(summary: dict) -> list:
+    """(paper, counts) per paper, then ("total", counts): the order of every summary table."""
+    return list(summary["papers"].items()) + [("total", summary["total"])]
 
 
 def run_targets(targets, ctx: Context, progress: Optional[Callable[[int, int, dict], None]] = None) -> dict:
