@@ -90,6 +90,20 @@ def test_select_names_groups_and_errors():
     assert [t.id for t in registry.select(["004-fig4", "004-fig4"])] == ["004-fig4"]
     with pytest.raises(ConfigError, match="TARGET = 'nope'"):
         registry.select(["nope"])
+    # the tsr-* names select the 004 targets; an alias and its id count once
+    assert [t.id for t in registry.select(["tsr-mc", "004-fig5-6-table2"])] == ["004-fig5-6-table2"]
+    assert [t.id for t in registry.select(["tsr-plateau", "tsr-single"])] == ["004-fig4",
+                                                                               "004-fig13-16"]
+
+
+def test_check_ids_rejects_alias_clashes():
+    from dataclasses import replace
+
+    targets = registry.all_targets()
+    mc = next(t for t in targets if t.id == "004-fig5-6-table2")
+    for bad in ("004-fig4", "tsr-single", "004", "all", "Bad Name"):
+        with pytest.raises(ValueError, match="bad or duplicate target name"):
+            registry.check_ids([*targets, replace(mc, id="004-x", aliases=(bad,))])
 
 
 # -- the real quick run, once per session -----------------------------------------------------

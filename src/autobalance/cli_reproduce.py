@@ -2,7 +2,8 @@
 computed, as an HTML report (the main job: ``make run``).
 
 TARGET is ``all`` (default), a paper (``000``, ``001``, ``003``, ``004``), ``liquid`` (001 + 003),
-``balls`` (000 + 004) or a target id (``--list`` shows them). ``--quick`` (default) finishes in a
+``balls`` (000 + 004) or a target id or alias (``--list`` shows them; e.g. ``tsr-mc`` =
+``004-fig5-6-table2``). ``--quick`` (default) finishes in a
 few minutes on 2 cores with coarser Monte-Carlo grids (each target states what changes);
 ``--full`` runs the paper-size studies (hours), resumable: the sweep stores under ``OUT/stores``
 are reused by a rerun. Progress: one line per target on stderr. Output: ``OUT/report.html`` (figures in ``OUT/figures``, data in
@@ -68,8 +69,9 @@ def reproduce(targets: TargetsArg = None,
         chosen = select(targets)
         if list_:
             for t in chosen:
+                also = f" (also: {', '.join(t.aliases)})" if t.aliases else ""
                 typer.echo(f"{t.id:<26} {t.paper}  {', '.join(t.items):<34} "
-                           f"{len(claims(t)):>3} numbers  {t.title}")
+                           f"{len(claims(t)):>3} numbers  {t.title}{also}")
             return
         if executor not in ("local", "serial", "dask"):
             raise ConfigError(f"--executor = {executor!r}: must be local, serial or dask")

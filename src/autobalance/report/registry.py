@@ -74,7 +74,7 @@ def select(names) -> list:
     (``liquid`` = 001 + 003, ``balls`` = 000 + 004) or target ids; order of the report, no
     duplicates. Unknown names raise ConfigError (one line, with what is allowed)."""
     targets = all_targets()
-    by_id = {t.id: t for t in targets}
+    by_id = {name: t for t in targets for name in (t.id, *t.aliases)}
     names = [n.strip() for n in (names or ["all"]) if n.strip()] or ["all"]
     chosen = set()
     for n in names:
@@ -83,17 +83,23 @@ def select(names) -> list:
         elif n in PAPERS:
             chosen |= {t.id for t in targets if t.paper == n}
         elif n in by_id:
-            chosen.add(n)
+            chosen.add(by_id[n].id)
         else:
             raise ConfigError(f"TARGET = {n!r}: unknown; allowed: all, liquid, balls, "
-                              f"{', '.join(PAPERS)} or a target id ({', '.join(by_id)})")
+                              f"{', '.join(PAPERS)} or a target id "
+                              f"({', '.join(t.id for t in targets)}) or alias "
+                              f"({', '.join(a for t in targets for a in t.aliases)})")
     return [t for t in targets if t.id in chosen]
 
 
 def check_ids(targets) -> None:
-    """Target ids are unique and well formed (lower case, digits, '-', '.')."""
-    seen = set()
+    """Target ids and aliases are unique and well formed (lower case, digits, '-', '.') and none
+    is a paper or group name."""
+    seen = set(PAPERS) | set(GROUPS)
     for t in targets:
-        if not isinstance(t, Target) or not _ID.match(t.id) or t.id in seen or t.paper not in PAPERS:
-            raise ValueError(f"bad or duplicate target id {getattr(t, 'id', t)!r}")
-        seen.add(t.id)
+        if not isinstance(t, Target) or t.paper not in PAPERS:
+            raise ValueError(f"bad target {getattr(t, 'id', t)!r}")
+        for name in (t.id, *t.aliases):
+            if not _ID.match(name) or name in seen:
+                raise ValueError(f"bad or duplicate target name {name!r}")
+            seen.add(name)

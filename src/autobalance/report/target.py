@@ -74,6 +74,8 @@ class Target:
         Assumptions, choices and the reasons for known misses (plain text, shown in the report).
     quick : str
         What ``--quick`` changes (shown in the report); empty when quick = full.
+    aliases : tuple of str
+        Other names the CLI accepts for this target (e.g. ``"tsr-mc"``).
     """
     id: str
     paper: str
@@ -84,6 +86,7 @@ class Target:
     prefix: str = ""
     notes: str = ""
     quick: str = ""
+    aliases: tuple = ()
 
     @property
     def key_prefix(self) -> str:

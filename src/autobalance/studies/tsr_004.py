@@ -925,14 +925,15 @@ def _targets():
                notes=model + "004 gives neither its start angles nor the exact profile: we run "
                "every G14 start (ball 1 every 15 deg) and plot the first; the rows check the "
                "paper's statements about its run.", quick="history saved every 20 ms "
-                                                        "instead of 5 ms"),
+                                                        "instead of 5 ms",
+               aliases=("tsr-single",)),
         Target("004-fig5-6-table2", "004", ("Fig. 5", "Fig. 6", "Table 2"),
                "Start-position Monte Carlo at G20: residual-grade PDFs, STD vs TSR, outcome "
                "regions", _run_mc, PUBLISHED["monte_carlo"], "monte_carlo",
                notes=model + "Tolerance on shares: 2 sigma of the difference of two binomial "
                "shares. The G16 shares miss: our STD qualifies more often than 004's "
                "(docs/tsr-studies.md).", quick="12 x 12 start grid (78 runs) instead of "
-                                               "50 x 50 (1275 runs)"),
+                                               "50 x 50 (1275 runs)", aliases=("tsr-mc",)),
         Target("004-fig7-11-12-table3-4", "004", ("Fig. 7", "Fig. 11", "Fig. 12", "Table 3",
                                                   "Table 4"),
                "Initial-unbalance sweep: valid G16 ranges and efficiency for five friction and "
@@ -942,19 +943,20 @@ def _targets():
                "step + 1 G (the paper's reading).",
                quick="G_ini every 5 mm/s, 6 x 6 start grid (21 runs per point) instead of every "
                      "2 mm/s and 1275 runs; the coarse grid widens every boundary tolerance "
-                     "to +-3.5 G"),
+                     "to +-3.5 G", aliases=("tsr-unbalance",)),
         Target("004-fig8-10", "004", ("Fig. 8", "Fig. 10"), "Immobility against speed for "
                "friction and damping sets", _run_immobility, PUBLISHED["immobility"],
                "immobility", notes="Closed form: a ball configuration at rest is immobile when "
                "every ball's tangential force |F_t| <= mu m R Omega^2 (004 eq 1), checked "
                "against the kernel's stuck-ball friction. The figures carry no numbers; the "
                "rows check the text's statements.",
-               quick="91 speeds and 36 positions per ball instead of 361 and 100"),
+               quick="91 speeds and 36 positions per ball instead of 361 and 100",
+               aliases=("tsr-immobility",)),
         Target("004-fig9", "004", ("Fig. 9",), "Speed profile: a 3x slower run-up vs STD and "
                "TSR", _run_profile, PUBLISHED["profile"], "profile",
                notes=model + "Slow run-up: 0 -> 167 Hz linear in 54 s, hold to 90 s, read at "
                              "90 s.",
-               quick="G_ini every 5 mm/s, 21 starts per point"),
+               quick="G_ini every 5 mm/s, 21 starts per point", aliases=("tsr-profile",)),
         Target("004-fig13-16", "004", ("Fig. 13", "Fig. 14", "Fig. 15", "Fig. 16"),
                "The lower plateau: residual grade over plateau x G_ini and the ideal plateau",
                _run_plateau, PUBLISHED["plateau"], "plateau",
@@ -963,7 +965,8 @@ def _targets():
                "are slices of the same map: the lower panels, p95 against the plateau per "
                "G_ini. They have no published numbers of their own.",
                quick="plateaus 0.98/1.02/1.06/1.10 x G_ini 5/15/25 x 21 starts instead of "
-                     "0.96-1.12 step 0.01 x G0-G32 step 4 x 210 starts"),
+                     "0.96-1.12 step 0.01 x G0-G32 step 4 x 210 starts",
+               aliases=("tsr-plateau",)),
     ]
 
 
