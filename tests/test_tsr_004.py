@@ -76,6 +76,33 @@ def test_immobility_limits_and_eq1_direction():
     assert np.all(np.sign(t.tangential_force(s, w, a)) == np.sign(np.sin(g)))
 
 
+@pytest.mark.parametrize("f_hz", [96.08, 100.0, 167.0])
+def test_stick_threshold_bounds_immobility(f_hz):
+    """Every configuration whose residual grade is below G* is immobile (closed form). At the
+    plateau speeds some configuration just above G* can move: the bound is sharp there. (At
+    167 Hz, G* = 50.5 is only reached with both balls near the unbalance, along w: all stick.)"""
+    s = t._cfg().system
+    w, wn = 2 * np.pi * f_hz, t._cfg().spin.nominal_speed
+    g_star = float(t.stick_threshold_grade(s, w, wn))
+    pos = 2 * np.pi * np.arange(240) / 240
+    a = np.stack([x.ravel() for x in np.meshgrid(pos, pos, indexing="ij")], axis=-1)
+    ut = s.rotor.unbalance + np.sum(s.balancer.masses * s.balancer.race_radius * np.exp(1j * a), -1)
+    g_res = t._grade(np.abs(ut), s.total_mass, wn)
+    stuck = t.immobile_mask(s, w, a)
+    assert g_res.min() < g_star < g_res.max()
+    assert stuck[g_res <= g_star].all()
+    band = (g_res > g_star) & (g_res < 1.05 * g_star)
+    assert band.sum() > 20
+    assert stuck[band].all() if f_hz == 167.0 else not stuck[band].all()
+    # 004 Table 1 at the 100 Hz plateau: G* = mu R Omega_nom / A, A = 5.45 (hand calculation)
+    if f_hz == 100.0:
+        assert abs(g_star - 13.47) < 0.01
+
+
+def test_plateau_speed_of_the_preset():
+    assert t.plateau_speed(t._cfg().spin) == pytest.approx(2 * np.pi * 100.0)
+
+
 def test_compute_immobility_rows_quick():
     ds = t.compute_immobility(quick=True)
     assert ds["immobility"].dims == ("mu_r", "c_r", "speed")
@@ -240,6 +267,8 @@ def test_monte_carlo_quick(mc_quick):
     rows = t.compare_monte_carlo(ds)
     _check_rows(rows)
     assert rows[0]["computed"] == 21 and rows[0]["ok"]
+    assert ds.attrs["G_stick_plateau"] == pytest.approx(13.47, abs=0.01)
+    assert "G* = 13.47" in next(r["note"] for r in rows if r["key"] == "monte_carlo/mode_TSR")
 
 
 def test_unbalance_and_profile_quick():
@@ -301,6 +330,14 @@ def test_cli_reproduce_monte_carlo_json_resumes(tmp_path):
     tg = d["targets"][0]
     assert tg["rows"][0]["computed"] == 78 and len(tg["rows"]) == 12
     stores = sorted(p.name for p in (tmp_path / "stores").iterdir())
+    assert stores == ["mc-n12", "mc-n12-plateau1.02"]
+    # the sensitivity run at 004's ideal plateau: reported in the notes and saved with the data
+    assert "plateau at 004's ideal 1.02 Omega_n (96.1 Hz)" in tg["run_notes"]
+    import xarray as xr
+    nc = next((tmp_path / "data").glob("*fig5*.nc"))
+    with xr.open_dataset(nc) as ds:
+        assert ds["G_TSR_ideal"].shape == ds["G_TSR"].shape
+        assert abs(ds.attrs["ideal_G_stick_plateau"] - 11.46) < 0.01
     # the sweep store is reused: a rerun computes nothing new and gives the same rows
     r2 = runner.invoke(app, args)
     assert json.loads(r2.stdout)["targets"][0]["rows"] == tg["rows"]

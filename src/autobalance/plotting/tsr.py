@@ -68,11 +68,20 @@ def plot_monte_carlo(ds) -> Figure:
             label=f"STD: {100 * np.mean(s <= G_LIMIT):.1f} % <= G16")
     a1.hist(t, bins, density=True, histtype="step", color="k", lw=1.5,
             label=f"TSR: {100 * np.mean(t <= G_LIMIT):.1f} % <= G16")
+    if "G_TSR_ideal" in ds:
+        ti = ds["G_TSR_ideal"].values[ok]
+        a1.hist(ti, bins, density=True, histtype="step", color="b", lw=1.0, ls="--",
+                label=f"TSR, plateau {ds.attrs['ideal_plateau_hz']:.1f} Hz: "
+                      f"{100 * np.mean(ti <= G_LIMIT):.1f} % <= G16")
     a1.axvline(gi, color="k", ls="--", lw=1, label=f"G_ini = G{gi:.1f}")
     a1.axvline(G_LIMIT, color="r", ls=":", lw=1)
+    if "G_stick_plateau" in ds.attrs:
+        a1.axvline(ds.attrs["G_stick_plateau"], color="k", ls="-.", lw=0.8,
+                   label=f"stick threshold G* at {ds.attrs['plateau_hz']:.0f} Hz: "
+                         f"G{ds.attrs['G_stick_plateau']:.1f}")
     a1.set_xlabel("grade G [mm/s]")
     a1.set_ylabel("probability density [s/mm]")
-    a1.legend(fontsize=8)
+    a1.legend(fontsize=7, loc="upper left")
     a1.set_title(f"PDF of G ({ok.sum()} runs)")
     a2.scatter(s, t, s=5, alpha=0.5)
     a2.plot([0, top], [0, top], "k:", lw=1)

@@ -31,13 +31,15 @@ __all__ = ["PUBLISHED", "STUDIES", "UNBALANCE_CASES", "PLATEAU_CASES", "compare_
            "compare_monte_carlo", "compare_plateau", "compare_profile", "compare_single",
            "compare_unbalance", "compute_immobility", "compute_monte_carlo", "compute_plateau",
            "compute_profile", "compute_single", "start_family", "compute_unbalance", "grade_to_unbalance",
-           "immobility", "immobile_mask", "kernel_required_friction", "regions",
-           "steady_deflection", "tangential_force", "valid_ranges"]
+           "immobility", "immobile_mask", "kernel_required_friction", "plateau_speed",
+           "regions", "steady_deflection", "stick_threshold_grade", "tangential_force",
+           "valid_ranges"]
 
 PRESET = "vub_jeffcott_004"
 G_LIMIT = 16.0          # 004 sec. 4: the rotor must qualify G16
 G_SPAN = 50.0           # 004 Tables 3-4: efficiency = valid range / [G0, G50]
 G_TSR_RANGE = 34.0      # 004 sec. 4.6: ideal plateau averaged over G_ini <= G34
+REGIONS = ("I.A", "I.B", "II", "III", "IV")   # 004 Table 2
 
 #: (mu_r, c_r) of the initial-unbalance cases of 004 Tables 3-4.
 UNBALANCE_CASES = {"nominal": (1.0, 1.0), "mu0.5": (0.5, 1.0), "mu0.25": (0.25, 1.0),
@@ -224,6 +226,46 @@ def immobility(system, speeds, n_conf: int = 100):
     for j, w in enumerate(np.atleast_1d(speeds)):
         out[j] = immobile_mask(system, float(w), alpha).mean()
     return out
+
+
+def stick_threshold_grade(system, speed, nominal_speed):
+    """Residual grade G* [mm/s] below which every ball configuration at rest is immobile.
+
+    From :func:`immobile_mask` (004 eq 1 against mu_s m R Omega^2): ball i sticks iff
+    |Im(w e^{-i alpha_i})| <= mu_s R, and on the steady orbit |w| = A e with the residual
+    eccentricity e = |U_t| / M_t [m] and the Jeffcott amplification A = M_t Omega^2 /
+    |k - M_t Omega^2 + i c Omega| (textbook synchronous response, :func:`steady_deflection`).
+    So every configuration sticks when A e <= mu_s R, i.e. below
+    G* = 1e3 Omega_nom mu_s R / A  (ISO 1940 grade at Omega_nom, 004 sec. 4).
+    Above G* only configurations whose balls lie nearly along w can stay at rest, so balls that
+    relocate at speed Omega stop near G*.
+
+    Parameters
+    ----------
+    system : System
+        Isotropic suspension k [N/m], c [N s/m]; total mass M_t [kg]; race radius R [m]; the
+        balls' static friction mu_s [-] (the largest, if they differ).
+    speed : array_like
+        Spin speed Omega [rad/s].
+    nominal_speed : float
+        Omega_nom [rad/s] of the grade.
+
+    Returns
+    -------
+    ndarray
+        G* [mm/s], shape of ``speed``.
+    """
+    s, b = system.suspension, system.balancer
+    if s.kx != s.ky or s.cx != s.cy:
+        raise ValueError("stick_threshold_grade: needs an isotropic (Jeffcott) suspension")
+    w = np.asarray(speed, float)
+    amp = system.total_mass * w * w / np.abs(s.kx - system.total_mass * w * w + 1j * s.cx * w)
+    return 1e3 * nominal_speed * float(np.max(b.stiction)) * b.race_radius / amp
+
+
+def plateau_speed(spin) -> float:
+    """Lowest speed [rad/s] of a profile after its first read-out: the TSR plateau (Fig. 3)."""
+    return min(w for t, w in zip(spin.times, spin.speeds) if t > spin.checkpoints[0])
 
 
 def kernel_required_friction(system, speed, alpha):
@@ -445,15 +487,24 @@ def compare_single(ds=None) -> list:
 
 
 # -- 2. start-position Monte Carlo (Fig. 5-6, Table 2) ------------------------------------------
-def compute_monte_carlo(n: int = 50, *, store_dir=None, executor="local", workers=None):
+def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None, store_dir=None,
+                        executor="local", workers=None):
     """004 sec. 4.2: n x n equispaced start positions, identical balls -> n(n+1)/2 runs
-    (1275 for n = 50), G at the STD (18 s) and TSR (90 s) read-outs."""
+    (1275 for n = 50), G at the STD (18 s) and TSR (90 s) read-outs.
+
+    ``plateau_ratio``: run with the TSR plateau at this multiple of Omega_n = sqrt(k/M_t)
+    instead of the preset's 100 Hz (a sensitivity study; None = the preset)."""
     import xarray as xr
 
     t0 = time.perf_counter()
-    raw = _run_sweep(f"tsr-mc-n{n}", [], {}, n, store=_store(store_dir, f"mc-n{n}"),
-                     executor=executor, workers=workers)
     cfg = _cfg()
+    sets, name = [], f"mc-n{n}"
+    if plateau_ratio is not None:
+        fn = math.sqrt(cfg.system.suspension.kx / cfg.system.total_mass)
+        sets, name = [f"profile.plateau={plateau_ratio * fn!r}"], f"{name}-plateau{plateau_ratio:g}"
+        cfg = _cfg(sets)
+    raw = _run_sweep(f"tsr-{name}", sets, {}, n, store=_store(store_dir, name),
+                     executor=executor, workers=workers)
     g = raw["grade_G"].values                      # (sample, checkpoint)
     ok = raw["status"].values == 0
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
@@ -461,21 +512,27 @@ def compute_monte_carlo(n: int = 50, *, store_dir=None, executor="local", worker
                      "G_TSR": ("sample", g[:, 1], {"units": "mm/s"}),
                      "start_angle": (("sample", "ball"), raw["start_angle"].values, {"units": "rad"}),
                      "status": ("sample", raw["status"].values)})
-    s, t = g[ok, 0], g[ok, 1]
-    ms, ses = _mode(s)
-    mt, set_ = _mode(t)
-    reg = regions(s, t, g_ini)
     ds.attrs.update({
         "study": "monte_carlo", "n": n, "runs": int(ok.size), "failed": int((~ok).sum()),
         "G_ini": g_ini, "G_balls": float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass,
                                                 cfg.spin.nominal_speed)),
-        "mode_STD": ms, "mode_STD_se": ses, "mode_TSR": mt, "mode_TSR_se": set_,
-        "median_STD": float(np.median(s)), "median_TSR": float(np.median(t)),
-        "share_G16_STD": float(np.mean(s <= G_LIMIT)), "share_G16_TSR": float(np.mean(t <= G_LIMIT)),
-        "success_STD": float(np.mean(s <= g_ini)), "success_TSR": float(np.mean(t <= g_ini)),
-        **{f"region_{k}": v for k, v in reg.items()},
+        **_mc_stats(g[ok, 0], g[ok, 1], g_ini),
+        "plateau_hz": plateau_speed(cfg.spin) / (2 * np.pi),
+        "G_stick_plateau": float(stick_threshold_grade(cfg.system, plateau_speed(cfg.spin),
+                                                       cfg.spin.nominal_speed)),
         "wall_s": time.perf_counter() - t0, "profile": _profile_text(cfg.spin)})
     return ds
+
+
+def _mc_stats(s, t, g_ini) -> dict:
+    """Mode (1 mm/s bins, bootstrap SE), median, G16 and G_ini shares and Table 2 regions of the
+    STD (s) and TSR (t) grades [mm/s]."""
+    (ms, ses), (mt, set_) = _mode(s), _mode(t)
+    return {"mode_STD": ms, "mode_STD_se": ses, "mode_TSR": mt, "mode_TSR_se": set_,
+            "median_STD": float(np.median(s)), "median_TSR": float(np.median(t)),
+            "share_G16_STD": float(np.mean(s <= G_LIMIT)), "share_G16_TSR": float(np.mean(t <= G_LIMIT)),
+            "success_STD": float(np.mean(s <= g_ini)), "success_TSR": float(np.mean(t <= g_ini)),
+            **{f"region_{k}": v for k, v in regions(s, t, g_ini).items()}}
 
 
 def _share_tol(p: float, n_ours: int, n_paper: int = 1275) -> float:
@@ -499,7 +556,10 @@ def compare_monte_carlo(ds=None) -> list:
         rows.append(_row(f"monte_carlo/mode_{cp}", f"004 Fig. 5 most frequent G_{cp} [mm/s]", p[f"mode_{cp}"], round(m, 2),
                          f"+-{tol:.1f}", abs(m - p[f"mode_{cp}"]) <= tol,
                          f"mode of 1 mm/s bins; tolerance max(1 bin, 2 x bootstrap SE {se:.1f}); "
-                         f"median {a[f'median_{cp}']:.1f}"))
+                         f"median {a[f'median_{cp}']:.1f}"
+                         + (f"; closed-form stick threshold at our plateau G* = "
+                            f"{a['G_stick_plateau']:.2f} (stick_threshold_grade; 11.45 at "
+                            f"1.02 Omega_n)" if cp == "TSR" and "G_stick_plateau" in a else "")))
     for key, lab in (("share_G16", "share qualifying G16"), ("success", "share with G <= G_ini")):
         for cp in ("STD", "TSR"):
             pub = p[f"{key}_{cp}"]
@@ -870,8 +930,24 @@ def _mc_n(ctx):
 
 def _run_mc(ctx):
     n = _mc_n(ctx)
-    ds = compute_monte_carlo(n, store_dir=ctx.stores, executor=ctx.executor, workers=ctx.workers)
-    return _outcome("tsr-monte-carlo", ds, f"{n} x {n} start grid: {ds.attrs['runs']} runs")
+    kw = dict(store_dir=ctx.stores, executor=ctx.executor, workers=ctx.workers)
+    ds = compute_monte_carlo(n, **kw)
+    ideal = PUBLISHED["plateau"]["ideal"]["nominal"]
+    alt = compute_monte_carlo(n, plateau_ratio=ideal, **kw)
+    ds["G_TSR_ideal"] = alt["G_TSR"].assign_attrs(
+        long_name=f"G_TSR with the plateau at {ideal:g} Omega_n")
+    ds.attrs.update({f"ideal_{k}": alt.attrs[k] for k in
+                     ("plateau_hz", "G_stick_plateau", "mode_TSR", "share_G16_TSR",
+                      *(f"region_{r}" for r in REGIONS))})
+    a = ds.attrs
+    note = (f"{n} x {n} start grid: {a['runs']} runs. Sensitivity (not a published number): "
+            f"the same starts with the plateau at 004's ideal {ideal:g} Omega_n "
+            f"({a['ideal_plateau_hz']:.1f} Hz) give the most frequent G_TSR "
+            f"{a['ideal_mode_TSR']:.1f} (004: 11; closed-form stick threshold "
+            f"{a['ideal_G_stick_plateau']:.2f}), {100 * a['ideal_share_G16_TSR']:.1f} % <= G16, "
+            "regions " + ", ".join(f"{r} {100 * a[f'ideal_region_{r}']:.1f} %" for r in REGIONS)
+            + f" (at 100 Hz: mode {a['mode_TSR']:.1f}, G* {a['G_stick_plateau']:.2f}).")
+    return _outcome("tsr-monte-carlo", ds, note)
 
 
 def _unb_n(ctx):
@@ -932,7 +1008,11 @@ def _targets():
                "regions", _run_mc, PUBLISHED["monte_carlo"], "monte_carlo",
                notes=model + "Tolerance on shares: 2 sigma of the difference of two binomial "
                "shares. The G16 shares miss: our STD qualifies more often than 004's "
-               "(docs/tsr-studies.md).", quick="12 x 12 start grid (78 runs) instead of "
+               "(docs/tsr-studies.md). Our most frequent G_TSR is the closed-form stick "
+               "threshold at the plateau, G* = mu R Omega_nom |k - M_t Omega^2 + i c Omega| / "
+               "(M_t Omega^2) = 13.47 at 100 Hz: below it no ball can move "
+               "(stick_threshold_grade); 004's 11 is G* at 1.02 Omega_n (11.45), so the "
+               "report also runs that plateau as a sensitivity study.", quick="12 x 12 start grid (78 runs) instead of "
                                                "50 x 50 (1275 runs)", aliases=("tsr-mc",)),
         Target("004-fig7-11-12-table3-4", "004", ("Fig. 7", "Fig. 11", "Fig. 12", "Table 3",
                                                   "Table 4"),
