@@ -395,3 +395,37 @@ def test_store_from_another_package_version_is_refused(tmp_path):
     with pytest.raises(StoreMismatch, match="0.0.1"):
         sweep(spec_from_dict(d), store, executor="serial", progress=False, resume=True)
     assert {p: p.read_bytes() for p in (store / "tasks").iterdir()} == before
+
+
+def test_history_matches_checkpoints_and_profile(tmp_path):
+    """[outputs] history_dt: the decimated histories are the states at their own times (the
+    checkpoints come first in the request, the histories after, unsorted), so a history sample
+    at a checkpoint time equals the checkpoint, and the speed follows the profile from rest."""
+    from autobalance.sweep import sweep
+
+    spec = spec_of(TINY + '\n[outputs]\nhistory_dt = "0.5 s"\n')
+    ds = sweep(spec, tmp_path / "h", executor="serial", progress=False)
+    t = ds["history_time"].values
+    for k, tc in enumerate(ds["checkpoint"].values):          # 6 s (STD) and 12 s (TSR)
+        j = int(np.flatnonzero(np.isclose(t, tc))[0])
+        np.testing.assert_array_equal(ds["grade_G_history"].isel(history_time=j).values,
+                                      ds["grade_G"].isel(checkpoint=k).values)
+    spin = make_plan(spec).cells[0].spin
+    w = ds["speed_history"].isel(balancer__rolling_resistance=0, sample=0).values
+    np.testing.assert_allclose(w, np.interp(t, spin.times, spin.speeds), rtol=1e-9, atol=1e-9)
+    assert w[0] == 0.0
+
+
+def test_simulate_batch_any_order_of_out_times():
+    import autobalance as ab
+    from autobalance.config import load_config
+
+    cfg = load_config("vub_jeffcott_004", ["profile.duration=12 s", "profile.runup_fraction=0.5",
+                                           "profile.down_time=1 s", "profile.plateau_time=2 s",
+                                           "profile.up_time=1 s"])
+    ts = np.array([12.0, 3.0, 6.0, 0.0, 6.0])
+    a = ab.simulate_batch([cfg.system], cfg.spin, options=cfg.options, out_times=ts)
+    b = ab.simulate_batch([cfg.system], cfg.spin, options=cfg.options, out_times=np.sort(ts))
+    order = np.argsort(ts, kind="stable")
+    np.testing.assert_array_equal(a.states[:, order], b.states)
+    np.testing.assert_array_equal(a.states[:, 2], a.states[:, 4])

@@ -81,7 +81,7 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
 
     All runs share the spin profile; everything else (parameters, unbalance schedule, initial
     state) is per run. They run in parallel threads (numba prange). Only the states at ``out_times`` [s] (default: the
-    profile's checkpoints) and the run statistics are kept. A failed run is a status in the
+    profile's checkpoints; any order, the result keeps it) and the run statistics are kept. A failed run is a status in the
     result, never an exception.
     """
     options = options or SimOptions()
@@ -112,9 +112,14 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
         unb_t[r, :t.size], unb_t[r, t.size:] = t, t[-1]
         unb_u[r, :u.size], unb_u[r, u.size:] = u, u[-1]
     out_t = np.asarray(spin.checkpoints if out_times is None else out_times, float)
-    out_y = np.zeros((n_runs, out_t.size, y0.shape[1]))
+    # the integrator fills its output times in increasing order: sort, then restore the caller's
+    order = np.argsort(out_t, kind="stable")
+    out_ys = np.zeros((n_runs, out_t.size, y0.shape[1]))
     stats = np.zeros((n_runs, N_S))
     integrate_batch(Ps, Bs, N, prof_t, prof_w, unb_t, unb_u, unb_n, y0, t_end, options.rtol,
-                    atol, _h_max(spin, options), int(options.max_steps), out_t, out_y, stats)
+                    atol, _h_max(spin, options), int(options.max_steps), out_t[order], out_ys,
+                    stats)
+    out_y = np.empty_like(out_ys)
+    out_y[:, order] = out_ys
     status = [STATUS.get(int(s), "unknown") for s in stats[:, S_STATUS]]
     return BatchResult(systems, spin, options, out_t, out_y, stats, orders, status)
