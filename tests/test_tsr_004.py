@@ -237,6 +237,12 @@ def test_published_numbers_all_reach_a_row():
         assert t.PUBLISHED["single"][k] in got
     for v in t.PUBLISHED["plateau"]["ideal"].values():
         assert v in got
+    rows = t.compare_descent(xr.Dataset(attrs={
+        "half_drop_median": 1.09, "half_drop_p95": 1.1, "G_ini": 5.0, "runs": 1275,
+        "ratio_end": 0.9, "down_time_s": 60.0, "p95_min": 17.0, "p95_min_ratio": 1.05,
+        "p95_rise_ratio": math.nan, "p95_max_after": 17.0}))
+    assert [r["published"] for r in rows] == [1.1, "some outcomes deteriorate"]
+    assert [r["ok"] for r in rows] == [True, False]
 
 
 # -- the studies themselves, quick variants --------------------------------------------------------
@@ -295,6 +301,34 @@ def test_plateau_quick():
     rows = t.compare_plateau(ds)
     _check_rows(rows)
     assert rows[0]["ok"]                           # 100 Hz / f_n = 1.06
+
+
+def test_half_drop_and_rise_after_min_synthetic():
+    r = np.linspace(1.5, 0.9, 61)                   # descending speed ratio, step 0.01
+    g = np.where(r > 1.2, 20.0, np.where(r > 1.1, 20.0 - 100.0 * (1.2 - r), 10.0))
+    assert t._half_drop(r, g) == pytest.approx(1.15)     # 20 -> 10: halfway (15) at 1.15
+    assert math.isnan(t._half_drop(r, np.full_like(r, 7.0)))
+    g2 = g.copy()
+    g2[r < 0.97] = 12.0                            # the worst outcomes deteriorate below 0.97
+    d = t._rise_after_min(r, g2)
+    assert d["p95_min"] == 10.0 and d["p95_rise_ratio"] == pytest.approx(0.96)
+    assert math.isnan(t._rise_after_min(r, g)["p95_rise_ratio"])
+
+
+def test_descent_quick():
+    """004 Fig. 13: a small descent; every grade stays within the balancer's reach and the rows
+    are well formed."""
+    ds = t.compute_descent(n=3, history_dt=1.0, executor="serial")
+    assert ds.attrs["runs"] == 6 and ds.attrs["failed"] == 0
+    r = ds["ratio"].values
+    assert r[0] == pytest.approx(167.0 / ds.attrs["f_n_hz"]) and r[-1] == pytest.approx(0.9)
+    assert np.all(np.diff(r) < 0)                   # the speed decreases along the descent
+    g = ds["grade_G"].values
+    assert np.all(np.diff(g, axis=0) >= 0)          # percentiles ordered
+    assert g.max() <= ds.attrs["G_ini"] + ds.attrs["G_balls"] + 1e-9
+    rows = t.compare_descent(ds)
+    _check_rows(rows)
+    assert [x["key"] for x in rows] == ["descent/prompt_reduction", "descent/worse_near_resonance"]
 
 
 # -- CLI ---------------------------------------------------------------------------------------------

@@ -6,7 +6,8 @@ compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
 * :func:`plot_unbalance` - Fig. 7, 11-12: 5/95 % isolines against G_ini, operating boundaries;
 * :func:`plot_profile` - Fig. 9: 95 % isolines of STD, TSR and a 3x slower run-up;
 * :func:`plot_immobility` - Fig. 8, 10: immobility against speed for the mu_r x c_r sets;
-* :func:`plot_plateau` - Fig. 13-16: 95 % residual grade over lower plateau x G_ini;
+* :func:`plot_plateau` - Fig. 14-16: 95 % residual grade over lower plateau x G_ini;
+* :func:`plot_descent` - Fig. 13: residual grade percentiles along a gradual speed reduction;
 * :func:`plot_speed_profile` - Fig. 3: the standardised speed profile.
 """
 from __future__ import annotations
@@ -162,9 +163,8 @@ def plot_immobility(ds) -> Figure:
 
 
 def plot_plateau(ds) -> Figure:
-    """004 Fig. 13-16 from :func:`compute_plateau`: upper row the map (Fig. 14-15), lower row
-    the 95 % residual grade against the plateau for each G_ini (Fig. 13 and 16 are such
-    slices)."""
+    """004 Fig. 14-16 from :func:`compute_plateau`: upper row the map (Fig. 14-15), lower row
+    the 95 % residual grade against the plateau for each G_ini (Fig. 16 is such a slice)."""
     cases = list(ds["case"].values)
     fig = Figure(figsize=(5.0 * len(cases), 8.0), constrained_layout=True)
     FigureCanvasAgg(fig)
@@ -188,7 +188,37 @@ def plot_plateau(ds) -> Figure:
         bx.set_xlabel("lower plateau / Omega_n [-]")
         bx.set_ylabel("95 % residual G_TSR [mm/s]")
         bx.legend(fontsize=7, ncol=2)
-    fig.suptitle("004 Fig. 13-16: lower TSR plateau")
+    fig.suptitle("004 Fig. 14-16: lower TSR plateau")
+    return fig
+
+
+def plot_descent(ds) -> Figure:
+    """004 Fig. 13 from :func:`compute_descent`: percentiles of the residual grade against the
+    speed ratio along the descent (read right to left), the stick threshold G*(Omega), the
+    standard plateau and the balancer's operating boundary G_ini + G_balls."""
+    fig, (ax,) = _fig(1, w=7.5, h=4.6)
+    r = ds["ratio"].values
+    a = ds.attrs
+    for p, ls in zip(ds["percentile"].values, (":", "--", "-", "--", ":")):
+        ax.plot(r, ds["grade_G"].sel(percentile=p).values, "k", ls=ls,
+                lw=1.6 if p == 50 else 1.0, label=f"{p:g} %")
+    ax.plot(r, ds["G_stick"].values, color="C0", lw=1.0, ls="-.", label="stick threshold G*")
+    ax.axvline(a["standard_ratio"], color="0.4", ls=":", lw=1,
+               label=f"standard plateau {a['standard_ratio']:.2f}")
+    ax.axvline(1.0, color="r", lw=0.6)
+    if np.isfinite(a["half_drop_median"]):
+        ax.axvline(a["half_drop_median"], color="C1", lw=1,
+                   label=f"half drop of the median {a['half_drop_median']:.3f}")
+    top = a["G_ini"] + a["G_balls"]
+    ax.axhline(top, color="k", ls="--", lw=0.8, label=f"G_ini + G_balls = G{top:.0f}")
+    ax.axhline(G_LIMIT, color="r", ls=":", lw=0.8)
+    ax.set_xlim(r.max(), r.min())
+    ax.set_ylim(0, top * 1.15)
+    ax.set_xlabel("Omega / Omega_n [-] (the speed decreases to the right)")
+    ax.set_ylabel("residual G [mm/s]")
+    ax.set_title(f"004 Fig. 13: gradual speed reduction, G_ini = G{a['G_ini']:g}, "
+                 f"{a['runs']} starts")
+    ax.legend(fontsize=7, ncol=2, loc="upper right")
     return fig
 
 

@@ -1,5 +1,6 @@
 """Seed 004 (temporary speed reduction, TSR): single run, start-position Monte Carlo,
-initial-unbalance sweep, speed profiles, immobility and the lower-plateau map, against the paper.
+initial-unbalance sweep, speed profiles, immobility, the gradual descent and the lower-plateau
+map, against the paper.
 
 Each study has ``compute_<study>(...)`` returning an :class:`xarray.Dataset` (SI, with units in
 attrs), its published numbers in :data:`PUBLISHED` and ``compare_<study>(ds)`` returning rows
@@ -29,7 +30,7 @@ from ..report.target import not_computed, row
 
 __all__ = ["PUBLISHED", "STUDIES", "UNBALANCE_CASES", "PLATEAU_CASES", "compare_immobility",
            "compare_monte_carlo", "compare_plateau", "compare_profile", "compare_single",
-           "compare_unbalance", "compute_immobility", "compute_monte_carlo", "compute_plateau",
+           "compare_unbalance", "compare_descent", "compute_descent", "compute_immobility", "compute_monte_carlo", "compute_plateau",
            "compute_profile", "compute_single", "start_family", "compute_unbalance", "grade_to_unbalance",
            "immobility", "immobile_mask", "kernel_required_friction", "plateau_speed",
            "regions", "steady_deflection", "stick_threshold_grade", "tangential_force",
@@ -82,6 +83,11 @@ PUBLISHED = {
                    "monotone_c": "more damping, more immobility",
                    "source": "004 sec. 4.4-4.5, Fig. 8 and 10 (G_ini = G20); the figures give "
                              "no numbers, the rows check the text's statements"},
+    "descent": {"prompt_reduction": 1.1, "worse_near_resonance": "some outcomes deteriorate",
+                "source": "004 sec. 4.6, Fig. 13: G5, mu_r = c_r = 1, gradual speed reduction "
+                          "from nominal to 0.9 Omega_n: 'a prompt unbalance reduction near "
+                          "Omega = 1.1 Omega_n. Unstable working occurs when nearing resonance "
+                          "which deteriorates some of the balancing outcomes.'"},
     "plateau": {"ideal": {"nominal": 1.02, "c0.5": 1.03}, "standard": 1.06,
                 "source": "004 sec. 4.6, Fig. 14-15: ideal lower plateau / Omega_n; the "
                           "standard plateau 100 Hz / 94.2 Hz = 1.06"},
@@ -121,7 +127,8 @@ def _grade(U, total_mass: float, nominal_speed: float):
     return np.asarray(U, float) / total_mass * 1e3 * nominal_speed
 
 
-def _run_sweep(name, sets, grid, n, *, store=None, executor="local", workers=None):
+def _run_sweep(name, sets, grid, n, *, store=None, executor="local", workers=None,
+               history_dt: float = 0.0):
     """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2) and return its Dataset.
 
     ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
@@ -134,7 +141,8 @@ def _run_sweep(name, sets, grid, n, *, store=None, executor="local", workers=Non
     bs = max(1, min(64, math.ceil(n_runs / (4 * w))))
     spec = spec_from_dict({"sweep": {"name": name, "base": PRESET, "set": list(sets),
                                      "batch_size": bs},
-                           "grid": grid, "monte_carlo": {"kind": "start_grid", "n": int(n)}})
+                           "grid": grid, "monte_carlo": {"kind": "start_grid", "n": int(n)},
+                           **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})})
     if store is None:
         with tempfile.TemporaryDirectory() as d:
             return sweep(spec, Path(d) / name, executor=executor, workers=workers,
@@ -790,7 +798,7 @@ def compare_immobility(ds=None) -> list:
     return rows
 
 
-# -- 6. plateau map (Fig. 13-16) ----------------------------------------------------------------
+# -- 6. plateau map (Fig. 14-16) ----------------------------------------------------------------
 def _plateau_grid(quick: bool):
     if quick:
         return np.array([0.98, 1.02, 1.06, 1.10]), np.array([5.0, 15.0, 25.0])
@@ -856,6 +864,113 @@ def compare_plateau(ds=None) -> list:
     return rows
 
 
+# -- 7. gradual descent (Fig. 13) ----------------------------------------------------------------
+DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
+
+
+def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
+                    down_time: float = 60.0, history_dt: float = 0.25, store_dir=None,
+                    executor="local", workers=None):
+    """004 sec. 4.6, Fig. 13: after the standard run-up (18 s to 167 Hz), a slow linear descent
+    to ``ratio_end`` Omega_n in ``down_time`` [s]; the residual grade G [mm/s] of every start is
+    read every ``history_dt`` [s] and its percentiles over the n(n+1)/2 starts are returned
+    against the speed ratio Omega/Omega_n [-]. Also the stick threshold G*(Omega)
+    (:func:`stick_threshold_grade`) at the same speeds.
+
+    004 does not give its descent rate ("a gradual speed reduction"); ours is 82 Hz in 60 s
+    (1.4 Hz/s), a fifth of the TSR profile's 6.7 Hz/s."""
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    base = _cfg()
+    s0 = base.system
+    fn = math.sqrt(s0.suspension.kx / s0.total_mass)
+    U = float(grade_to_unbalance(G_ini, s0.total_mass, base.spin.nominal_speed))
+    sets = [f"rotor.unbalance={U!r}", f"profile.plateau={ratio_end * fn!r}",
+            f"profile.down_time={down_time!r}", "profile.plateau_time=1.0", "profile.up_time=1.0"]
+    cfg = _cfg(sets)
+    name = f"descent-g{G_ini:g}-n{n}"
+    raw = _run_sweep(f"tsr-{name}", sets, {}, n, store=_store(store_dir, name),
+                     executor=executor, workers=workers, history_dt=history_dt)
+    t = raw["history_time"].values
+    t_read = cfg.spin.checkpoints[0]
+    sel = (t >= t_read) & (t <= t_read + down_time + 1e-9)
+    speed = np.interp(t[sel], cfg.spin.times, cfg.spin.speeds)
+    ok = raw["status"].values == 0
+    g = raw["grade_G_history"].values[ok][:, sel]                       # (run, time)
+    pct = np.percentile(g, DESCENT_PCT, axis=0)
+    ratio = speed / fn
+    ds = xr.Dataset({"grade_G": (("percentile", "ratio"), pct, {"units": "mm/s"}),
+                     "G_stick": ("ratio", stick_threshold_grade(cfg.system, speed,
+                                                                 cfg.spin.nominal_speed),
+                                 {"units": "mm/s", "long_name": "stick threshold G*"}),
+                     "time": ("ratio", t[sel], {"units": "s"})},
+                    coords={"percentile": list(DESCENT_PCT),
+                            "ratio": ("ratio", ratio, {"long_name": "Omega / Omega_n"})})
+    med, p95 = pct[DESCENT_PCT.index(50.0)], pct[DESCENT_PCT.index(95.0)]
+    ds.attrs.update({
+        "study": "descent", "n": n, "runs": int(ok.size), "failed": int((~ok).sum()),
+        "G_ini": G_ini, "G_balls": float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass,
+                                                cfg.spin.nominal_speed)),
+        "f_n_hz": fn / (2 * np.pi), "standard_ratio": plateau_speed(base.spin) / fn,
+        "down_time_s": down_time, "ratio_end": ratio_end,
+        "half_drop_median": _half_drop(ratio, med), "half_drop_p95": _half_drop(ratio, p95),
+        **_rise_after_min(ratio, p95),
+        "wall_s": time.perf_counter() - t0, "profile": _profile_text(cfg.spin)})
+    return ds
+
+
+def _half_drop(ratio, g) -> float:
+    """Speed ratio [-] at which g, followed from the start of the descent (highest speed), first
+    falls halfway from its start value to its minimum over ratio >= 1 (linear interpolation
+    between samples); NaN if it never drops."""
+    sup = ratio >= 1.0
+    g0, gmin = g[0], g[sup].min()
+    if not g0 > gmin:
+        return math.nan
+    level = g0 - 0.5 * (g0 - gmin)
+    j = int(np.argmax(g <= level))                 # first sample at or below the level
+    if j == 0:
+        return float(ratio[0])
+    f = (g[j - 1] - level) / (g[j - 1] - g[j])
+    return float(ratio[j - 1] + f * (ratio[j] - ratio[j - 1]))
+
+
+def _rise_after_min(ratio, g, rise: float = 1.0) -> dict:
+    """Where g [mm/s], after its minimum over ratio >= 1, first exceeds that minimum by more than
+    ``rise`` later in the descent: {"p95_min", "p95_min_ratio", "p95_rise_ratio" (NaN if never),
+    "p95_max_after"}."""
+    sup = np.flatnonzero(ratio >= 1.0)
+    j = int(sup[np.argmin(g[sup])])
+    later = np.flatnonzero(g[j:] > g[j] + rise)
+    return {"p95_min": float(g[j]), "p95_min_ratio": float(ratio[j]),
+            "p95_rise_ratio": float(ratio[j + later[0]]) if later.size else math.nan,
+            "p95_max_after": float(g[j:].max())}
+
+
+def compare_descent(ds=None) -> list:
+    ds = ds if ds is not None else compute_descent()
+    a, p = ds.attrs, PUBLISHED["descent"]
+    hd = a["half_drop_median"]
+    worse = bool(np.isfinite(a["p95_rise_ratio"]))
+    return [
+        _row("descent/prompt_reduction", "004 Fig. 13 speed of the prompt reduction / Omega_n [-]",
+             p["prompt_reduction"], round(hd, 3), "+-0.05", abs(hd - p["prompt_reduction"]) <= 0.05,
+             f"half-drop point of the median G along the descent (p95: "
+             f"{a['half_drop_p95']:.3f}); tolerance: 004 reads 'near 1.1', one decimal; "
+             f"G_ini = G{a['G_ini']:g}, {a['runs']} starts, descent 167 Hz -> "
+             f"{a['ratio_end']:g} Omega_n in {a['down_time_s']:g} s"),
+        _row("descent/worse_near_resonance", "004 Fig. 13 outcomes deteriorate nearing resonance",
+             p["worse_near_resonance"],
+             (f"p95 rises from {a['p95_min']:.1f} (at {a['p95_min_ratio']:.3f}) to "
+              f"{a['p95_max_after']:.1f}, past +1 at {a['p95_rise_ratio']:.3f} Omega_n") if worse
+             else f"no rise: p95 min {a['p95_min']:.1f} at {a['p95_min_ratio']:.3f}",
+             "p95 rises > 1 mm/s above its minimum later in the descent", worse,
+             "95th percentile of G (the worst outcomes) along the descent to 0.9 Omega_n; its "
+             "minimum taken over Omega >= Omega_n"),
+    ]
+
+
 #: CLI name -> (compute, compare, plot function name in plotting.tsr)
 STUDIES = {
     "tsr-single": (compute_single, compare_single, "plot_single"),
@@ -863,6 +978,7 @@ STUDIES = {
     "tsr-unbalance": (compute_unbalance, compare_unbalance, "plot_unbalance"),
     "tsr-profile": (compute_profile, compare_profile, "plot_profile"),
     "tsr-plateau": (compute_plateau, compare_plateau, "plot_plateau"),
+    "tsr-descent": (compute_descent, compare_descent, "plot_descent"),
     "immobility": (compute_immobility, compare_immobility, "plot_immobility"),
 }
 
@@ -982,6 +1098,14 @@ def _run_plateau(ctx):
                                        f"{ds.sizes['G_ini']} G_ini x {n * (n + 1) // 2} starts")
 
 
+def _run_descent(ctx):
+    n = 6 if ctx.quick else 50
+    ds = compute_descent(n=n, history_dt=0.5 if ctx.quick else 0.25, store_dir=ctx.stores,
+                         executor=ctx.executor, workers=ctx.workers)
+    return _outcome("tsr-descent", ds, f"G{ds.attrs['G_ini']:g}, {ds.attrs['runs']} starts, "
+                                       f"G read every {0.5 if ctx.quick else 0.25:g} s")
+
+
 def _targets():
     from ..report.target import Target
 
@@ -1037,13 +1161,21 @@ def _targets():
                notes=model + "Slow run-up: 0 -> 167 Hz linear in 54 s, hold to 90 s, read at "
                              "90 s.",
                quick="G_ini every 5 mm/s, 21 starts per point", aliases=("tsr-profile",)),
-        Target("004-fig13-16", "004", ("Fig. 13", "Fig. 14", "Fig. 15", "Fig. 16"),
+        Target("004-fig13", "004", ("Fig. 13",), "Gradual speed reduction at G5: where the "
+               "balls relocate", _run_descent, PUBLISHED["descent"], "descent",
+               notes=model + "004's descent rate is not given; ours: 167 Hz -> 0.9 Omega_n "
+               "linear in 60 s after the 18 s run-up. The curves are the 5-95 % percentiles "
+               "of the residual grade over the start grid; the dashed curve is the closed-form "
+               "stick threshold G*(Omega) below which no ball at rest can move.",
+               quick="6 x 6 start grid (21 runs), G every 0.5 s, instead of 50 x 50 (1275 runs) "
+                     "every 0.25 s", aliases=("tsr-descent",)),
+        Target("004-fig14-16", "004", ("Fig. 14", "Fig. 15", "Fig. 16"),
                "The lower plateau: residual grade over plateau x G_ini and the ideal plateau",
                _run_plateau, PUBLISHED["plateau"], "plateau",
                notes=model + "Ideal plateau: argmin of the mean 95th percentile of G_TSR over "
-               "G_ini <= G34. Fig. 13 (G_ini = 5) and Fig. 16 (c_r = 0.5, plateau 1.06 vs 1.03) "
-               "are slices of the same map: the lower panels, p95 against the plateau per "
-               "G_ini. They have no published numbers of their own.",
+               "G_ini <= G34. Fig. 16 (c_r = 0.5, plateau 1.06 vs 1.03) is a slice of the same "
+               "map: the lower panels, p95 against the plateau per G_ini (G5 is the plateau "
+               "counterpart of Fig. 13). It has no published numbers of its own.",
                quick="plateaus 0.98/1.02/1.06/1.10 x G_ini 5/15/25 x 21 starts instead of "
                      "0.96-1.12 step 0.01 x G0-G32 step 4 x 210 starts",
                aliases=("tsr-plateau",)),
