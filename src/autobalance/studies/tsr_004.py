@@ -30,7 +30,8 @@ from ..report.target import not_computed, row
 
 __all__ = ["PUBLISHED", "STUDIES", "UNBALANCE_CASES", "PLATEAU_CASES", "compare_immobility",
            "compare_monte_carlo", "compare_plateau", "compare_profile", "compare_single",
-           "compare_unbalance", "compare_descent", "compute_descent", "compute_immobility", "compute_monte_carlo", "compute_plateau",
+           "compare_unbalance", "compare_descent", "compute_descent", "compute_immobility",
+           "compute_monte_carlo", "compute_plateau",
            "compute_profile", "compute_single", "start_family", "compute_unbalance", "grade_to_unbalance",
            "immobility", "immobile_mask", "kernel_required_friction", "plateau_speed",
            "regions", "steady_deflection", "stick_threshold_grade", "tangential_force",
@@ -889,7 +890,7 @@ def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
     sets = [f"rotor.unbalance={U!r}", f"profile.plateau={ratio_end * fn!r}",
             f"profile.down_time={down_time!r}", "profile.plateau_time=1.0", "profile.up_time=1.0"]
     cfg = _cfg(sets)
-    name = f"descent-g{G_ini:g}-n{n}"
+    name = f"descent-g{G_ini:g}-n{n}-r{ratio_end:g}-t{down_time:g}-dt{history_dt:g}"
     raw = _run_sweep(f"tsr-{name}", sets, {}, n, store=_store(store_dir, name),
                      executor=executor, workers=workers, history_dt=history_dt)
     t = raw["history_time"].values
