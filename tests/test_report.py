@@ -93,7 +93,7 @@ def test_select_names_groups_and_errors():
     # the tsr-* names select the 004 targets; an alias and its id count once
     assert [t.id for t in registry.select(["tsr-mc", "004-fig5-6-table2"])] == ["004-fig5-6-table2"]
     assert [t.id for t in registry.select(["tsr-plateau", "tsr-single"])] == ["004-fig4",
-                                                                               "004-fig13-16"]
+                                                                               "004-fig14-16"]
 
 
 def test_check_ids_rejects_alias_clashes():
