@@ -652,9 +652,15 @@ def compare_unbalance(ds=None) -> list:
             pb, cb = _boundaries(pr), _boundaries(cr)
             ok_r = len(pr) == len(cr) and len(pb) == len(cb) and all(
                 abs(x - y) <= tb for x, y in zip(pb, cb))
+            top = ""
+            if pr and cr:               # the highest interval: the over-excited range
+                d = max(abs(pr[-1][0] - cr[-1][0]), abs(pr[-1][1] - cr[-1][1]))
+                top = (f"; highest interval G{cr[-1][0]:.1f}-G{cr[-1][1]:.1f}: its boundaries "
+                       f"{'within' if d <= tb else 'outside'} +-{tb:g} G of 004's (max "
+                       f"difference {d:.1f} G)")
             rows.append(_row(f"{key}/ranges", f"{lab} valid range G16", _fmt_ranges(pr), _fmt_ranges(cr),
                              f"same intervals, each boundary +-{tb:g} G", ok_r,
-                             "p95 <= G16, linear interpolation between grid points"))
+                             "p95 <= G16, linear interpolation between grid points" + top))
             nb = max(len(pb), len(cb), 1)
             tol = nb * tb / G_SPAN
             rows.append(_row(f"{key}/efficiency", f"{lab} efficiency [%]", 100 * pe, round(100 * ce, 1),
