@@ -43,3 +43,56 @@ def test_vibratory_force_is_the_revolution_average_of_the_kernel_force(angles):
     avg = np.trapezoid(np.array(lams), sim.t[k], axis=0) / (sim.t[k][-1] - sim.t[k][0])
     F = vibratory_forces(s, W, np.array(sim.alpha[-1]))
     assert avg == pytest.approx(-s.balancer.race_radius * F, rel=1e-6)
+
+
+@pytest.mark.parametrize("law", ["stick", "tanh"])
+@pytest.mark.parametrize("n, rho, g", [(2, 0.0, 0.0), (3, 2e-4, 9.81)])
+def test_prescribed_spin_solve_equals_dense_solve_of_the_mass_matrix(law, n, rho, g):
+    """With a prescribed spin, rhs eliminates the slipping balls through a 2x2 Schur complement
+    (the balls couple only to the rotor). Its accelerations and the stuck balls' friction must be
+    those of a dense solve of the kernel's own mass-matrix rows (left in the work arrays Mm, fv),
+    for random states and stick/slip modes, on a ramp (psi'' != 0), anisotropic, with race
+    eccentricity and gravity."""
+    rng = np.random.default_rng(7)
+    s = washer_000(n=n, rho=rho, beta=0.7, g=g, f_r=0.05)
+    opts = ab.SimOptions(friction_law=law)
+    prof = ab.SpeedProfile((0.0, 10.0), (0.0, 150.0))
+    P, B = pack_params(s, prof, opts)
+    pt, pw, _ = spin_arrays(prof)
+    ut, uu = s.rotor.unbalance_table()
+    nq = n + 3
+    ip = nq - 1
+    spin = np.zeros(2)
+    dy, lam = np.zeros(2 * nq), np.zeros(3 * n + 1)
+    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
+    fv, bb, idx = np.zeros(nq), np.zeros(nq), np.zeros(nq, np.int64)
+    for _ in range(50):
+        t = rng.uniform(0.5, 9.5)
+        y = np.concatenate([rng.normal(0, 1e-3, 2), np.sort(rng.uniform(0, 6.0, n)),
+                            [rng.uniform(0, 50)], rng.normal(0, 0.1, 2), rng.normal(0, 2.0, n),
+                            [15.0 * t]])
+        stuck = rng.integers(0, 2, n).astype(np.int64)
+        sgn = rng.choice([-1.0, 1.0], n)
+        assert rhs(t, y, P, B, n, 0, pt, pw, ut, uu, stuck, sgn, spin, dy, lam, Mm, fv, A, bb, idx)
+        psidd = dy[nq + ip]
+        assert psidd == pytest.approx(15.0)
+        free = [0, 1] + [2 + i for i in range(n) if law == "tanh" or stuck[i] == 0]
+        M = np.zeros((nq, nq))
+        M[:2, :] = Mm[:2, :]
+        M[2:ip, :] = Mm[2:ip, :]
+        for i in range(n):          # ball-ball entries are zero, M is symmetric
+            M[2 + i, 2:ip] = 0.0
+            M[2 + i, 2 + i] = Mm[2 + i, 2 + i]
+        M[:2, 2:ip] = M[2:ip, :2].T
+        M[0, 1] = M[1, 0] = 0.0
+        x = np.linalg.solve(M[np.ix_(free, free)], fv[free] - M[free, ip] * psidd)
+        qdd = np.zeros(nq)
+        qdd[free] = x
+        qdd[ip] = psidd
+        assert dy[nq:] == pytest.approx(qdd, rel=1e-10, abs=1e-12 * np.abs(qdd).max())
+        for i in range(n):
+            if law == "stick" and stuck[i] == 1:
+                k = 2 + i
+                assert lam[i] == pytest.approx(M[k] @ qdd - fv[k], rel=1e-9,
+                                               abs=1e-12 * np.abs(fv).max())
+                assert dy[k] == 0.0 and dy[nq + k] == 0.0

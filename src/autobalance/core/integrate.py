@@ -21,7 +21,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .jit import kernel
+from .jit import inline_kernel, kernel
 
 from .layout import (B_MUS, N_S, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_KX, P_KY, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
@@ -47,7 +47,7 @@ A71, A73, A74, A75, A76 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
 E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
 
 
-@kernel
+@inline_kernel
 def _hermite(y0, f0, y1, f1, h, th, j):
     """Cubic Hermite interpolant of component j at fraction th of a step of size h."""
     th2 = th * th

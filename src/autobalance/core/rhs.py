@@ -330,7 +330,64 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     fv[0] = Fu + Mt * a_u + U * psid * psid + Sm * rho * psid * psid * cb + R * cent_u
     fv[1] = Fv - Mt * a_v + Sm * rho * psid * psid * sb + R * cent_v
 
-    # free unknowns: u'', v'', alpha'' of slipping balls, psi'' if driven
+    if not driven:
+        # Prescribed spin (psi'' = psidd known). The balls couple only to the rotor: ball row
+        # k = 2 + i reads b_i . (u'', v'') + J_i alpha_i'' = g_i, b_i = (M[k,0], M[k,1]),
+        # J_i = M[k,k] (constant), g_i = f_k - M[k,psi] psidd. Eliminating the free balls'
+        # alpha_i'' leaves the 2x2 Schur complement S = M_t I - sum b_i b_i^T / J_i for
+        # x = (u'', v''); then alpha_i'' = (g_i - b_i . x) / J_i. The reduced mass matrix is
+        # positive definite iff every J_i > 0 and S is (ok). bb holds 1/J_i.
+        fric = P[P_FLAW] == 1.0
+        s00 = Mt
+        s11 = Mt
+        s01 = 0.0
+        r0 = fv[0] - Mm[0, ip] * psidd
+        r1 = fv[1] - Mm[1, ip] * psidd
+        ok = Mt > 0.0
+        for i in range(N):
+            if fric or stuck[i] == 0:
+                k = 2 + i
+                J = Mm[k, k]
+                if J <= 0.0:
+                    ok = False
+                    continue
+                iJ = 1.0 / J
+                bb[i] = iJ
+                b0 = Mm[k, 0]
+                b1 = Mm[k, 1]
+                gJ = (fv[k] - Mm[k, ip] * psidd) * iJ
+                s00 -= b0 * b0 * iJ
+                s11 -= b1 * b1 * iJ
+                s01 -= b0 * b1 * iJ
+                r0 -= b0 * gJ
+                r1 -= b1 * gJ
+        det = s00 * s11 - s01 * s01
+        if not ok or s00 <= 0.0 or det <= 0.0:
+            ok = False
+            x0 = math.nan
+            x1 = math.nan
+        else:
+            idet = 1.0 / det
+            x0 = (s11 * r0 - s01 * r1) * idet
+            x1 = (s00 * r1 - s01 * r0) * idet
+        for j in range(nq):
+            dy[j] = y[nq + j]
+        dy[nq] = x0
+        dy[nq + 1] = x1
+        for i in range(N):
+            k = 2 + i
+            if fric or stuck[i] == 0:
+                dy[nq + k] = (fv[k] - Mm[k, ip] * psidd - Mm[k, 0] * x0 - Mm[k, 1] * x1) * bb[i]
+            else:
+                # required friction of a stuck ball: lam_i = M[k,:] q'' - f_k
+                lam[i] = -fv[k] + Mm[k, 0] * x0 + Mm[k, 1] * x1 + Mm[k, ip] * psidd
+                dy[k] = 0.0
+                dy[nq + k] = 0.0
+        dy[nq + ip] = psidd
+        dy[ip] = psid
+        return ok
+    # motor-driven spin: general solve of the free unknowns u'', v'', alpha'' of slipping
+    # balls and psi''
     nf_ = 0
     idx[nf_] = 0
     nf_ += 1
@@ -340,25 +397,21 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         if P[P_FLAW] == 1.0 or stuck[i] == 0:
             idx[nf_] = 2 + i
             nf_ += 1
-    if driven:
-        # psi row = old psi row + u*(v row) - v*(u row)  (coordinate change, docs/model.md)
-        Mm[ip, 0] = -Sm * rho * sb - R * SmS
-        Mm[ip, 1] = U + Sm * rho * cb + R * SmC
-        Mm[ip, ip] = Mpp
-        fpp += motor_torque(P[P_LAW], P[P_T0], P[P_WF], psid) - P[P_CPHI] * psid
-        if has_g:
-            fpp -= g * U * math.sin(psi - gdir)
-        for j in range(nq):
-            Mm[ip, j] += u * Mm[1, j] - v * Mm[0, j]
-        fv[ip] = fpp + u * fv[1] - v * fv[0]
-        idx[nf_] = ip
-        nf_ += 1
+    # psi row = old psi row + u*(v row) - v*(u row)  (coordinate change, docs/model.md)
+    Mm[ip, 0] = -Sm * rho * sb - R * SmS
+    Mm[ip, 1] = U + Sm * rho * cb + R * SmC
+    Mm[ip, ip] = Mpp
+    fpp += motor_torque(P[P_LAW], P[P_T0], P[P_WF], psid) - P[P_CPHI] * psid
+    if has_g:
+        fpp -= g * U * math.sin(psi - gdir)
+    for j in range(nq):
+        Mm[ip, j] += u * Mm[1, j] - v * Mm[0, j]
+    fv[ip] = fpp + u * fv[1] - v * fv[0]
+    idx[nf_] = ip
+    nf_ += 1
     for a_ in range(nf_):
         ia = idx[a_]
-        rhs_a = fv[ia]
-        if not driven:
-            rhs_a -= Mm[ia, ip] * psidd
-        bb[a_] = rhs_a
+        bb[a_] = fv[ia]
         for b_ in range(nf_):
             A[a_, b_] = Mm[ia, idx[b_]]
     ok = cholesky_solve(A, bb, nf_)
@@ -368,9 +421,6 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         dy[nq + j] = 0.0
     for a_ in range(nf_):
         dy[nq + idx[a_]] = bb[a_]
-    if not driven:
-        dy[nq + ip] = psidd
-        dy[ip] = psid
     # required friction of stuck balls: lam_i = M[k,:] q'' - f_k
     if P[P_FLAW] == 0.0:
         for i in range(N):
