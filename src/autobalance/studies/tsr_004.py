@@ -243,7 +243,8 @@ def stick_threshold_grade(system, speed, nominal_speed):
     From :func:`immobile_mask` (004 eq 1 against mu_s m R Omega^2): ball i sticks iff
     |Im(w e^{-i alpha_i})| <= mu_s R, and on the steady orbit |w| = A e with the residual
     eccentricity e = |U_t| / M_t [m] and the Jeffcott amplification A = M_t Omega^2 /
-    |k - M_t Omega^2 + i c Omega| (textbook synchronous response, :func:`steady_deflection`).
+    |k - M_t Omega^2 + i c Omega| (textbook synchronous response,
+    :func:`autobalance.analysis.axis_response` per unit eccentricity).
     So every configuration sticks when A e <= mu_s R, i.e. below
     G* = 1e3 Omega_nom mu_s R / A  (ISO 1940 grade at Omega_nom, 004 sec. 4).
     Above G* only configurations whose balls lie nearly along w can stay at rest, so balls that
@@ -264,11 +265,13 @@ def stick_threshold_grade(system, speed, nominal_speed):
     ndarray
         G* [mm/s], shape of ``speed``.
     """
+    from ..analysis import axis_response
+
     s, b = system.suspension, system.balancer
     if s.kx != s.ky or s.cx != s.cy:
         raise ValueError("stick_threshold_grade: needs an isotropic (Jeffcott) suspension")
-    w = np.asarray(speed, float)
-    amp = system.total_mass * w * w / np.abs(s.kx - system.total_mass * w * w + 1j * s.cx * w)
+    mt = system.total_mass
+    amp, _ = axis_response(mt, s.kx, s.cx, mt, speed)      # |w| per metre of eccentricity
     return 1e3 * nominal_speed * float(np.max(b.stiction)) * b.race_radius / amp
 
 
@@ -509,7 +512,7 @@ def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None, stor
     cfg = _cfg()
     sets, name = [], f"mc-n{n}"
     if plateau_ratio is not None:
-        fn = math.sqrt(cfg.system.suspension.kx / cfg.system.total_mass)
+        fn = cfg.system.natural_frequencies[0]
         sets, name = [f"profile.plateau={plateau_ratio * fn!r}"], f"{name}-plateau{plateau_ratio:g}"
         cfg = _cfg(sets)
     raw = _run_sweep(f"tsr-{name}", sets, {}, n, store=_store(store_dir, name),
@@ -517,6 +520,7 @@ def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None, stor
     g = raw["grade_G"].values                      # (sample, checkpoint)
     ok = raw["status"].values == 0
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
+    w_pl = plateau_speed(cfg.spin)
     ds = xr.Dataset({"G_STD": ("sample", g[:, 0], {"units": "mm/s"}),
                      "G_TSR": ("sample", g[:, 1], {"units": "mm/s"}),
                      "start_angle": (("sample", "ball"), raw["start_angle"].values, {"units": "rad"}),
@@ -526,9 +530,8 @@ def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None, stor
         "G_ini": g_ini, "G_balls": float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass,
                                                 cfg.spin.nominal_speed)),
         **_mc_stats(g[ok, 0], g[ok, 1], g_ini),
-        "plateau_hz": plateau_speed(cfg.spin) / (2 * np.pi),
-        "G_stick_plateau": float(stick_threshold_grade(cfg.system, plateau_speed(cfg.spin),
-                                                       cfg.spin.nominal_speed)),
+        "plateau_hz": w_pl / (2 * np.pi),
+        "G_stick_plateau": float(stick_threshold_grade(cfg.system, w_pl, cfg.spin.nominal_speed)),
         "wall_s": time.perf_counter() - t0, "profile": _profile_text(cfg.spin)})
     return ds
 
@@ -758,7 +761,7 @@ def compute_immobility(*, G_ini: float = 20.0, mu_r=MU_R, c_r=C_R, speeds_hz=Non
                 balancer=dataclasses.replace(s0.balancer, rolling_resistance=0.002 * mr,
                                              stiction=None))
             out[i, j] = immobility(s, 2 * np.pi * f, n_conf)
-    fn = math.sqrt(s0.suspension.kx / s0.total_mass) / (2 * np.pi)
+    fn = s0.natural_frequencies[0] / (2 * np.pi)
     ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,
                                     {"units": "-", "long_name": "share of immobile configurations"})},
                     coords={"mu_r": list(mu_r), "c_r": list(c_r),
@@ -821,7 +824,7 @@ def compute_plateau(cases=("nominal",), *, ratios=None, G=None, n: int = 20, qui
     t0 = time.perf_counter()
     cfg = _cfg()
     s = cfg.system
-    fn = math.sqrt(s.suspension.kx / s.total_mass)
+    fn = s.natural_frequencies[0]
     r0, g0 = _plateau_grid(quick)
     ratios = r0 if ratios is None else np.asarray(ratios, float)
     Gv = g0 if G is None else np.asarray(G, float)
@@ -891,7 +894,7 @@ def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
     t0 = time.perf_counter()
     base = _cfg()
     s0 = base.system
-    fn = math.sqrt(s0.suspension.kx / s0.total_mass)
+    fn = s0.natural_frequencies[0]
     U = float(grade_to_unbalance(G_ini, s0.total_mass, base.spin.nominal_speed))
     sets = [f"rotor.unbalance={U!r}", f"profile.plateau={ratio_end * fn!r}",
             f"profile.down_time={down_time!r}", "profile.plateau_time=1.0", "profile.up_time=1.0"]
