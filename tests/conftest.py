@@ -105,3 +105,23 @@ def assert_rows_answer_claims(target, rows, allow_not_computed=False):
         assert status(r) in allowed, r
         if not r["ok"]:
             assert r["note"], r["key"]
+
+
+def file_modes_bind() -> dict:
+    """subprocess kwargs that make file modes bind the child even when the tests run as root:
+    drop CAP_DAC_OVERRIDE and CAP_DAC_READ_SEARCH from its capability bounding set (prctl
+    PR_CAPBSET_DROP) before exec, so a read-only directory is read-only for it too (the real
+    kernel check, no mock)."""
+    import os
+
+    if os.geteuid() != 0:
+        return {}
+    import ctypes
+
+    libc = ctypes.CDLL(None, use_errno=True)
+
+    def drop():
+        for cap in (1, 2):                           # CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH
+            if libc.prctl(24, cap, 0, 0, 0) != 0:    # PR_CAPBSET_DROP
+                os._exit(97)
+    return {"preexec_fn": drop}

@@ -174,10 +174,11 @@ def test_apply_overrides_does_not_modify_input():
 
 
 def test_profile_kind_switch_drops_preset_keys():
-    cfg = load_config("washer_000", ["profile.kind=tsr", "profile.duration=90 s"])
+    cfg = load_config("washer_000", ["profile.kind=tsr", "profile.duration=90 s",
+                                     "profile.nominal=167 Hz"])  # nominal: required (no default)
     assert cfg.profile_kind == "tsr"
     assert "speed" not in cfg.raw["profile"]  # came from the preset: dropped
-    assert cfg.spin.nominal_speed == pytest.approx(TWO_PI * 167)  # tsr default (004)
+    assert cfg.spin.nominal_speed == pytest.approx(TWO_PI * 167)
     cfg = load_config("vub_jeffcott_004", ["profile.kind=std"])
     assert cfg.profile_kind == "std" and "plateau" not in cfg.raw["profile"]
     assert cfg.spin.nominal_speed == pytest.approx(TWO_PI * 167)

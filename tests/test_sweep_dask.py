@@ -149,3 +149,133 @@ def test_reproduce_target_on_the_cluster_equals_local(cluster, tmp_path, monkeyp
     assert r2.exit_code == 0, r2.output
     rows = [json.loads(x.stdout)["targets"][0]["rows"] for x in (r, r2)]
     assert rows[0] == rows[1] and rows[0][0]["computed"] == 78
+
+
+# -- a real `dask scheduler` / `dask worker` pair in their own processes (issue 12) -------------
+SLOW = """
+[sweep]
+name = "slow"
+base = "vub_jeffcott_004"
+set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
+batch_size = 2
+
+[monte_carlo]
+kind = "start_grid"
+n = 16
+"""
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class RealCluster:
+    """`dask scheduler` and `dask worker` started as the command-line programs, on loopback."""
+
+    def __init__(self, tmp_path, n_workers=1):
+        self.port = _free_port()
+        self.address = f"tcp://127.0.0.1:{self.port}"
+        dask = os.path.join(os.path.dirname(sys.executable), "dask")
+        self.log = open(tmp_path / f"cluster-{self.port}.log", "w")
+        self.scheduler = subprocess.Popen(
+            [dask, "scheduler", "--host", "127.0.0.1", "--port", str(self.port),
+             "--no-dashboard"], stdout=self.log, stderr=self.log)
+        self.workers = [subprocess.Popen(
+            [dask, "worker", self.address, "--nthreads", "1", "--no-dashboard",
+             "--name", f"w{i}"], stdout=self.log, stderr=self.log) for i in range(n_workers)]
+        with Client(self.address, timeout="60s") as c:
+            c.wait_for_workers(n_workers, timeout=120)
+
+    def stop(self):
+        for p in self.workers + [self.scheduler]:
+            if p.poll() is None:
+                p.kill()
+            p.wait()
+        self.log.close()
+
+
+def _cli(*args):
+    return [sys.executable, "-m", "autobalance.cli", *args]
+
+
+def _one_error_line(stderr):
+    lines = [ln for ln in stderr.strip().splitlines() if ln.startswith("error:")]
+    assert len(lines) == 1, stderr
+    assert "Traceback" not in stderr, stderr
+    return lines[0]
+
+
+def test_real_dask_worker_killed_mid_sweep_bit_identical(tmp_path):
+    """kill -9 of the `dask worker` process (its nanny restarts it) while the CLI sweep runs on
+    the cluster: the sweep completes, bit-identical to the serial run."""
+    import psutil
+
+    desc = tmp_path / "slow.toml"
+    desc.write_text(SLOW)
+    store = tmp_path / "s"
+    cl = RealCluster(tmp_path)
+    try:
+        proc = subprocess.Popen(_cli("sweep", str(desc), "--store", str(store), "--scheduler",
+                                     cl.address), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True)
+        deadline = time.monotonic() + 120
+        while len(list((store / "tasks").glob("r*.npz"))) < 2 if (store / "tasks").exists() else True:
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline
+            time.sleep(0.01)
+        kids = psutil.Process(cl.workers[0].pid).children(recursive=True)
+        for k in kids:                                 # the worker process under the nanny
+            k.kill()
+        out, err = proc.communicate(timeout=300)
+    finally:
+        cl.stop()
+    assert kids
+    assert proc.returncode == 0, err
+    ref = sweep(spec_of(SLOW), tmp_path / "ref", executor="serial", progress=False)
+    assert_bit_identical(open_sweep(store), ref)
+
+
+def test_real_dask_scheduler_lost_one_line_then_resume(tmp_path):
+    """kill -9 of the `dask scheduler` mid-sweep: one line saying the store is intact and how to
+    resume (exit 1), no traceback; --resume on a new cluster gives the serial result bit for
+    bit."""
+    desc = tmp_path / "slow.toml"
+    desc.write_text(SLOW)
+    store = tmp_path / "s"
+    cl = RealCluster(tmp_path)
+    try:
+        proc = subprocess.Popen(_cli("sweep", str(desc), "--store", str(store), "--scheduler",
+                                     cl.address), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True)
+        deadline = time.monotonic() + 120
+        while len(list((store / "tasks").glob("r*.npz"))) < 2 if (store / "tasks").exists() else True:
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline
+            time.sleep(0.01)
+        cl.scheduler.kill()
+        t0 = time.monotonic()
+        out, err = proc.communicate(timeout=180)
+        waited = time.monotonic() - t0
+    finally:
+        cl.stop()
+    print(f"lost scheduler noticed after {waited:.1f} s")
+    assert proc.returncode == 1, err
+    line = _one_error_line(err)
+    assert "lost the Dask scheduler" in line and "--resume" in line and "intact" in line, line
+    n_plan = len(make_plan(spec_of(SLOW)).tasks)
+    kept = len(list((store / "tasks").glob("r*.npz")))
+    assert 0 < kept < n_plan
+    cl2 = RealCluster(tmp_path)
+    try:
+        r = subprocess.run(_cli("sweep", str(desc), "--store", str(store), "--resume",
+                                "--scheduler", cl2.address), capture_output=True, text=True,
+                           timeout=300)
+    finally:
+        cl2.stop()
+    assert r.returncode == 0, r.stderr
+    ref = sweep(spec_of(SLOW), tmp_path / "ref", executor="serial", progress=False)
+    assert_bit_identical(open_sweep(store), ref)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -18,7 +19,8 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line, _print_json
+from .cli_common import (USER_ERRORS, _clean, _fail, _guard, _one_line, _print_json, check_grade,
+                         check_output_file, check_workers, quiet_dask_logs)
 from .config import ConfigError, describe, list_presets, load_config, parse_quantity
 
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
@@ -70,13 +72,12 @@ PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
 
 def _check_output(path: Optional[Path], what: str) -> None:
-    if path is None:
-        return
-    if not path.parent.is_dir():
-        raise ConfigError(f"{what} {str(path)!r}: directory {str(path.parent)!r} does not exist")
-    if what == "--plot" and path.suffix.lower() not in PLOT_SUFFIXES:
-        raise ConfigError(f"--plot {str(path)!r}: expected a file ending in "
-                          f"{', '.join(PLOT_SUFFIXES)}")
+    """Refuse an output file that could not be written (a directory, a missing or read-only
+    directory, a wrong --plot suffix) before simulating."""
+    if what == "--plot":
+        check_output_file(path, what, "plot.png", PLOT_SUFFIXES)
+    else:
+        check_output_file(path, what, "run.nc")
 
 
 def _run(cfg):
@@ -195,9 +196,32 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
         raise typer.Exit(1)
 
 
+#: Memory of one speed of ``response`` [B]: the numpy work arrays, five lists of Python floats
+#: and their JSON text (generous).
+RESPONSE_BYTES_PER_SPEED = 1024
+
+
+def _count(text: str) -> int:
+    """A point count: ``"200"``, or an integral float such as ``"1e3"``; 0 if neither."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        v = float(text)
+    except ValueError:
+        return 0
+    return int(v) if math.isfinite(v) and v == int(v) else 0
+
+
 def _speeds(spec: Optional[str], nominal: float):
-    """``"lo:hi:n"`` (speeds with units or bare rad/s) -> array [rad/s]; default 0..2*nominal."""
+    """``"lo:hi:n"`` (speeds with units or bare rad/s) -> array [rad/s]; default 0..2*nominal.
+
+    n is a positive integer (``1e3`` is read as 1000) whose table must fit the memory limit
+    (:func:`autobalance.limits.check_memory`), checked before anything is allocated."""
     import numpy as np
+
+    from .limits import check_memory
 
     if spec is None:
         return np.linspace(0.0, 2.0 * nominal, 200)
@@ -207,12 +231,11 @@ def _speeds(spec: Optional[str], nominal: float):
                           "(bare numbers in rad/s)")
     lo = parse_quantity(parts[0] or "0", "speed", "--speeds lo")
     hi = parse_quantity(parts[1], "speed", "--speeds hi")
-    try:
-        n = int(parts[2])
-    except ValueError:
-        n = 0
+    n = _count(parts[2].strip())
     if n < 2 or not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0 or hi <= lo:
         raise ConfigError(f"--speeds = {spec!r}: need 0 <= lo < hi and an integer n >= 2")
+    check_memory("--speeds", spec, float(n) * RESPONSE_BYTES_PER_SPEED,
+                 f"response table of {n} speeds")
     return np.linspace(lo, hi, n)
 
 
@@ -280,18 +303,29 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
                   "--plot", help="Write a summary figure (PNG/SVG/PDF).")] = None,
               json_: JsonOpt = False) -> None:
     """Run a grid / Monte-Carlo sweep into a durable store; print its summary."""
-    from .sweep import SweepError, load_spec, summary_dict, sweep
+    from .sweep import SweepAborted, SweepError, SweepInterrupted, load_spec, summary_dict, sweep
 
-    if plot is not None and plot.suffix.lower() not in (".png", ".svg", ".pdf"):
-        _fail(f"--plot {str(plot)!r}: must end in .png, .svg or .pdf")
     with _guard():
         try:
+            check_output_file(plot, "--plot", "summary.png", (".png", ".svg", ".pdf"))
+            check_grade(grade)
+            check_workers(workers)      # >= 1, and their processes fit the memory limit
+            if executor is not None and executor not in ("serial", "local", "dask"):
+                raise ConfigError(f"--executor = {executor!r}: must be serial, local or dask")
             sp = load_spec(spec)
+            if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
+                quiet_dask_logs()
             t0 = time.perf_counter()
             ds = sweep(sp, store, executor=executor, workers=workers, scheduler=scheduler,
                        resume=resume, progress=True)
         except SweepError as e:
             _fail(str(e))
+        except SweepInterrupted as e:       # Ctrl-C / SIGTERM: finished tasks kept
+            _fail(str(e), 128 + int(e.signal))
+        except SweepAborted as e:           # lost scheduler, dead workers: store intact
+            _fail(str(e), 1)
+        except KeyboardInterrupt:           # before the sweep started: nothing was run
+            _fail("interrupted before the first task; nothing was changed", 130)
         wall = time.perf_counter() - t0
         summary = summary_dict(ds, grade)
         summary.update({"store": str(store), "result": str(Path(store) / "result.zarr"),
@@ -363,12 +397,27 @@ _register_subapps()
 
 
 def main(argv: Optional[list[str]] = None) -> None:
-    """Console entry point ``autobalance``; input errors exit 2 with one line on stderr."""
+    """Console entry point ``autobalance``: input errors, usage errors included (a bad option
+    value, a missing argument, an unknown command), exit 2 with one line on stderr; Ctrl-C
+    exits 130 with one line; never a traceback for either."""
+    from typer._click.exceptions import NoArgsIsHelpError, UsageError
+
     try:
-        app(args=argv, prog_name="autobalance")
+        rv = app(args=argv, prog_name="autobalance", standalone_mode=False)
+    except NoArgsIsHelpError:           # the help was printed
+        sys.exit(0)
+    except UsageError as exc:
+        cmd = exc.ctx.command_path if exc.ctx is not None else "autobalance"
+        typer.echo(f"error: {' '.join(exc.format_message().split())} (see {cmd} --help)",
+                   err=True)
+        sys.exit(2)
     except USER_ERRORS as exc:
         typer.echo(f"error: {_one_line(exc)}", err=True)
         sys.exit(2)
+    except KeyboardInterrupt as exc:    # a SweepInterrupted says what was kept
+        typer.echo(f"error: {_one_line(exc) if str(exc) else 'interrupted'}", err=True)
+        sys.exit(128 + int(getattr(exc, "signal", 2)))
+    sys.exit(rv if isinstance(rv, int) else 0)
 
 
 if __name__ == "__main__":

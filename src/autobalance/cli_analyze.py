@@ -14,7 +14,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line
+from .cli_common import USER_ERRORS, _clean, _fail, _guard, _one_line, check_output_file
 from .config import ConfigError, load_config, parse_quantity
 
 app = typer.Typer(name="analyze", no_args_is_help=True, add_completion=False,
@@ -60,11 +60,16 @@ def _angles(cfg, spec):
     return np.asarray(vals, float)
 
 
-def _save(fig, path: Optional[Path]) -> Optional[str]:
+def _check_plot(path: Optional[Path], what: str = "--plot") -> None:
+    """Refuse a figure file that could not be written (not .png, a directory, a missing or
+    read-only directory) before computing anything."""
+    check_output_file(path, what, "plot.png", (".png",))
+
+
+def _save(fig, path: Optional[Path], what: str = "--plot") -> Optional[str]:
     if path is None:
         return None
-    if path.suffix.lower() != ".png":
-        raise ConfigError(f"--plot = {str(path)!r}: expected a .png file name")
+    _check_plot(path, what)
     fig.savefig(path, dpi=110)
     return str(path)
 
@@ -109,6 +114,8 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
     """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: Fig. 6;
     --damping-plot: Fig. 7."""
     with _guard():
+        _check_plot(plot)
+        _check_plot(damping_plot, "--damping-plot")
         cfg = _cfg(source, set_)
         from .analysis.vibratory import force_jacobian, vibratory_components
 
@@ -128,7 +135,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
 
             wx, wy = cfg.system.natural_frequencies
             out["damping_plot"] = _save(plot_vibratory_force_damping(
-                cfg.system, [w, 0.5 * (wx + wy)]), damping_plot)
+                cfg.system, [w, 0.5 * (wx + wy)]), damping_plot, "--damping-plot")
     if json_:
         _print(out)
         return
@@ -176,6 +183,7 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
            plot: PlotOpt = None, json_: JsonOpt = False) -> None:
     """Position-error bounds: rolling resistance, eccentricity, dry friction, ball frequency."""
     with _guard():
+        _check_plot(plot)
         cfg = _cfg(source, set_)
         import dataclasses
 
@@ -186,8 +194,9 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         s, w = cfg.system, _speed(cfg, speed)
         b = s.balancer
         fr = b.rolling_resistance[0] if f_r is None else f_r
-        if not (math.isfinite(fr) and fr >= 0):
-            raise ConfigError(f"--f-r = {f_r!r}: must be >= 0")
+        if not (math.isfinite(fr) and 0 <= fr <= 1):
+            raise ConfigError(f"--f-r = {f_r!r}: must be within [0, 1]: the rolling-resistance "
+                              "coefficient f/r [-] (steel balls typically 0.001-0.01)")
         e = s.rotor.unbalance / s.rotor.mass
         ideal = dataclasses.replace(s, balancer=dataclasses.replace(b, eccentricity=0.0))
         db = eb.rolling_deadband(ideal, w, fr)
@@ -253,6 +262,7 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
                    plot: PlotOpt = None, json_: JsonOpt = False) -> None:
     """Kinetic-static model (000 eq 13) vs the full model (Fig. 9 differences)."""
     with _guard():
+        _check_plot(plot)
         cfg = _cfg(source, set_)
         from .analysis.kinetic_static import compare_with_full
 
@@ -318,12 +328,14 @@ def immobility_cmd(g_ini: Annotated[float, typer.Option("--g-ini", help="Initial
     from .studies.tsr_004 import compare_immobility, compute_immobility
 
     with _guard():
-        if not (g_ini >= 0):
-            raise ConfigError(f"--g-ini = {g_ini}: must be >= 0 [mm/s]")
+        if not (math.isfinite(g_ini) and g_ini >= 0):
+            raise ConfigError(f"--g-ini = {g_ini}: must be a finite grade >= 0 [mm/s], e.g. 20")
         if n_conf < 2:
             raise ConfigError(f"--n-conf = {n_conf}: must be an integer >= 2")
+        _check_plot(plot)
+        # refuses an n_conf^N grid beyond the memory / run-time limit before allocating it
         ds = compute_immobility(G_ini=g_ini, mu_r=_floats(mu_r, "--mu-r"), c_r=_floats(c_r, "--c-r"),
-                                n_conf=n_conf)
+                                n_conf=n_conf, field="--n-conf")
         rows = compare_immobility(ds)
         from .plotting.tsr import plot_immobility
 

@@ -17,7 +17,7 @@ from typing import Annotated, Optional
 import numpy as np
 import typer
 
-from .cli_common import USER_ERRORS, _clean
+from .cli_common import USER_ERRORS, _clean, check_output_file
 from .config import ConfigError
 from .models import ParameterError
 
@@ -61,8 +61,13 @@ def _q(value: str, kind: str, field: str) -> float:
     return parse_quantity(value, kind, field)
 
 
+#: Memory of one value of a 'a:b:n' list [B]: its result row (a dict of floats) and JSON text.
+LIST_BYTES_PER_POINT = 2048
+
+
 def _list(value: str, kind: str, field: str) -> list[float]:
-    """'a:b:n' (linspace) or 'a,b,c' with units on each item or on the last."""
+    """'a:b:n' (linspace) or 'a,b,c' with units on each item or on the last; n >= 1 must fit
+    the memory limit (:func:`autobalance.limits.check_memory`), checked before allocating."""
     v = value.strip()
     if v.count(":") == 2:
         a, b, n = v.split(":")
@@ -74,6 +79,9 @@ def _list(value: str, kind: str, field: str) -> list[float]:
             raise ConfigError(f"{field} = {value!r}: expected 'start:stop:count'") from None
         if num < 1:
             raise ConfigError(f"{field} = {value!r}: count must be >= 1")
+        from .limits import check_memory
+
+        check_memory(field, value, float(num) * LIST_BYTES_PER_POINT, f"table of {num} values")
         return list(np.linspace(lo, _q(b, kind, field), num))
     items = [x.strip() for x in v.split(",") if x.strip()]
     if not items:
@@ -83,8 +91,11 @@ def _list(value: str, kind: str, field: str) -> list[float]:
 
 
 def _plot_path(plot: Optional[str]) -> Optional[str]:
+    """Refuse a figure file that could not be written (suffix, a directory, a missing or
+    read-only directory) before computing."""
     if plot and not plot.lower().endswith((".png", ".pdf", ".svg")):
         raise ConfigError(f"--plot = {plot!r}: expected a .png, .pdf or .svg file name")
+    check_output_file(plot or None, "--plot", "plot.png")
     return plot
 
 
@@ -96,6 +107,7 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
     """Free surface z(r) = z_* + omega^2 r^2/(2g) clipped to the chamber (003 eq 2-5)."""
     from .liquid import free_surface, liquid_volume
     with _guard():
+        _plot_path(plot)
         V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
                    _q(height, "length", "height"))
         gg = _q(g, "acceleration", "g")

@@ -19,7 +19,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from .cli_common import _guard, _print_json
+from .cli_common import _guard, _print_json, check_workers
 from .config import ConfigError
 
 TargetsArg = Annotated[Optional[list[str]], typer.Argument(
@@ -75,8 +75,7 @@ def reproduce(targets: TargetsArg = None,
             return
         if executor not in ("local", "serial", "dask"):
             raise ConfigError(f"--executor = {executor!r}: must be local, serial or dask")
-        if workers is not None and workers < 1:
-            raise ConfigError(f"--workers = {workers}: must be an integer >= 1")
+        check_workers(workers)      # >= 1, and their processes fit the memory limit
         if scheduler:
             executor = "dask"
         if executor == "dask" and not (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):

@@ -203,7 +203,9 @@ SECTIONS: dict[str, dict[str, F]] = {
     },
 }
 
-_STD = {"nominal": F("speed"), "duration": F("time"), "runup_fraction": F("ratio"),
+# nominal is required in a file: without it a std/tsr profile would silently run at 004's
+# 167 Hz (the Python constructors keep that default for callers who mean 004)
+_STD = {"nominal": F("speed", required=True), "duration": F("time"), "runup_fraction": F("ratio"),
         "runup_time": F("time")}
 #: Keys of each ``[profile]`` kind (besides ``kind``).
 PROFILE_KINDS: dict[str, dict[str, F]] = {
@@ -291,7 +293,9 @@ def _section(section: str, data: Any, fields: dict[str, F], model, extra: str = 
     try:
         parsed = model.model_validate(data)
     except ValidationError as exc:
-        err = exc.errors()[0]
+        errs = exc.errors()
+        # an unknown key first: it is often the misspelt name of the missing one
+        err = next((e for e in errs if e["type"] == "extra_forbidden"), errs[0])
         path = ".".join([section, *map(str, err["loc"])])
         key = str(err["loc"][0]) if err["loc"] else ""
         if err["type"] == "extra_forbidden":
@@ -559,8 +563,8 @@ def apply_overrides(raw: dict, overrides=()) -> dict:
     Switching the profile kind (``profile.kind=NAME``; the CLI's ``--profile NAME``) keeps the
     ``[profile]`` keys that the new kind accepts and silently drops the others **if they came
     from the file or preset**; a key given with ``--set`` that the new kind does not accept is
-    an error. The new kind's missing keys take the constructor defaults (std/tsr: 004 values)
-    or are reported missing.
+    an error. The new kind's missing optional keys take the constructor defaults (std/tsr:
+    004 values); its missing required keys (e.g. std/tsr ``nominal``) are reported missing.
 
     Raises
     ------

@@ -1,16 +1,40 @@
-"""One entry point for a single run and one for many runs: ``simulate`` and ``simulate_batch``."""
+"""One entry point for a single run and one for many runs: ``simulate`` and ``simulate_batch``.
+
+Both refuse, before allocating or integrating, a run that cannot fit the limits of
+:mod:`autobalance.limits` (one-line :class:`~autobalance.limits.ResourceError`).
+"""
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
 from .core.integrate import integrate, integrate_batch
 from .core.layout import N_S, S_STATUS, STATUS
 from .core.pack import atol_vector, initial_vector, pack_params, spin_arrays
+from .limits import check_memory, check_run
 from .models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
 
+#: The default step budget (SimOptions.max_steps).
+_DEFAULT_MAX_STEPS = SimOptions.max_steps
 
-def _time_grid(spin, options: SimOptions) -> np.ndarray:
+
+def _check_run(system: System, spin, options: SimOptions) -> None:
+    """Refuse a run that cannot finish within the step budget or the run-time limit
+    (:func:`autobalance.limits.check_run`, a lower bound of the steps; cheap, nothing integrated).
+
+    A budget lowered below the default (``options.max_steps``) asks for a partial run: such a
+    run is not refused but ends with status "max_steps" and the history so far, so the step
+    bound is compared with the larger of the budget and the default [steps]."""
+    if options.max_steps < _DEFAULT_MAX_STEPS:
+        options = dataclasses.replace(options, max_steps=_DEFAULT_MAX_STEPS)
+    check_run(system, spin, options)
+
+
+def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
+    """Output times [s]; refuses (ResourceError naming ``options.save_dt``) a grid whose stored
+    history, samples x ``n_state`` x 8 bytes, exceeds the memory limit, before allocating it."""
     t_end = spin.duration
     cps = np.asarray(spin.checkpoints, float)
     if options.save_dt < 0:
@@ -19,6 +43,9 @@ def _time_grid(spin, options: SimOptions) -> np.ndarray:
     if dt == 0.0:
         dt = 2 * np.pi / max(spin.nominal_speed, 1e-9) / 20.0
         dt = max(dt, t_end / 200_000)
+    n_est = t_end / dt + 2.0 + cps.size   # float: t_end / dt may overflow an int
+    check_memory("options.save_dt", f"{dt:g} s", n_est * max(n_state, 1) * 8.0,
+                 f"stored time history ({n_est:.3g} samples)")
     n = int(np.floor(t_end / dt + 1e-9)) + 1
     grid = np.arange(n) * dt
     t = np.sort(np.concatenate([grid[grid < t_end], cps, [t_end]]))
@@ -55,14 +82,22 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
     -------
     Simulation
         Time histories and derived quantities (residual unbalance, ISO grade G, ...).
+
+    Raises
+    ------
+    ResourceError
+        Before integrating: the run cannot finish within ``options.max_steps`` (lower bound of
+        the steps) or the run-time limit, or its stored history exceeds the memory limit
+        (:mod:`autobalance.limits`).
     """
     initial = initial or InitialState()
     options = options or SimOptions()
+    _check_run(system, spin, options)
     P, B = pack_params(system, spin, options)
     y0, order = initial_vector(system, spin, initial)
     prof_t, prof_w, t_end = spin_arrays(spin)
     unb_t, unb_u = system.rotor.unbalance_table()
-    out_t = _time_grid(spin, options)
+    out_t = _time_grid(spin, options, y0.size)
     out_y = np.zeros((out_t.size, y0.size))
     stats = np.zeros(N_S)
     integrate(P, B, system.balancer.n_balls, prof_t, prof_w, unb_t, unb_u, y0, t_end,
@@ -82,7 +117,8 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     All runs share the spin profile; everything else (parameters, unbalance schedule, initial
     state) is per run. They run in parallel threads (numba prange). Only the states at ``out_times`` [s] (default: the
     profile's checkpoints; any order, the result keeps it) and the run statistics are kept. A failed run is a status in the
-    result, never an exception.
+    result, never an exception; a batch that cannot fit the step budget or the run-time limit
+    (:func:`autobalance.limits.check_run`) is refused before it starts (ResourceError).
     """
     options = options or SimOptions()
     if not systems:
@@ -95,6 +131,8 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     N = systems[0].balancer.n_balls
     if any(s.balancer.n_balls != N for s in systems):
         raise ValueError("simulate_batch: all systems must have the same number of balls")
+    # the shared profile and N: the stiffest suspension has the largest step bound
+    _check_run(max(systems, key=lambda s: max(s.natural_frequencies)), spin, options)
     packed = [pack_params(s, spin, options) for s in systems]
     Ps = np.stack([p for p, _ in packed])
     Bs = np.stack([b for _, b in packed]) if N else np.zeros((n_runs, 0, 8))

@@ -52,7 +52,9 @@ def in_range(field: str, value, lo: float, hi: float) -> float:
 
 
 def count(field: str, value, lo: int = 0) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value:
+    """An integer count >= lo [-] (an integral float such as 2.0 is accepted)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or (isinstance(value, float) and not math.isfinite(value)) or int(value) != value:
         raise ParameterError(field, value, f"must be an integer >= {lo}")
     v = int(value)
     if v < lo:

@@ -6,10 +6,26 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..limits import max_balls
 from ._validate import ParameterError, count, finite, in_range, nonneg, per_ball, positive
 
 #: Rotational inertia factor kappa in I = kappa*m*r^2 for the rolling elements.
 INERTIA_FACTOR = {"ball": 0.4, "roller": 0.5, "point": 0.0}
+
+_COEFFICIENTS = {
+    "balancer.rolling_resistance": "rolling-resistance coefficient f/r = F_r/N",
+    "balancer.stiction": "static (break-away) friction coefficient F_s/N",
+}
+
+
+def _coefficient(field: str, value) -> float:
+    """A friction coefficient [-] (force / normal force) within [0, 1]; ParameterError otherwise."""
+    v = finite(field, value)
+    if not 0.0 <= v <= 1.0:
+        what = _COEFFICIENTS.get(field.split("[")[0], "friction coefficient")
+        raise ParameterError(field, value, f"must be within [0, 1]: the {what} [-] "
+                                           "(steel balls typically 0.001-0.01)")
+    return v
 
 
 @dataclass(frozen=True)
@@ -33,9 +49,10 @@ class BallBalancer:
         Viscous damping D_i of the ball motion relative to the race [N*m*s/rad]
         (004 Table 1: 2.7 N*mm*s/rad; 000 writes it c_i*m*R^2 with c_i in 1/s).
     rolling_resistance : float or tuple
-        Coefficient of the resisting force F_r = coef * N_i (000 eq 20: f/r; 004: mu) [-].
+        Coefficient of the resisting force F_r = coef * N_i (000 eq 20: f/r; 004: mu) [-],
+        within [0, 1] (steel balls typically 0.001-0.01).
     stiction : float or tuple, optional
-        Static (break-away) coefficient >= rolling_resistance [-]; defaults to it.
+        Static (break-away) coefficient >= rolling_resistance [-], within [0, 1]; defaults to it.
     eccentricity : float
         Distance rho between the race centre and the spin axis [m] (000 eq 33).
     eccentricity_angle : float
@@ -61,6 +78,11 @@ class BallBalancer:
 
     def __post_init__(self):
         n = count("balancer.n_balls", self.n_balls, 0)
+        lim = max_balls()
+        if n > lim:  # before anything per ball is built (a tuple of 1e9 masses would hang)
+            raise ParameterError("balancer.n_balls", n,
+                                 f"at most {lim} balls in one balancer (limit "
+                                 f"AUTOBALANCE_MAX_BALLS = {lim}; set it to raise the limit)")
         object.__setattr__(self, "n_balls", n)
         if self.element not in INERTIA_FACTOR:
             raise ParameterError("balancer.element", self.element,
@@ -72,19 +94,22 @@ class BallBalancer:
             if self.race_radius:
                 positive("balancer.race_radius", self.race_radius)
             return
-        object.__setattr__(self, "ball_mass", per_ball("balancer.ball_mass", self.ball_mass, n, positive))
         positive("balancer.race_radius", self.race_radius)
         positive("balancer.ball_radius", self.ball_radius)
         if self.ball_radius >= self.race_radius:
             raise ParameterError("balancer.ball_radius", self.ball_radius,
                                  f"must be < race_radius = {self.race_radius}")
         if n * 2 * math.asin(self.ball_radius / self.race_radius) > 2 * math.pi + 1e-12:
+            fit = int((2 * math.pi + 1e-12) // (2 * math.asin(self.ball_radius / self.race_radius)))
             raise ParameterError("balancer.n_balls", n,
-                                 "that many balls of this radius do not fit in the race")
+                                 f"that many balls of this radius do not fit in the race "
+                                 f"(at most {fit})")
+        object.__setattr__(self, "ball_mass", per_ball("balancer.ball_mass", self.ball_mass, n, positive))
         object.__setattr__(self, "damping", per_ball("balancer.damping", self.damping, n, nonneg))
-        mu = per_ball("balancer.rolling_resistance", self.rolling_resistance, n, nonneg)
+        mu = per_ball("balancer.rolling_resistance", self.rolling_resistance, n, _coefficient)
         object.__setattr__(self, "rolling_resistance", mu)
-        st = mu if self.stiction is None else per_ball("balancer.stiction", self.stiction, n, nonneg)
+        st = mu if self.stiction is None else per_ball("balancer.stiction", self.stiction, n,
+                                                       _coefficient)
         for i, (a, b) in enumerate(zip(mu, st)):
             if b < a:
                 raise ParameterError(f"balancer.stiction[{i}]", b,

@@ -99,8 +99,12 @@ class SpeedProfile:
         """004 standard (STD) profile: linear run-up from rest to ``nominal`` [rad/s] and hold.
 
         The run-up takes ``runup_time`` [s] (default: the first ``runup_fraction`` of the run, 18 s of
-        90 s, so that the STD outcome is read at 20 %); quality is read at the end of the run-up
-        phase and at the end.
+        90 s, so that the STD outcome is read at 20 %); a shorter run-up holds ``nominal`` from
+        ``runup_time`` on. Quality is read at ``runup_fraction * duration`` [s] (the STD read-out,
+        always at nominal speed) and at the end.
+
+        The defaults are 004's (167 Hz, 90 s, 20 %); they serve Python callers only: a config file
+        or ``--set``/``--profile`` must give ``nominal`` (:data:`autobalance.config.PROFILE_KINDS`).
         """
         positive("profile.nominal", nominal)
         positive("profile.duration", duration)
@@ -118,13 +122,22 @@ class SpeedProfile:
             down_time: float = 10.0, plateau_time: float = 20.0, up_time: float = 10.0) -> "SpeedProfile":
         """004 temporary-speed-reduction profile (Fig. 3), piecewise linear.
 
-        0 .. t_ru: run-up from rest to ``nominal``; hold to 20 % of ``duration`` (STD read-out);
-        then ramp down to ``plateau`` in ``down_time``, hold ``plateau_time``, ramp back up in
-        ``up_time`` and hold ``nominal`` to the end (TSR read-out at 100 %). Times [s], speeds
-        [rad/s].
+        0 .. t_ru: run-up from rest to ``nominal``; hold ``nominal`` to ``runup_fraction`` of
+        ``duration`` (STD read-out; the hold is kept whenever ``runup_time`` < that instant);
+        then ramp down to ``plateau`` (< ``nominal``) in ``down_time``, hold ``plateau_time``,
+        ramp back up in ``up_time`` and hold ``nominal`` to the end (TSR read-out at 100 %).
+        Times [s], speeds [rad/s].
+
+        The defaults are 004's (167 Hz -> 100 Hz, 90 s, 20 %, 10/20/10 s); they serve Python
+        callers only: a config file or ``--set``/``--profile`` must give ``nominal``.
         """
         std = cls.standard_runup(nominal, duration, runup_fraction, runup_time)
         positive("profile.plateau", plateau)
+        if plateau >= nominal:
+            raise ParameterError("profile.plateau", plateau,
+                                 f"must be below profile.nominal = {nominal:g} rad/s (plateau "
+                                 f"{plateau / TWO_PI:g} Hz, nominal {nominal / TWO_PI:g} Hz: the "
+                                 "TSR is a temporary speed reduction)")
         for name, v in (("profile.down_time", down_time), ("profile.plateau_time", plateau_time),
                         ("profile.up_time", up_time)):
             positive(name, v)
@@ -135,8 +148,12 @@ class SpeedProfile:
         if t3 >= duration:
             raise ParameterError("profile.duration", duration,
                                  f"must exceed run-up + reduction phases = {t3:g} s")
-        times = [t for t in std.times if t <= t_read] + [t1, t2, t3, duration]
-        speeds = list(std.speeds[:len(times) - 4]) + [plateau, plateau, nominal, nominal]
+        t_ru = std.times[1]
+        # run-up, then hold nominal up to the STD read-out (no hold if the run-up ends there)
+        head_t = [0.0, t_ru] + ([t_read] if t_read > t_ru else [])
+        head_w = [0.0, nominal] + ([nominal] if t_read > t_ru else [])
+        times = head_t + [t1, t2, t3, duration]
+        speeds = head_w + [plateau, plateau, nominal, nominal]
         return cls(tuple(times), tuple(speeds), nominal_speed=nominal,
                    checkpoints=(t_read, duration), name="tsr")
 

@@ -33,7 +33,7 @@ __all__ = ["PUBLISHED", "STUDIES", "UNBALANCE_CASES", "PLATEAU_CASES", "compare_
            "compare_unbalance", "compare_descent", "compute_descent", "compute_immobility",
            "compute_monte_carlo", "compute_plateau",
            "compute_profile", "compute_single", "start_family", "compute_unbalance", "grade_to_unbalance",
-           "immobility", "immobile_mask", "kernel_required_friction", "plateau_speed",
+           "check_immobility", "immobility", "immobile_mask", "kernel_required_friction", "plateau_speed",
            "regions", "steady_deflection", "stick_threshold_grade", "tangential_force",
            "valid_ranges"]
 
@@ -222,12 +222,36 @@ def immobile_mask(system, speed, alpha):
     return np.all(np.abs(np.imag(w[..., None] * np.exp(-1j * a))) <= mus * R, axis=-1)
 
 
+#: Peak memory of :func:`immobility` per ball configuration and ball [B] (the meshgrid, the
+#: stacked angles and the complex temporaries of :func:`immobile_mask`), plus per configuration.
+IMMOBILITY_BYTES_PER_BALL = 64
+IMMOBILITY_BYTES = 64
+#: Measured time of :func:`immobility` per configuration, ball and speed [s] (0.25 us at N = 2).
+IMMOBILITY_COST_S = 0.15e-6
+
+
+def check_immobility(n_conf, n_balls: int, n_speeds: int = 1, n_sets: int = 1,
+                     field: str = "n_conf") -> None:
+    """Refuse (ResourceError naming ``field``) an immobility grid of ``n_conf`` ** ``n_balls``
+    configurations [-] whose memory or run time over ``n_speeds`` x ``n_sets`` evaluations
+    exceeds the limits of :mod:`autobalance.limits`, before anything is allocated."""
+    from ..limits import check_memory, check_runtime
+
+    k = float(n_conf) ** max(int(n_balls), 1)          # float: no huge-int arithmetic
+    check_memory(field, n_conf, k * (IMMOBILITY_BYTES_PER_BALL * n_balls + IMMOBILITY_BYTES),
+                 f"grid of {k:.3g} ball configurations")
+    check_runtime(field, n_conf, k * n_balls * n_speeds * n_sets * IMMOBILITY_COST_S,
+                  f"immobility grid ({k:.3g} configurations x {n_speeds * n_sets} speeds)")
+
+
 def immobility(system, speeds, n_conf: int = 100):
     """004 sec. 4.4 immobility: share [-] of ball configurations (n_conf equispaced positions per
     ball, full product = uniform on the torus) in which no ball can move, at each speed [rad/s].
 
-    Closed form (:func:`immobile_mask`), vectorised; no time integration."""
+    Closed form (:func:`immobile_mask`), vectorised; no time integration. A grid beyond the
+    memory or run-time limit is refused first (:func:`check_immobility`)."""
     b = system.balancer
+    check_immobility(n_conf, b.n_balls, np.atleast_1d(speeds).size)
     pos = 2 * np.pi * np.arange(n_conf) / n_conf
     grids = np.meshgrid(*([pos] * b.n_balls), indexing="ij")
     alpha = np.stack([g.ravel() for g in grids], axis=-1)           # (K, N)
@@ -737,9 +761,11 @@ C_R = (0.5, 0.6, 1.0, 1.4)
 
 
 def compute_immobility(*, G_ini: float = 20.0, mu_r=MU_R, c_r=C_R, speeds_hz=None,
-                       n_conf: int = 100, quick: bool = False):
+                       n_conf: int = 100, quick: bool = False, field: str = "n_conf"):
     """004 Fig. 8/10: immobility [-] against speed for the mu_r x c_r sets at G_ini [mm/s]
-    (closed form :func:`immobility`; no time integration)."""
+    (closed form :func:`immobility`; no time integration). ``n_conf`` positions per ball [-];
+    a grid beyond the memory or run-time limit is refused before computing (ResourceError
+    naming ``field``)."""
     import dataclasses
 
     import xarray as xr
@@ -750,6 +776,7 @@ def compute_immobility(*, G_ini: float = 20.0, mu_r=MU_R, c_r=C_R, speeds_hz=Non
     wn = cfg.spin.nominal_speed
     f = np.linspace(20.0, 200.0, 91 if quick else 361) if speeds_hz is None else np.asarray(speeds_hz, float)
     n_conf = 36 if quick else n_conf
+    check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
     U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
     out = np.empty((len(mu_r), len(c_r), f.size))
     for i, mr in enumerate(mu_r):

@@ -8,14 +8,17 @@ therefore bit-identical across executors, and a lost worker only costs the tasks
 from __future__ import annotations
 
 import os
+import signal
 import sys
+import threading
 import time
 from pathlib import Path
 
 from ..models import SimOptions
 from .plan import Plan, make_plan, run_task, task_payload
 from .spec import SweepError, SweepSpec, load_spec
-from .store import assemble, done_tasks, init_store, write_result, write_task
+from .store import (StoreLock, StoreMismatch, _check_meta, _meta, assemble, check_store_path, covered_runs, init_store, scan_tasks,
+                    write_result, write_task)
 
 EXECUTORS = ("serial", "local", "dask")
 
@@ -56,11 +59,49 @@ class Progress:
             self.stream.flush()
 
 
-def _init_worker() -> None:
-    """One numba thread per worker process (the processes already use every core)."""
+class SweepAborted(RuntimeError):
+    """A sweep stopped before its end (lost scheduler, dead workers); the store keeps every
+    finished task. One-line message; the CLI exits with code 1."""
+
+    def __init__(self, message: str):
+        super().__init__(" ".join(str(message).split()))
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) or SIGTERM: the workers were stopped, the finished tasks are kept.
+    ``signal`` is the signal number; the CLI exits with 128 + signal. A KeyboardInterrupt, so
+    that no ``except Exception`` on the way up (a report that records failed targets and goes
+    on) swallows it."""
+
+    def __init__(self, message: str, sig: int = signal.SIGINT):
+        super().__init__(" ".join(str(message).split()))
+        self.signal = sig
+
+
+def _die_with_parent() -> None:
+    """Linux: have the kernel SIGKILL this process when its parent dies (prctl
+    PR_SET_PDEATHSIG), so a ``kill -9`` of the sweep leaves no worker behind."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)    # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        pass
+
+
+def _init_worker(parent: int | None = None) -> None:
+    """Worker set-up: one numba thread per process (the processes already use every core);
+    Ctrl-C is the parent's to handle (it stops the workers), and a worker dies with its
+    parent."""
     import numba
 
     numba.set_num_threads(1)
+    if parent is not None:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        _die_with_parent()
+        if os.getppid() != parent:          # the parent died before the prctl took effect
+            os._exit(1)
 
 
 def _run_serial(payloads, on_result):
@@ -68,28 +109,119 @@ def _run_serial(payloads, on_result):
         on_result(run_task(p))
 
 
-def _run_local(payloads, on_result, workers: int):
+def _stop_pool(ex) -> None:
+    """Kill the pool's processes now (Ctrl-C, a write error): finished tasks are already on
+    disk, the ones running are lost and rerun on --resume."""
+    procs = list(getattr(ex, "_processes", {}).values())
+    for p in procs:
+        try:
+            p.kill()
+        except (OSError, AttributeError, ValueError):
+            pass
+    ex.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        try:
+            p.join(timeout=5)
+        except (OSError, AttributeError, ValueError, AssertionError):
+            pass
+
+
+_GUARD_HINT = ("a script that calls autobalance.sweep() must do so under "
+               "`if __name__ == \"__main__\":` (workers start with 'spawn' and import the "
+               "script), or use executor='serial'")
+
+
+def _run_local(payloads, on_result, workers: int, kept):
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures.process import BrokenProcessPool
 
     ctx = mp.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx,
-                             initializer=_init_worker) as ex:
-        futs = [ex.submit(run_task, p) for p in payloads]
+    ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
+                             initargs=(os.getpid(),))
+    try:
+        # workers are spawned during submit: with SIGINT ignored meanwhile they inherit that
+        # disposition, so a Ctrl-C from the terminal (sent to the whole process group) reaches
+        # only this process, which stops them
+        main = threading.current_thread() is threading.main_thread()
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+        try:
+            futs = [ex.submit(run_task, p) for p in payloads]
+        finally:
+            if old is not None:
+                signal.signal(signal.SIGINT, old)
         for f in as_completed(futs):
             on_result(f.result())
+    except BrokenProcessPool:
+        _stop_pool(ex)
+        raise SweepAborted(f"the local worker processes died ({kept()}); if this ran from a "
+                           f"script, {_GUARD_HINT}; rerun with --resume to continue") from None
+    except BaseException:
+        _stop_pool(ex)
+        raise
+    ex.shutdown(wait=True)
 
 
-def _run_dask(payloads, on_result, address: str):
-    from distributed import Client, as_completed
+def _dask_client(address: str):
+    """Connect to the scheduler (before anything is created on disk)."""
+    from distributed import Client
 
-    with Client(address, set_as_default=False) as client:
+    try:
+        client = Client(address, set_as_default=False, timeout="10s")
+    except Exception as e:   # OSError, TimeoutError, ValueError (bad address), ...
+        msg = " ".join(str(e).split())[:160] or type(e).__name__
+        raise SweepError(f"--scheduler {address!r}: no Dask scheduler answers ({msg}); "
+                         "nothing was created") from None
+    return client
+
+
+class _WriteFailed(Exception):
+    """Wraps an error of on_result so it is not mistaken for a lost scheduler."""
+
+
+def _run_dask(payloads, on_result, client, kept):
+    from distributed import as_completed
+
+    futs = []
+    try:
         client.run(_init_worker)
         futs = [client.submit(run_task, p, pure=False, retries=3) for p in payloads]
         # the client is not the default one: as_completed needs its loop explicitly
         for f in as_completed(futs, loop=client.loop):
-            on_result(f.result())
+            res = f.result()
+            try:
+                on_result(res)
+            except BaseException as e:
+                raise _WriteFailed() from e
             f.release()
+    except _WriteFailed as w:
+        _cancel(client, futs)
+        raise w.__cause__ from None
+    except (KeyboardInterrupt, SweepInterrupted):
+        _cancel(client, futs)
+        raise
+    except Exception as e:
+        _cancel(client, futs)
+        msg = " ".join(str(e).split())[:120] or type(e).__name__
+        raise SweepAborted(f"lost the Dask scheduler {client.scheduler.address if client.scheduler else ''}"
+                           f" ({type(e).__name__}: {msg}); the store is intact ({kept()}): rerun "
+                           "with --resume when the cluster is back") from None
+
+
+def _cancel(client, futs) -> None:
+    try:
+        client.cancel(futs, force=True)
+    except Exception:
+        pass
+
+
+def _estimate_line(plan: Plan, n_todo: int, workers: int) -> str:
+    from ..limits import fmt_seconds, step_cost, steps_estimate
+
+    c = plan.cells[0]
+    sec = n_todo * steps_estimate(c.system, c.spin, c.options) * step_cost(plan.n_balls)
+    return (f"{plan.spec.name}: {n_todo} of {plan.n_runs} runs to compute, about "
+            f"{fmt_seconds(sec / max(workers, 1))} on {workers} worker(s) (estimate)")
 
 
 def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | None = None,
@@ -102,7 +234,8 @@ def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | No
     spec : SweepSpec or path
         The sweep description (or a TOML file).
     store : path
-        Store directory; refused if it holds another sweep or exists without ``resume``.
+        Store directory; refused if it holds another sweep (description, base config contents
+        or package version), is in use by another process, or exists without ``resume``.
     executor : str
         "serial", "local" (processes on this machine, the default) or "dask" (the default when
         ``scheduler`` or DASK_SCHEDULER_ADDRESS is given).
@@ -111,10 +244,26 @@ def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | No
     scheduler : str
         Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
     resume : bool
-        Continue an interrupted sweep: finished tasks are kept, the others are run.
+        Continue an interrupted sweep: finished runs are kept, the others are run (whatever
+        batch size made them); unreadable task files are moved aside and rerun.
     options : SimOptions
         Override the numerical options of the base config.
+
+    Raises
+    ------
+    SweepError
+        Bad description, bad store (one line); nothing is computed.
+    SweepInterrupted
+        Ctrl-C or SIGTERM: the workers are stopped at once, every finished task is kept.
+    SweepAborted
+        Lost Dask scheduler or dead worker processes; every finished task is kept.
     """
+    import multiprocessing as mp
+
+    if getattr(mp.current_process(), "_inheriting", False):
+        # a spawned worker importing a script that calls sweep() without a __main__ guard:
+        # end this child quietly, the parent reports it in one line
+        raise SystemExit(3)
     if not isinstance(spec, SweepSpec):
         spec = load_spec(spec)
     scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
@@ -126,26 +275,92 @@ def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | No
     if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
         raise SweepError(f"workers = {workers!r}: must be an integer >= 1")
     store = Path(store)
+    check_store_path(store)
     plan = make_plan(spec)
-    init_store(store, spec, resume)
-    done = done_tasks(store, len(plan.tasks))
-    todo = [k for k in range(len(plan.tasks)) if k not in done]
-    done_runs = sum(plan.tasks[k][1] for k in done)
+    lock = StoreLock(store)
+    client = None
+    try:
+        client = _dask_client(scheduler) if executor == "dask" else None
+        with _signals_raise():
+            return _sweep_locked(plan, store, lock, executor, workers, client, resume,
+                                 progress, options, assemble_result)
+    finally:
+        lock.release()
+        if client is not None:
+            try:
+                client.close(timeout=5)
+            except Exception:
+                pass
+
+
+class _signals_raise:
+    """While a sweep runs in the main thread, SIGTERM raises SweepInterrupted like Ctrl-C."""
+
+    def __enter__(self):
+        self.old = None
+        if threading.current_thread() is threading.main_thread():
+            def on_term(signum, frame):
+                raise SweepInterrupted("terminated", signal.SIGTERM)
+            self.old = signal.signal(signal.SIGTERM, on_term)
+        return self
+
+    def __exit__(self, *exc):
+        if self.old is not None:
+            signal.signal(signal.SIGTERM, self.old)
+
+
+def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress, options,
+                  assemble_result):
+    init_store(store, plan, resume, lock)
+    warn = (lambda msg: print(f"warning: {msg}", file=sys.stderr, flush=True))
+
+    def on_corrupt(path, reason):
+        warn(f"task file {str(path)!r} was unreadable ({reason}): moved aside, its runs are "
+             "computed again")
+
+    scan = scan_tasks(store, plan, on_corrupt=on_corrupt)
+    covered = covered_runs(scan, plan.n_runs)
+    todo_tasks = plan.tasks_for(~covered)
+    done_runs = int(covered.sum())
+    n_workers = 1 if executor == "serial" else (workers or os.cpu_count() or 1)
+    if executor == "dask":
+        n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
+    if todo_tasks and progress:
+        print(_estimate_line(plan, plan.n_runs - done_runs, n_workers), file=sys.stderr,
+              flush=True)
     bar = Progress(plan.n_runs, done_runs, enabled=progress)
-    payloads = (task_payload(plan, k, options) for k in todo)
+    payloads = (task_payload(plan, t, options) for t in todo_tasks)
+    finished = [done_runs]
 
     def on_result(res):
         write_task(store, res)
+        finished[0] += len(res["status"])
         bar.update(len(res["status"]))
 
-    if todo:
-        if executor == "serial":
-            _run_serial(payloads, on_result)
-        elif executor == "local":
-            _run_local(list(payloads), on_result, workers or os.cpu_count() or 1)
-        else:
-            _run_dask(list(payloads), on_result, scheduler)
-    ds = assemble(plan, store)
+    def kept():
+        return f"{finished[0]} of {plan.n_runs} runs kept in {str(store)!r}"
+
+    try:
+        if todo_tasks:
+            if executor == "serial":
+                _run_serial(payloads, on_result)
+            elif executor == "local":
+                _run_local(list(payloads), on_result, n_workers, kept)
+            else:
+                _run_dask(list(payloads), on_result, client, kept)
+    except (KeyboardInterrupt, SweepInterrupted) as e:
+        sig = getattr(e, "signal", signal.SIGINT)
+        what = "terminated (SIGTERM)" if sig == signal.SIGTERM else "interrupted"
+        if bar.tty:
+            sys.stderr.write("\n")
+        raise SweepInterrupted(f"{what}: {kept()}; continue with --resume", sig) from None
+    result = Path(store) / "result.zarr"
+    if not todo_tasks and result.exists() and assemble_result:
+        import xarray as xr
+
+        return xr.open_zarr(result).load()
+    scan = scan_tasks(store, plan)
+    ds = assemble(plan, store, scan=scan)
     if assemble_result:
         write_result(ds, store)
     return ds
@@ -169,4 +384,12 @@ def open_sweep(store: str | Path, spec: SweepSpec | str | Path | None = None):
     if not isinstance(spec, SweepSpec):
         spec = load_spec(spec)
     plan: Plan = make_plan(spec)
+    mpath = store / "sweep.json"
+    if not mpath.exists():
+        raise SweepError(f"store {str(store)!r}: no sweep.json; not a sweep store")
+    try:
+        old = json.loads(mpath.read_text())
+    except (OSError, ValueError):
+        raise StoreMismatch(f"store {str(store)!r}: unreadable sweep.json") from None
+    _check_meta(store, old, _meta(plan))
     return assemble(plan, store)

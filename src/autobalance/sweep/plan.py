@@ -1,14 +1,18 @@
 """Expand a SweepSpec into grid cells, Monte-Carlo samples and tasks; run one task.
 
 Runs are numbered r = cell * n_samples + sample (C order over the grid axes, sample fastest).
-A task is a run of consecutive runs sharing the spin profile and the ball count (so one
-``simulate_batch`` call serves it), at most ``batch_size`` long. Everything here is
-deterministic: the same description gives the same tasks and the same results.
+A task is a range of consecutive runs sharing the spin profile and the numerical options (so one
+``simulate_batch`` call serves it with each run's own cell parameters), at most ``batch_size``
+long: tasks never mix two values of an ``options.*`` or ``profile.*`` grid axis. Everything
+here is deterministic: the same description gives the same tasks and the same results, and a
+run's result does not depend on the task it ran in.
 """
 from __future__ import annotations
 
 import copy
 import itertools
+import math
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,8 +29,14 @@ class Plan:
     spec: SweepSpec
     cells: list              # Config per grid cell (C order)
     start_angles: np.ndarray  # (n_samples, N) [rad]
-    tasks: list              # (first_run, n_runs) pairs
+    tasks: list              # (first_run, n_runs) pairs covering every run
     n_balls: int
+    groups: tuple = ()       # (start, stop) run ranges of equal spin and options
+
+    def tasks_for(self, todo: np.ndarray) -> list:
+        """(first, count) tasks covering the runs where ``todo`` is True: contiguous runs of
+        one group, at most batch_size long (with every run todo: ``self.tasks``)."""
+        return _chunk(self.groups, todo, self.spec.batch_size)
 
     @property
     def n_samples(self) -> int:
@@ -51,13 +61,39 @@ def start_grid(n: int, n_balls: int, identical: bool) -> np.ndarray:
     return np.array([[pos[i] for i in c] for c in combos], float).reshape(-1, n_balls)
 
 
+def _spread_on_line(x: np.ndarray, delta: float) -> np.ndarray:
+    """Closest positions (least squares) to sorted x with gaps >= delta: pool-adjacent-
+    violators on y_i = x_i - i delta (isotonic regression), then add i delta back."""
+    y = x - delta * np.arange(x.size)
+    blocks = []                                  # [mean, weight]
+    for v in y:
+        blocks.append([v, 1])
+        while len(blocks) > 1 and blocks[-2][0] > blocks[-1][0]:
+            m2, w2 = blocks.pop()
+            m1, w1 = blocks.pop()
+            blocks.append([(m1 * w1 + m2 * w2) / (w1 + w2), w1 + w2])
+    z = np.concatenate([np.full(w, m) for m, w in blocks])
+    return z + delta * np.arange(x.size)
+
+
 def separate(angles: np.ndarray, delta: float) -> np.ndarray:
-    """Move balls that start closer than the contact angle delta [rad] symmetrically apart to
-    exactly delta (004's point masses may coincide; ours touch). Keeps the centroid of each pair."""
+    """Move balls that start closer than the contact angle delta [rad] apart to at least delta
+    (004's point masses may coincide; ours touch).
+
+    Pairs are pushed symmetrically apart (keeping each pair's centroid), which settles in a
+    few sweeps for small clusters. Larger clusters (many balls at one start position) are
+    spread by the least-squares placement on the circle cut at its widest gap
+    (:func:`_spread_on_line`); if that still overlaps across the cut, the balls keep their
+    order and are spaced evenly (2 pi / N >= delta whenever they fit), centred on their mean.
+    Works up to the race's capacity N delta <= 2 pi."""
     a = np.array(angles, float)
     n = a.size
     if n < 2 or delta <= 0:
         return a
+    if n * delta > 2 * np.pi * (1 + 1e-12):
+        raise SweepError(f"monte_carlo: {n} balls do not fit on the race (contact angle "
+                         f"{np.degrees(delta):.4g} deg, at most {int(2 * np.pi / delta)} balls)")
+    a0 = a.copy()
     for _ in range(200):
         order = np.argsort(np.mod(a, 2 * np.pi), kind="stable")
         moved = False
@@ -71,7 +107,81 @@ def separate(angles: np.ndarray, delta: float) -> np.ndarray:
                 moved = True
         if not moved:
             return a
-    raise SweepError("monte_carlo: too many balls to place them without overlap")
+    # large clusters: least-squares spreading on the circle cut at the widest gap
+    w = np.mod(a0, 2 * np.pi)
+    order = np.argsort(w, kind="stable")
+    ws = w[order]
+    gaps = np.diff(np.concatenate([ws, ws[:1] + 2 * np.pi]))
+    cut = (int(np.argmax(gaps)) + 1) % n
+    line = np.concatenate([ws[cut:], ws[:cut] + 2 * np.pi])
+    d = delta * (1 + 1e-9)
+    z = _spread_on_line(line, d)
+    if z[-1] - z[0] > 2 * np.pi - d:             # overlaps across the cut: even spacing
+        step = 2 * np.pi / n
+        z = line.mean() - step * (n - 1) / 2 + step * np.arange(n)
+    out = np.empty(n)
+    out[np.roll(order, -cut)] = z
+    # keep each ball's winding as given (only the offset from its start matters)
+    return a0 + np.angle(np.exp(1j * (out - a0)))
+
+
+def _chunk(groups, todo: np.ndarray, batch_size: int) -> list:
+    tasks = []
+    for g0, g1 in groups:
+        r = g0
+        while r < g1:
+            if not todo[r]:
+                r += 1
+                continue
+            stop = r + 1
+            while stop < g1 and todo[stop] and stop - r < batch_size:
+                stop += 1
+            tasks.append((r, stop - r))
+            r = stop
+    return tasks
+
+
+def n_start_grid(n: int, n_balls: int, identical: bool) -> int:
+    """Number of start configurations of :func:`start_grid` (without building them)."""
+    return math.comb(n + n_balls - 1, n_balls) if identical else n ** n_balls
+
+
+#: Bytes per run of a sweep in memory (outputs, start angles, payload; measured order of
+#: magnitude, conservative), before the per-checkpoint and per-ball terms.
+_RUN_BYTES = 600
+
+
+def _guard_size(spec: SweepSpec, n_cells: int, n_samples: int, n_balls: int, n_cp: int,
+                n_hist: int, cell0) -> None:
+    """Refuse a sweep whose dataset or run time exceeds the limits (autobalance.limits),
+    before the samples are built."""
+    from ..limits import check_memory, check_runtime, step_cost, steps_estimate
+
+    if spec.mc_kind == "start_grid":
+        field, value = "monte_carlo.n", spec.mc_n
+    elif spec.mc_kind == "random":
+        field, value = "monte_carlo.samples", spec.mc_samples
+    else:
+        field, value = "grid", f"{n_cells} cells"
+    if n_samples > 1 and n_cells > n_samples:
+        field, value = "grid", f"{n_cells} cells x {n_samples} samples"
+    n_runs = n_cells * n_samples
+    per_run = _RUN_BYTES + 8 * (n_cp * (2 + n_balls) + 3 * n_hist + 2 * n_balls)
+    check_memory(field, value, float(n_runs) * per_run + 20e3 * n_cells, "sweep")
+    steps = steps_estimate(cell0.system, cell0.spin, cell0.options)
+    workers = os.cpu_count() or 1
+    check_runtime(field, value, n_runs * steps * step_cost(n_balls) / workers, "sweep")
+
+
+def _culprit(spec: SweepSpec, message: str, where: str) -> str:
+    """Where a cell's error comes from: the grid point if the bad field is a grid axis, else
+    ``sweep.set`` if an override set it, else the base config."""
+    field = message.split(" ", 1)[0].split("[", 1)[0].rstrip(":")
+    if any(a.path == field for a in spec.grid) or not field:
+        return f"grid point {where or '(base)'}"
+    if any(o.split("=", 1)[0].strip() == field for o in spec.overrides):
+        return "sweep.set"
+    return f"grid point {where}" if where else f"sweep.base {spec.base!r}"
 
 
 def make_plan(spec: SweepSpec) -> Plan:
@@ -88,23 +198,34 @@ def make_plan(spec: SweepSpec) -> Plan:
         raise
     except ConfigError as e:
         raise SweepError(f"sweep.set: {e}") from None
+    if spec.mc_kind != "none" and isinstance(base_raw.get("initial"), dict):
+        # the Monte-Carlo dimension sets the start angles: the base's are not used (and may
+        # be for another ball count, e.g. a preset's 2 angles with --set balancer.n_balls=8)
+        base_raw["initial"].pop("ball_angles", None)
+    n_cells = math.prod(len(a.values) for a in spec.grid)
+    from ..limits import check_memory
+    check_memory("grid", f"{n_cells} cells", 20e3 * n_cells, "sweep's grid")
     cells = []
     for combo in itertools.product(*[range(len(a.values)) for a in spec.grid]):
         sets = [f"{a.path}={_toml_literal(a.values[i])}" for a, i in zip(spec.grid, combo)]
         where = ", ".join(f"{a.path}={a.values[i]!r}" for a, i in zip(spec.grid, combo))
         try:
             cfg = from_dict(apply_overrides(copy.deepcopy(base_raw), sets), source=label)
-        except Exception as e:   # ConfigError / ParameterError: name the grid point
-            raise SweepError(f"grid point {where or '(base)'}: {e}") from None
+        except Exception as e:   # ConfigError / ParameterError / ResourceError
+            raise SweepError(f"{_culprit(spec, str(e), where)}: {e}") from None
         cells.append(cfg)
     nb = {c.system.balancer.n_balls for c in cells}
     if len(nb) != 1:
         raise SweepError(f"grid: balancer.n_balls must be the same in every cell (got {sorted(nb)})")
     N = nb.pop()
     b0 = cells[0].system.balancer
+    identical = all(len(set(map(float, np.atleast_1d(getattr(b0, f))))) <= 1
+                    for f in ("ball_mass", "damping", "rolling_resistance", "stiction"))
+    n_samples = (n_start_grid(spec.mc_n, N, identical) if spec.mc_kind == "start_grid"
+                 else spec.mc_samples if spec.mc_kind == "random" else 1)
+    n_hist = int(cells[0].spin.duration / spec.history_dt) + 1 if spec.history_dt > 0 else 0
+    _guard_size(spec, len(cells), n_samples, N, len(cells[0].spin.checkpoints), n_hist, cells[0])
     if spec.mc_kind == "start_grid":
-        identical = all(len(set(map(float, np.atleast_1d(getattr(b0, f))))) <= 1
-                        for f in ("ball_mass", "damping", "rolling_resistance", "stiction"))
         angles = start_grid(spec.mc_n, N, identical)
     elif spec.mc_kind == "random":
         rng = np.random.default_rng(spec.seed)
@@ -113,38 +234,33 @@ def make_plan(spec: SweepSpec) -> Plan:
         angles = np.asarray(cells[0].initial.angles_for(b0), float).reshape(1, N)
     delta = b0.contact_angle
     angles = np.array([separate(a, delta) for a in angles]).reshape(-1, N)
-    # tasks: consecutive runs with the same spin, at most batch_size long
+    # groups of consecutive runs with the same spin and options; tasks at most batch_size long
     n_s = angles.shape[0]
-    tasks = []
-    start = 0
     n_runs = len(cells) * n_s
-    while start < n_runs:
-        spin = cells[start // n_s].spin
-        stop = start + 1
-        while (stop < n_runs and stop - start < spec.batch_size
-               and cells[stop // n_s].spin == spin):
-            stop += 1
-        tasks.append((start, stop - start))
-        start = stop
-    return Plan(spec, cells, angles, tasks, N)
+    bounds = [0] + [c * n_s for c in range(1, len(cells))
+                    if (cells[c].spin, cells[c].options) != (cells[c - 1].spin, cells[c - 1].options)]
+    groups = tuple(zip(bounds, bounds[1:] + [n_runs]))
+    tasks = _chunk(groups, np.ones(n_runs, bool), spec.batch_size)
+    return Plan(spec, cells, angles, tasks, N, groups)
 
 
-def task_payload(plan: Plan, k: int, options: SimOptions | None = None) -> dict:
-    """Everything a worker needs to run task k (picklable)."""
-    first, count = plan.tasks[k]
+def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> dict:
+    """Everything a worker needs to run the task (first run, count) (picklable)."""
+    first, count = task
     n_s = plan.n_samples
     runs = range(first, first + count)
     systems = [plan.cells[r // n_s].system for r in runs]
     base_init = [plan.cells[r // n_s].initial for r in runs]
-    inits = [InitialState(ball_angles=tuple(plan.start_angles[r % n_s]), x=i.x, y=i.y,
-                          vx=i.vx, vy=i.vy, steady_state=i.steady_state)
+    inits = [InitialState(ball_angles=tuple(plan.start_angles[r % n_s]),
+                          ball_speeds=i.ball_speeds, x=i.x, y=i.y, vx=i.vx, vy=i.vy,
+                          steady_state=i.steady_state)
              for r, i in zip(runs, base_init)]
     opts = options or plan.cells[first // n_s].options
     spin = plan.cells[first // n_s].spin
     hist = ()
     if plan.spec.history_dt > 0:
         hist = tuple(np.arange(0.0, spin.duration + 1e-12, plan.spec.history_dt))
-    return {"task": k, "first": first, "systems": systems, "initials": inits, "spin": spin,
+    return {"first": first, "count": count, "systems": systems, "initials": inits, "spin": spin,
             "options": opts, "history_times": hist}
 
 
@@ -168,7 +284,7 @@ def run_task(payload: dict) -> dict:
     status = np.array([{"ok": 0, "max_steps": 1, "step_size_underflow": 2,
                         "non_finite": 3}.get(s, 9) for s in res.status], np.int8)
     out = {
-        "task": payload["task"], "first": payload["first"],
+        "first": payload["first"], "count": len(systems),
         "grade_G": res.grade_G[:, :n_cp],
         "residual_unbalance": res.residual_unbalance[:, :n_cp],
         "ball_angle": np.angle(np.exp(1j * res.alpha[:, :n_cp, :])),
@@ -184,4 +300,13 @@ def run_task(payload: dict) -> dict:
         out["grade_G_history"] = res.grade_G[:, n_cp:]
         out["amplitude_history"] = np.hypot(st[:, :, 0], st[:, :, 1])
         out["speed_history"] = st[:, :, 2 * nq - 1]
+    # a failed run (max_steps, step-size underflow, non-finite state) has no outcome: NaN, with
+    # its status, steps and events kept (its start, initial_grade_G, is still known)
+    failed = status != 0
+    if failed.any():
+        for name in ("grade_G", "residual_unbalance", "ball_angle", "max_amplitude",
+                     "grade_G_history", "amplitude_history", "speed_history"):
+            if name in out:
+                out[name] = np.array(out[name], float)
+                out[name][failed] = np.nan
     return out
