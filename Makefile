@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test bench browser validation clean
+.PHONY: setup run test bench faults browser validation clean
 
 # Debian's Chromium opens the HTML report in the tests (installed once, with sudo if not root).
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
@@ -36,6 +36,10 @@ validation: run
 bench: setup
 	$(BIN)/python benchmarks/run.py
 	$(BIN)/python benchmarks/sweep_bench.py
+
+# Fault-injection trials of the sweep store (kill -9, Ctrl-C, SIGTERM, concurrent resumes).
+faults: setup
+	$(BIN)/python benchmarks/faults.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache
