@@ -61,13 +61,17 @@ def identity(plan: Plan) -> str:
     """Digest of everything that determines a store's results: the description's canonical
     JSON, every grid cell's resolved system, profile, initial state and options (so an edited
     base config or preset is a different sweep), the start angles and the package version."""
+    cached = getattr(plan, "_identity", None)
+    if cached is not None:
+        return cached
     h = hashlib.sha256()
     h.update(plan.spec.canonical().encode())
     h.update(__version__.encode())
     for c in plan.cells:
         h.update(repr((c.system, c.spin, c.initial, c.options)).encode())
     h.update(np.ascontiguousarray(plan.start_angles, float).tobytes())
-    return h.hexdigest()[:16]
+    plan._identity = h.hexdigest()[:16]
+    return plan._identity
 
 
 def _meta(plan: Plan) -> dict:
@@ -192,6 +196,8 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
                 raise SweepError(f"--store {str(store)!r} exists: pass --resume to continue it, "
                                  "or choose another --store path (nothing was overwritten)")
         (store / "tasks").mkdir(exist_ok=True)
+        for tmp in [*(store / "tasks").glob("*.tmp"), *(store / "tasks").glob(".probe-*")]:
+            tmp.unlink(missing_ok=True)     # half-written by a killed owner (we hold the lock)
         _probe_writable(store)
         lock.stamp()
         if not mpath.exists():
