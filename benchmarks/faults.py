@@ -114,7 +114,8 @@ def main() -> None:
             (os.killpg if sig == signal.SIGINT else os.kill)(p.pid, sig)
             _, err = p.communicate()
             dt = time.monotonic() - t0
-            one = len(err.strip().splitlines()) == 1 and "Traceback" not in err
+            one = (sum(ln.startswith("error:") for ln in err.splitlines()) == 1
+                   and "Traceback" not in err)   # besides the estimate and progress lines
             r = subprocess.run(cli("sweep", desc, "--store", store, "--resume", "--workers", 2),
                                capture_output=True, text=True)
             ds = load(store)

@@ -67,6 +67,11 @@ n = 10
 """
 
 
+# ~210 runs in tasks of 2 (~0.05-0.1 s each): several seconds on 2 workers, long enough to
+# interrupt or kill from outside in the middle (tests/test_sweep_faults.py, test_sweep_dask.py).
+SLOW_SWEEP = LONG_SWEEP.replace('name = "resumable"', 'name = "slow"').replace("n = 10", "n = 20")
+
+
 def spec_of(text: str):
     """A SweepSpec from TOML text."""
     import tomllib

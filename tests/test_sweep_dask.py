@@ -16,6 +16,7 @@ from distributed import Client, LocalCluster
 from autobalance.sweep import make_plan, open_sweep, sweep
 
 from conftest import LONG_SWEEP as LONGER  # noqa: E402
+from conftest import SLOW_SWEEP as SLOW  # noqa: E402
 from conftest import TINY_SWEEP as TINY  # noqa: E402
 from conftest import assert_bit_identical, spec_of  # noqa: E402
 
@@ -152,19 +153,6 @@ def test_reproduce_target_on_the_cluster_equals_local(cluster, tmp_path, monkeyp
 
 
 # -- a real `dask scheduler` / `dask worker` pair in their own processes (issue 12) -------------
-SLOW = """
-[sweep]
-name = "slow"
-base = "vub_jeffcott_004"
-set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
-batch_size = 2
-
-[monte_carlo]
-kind = "start_grid"
-n = 16
-"""
-
-
 def _free_port() -> int:
     import socket
 
@@ -198,6 +186,32 @@ class RealCluster:
         self.log.close()
 
 
+def _wait_for_tasks(proc, store, n, timeout=120.0):
+    deadline = time.monotonic() + timeout
+    while len(list((store / "tasks").glob("r*.npz"))) < n if (store / "tasks").exists() else True:
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() < deadline, "no task finished in time"
+        time.sleep(0.01)
+
+
+def _cli_sweep_running(cl, tmp_path):
+    """`autobalance sweep SLOW --scheduler` on the cluster, returned once 2 tasks are stored."""
+    desc = tmp_path / "slow.toml"
+    desc.write_text(SLOW)
+    store = tmp_path / "s"
+    proc = subprocess.Popen(_cli("sweep", str(desc), "--store", str(store), "--scheduler",
+                                 cl.address), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    _wait_for_tasks(proc, store, 2)
+    return desc, store, proc
+
+
+@pytest.fixture(scope="module")
+def serial_slow(tmp_path_factory):
+    return sweep(spec_of(SLOW), tmp_path_factory.mktemp("serial") / "slow", executor="serial",
+                 progress=False)
+
+
 def _cli(*args):
     return [sys.executable, "-m", "autobalance.cli", *args]
 
@@ -209,24 +223,14 @@ def _one_error_line(stderr):
     return lines[0]
 
 
-def test_real_dask_worker_killed_mid_sweep_bit_identical(tmp_path):
+def test_real_dask_worker_killed_mid_sweep_bit_identical(tmp_path, serial_slow):
     """kill -9 of the `dask worker` process (its nanny restarts it) while the CLI sweep runs on
     the cluster: the sweep completes, bit-identical to the serial run."""
     import psutil
 
-    desc = tmp_path / "slow.toml"
-    desc.write_text(SLOW)
-    store = tmp_path / "s"
     cl = RealCluster(tmp_path)
     try:
-        proc = subprocess.Popen(_cli("sweep", str(desc), "--store", str(store), "--scheduler",
-                                     cl.address), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                text=True)
-        deadline = time.monotonic() + 120
-        while len(list((store / "tasks").glob("r*.npz"))) < 2 if (store / "tasks").exists() else True:
-            assert proc.poll() is None, proc.communicate()
-            assert time.monotonic() < deadline
-            time.sleep(0.01)
+        desc, store, proc = _cli_sweep_running(cl, tmp_path)
         kids = psutil.Process(cl.workers[0].pid).children(recursive=True)
         for k in kids:                                 # the worker process under the nanny
             k.kill()
@@ -235,27 +239,16 @@ def test_real_dask_worker_killed_mid_sweep_bit_identical(tmp_path):
         cl.stop()
     assert kids
     assert proc.returncode == 0, err
-    ref = sweep(spec_of(SLOW), tmp_path / "ref", executor="serial", progress=False)
-    assert_bit_identical(open_sweep(store), ref)
+    assert_bit_identical(open_sweep(store), serial_slow)
 
 
-def test_real_dask_scheduler_lost_one_line_then_resume(tmp_path):
+def test_real_dask_scheduler_lost_one_line_then_resume(tmp_path, serial_slow):
     """kill -9 of the `dask scheduler` mid-sweep: one line saying the store is intact and how to
     resume (exit 1), no traceback; --resume on a new cluster gives the serial result bit for
     bit."""
-    desc = tmp_path / "slow.toml"
-    desc.write_text(SLOW)
-    store = tmp_path / "s"
     cl = RealCluster(tmp_path)
     try:
-        proc = subprocess.Popen(_cli("sweep", str(desc), "--store", str(store), "--scheduler",
-                                     cl.address), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                text=True)
-        deadline = time.monotonic() + 120
-        while len(list((store / "tasks").glob("r*.npz"))) < 2 if (store / "tasks").exists() else True:
-            assert proc.poll() is None, proc.communicate()
-            assert time.monotonic() < deadline
-            time.sleep(0.01)
+        desc, store, proc = _cli_sweep_running(cl, tmp_path)
         cl.scheduler.kill()
         t0 = time.monotonic()
         out, err = proc.communicate(timeout=180)
@@ -277,5 +270,4 @@ def test_real_dask_scheduler_lost_one_line_then_resume(tmp_path):
     finally:
         cl2.stop()
     assert r.returncode == 0, r.stderr
-    ref = sweep(spec_of(SLOW), tmp_path / "ref", executor="serial", progress=False)
-    assert_bit_identical(open_sweep(store), ref)
+    assert_bit_identical(open_sweep(store), serial_slow)

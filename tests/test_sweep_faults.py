@@ -23,26 +23,12 @@ from autobalance.sweep import (StoreMismatch, SweepAborted, SweepError, load_spe
                                open_sweep, spec_from_dict, sweep)
 from autobalance.sweep.plan import separate
 
+from conftest import SLOW_SWEEP as SLOW  # noqa: E402
 from conftest import TINY_SWEEP as TINY  # noqa: E402
 from conftest import assert_bit_identical, file_modes_bind, spec_of  # noqa: E402
 
 SHORT = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s",
          "profile.plateau_time=2 s", "profile.up_time=1 s"]
-
-# ~230 runs in tasks of 2 (~0.05-0.1 s each): several seconds on 2 workers, long enough to
-# interrupt in the middle from outside.
-SLOW = """
-[sweep]
-name = "slow"
-base = "vub_jeffcott_004"
-set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s"]
-batch_size = 2
-
-[monte_carlo]
-kind = "start_grid"
-n = 20
-"""
-
 
 def write(tmp_path: Path, text: str, name: str = "sweep.toml") -> Path:
     p = tmp_path / name
