@@ -458,3 +458,17 @@ def test_separate_at_capacity_and_beyond():
     assert _gaps(a).min() >= delta * (1 - 1e-6) * (1 - 1e-9)
     with pytest.raises(SweepError, match="do not fit"):
         separate(np.zeros(18), delta)
+
+
+def test_unreadable_result_is_assembled_again(tiny_ref, tmp_path):
+    """A finished store whose result.zarr was damaged (e.g. by an older version without the
+    lock): --resume rebuilds it from the task files, with a warning."""
+    store = tmp_path / "s"
+    sweep(spec_of(TINY), store, executor="serial", progress=False)
+    meta = store / "result.zarr" / ".zmetadata"
+    meta.write_text("{ not json")
+    desc = write(tmp_path, TINY)
+    r = run_main("sweep", str(desc), "--store", str(store), "--executor", "serial", "--resume")
+    assert r.returncode == 0, r.stderr
+    assert "assembled again" in r.stderr and "Traceback" not in r.stderr
+    assert_bit_identical(open_sweep(store), tiny_ref)

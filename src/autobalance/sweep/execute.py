@@ -358,7 +358,11 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
     if not todo_tasks and result.exists() and assemble_result:
         import xarray as xr
 
-        return xr.open_zarr(result).load()
+        try:
+            return xr.open_zarr(result).load()
+        except Exception as e:   # an unreadable assembly: rebuilt from the task files below
+            warn(f"{str(result)!r} was unreadable ({type(e).__name__}): assembled again from "
+                 "the task files")
     scan = scan_tasks(store, plan)
     ds = assemble(plan, store, scan=scan)
     if assemble_result:

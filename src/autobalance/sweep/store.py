@@ -218,6 +218,10 @@ def _check_meta(store: Path, old: dict, meta: dict) -> None:
         raise StoreMismatch(f"--store {str(store)!r} was made by a different sweep description "
                             f"(digest {old.get('digest')} != {meta['digest']}); refusing to "
                             "overwrite it (start a new store)")
+    if "identity" not in old:
+        raise StoreMismatch(f"--store {str(store)!r} was made by an earlier store format (task "
+                            "files by index, no identity); refusing to mix results (start a new "
+                            "store)")
     if old.get("identity") != meta["identity"]:
         raise StoreMismatch(f"--store {str(store)!r} was made from different parameter values "
                             f"with the same description (the base config {meta['spec']['base']!r} "
