@@ -20,7 +20,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from .cli_common import (USER_ERRORS, _clean, _fail, _guard, _one_line, _print_json, check_grade,
-                         check_output_file, check_workers, quiet_dask_logs)
+                         check_executor, check_output_file, check_workers, quiet_dask_logs)
 from .config import ConfigError, describe, list_presets, load_config, parse_quantity
 
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
@@ -310,8 +310,7 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
             check_output_file(plot, "--plot", "summary.png", (".png", ".svg", ".pdf"))
             check_grade(grade)
             check_workers(workers)      # >= 1, and their processes fit the memory limit
-            if executor is not None and executor not in ("serial", "local", "dask"):
-                raise ConfigError(f"--executor = {executor!r}: must be serial, local or dask")
+            check_executor(executor)
             sp = load_spec(spec)
             if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
                 quiet_dask_logs()

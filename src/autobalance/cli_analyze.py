@@ -66,10 +66,10 @@ def _check_plot(path: Optional[Path], what: str = "--plot") -> None:
     check_output_file(path, what, "plot.png", (".png",))
 
 
-def _save(fig, path: Optional[Path], what: str = "--plot") -> Optional[str]:
+def _save(fig, path: Optional[Path]) -> Optional[str]:
+    """Save a figure to a path the command checked with :func:`_check_plot` before computing."""
     if path is None:
         return None
-    _check_plot(path, what)
     fig.savefig(path, dpi=110)
     return str(path)
 
@@ -135,7 +135,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
 
             wx, wy = cfg.system.natural_frequencies
             out["damping_plot"] = _save(plot_vibratory_force_damping(
-                cfg.system, [w, 0.5 * (wx + wy)]), damping_plot, "--damping-plot")
+                cfg.system, [w, 0.5 * (wx + wy)]), damping_plot)
     if json_:
         _print(out)
         return

@@ -77,6 +77,14 @@ def check_output_file(path, what: str, example: str = "out.nc", suffixes=()) -> 
         raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} is not writable")
 
 
+def check_executor(executor) -> None:
+    """``--executor``: None (the default) or one of autobalance.sweep.EXECUTORS; ConfigError."""
+    from .sweep import EXECUTORS
+
+    if executor is not None and executor not in EXECUTORS:
+        raise ConfigError(f"--executor = {executor!r}: must be {', '.join(EXECUTORS)}")
+
+
 #: Rough resident memory of one local worker process (Python, numpy, numba, xarray) [B].
 WORKER_BYTES = 256 * 2**20
 

@@ -93,9 +93,7 @@ def _list(value: str, kind: str, field: str) -> list[float]:
 def _plot_path(plot: Optional[str]) -> Optional[str]:
     """Refuse a figure file that could not be written (suffix, a directory, a missing or
     read-only directory) before computing."""
-    if plot and not plot.lower().endswith((".png", ".pdf", ".svg")):
-        raise ConfigError(f"--plot = {plot!r}: expected a .png, .pdf or .svg file name")
-    check_output_file(plot or None, "--plot", "plot.png")
+    check_output_file(plot or None, "--plot", "plot.png", (".png", ".pdf", ".svg"))
     return plot
 
 

@@ -19,7 +19,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from .cli_common import _guard, _print_json, check_workers
+from .cli_common import _guard, _print_json, check_executor, check_workers
 from .config import ConfigError
 
 TargetsArg = Annotated[Optional[list[str]], typer.Argument(
@@ -73,8 +73,7 @@ def reproduce(targets: TargetsArg = None,
                 typer.echo(f"{t.id:<26} {t.paper}  {', '.join(t.items):<34} "
                            f"{len(claims(t)):>3} numbers  {t.title}{also}")
             return
-        if executor not in ("local", "serial", "dask"):
-            raise ConfigError(f"--executor = {executor!r}: must be local, serial or dask")
+        check_executor(executor)
         check_workers(workers)      # >= 1, and their processes fit the memory limit
         if scheduler:
             executor = "dask"

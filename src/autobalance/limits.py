@@ -120,12 +120,6 @@ def check_memory(field: str, value, nbytes: float, what: str = "results") -> Non
             f"limit of {fmt_bytes(lim)} (set AUTOBALANCE_MAX_MEMORY to raise it)")
 
 
-def check_count(field: str, value, limit: int, what: str) -> None:
-    """Refuse a count above ``limit`` before anything is allocated for it."""
-    if value > limit:
-        raise ResourceError(f"{field} = {value!r}: at most {limit} {what}")
-
-
 def check_runtime(field: str, value, seconds: float, what: str = "run") -> None:
     """Refuse ``field = value`` if the estimated run time [s] exceeds the limit."""
     lim = max_hours() * 3600.0
@@ -135,28 +129,23 @@ def check_runtime(field: str, value, seconds: float, what: str = "run") -> None:
             f"more than the limit of {fmt_seconds(lim)} (set AUTOBALANCE_MAX_HOURS to raise it)")
 
 
-def _speed_integrals(spin) -> tuple[float, float]:
-    """(int_0^T Omega dt over the whole run, over its ramps only) [rad] of a prescribed
-    piecewise-linear profile; a motor run-up (speed not known in advance) gives (0, 0)."""
+def _speed_integrals(spin) -> tuple[float, float, float]:
+    """(int_0^T Omega dt over the whole run [rad], over its ramps only [rad], the ramps'
+    duration [s]) of a prescribed piecewise-linear profile; a motor run-up (speed not known in
+    advance) gives (0, 0, duration)."""
     times = getattr(spin, "times", None)
     if times is None:
-        return 0.0, 0.0
+        return 0.0, 0.0, float(spin.duration)
     w = spin.speeds
-    total = ramps = 0.0
+    total = ramps = ramp_time = 0.0
     for i in range(len(times) - 1):
-        seg = 0.5 * (w[i] + w[i + 1]) * (times[i + 1] - times[i])
+        dt = times[i + 1] - times[i]
+        seg = 0.5 * (w[i] + w[i + 1]) * dt
         total += seg
         if w[i] != w[i + 1]:
             ramps += seg
-    return total, ramps
-
-
-def _ramp_time(spin) -> float:
-    times = getattr(spin, "times", None)
-    if times is None:
-        return float(spin.duration)
-    return sum(times[i + 1] - times[i] for i in range(len(times) - 1)
-               if spin.speeds[i] != spin.speeds[i + 1])
+            ramp_time += dt
+    return total, ramps, ramp_time
 
 
 def steps_estimate(system, spin, options) -> float:
@@ -164,7 +153,7 @@ def steps_estimate(system, spin, options) -> float:
     T = float(spin.duration)
     w_n = max(system.natural_frequencies)
     h_max = options.max_step if options.max_step > 0 else min(0.05, T / 20.0)
-    total, _ = _speed_integrals(spin)
+    total, _, _ = _speed_integrals(spin)
     return max((total + w_n * T) / DOPRI5_STABILITY, T / h_max)
 
 
@@ -172,8 +161,8 @@ def steps_lower_bound(system, spin, options) -> float:
     """A lower bound of the steps of one run: its speed ramps (never solved in closed form)
     at half the stability-limited step count [-]."""
     w_n = max(system.natural_frequencies)
-    _, ramps = _speed_integrals(spin)
-    return (ramps + w_n * _ramp_time(spin)) / (2.0 * DOPRI5_STABILITY)
+    _, ramps, ramp_time = _speed_integrals(spin)
+    return (ramps + w_n * ramp_time) / (2.0 * DOPRI5_STABILITY)
 
 
 def step_cost(n_balls: int) -> float:
@@ -182,18 +171,25 @@ def step_cost(n_balls: int) -> float:
 
 
 def check_run(system, spin, options, field: str = "profile.duration") -> float:
-    """Refuse a run whose steps (lower bound) exceed ``options.max_steps`` or whose estimated
-    time exceeds the run-time limit; returns the step estimate."""
+    """Refuse a run that cannot finish: its steps (lower bound) exceed the step budget, or its
+    estimated time exceeds the run-time limit; returns the step estimate.
+
+    A budget lowered below the default ``SimOptions.max_steps`` asks for a partial run (it ends
+    with status "max_steps" and the history so far), so the bound is compared with the larger
+    of ``options.max_steps`` and that default."""
+    from .models import SimOptions
+
+    budget = max(options.max_steps, SimOptions.max_steps)
     n = steps_lower_bound(system, spin, options)
-    if n > options.max_steps:
+    if n > budget:
         raise ResourceError(
             f"{field} = {spin.duration:g} s: needs at least {n:.3g} integration steps, more than "
-            f"options.max_steps = {options.max_steps}; shorten the run or raise options.max_steps")
+            f"options.max_steps = {budget}; shorten the run or raise options.max_steps")
     est = steps_estimate(system, spin, options)
     check_runtime(field, f"{spin.duration:g} s", est * step_cost(system.balancer.n_balls))
     return est
 
 
-__all__ = ["ResourceError", "check_count", "check_memory", "check_run", "check_runtime",
+__all__ = ["ResourceError", "check_memory", "check_run", "check_runtime",
            "fmt_bytes", "fmt_seconds", "max_balls", "max_hours", "max_memory", "parse_bytes",
            "step_cost", "steps_estimate", "steps_lower_bound"]

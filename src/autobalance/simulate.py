@@ -5,8 +5,6 @@ Both refuse, before allocating or integrating, a run that cannot fit the limits 
 """
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 
 from .core.integrate import integrate, integrate_batch
@@ -15,21 +13,6 @@ from .core.pack import atol_vector, initial_vector, pack_params, spin_arrays
 from .limits import check_memory, check_run
 from .models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
-
-#: The default step budget (SimOptions.max_steps).
-_DEFAULT_MAX_STEPS = SimOptions.max_steps
-
-
-def _check_run(system: System, spin, options: SimOptions) -> None:
-    """Refuse a run that cannot finish within the step budget or the run-time limit
-    (:func:`autobalance.limits.check_run`, a lower bound of the steps; cheap, nothing integrated).
-
-    A budget lowered below the default (``options.max_steps``) asks for a partial run: such a
-    run is not refused but ends with status "max_steps" and the history so far, so the step
-    bound is compared with the larger of the budget and the default [steps]."""
-    if options.max_steps < _DEFAULT_MAX_STEPS:
-        options = dataclasses.replace(options, max_steps=_DEFAULT_MAX_STEPS)
-    check_run(system, spin, options)
 
 
 def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
@@ -92,7 +75,7 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
     """
     initial = initial or InitialState()
     options = options or SimOptions()
-    _check_run(system, spin, options)
+    check_run(system, spin, options)
     P, B = pack_params(system, spin, options)
     y0, order = initial_vector(system, spin, initial)
     prof_t, prof_w, t_end = spin_arrays(spin)
@@ -132,7 +115,7 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     if any(s.balancer.n_balls != N for s in systems):
         raise ValueError("simulate_batch: all systems must have the same number of balls")
     # the shared profile and N: the stiffest suspension has the largest step bound
-    _check_run(max(systems, key=lambda s: max(s.natural_frequencies)), spin, options)
+    check_run(max(systems, key=lambda s: max(s.natural_frequencies)), spin, options)
     packed = [pack_params(s, spin, options) for s in systems]
     Ps = np.stack([p for p, _ in packed])
     Bs = np.stack([b for _, b in packed]) if N else np.zeros((n_runs, 0, 8))

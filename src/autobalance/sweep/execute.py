@@ -17,8 +17,8 @@ from pathlib import Path
 from ..models import SimOptions
 from .plan import Plan, make_plan, run_task, task_payload
 from .spec import SweepError, SweepSpec, load_spec
-from .store import (StoreLock, StoreMismatch, _check_meta, _meta, assemble, check_store_path, covered_runs, init_store, scan_tasks,
-                    write_result, write_task)
+from .store import (StoreLock, assemble, check_identity, check_store_path, covered_runs,
+                    init_store, scan_tasks, write_result, write_task)
 
 EXECUTORS = ("serial", "local", "dask")
 
@@ -363,8 +363,7 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
         except Exception as e:   # an unreadable assembly: rebuilt from the task files below
             warn(f"{str(result)!r} was unreadable ({type(e).__name__}): assembled again from "
                  "the task files")
-    scan = scan_tasks(store, plan)
-    ds = assemble(plan, store, scan=scan)
+    ds = assemble(plan, store)
     if assemble_result:
         write_result(ds, store)
     return ds
@@ -388,12 +387,5 @@ def open_sweep(store: str | Path, spec: SweepSpec | str | Path | None = None):
     if not isinstance(spec, SweepSpec):
         spec = load_spec(spec)
     plan: Plan = make_plan(spec)
-    mpath = store / "sweep.json"
-    if not mpath.exists():
-        raise SweepError(f"store {str(store)!r}: no sweep.json; not a sweep store")
-    try:
-        old = json.loads(mpath.read_text())
-    except (OSError, ValueError):
-        raise StoreMismatch(f"store {str(store)!r}: unreadable sweep.json") from None
-    _check_meta(store, old, _meta(plan))
+    check_identity(store, plan)
     return assemble(plan, store)

@@ -149,6 +149,8 @@ def n_start_grid(n: int, n_balls: int, identical: bool) -> int:
 #: Bytes per run of a sweep in memory (outputs, start angles, payload; measured order of
 #: magnitude, conservative), before the per-checkpoint and per-ball terms.
 _RUN_BYTES = 600
+#: Bytes per grid cell (its validated Config and models; conservative).
+_CELL_BYTES = 20e3
 
 
 def _guard_size(spec: SweepSpec, n_cells: int, n_samples: int, n_balls: int, n_cp: int,
@@ -167,7 +169,7 @@ def _guard_size(spec: SweepSpec, n_cells: int, n_samples: int, n_balls: int, n_c
         field, value = "grid", f"{n_cells} cells x {n_samples} samples"
     n_runs = n_cells * n_samples
     per_run = _RUN_BYTES + 8 * (n_cp * (2 + n_balls) + 3 * n_hist + 2 * n_balls)
-    check_memory(field, value, float(n_runs) * per_run + 20e3 * n_cells, "sweep")
+    check_memory(field, value, float(n_runs) * per_run + _CELL_BYTES * n_cells, "sweep")
     steps = steps_estimate(cell0.system, cell0.spin, cell0.options)
     workers = os.cpu_count() or 1
     check_runtime(field, value, n_runs * steps * step_cost(n_balls) / workers, "sweep")
@@ -204,7 +206,7 @@ def make_plan(spec: SweepSpec) -> Plan:
         base_raw["initial"].pop("ball_angles", None)
     n_cells = math.prod(len(a.values) for a in spec.grid)
     from ..limits import check_memory
-    check_memory("grid", f"{n_cells} cells", 20e3 * n_cells, "sweep's grid")
+    check_memory("grid", f"{n_cells} cells", _CELL_BYTES * n_cells, "sweep's grid")
     cells = []
     for combo in itertools.product(*[range(len(a.values)) for a in spec.grid]):
         sets = [f"{a.path}={_toml_literal(a.values[i])}" for a, i in zip(spec.grid, combo)]

@@ -169,7 +169,6 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
     finished run yet (a sweep that failed before its first task: rerunning it loses nothing).
     """
     store = Path(store)
-    check_store_path(store)
     meta = _meta(plan)
     mpath = store / "sweep.json"
     if store.exists() and not mpath.exists():
@@ -185,12 +184,7 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
     lock.acquire()
     try:
         if mpath.exists():
-            try:
-                old = json.loads(mpath.read_text())
-            except (OSError, ValueError):
-                raise StoreMismatch(f"--store {str(store)!r}: unreadable sweep.json; refusing to "
-                                    "use it") from None
-            _check_meta(store, old, meta)
+            check_identity(store, plan)
             empty = not _task_files(store) and not (store / "result.zarr").exists()
             if not resume and not empty:
                 raise SweepError(f"--store {str(store)!r} exists: pass --resume to continue it, "
@@ -209,7 +203,18 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
         raise
 
 
-def _check_meta(store: Path, old: dict, meta: dict) -> None:
+def check_identity(store: Path, plan: Plan) -> None:
+    """Refuse (StoreMismatch, one line) a store whose sweep.json is missing, unreadable, or
+    records another package version, description or identity than ``plan``'s."""
+    mpath = Path(store) / "sweep.json"
+    if not mpath.exists():
+        raise SweepError(f"store {str(store)!r}: no sweep.json; not a sweep store")
+    try:
+        old = json.loads(mpath.read_text())
+    except (OSError, ValueError):
+        raise StoreMismatch(f"--store {str(store)!r}: unreadable sweep.json; refusing to use "
+                            "it") from None
+    meta = _meta(plan)
     if old.get("autobalance_version") != __version__:
         raise StoreMismatch(f"--store {str(store)!r} was made by autobalance "
                             f"{old.get('autobalance_version')}, this is {__version__}; refusing "
@@ -248,10 +253,12 @@ def _check_task(path: Path, first: int, count: int, names, shapes: dict) -> None
 def scan_tasks(store: Path, plan: Plan, *, on_corrupt=None) -> list:
     """The finished task files as (first, count, path), checked against the plan.
 
-    A file that cannot be read, or does not hold what its name says, is *corrupt*: with
-    ``on_corrupt`` (resume) it is renamed to ``NAME.corrupt`` (kept for inspection, never
-    deleted) and ``on_corrupt(path, reason)`` is called, so that its runs are computed again;
-    without it a SweepError names the file."""
+    A file whose name is not a range of this plan's runs, or overlaps another, is *corrupt*.
+    With ``on_corrupt`` (resume, where the scan decides what to run) every file is also read and
+    checked; a corrupt one is renamed to ``NAME.corrupt`` (kept for inspection, never deleted)
+    and ``on_corrupt(path, reason)`` is called, so that its runs are computed again. Without it
+    a SweepError names the file, and the contents are checked when :func:`assemble` reads
+    them (each file is read once)."""
     names, shapes = _expected(plan)
     out = []
     covered = np.zeros(plan.n_runs, bool)
@@ -267,7 +274,7 @@ def scan_tasks(store: Path, plan: Plan, *, on_corrupt=None) -> list:
                 reason = f"runs {first}..{stop - 1} are outside this sweep's {plan.n_runs} runs"
             elif covered[first:stop].any():
                 reason = "its runs overlap another task file"
-            else:
+            elif on_corrupt is not None:
                 try:
                     _check_task(p, first, count, names, shapes)
                 except Exception as e:   # BadZipFile, EOFError, KeyError, ValueError, OSError
@@ -362,7 +369,7 @@ def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | N
             with np.load(p) as z:
                 for name in data:
                     data[name][first:first + count] = z[name]
-        except Exception as e:   # changed on disk since the scan
+        except Exception as e:   # BadZipFile, EOFError, KeyError, a shape that does not fit
             raise SweepError(f"task file {str(p)!r} is corrupt ({type(e).__name__}); rerun the "
                              "sweep with --resume to recompute its runs") from None
     missing = int(n_runs - covered_runs(scan, n_runs).sum())
