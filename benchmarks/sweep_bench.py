@@ -46,12 +46,12 @@ def profile(n_tasks: int = 4) -> dict:
     t0 = time.perf_counter()
     plan = make_plan(spec)
     t_plan = time.perf_counter() - t0
-    run_task(task_payload(plan, 0))          # compile / load the cache
+    run_task(task_payload(plan, plan.tasks[0]))   # compile / load the cache
     t_pay = t_run = 0.0
     runs = 0
     for k in range(1, n_tasks + 1):
         t0 = time.perf_counter()
-        p = task_payload(plan, k)
+        p = task_payload(plan, plan.tasks[k])
         t1 = time.perf_counter()
         r = run_task(p)
         t2 = time.perf_counter()

@@ -472,3 +472,16 @@ def test_unreadable_result_is_assembled_again(tiny_ref, tmp_path):
     assert r.returncode == 0, r.stderr
     assert "assembled again" in r.stderr and "Traceback" not in r.stderr
     assert_bit_identical(open_sweep(store), tiny_ref)
+
+
+@pytest.mark.parametrize("where", ["grid", "set"])
+def test_start_angles_given_beside_a_monte_carlo_are_refused(where):
+    """The Monte-Carlo dimension sets every run's start angles: angles given in the grid or in
+    sweep.set would be silently ignored, so they are refused."""
+    d = {"sweep": {"base": "vub_jeffcott_004"}, "monte_carlo": {"kind": "start_grid", "n": 2}}
+    if where == "grid":
+        d["grid"] = {"initial.ball_angles": [0.1, 0.2]}
+    else:
+        d["sweep"]["set"] = ["initial.ball_angles=[0.1, 2.0]"]
+    with pytest.raises(SweepError, match="initial.ball_angles is set by monte_carlo"):
+        make_plan(spec_from_dict(d))

@@ -200,6 +200,13 @@ def make_plan(spec: SweepSpec) -> Plan:
         raise
     except ConfigError as e:
         raise SweepError(f"sweep.set: {e}") from None
+    if spec.mc_kind != "none":
+        given = [a.path for a in spec.grid] + [o.split("=", 1)[0].strip() for o in spec.overrides]
+        if "initial.ball_angles" in given:
+            where = "grid" if any(a.path == "initial.ball_angles" for a in spec.grid) else "sweep.set"
+            raise SweepError(f"{where}: initial.ball_angles is set by monte_carlo.kind = "
+                             f"{spec.mc_kind!r} (each sample's start angles); remove it, or use "
+                             "kind = 'none' to run the given angles")
     if spec.mc_kind != "none" and isinstance(base_raw.get("initial"), dict):
         # the Monte-Carlo dimension sets the start angles: the base's are not used (and may
         # be for another ball count, e.g. a preset's 2 angles with --set balancer.n_balls=8)
