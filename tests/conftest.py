@@ -1,4 +1,9 @@
 """Shared systems built from the models directly (the presets are tested in test_config.py)."""
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -130,3 +135,18 @@ def file_modes_bind() -> dict:
             if libc.prctl(24, cap, 0, 0, 0) != 0:    # PR_CAPBSET_DROP
                 os._exit(97)
     return {"preexec_fn": drop}
+
+
+# -- the real quick report, once per test session (test_report.py, test_golden_rows.py) ----------
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def quick_report(tmp_path_factory):
+    """`autobalance reproduce all --quick --json` as a user runs it (a real process)."""
+    out = tmp_path_factory.mktemp("report")
+    exe = Path(shutil.which("autobalance") or ROOT / ".venv" / "bin" / "autobalance")
+    p = subprocess.run([str(exe), "reproduce", "all", "--quick", "--out", str(out), "--json"],
+                       capture_output=True, text=True, timeout=900)
+    assert p.returncode == 0, p.stderr[-3000:]
+    return json.loads(p.stdout), out

@@ -109,17 +109,6 @@ def test_check_ids_rejects_alias_clashes():
 
 
 # -- the real quick run, once per session -----------------------------------------------------
-@pytest.fixture(scope="session")
-def quick_report(tmp_path_factory):
-    """`autobalance reproduce all --quick --json` as a user runs it (a real process)."""
-    out = tmp_path_factory.mktemp("report")
-    exe = Path(shutil.which("autobalance") or ROOT / ".venv" / "bin" / "autobalance")
-    p = subprocess.run([str(exe), "reproduce", "all", "--quick", "--out", str(out), "--json"],
-                       capture_output=True, text=True, timeout=900)
-    assert p.returncode == 0, p.stderr[-3000:]
-    return json.loads(p.stdout), out
-
-
 def test_quick_report_complete_no_silent_skips(quick_report):
     rep, out = quick_report
     assert rep["variant"] == "quick"
