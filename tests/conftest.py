@@ -98,13 +98,13 @@ def assert_bit_identical(a, b):
         assert np.array_equal(a[c].values, b[c].values), c
 
 
-# Reproduction targets (tests/test_targets_*.py): the row contract of autobalance.report.target.
+# Reproduction targets (tests/test_targets_*.py): the row contract of autobalance.validation.target.
 ROW_FIELDS = {"key", "quantity", "published", "computed", "tolerance", "ok", "note"}
 
 
 def assert_rows_answer_claims(target, rows, allow_not_computed=False):
     """Each claim of ``target`` has exactly one row with the 7 fields; a miss says why."""
-    from autobalance.report.target import claims, status
+    from autobalance.validation.target import claims, status
 
     keys = [r["key"] for r in rows]
     assert len(keys) == len(set(keys)), target.id

@@ -17,17 +17,17 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
-from autobalance.analysis import error_bounds as eb
-from autobalance.analysis.equilibria import (balancing_onset_speed, find_equilibria, floquet_full,
+from autobalance.physics import error_bounds as eb
+from autobalance.physics.equilibria import (balancing_onset_speed, find_equilibria, floquet_full,
                                              single_ball_stability, verify_by_simulation)
-from autobalance.analysis.kinetic_static import compare_with_full, simulate_kinetic_static
-from autobalance.analysis.response import ball_influence, harmonic_response
-from autobalance.analysis.tolerance import design_tolerances, predict_residual
-from autobalance.analysis.vibratory import (drum_response, force_jacobian, single_ball_force,
+from autobalance.physics.kinetic_static import compare_with_full, simulate_kinetic_static
+from autobalance.physics.response import ball_influence, harmonic_response
+from autobalance.physics.tolerance import design_tolerances, predict_residual
+from autobalance.physics.vibratory import (drum_response, force_jacobian, single_ball_force,
                                             speed_regime, vibratory_components, vibratory_forces)
 from autobalance.cli_analyze import app
 from autobalance.models import ParameterError
-from autobalance.studies import washer_000 as study
+from autobalance.papers.p000 import washer as study
 
 from conftest import RPM, washer_000
 

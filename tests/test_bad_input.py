@@ -197,7 +197,7 @@ def test_resource_checks_pass_the_presets():
 def test_immobility_n_conf_is_refused_before_allocating():
     r = run("analyze", "immobility", "--n-conf", "1000000")
     assert_refused(r, "--n-conf")
-    from autobalance.studies.tsr_004 import immobility
+    from autobalance.papers.p004.tsr import immobility
 
     s = load_config("vub_jeffcott_004").system
     with pytest.raises(ResourceError, match=r"^n_conf = 1000000"):

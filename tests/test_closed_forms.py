@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import autobalance as ab
-from autobalance.analysis.response import axis_response
+from autobalance.physics.response import axis_response
 from autobalance.simulate import simulate
 
 from conftest import vub_004, washer_000

@@ -1,6 +1,6 @@
 """Independent implementations that must agree.
 
-000's vibratory force (eq 8, 10-11, 39-43; analysis/vibratory.py, from the harmonic response)
+000's vibratory force (eq 8, 10-11, 39-43; physics/vibratory.py, from the harmonic response)
 is the revolution average of the tangential force the full equations of motion put on a fixed
 ball (our Lagrangian kernel, core/rhs.py). With the balls held by friction, the friction each
 ball needs is lambda_i(t) = -R F_i*(t), so <lambda_i> over one revolution at steady state must
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import autobalance as ab
-from autobalance.analysis.vibratory import vibratory_forces
+from autobalance.physics.vibratory import vibratory_forces
 from autobalance.core.pack import pack_params, spin_arrays
 from autobalance.core.rhs import rhs
 

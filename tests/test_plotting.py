@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from autobalance.analysis import response_table
+from autobalance.physics import response_table
 from autobalance.models import BallBalancer, Rotor, Suspension, System
 from autobalance.plotting import plot_response, plot_simulation
 from autobalance.plotting.timeplot import MAX_POINTS

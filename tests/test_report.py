@@ -14,7 +14,7 @@ from autobalance.report import registry
 from autobalance.report.html import render_html
 from autobalance.report.markdown import render_markdown
 from autobalance.report.runner import run_targets, summary_lines, write_report
-from autobalance.report.target import Context, Outcome, Target, claims, not_computed, row
+from autobalance.validation.target import Context, Outcome, Target, claims, not_computed, row
 
 ROOT = Path(__file__).resolve().parents[1]
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")

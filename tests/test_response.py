@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from autobalance.analysis import (GRADES, axis_response, ball_influence, damped_peak_speeds,
+from autobalance.physics import (GRADES, axis_response, ball_influence, damped_peak_speeds,
                                   damping_ratios, grade, grade_class, harmonic_response,
                                   natural_frequencies, permissible_eccentricity, response_table,
                                   steady_displacement, unbalance_for_grade)

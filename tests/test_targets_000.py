@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from autobalance.report.target import Context
+from autobalance.validation.target import Context
 from conftest import assert_rows_answer_claims
-from autobalance.studies.targets_000 import ITEMS_000, PUBLISHED, TARGETS
+from autobalance.papers.p000.targets import ITEMS_000, PUBLISHED, TARGETS
 
 W1000 = 1000 * 2 * math.pi / 60
 

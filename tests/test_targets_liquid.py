@@ -1,4 +1,4 @@
-"""Reproduction targets of the liquid seeds 003 and 001 (autobalance.studies.targets_liquid)."""
+"""Reproduction targets of the liquid seeds 003 and 001 (autobalance.papers.liquid.targets)."""
 import time
 
 import numpy as np
@@ -6,9 +6,9 @@ import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
-from autobalance.report.target import Context, Target, claims
+from autobalance.validation.target import Context, Target, claims
 from conftest import assert_rows_answer_claims
-from autobalance.studies import targets_liquid as tl
+from autobalance.papers.liquid import targets as tl
 
 COMPUTED = [t for t in tl.TARGETS if t.run is not None]
 

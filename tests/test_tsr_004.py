@@ -1,4 +1,4 @@
-"""Seed-004 TSR studies (studies/tsr_004.py, cli_reproduce.py): quick variants only.
+"""Seed-004 TSR studies (papers/p004/tsr.py, cli_reproduce.py): quick variants only.
 
 Checks the comparison-row machinery, that every published number is compared (never silently
 skipped), the immobility closed form against the kernel, and the CLI end to end."""
@@ -10,7 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 from autobalance.cli import app
-from autobalance.studies import tsr_004 as t
+from autobalance.papers.p004 import tsr as t
 
 ROW_KEYS = {"key", "quantity", "published", "computed", "tolerance", "ok", "note"}
 

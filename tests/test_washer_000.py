@@ -11,7 +11,7 @@ import pytest
 
 import autobalance as ab
 from autobalance.simulate import simulate
-from autobalance.studies.runup_000 import PUBLISHED, runup, runup_time_closed_form, settle
+from autobalance.papers.p000.runup import PUBLISHED, runup, runup_time_closed_form, settle
 
 from conftest import RPM, washer_000
 

@@ -250,7 +250,7 @@ def response(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     with _guard():
         cfg = load_config(source, _overrides(set_, profile))
         grid = _speeds(speeds, cfg.spin.nominal_speed)
-        from .analysis.response import response_table
+        from .physics.response import response_table
 
         table = dict(response_table(cfg.system, grid))
     result = {"name": cfg.name, "config": cfg.source, **table}

@@ -88,7 +88,7 @@ def response(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, ang
     """Drum response to the unbalance, each ball and the eccentricity (000 eq 6-7, 37-38)."""
     with _guard():
         cfg = _cfg(source, set_)
-        from .analysis.vibratory import drum_response, speed_regime
+        from .physics.vibratory import drum_response, speed_regime
 
         w = _speed(cfg, speed)
         r = drum_response(cfg.system, w, _angles(cfg, angles))
@@ -117,7 +117,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
         _check_plot(plot)
         _check_plot(damping_plot, "--damping-plot")
         cfg = _cfg(source, set_)
-        from .analysis.vibratory import force_jacobian, vibratory_components
+        from .physics.vibratory import force_jacobian, vibratory_components
 
         w = _speed(cfg, speed)
         a = _angles(cfg, angles)
@@ -150,8 +150,8 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     """All ball equilibria and their stability (000 eq 12, linearised KS and full model)."""
     with _guard():
         cfg = _cfg(source, set_)
-        from .analysis.equilibria import balancing_onset_speed, find_equilibria, floquet_full
-        from .analysis.vibratory import speed_regime
+        from .physics.equilibria import balancing_onset_speed, find_equilibria, floquet_full
+        from .physics.vibratory import speed_regime
 
         w = _speed(cfg, speed)
         eqs = find_equilibria(cfg.system, w)
@@ -189,7 +189,7 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
 
         import numpy as np
 
-        from .analysis import error_bounds as eb
+        from .physics import error_bounds as eb
 
         s, w = cfg.system, _speed(cfg, speed)
         b = s.balancer
@@ -239,7 +239,7 @@ def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     """Tolerance design (000 eq 56-66) and the residual predicted for the preset's tolerances."""
     with _guard():
         cfg = _cfg(source, set_)
-        from .analysis.tolerance import design_tolerances, predict_residual
+        from .physics.tolerance import design_tolerances, predict_residual
 
         s, w = cfg.system, _speed(cfg, speed)
         d = design_tolerances(s.rotor.unbalance, s.rotor.mass, s.balancer.race_radius, w,
@@ -264,7 +264,7 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
     with _guard():
         _check_plot(plot)
         cfg = _cfg(source, set_)
-        from .analysis.kinetic_static import compare_with_full
+        from .physics.kinetic_static import compare_with_full
 
         w = _speed(cfg, speed)
         dur = parse_quantity(duration, "time", "--duration")
@@ -293,7 +293,7 @@ def washer_study(which: Annotated[str, typer.Argument(help="fig13, fig16, fig18,
     names = ("fig13", "fig16", "fig18", "table3", "table4")
     if which != "all" and which not in names:
         _fail(f"which = {which!r}: must be one of {', '.join(names)} or all")
-    from .studies.washer_000 import compare
+    from .papers.p000.washer import compare
 
     rows = compare(names if which == "all" else (which,))
     n_ok = sum(r["ok"] for r in rows)
@@ -325,7 +325,7 @@ def immobility_cmd(g_ini: Annotated[float, typer.Option("--g-ini", help="Initial
                    plot: PlotOpt = None, json_: JsonOpt = False) -> None:
     """004 Fig. 8/10: share of ball configurations at rest that cannot move, vs speed
     (closed form, no time integration), with the rows checking 004's statements."""
-    from .studies.tsr_004 import compare_immobility, compute_immobility
+    from .papers.p004.tsr import compare_immobility, compute_immobility
 
     with _guard():
         if not (math.isfinite(g_ini) and g_ini >= 0):

@@ -63,7 +63,7 @@ def reproduce(targets: TargetsArg = None,
 
     from .report.registry import select
     from .report.runner import run_targets, summary_lines, write_report
-    from .report.target import Context, claims
+    from .validation.target import Context, claims
 
     with _guard():
         chosen = select(targets)

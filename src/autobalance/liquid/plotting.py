@@ -1,5 +1,5 @@
 """Plots of the liquid balancer: free surface, amplitude vs speed, amplitude vs fill, and the
-figures of the reproduction targets (:mod:`autobalance.studies.targets_liquid`).
+figures of the reproduction targets (:mod:`autobalance.papers.liquid.targets`).
 
 The ``*_figure`` functions return a matplotlib ``Figure`` on an Agg canvas (no pyplot); the
 ``plot_*`` functions save the same figure to a file (the CLI's ``--plot``). Only the free-surface

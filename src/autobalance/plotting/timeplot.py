@@ -238,7 +238,7 @@ def plot_response(table: dict, *, log_amplitude: bool = False, figsize=(10.0, 7.
     Parameters
     ----------
     table : dict
-        Output of :func:`autobalance.analysis.response_table`: "speed_rad_s" [rad/s],
+        Output of :func:`autobalance.physics.response_table`: "speed_rad_s" [rad/s],
         "amplitude_x_m", "amplitude_y_m" [m], "phase_x_rad", "phase_y_rad" [rad],
         "natural_frequencies_rad_s" [rad/s] (None entries are drawn as gaps).
     log_amplitude : bool

@@ -1,4 +1,4 @@
-"""Figures of the seed-004 TSR studies (autobalance.studies.tsr_004): read the study datasets,
+"""Figures of the seed-004 TSR studies (autobalance.papers.p004.tsr): read the study datasets,
 compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
 
 * :func:`plot_single` - 004 Fig. 4: amplitude with/without balancer, ball positions, COG (grade);
@@ -223,7 +223,7 @@ def plot_descent(ds) -> Figure:
 
 
 def plot_speed_profile(ds) -> Figure:
-    """004 Fig. 3 from :func:`autobalance.studies.tsr_004.compute_table1`: speed [Hz] against
+    """004 Fig. 3 from :func:`autobalance.papers.p004.tsr.compute_table1`: speed [Hz] against
     time [s] with the STD and TSR read-outs."""
     fig, (ax,) = _fig(1, w=7.0, h=3.6)
     ax.plot(ds["time"].values, ds["speed"].values / (2 * np.pi), "k", lw=1.2)

@@ -2,7 +2,7 @@
 and Tables 1-4.
 
 Matplotlib ``Figure`` objects on an Agg canvas (no pyplot). The physics is computed by
-:mod:`autobalance.analysis` functions called here; this module only converts units and draws.
+:mod:`autobalance.physics` functions called here; this module only converts units and draws.
 """
 from __future__ import annotations
 
@@ -27,7 +27,7 @@ def _fig(size=(7.0, 4.5)) -> Figure:
 def plot_vibratory_force(system, speeds, labels=None) -> Figure:
     """000 Fig. 6: F_x, F_y and F = F_x + F_y over m R w^2 versus the ball angle, one ball with
     mR = Me, one panel per speed [rad/s] (e.g. above both natural frequencies and between them)."""
-    from ..analysis.vibratory import single_ball_force, speed_regime
+    from ..physics.vibratory import single_ball_force, speed_regime
 
     speeds = list(np.atleast_1d(speeds))
     fig = _fig((4.2 * len(speeds), 4.0))
@@ -51,7 +51,7 @@ def plot_vibratory_force(system, speeds, labels=None) -> Figure:
 
 def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0)) -> Figure:
     """000 Fig. 7: F/(m R w^2) of one ball for several suspension damping factors, per speed."""
-    from ..analysis.vibratory import single_ball_force, speed_regime
+    from ..physics.vibratory import single_ball_force, speed_regime
 
     speeds = list(np.atleast_1d(speeds))
     fig = _fig((4.2 * len(speeds), 4.0))
@@ -73,7 +73,7 @@ def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0))
 
 def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
     """000 Fig. 12: largest position error of one ball (eq 24) versus spin speed [rad/s]."""
-    from ..analysis.error_bounds import rolling_deadband_single
+    from ..physics.error_bounds import rolling_deadband_single
 
     w = np.asarray(speeds, float)
     fig = _fig()
@@ -96,7 +96,7 @@ def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
 def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, speed=None) -> Figure:
     """000 Fig. 15: deviation of one ball from alpha = pi versus beta (eq 45) for several rho [m];
     with ``system`` and ``speed`` also the exact kinetic-static root of eq 44 (dots)."""
-    from ..analysis.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
+    from ..physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
 
     b = np.linspace(0, 2 * math.pi, 181) if betas is None else np.asarray(betas, float)
     fig = _fig()
@@ -121,7 +121,7 @@ def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, spe
 
 def plot_ks_comparison(comparison: dict) -> Figure:
     """000 Fig. 9: D_x, D_y [um] and D_alpha [rad] between the full and the kinetic-static model,
-    from :func:`autobalance.analysis.kinetic_static.compare_with_full`."""
+    from :func:`autobalance.physics.kinetic_static.compare_with_full`."""
     t = np.asarray(comparison["t_s"])
     fig = _fig((7.0, 6.0))
     ax = fig.subplots(3, 1, sharex=True)
@@ -141,9 +141,9 @@ def plot_ks_comparison(comparison: dict) -> Figure:
 
 def plot_force_extreme_ratio(system, speeds, published=None) -> Figure:
     """000 Fig. 6: -min F / max F of the one-ball vibratory force versus the spin speed [rad/s]
-    (:func:`autobalance.analysis.vibratory.force_extreme_ratio`), the range between the natural
+    (:func:`autobalance.physics.vibratory.force_extreme_ratio`), the range between the natural
     frequencies shaded and the published ratio as a dashed line."""
-    from ..analysis.vibratory import force_extreme_ratio
+    from ..physics.vibratory import force_extreme_ratio
 
     w = np.asarray(speeds, float)
     fig = _fig()

@@ -1,22 +1,26 @@
 """All reproduction targets of the four seeds, and selection by name.
 
-Each study module listed in :data:`MODULES` exposes ``TARGETS`` (a list of
-:class:`~autobalance.report.target.Target`) and ``ITEMS_<paper>`` tuples: every table and figure
+Each paper module returned by :func:`modules` exposes ``TARGETS`` (a list of
+:class:`~autobalance.validation.target.Target`) and ``ITEMS_<paper>`` tuples: every table and figure
 of its seed(s). :func:`coverage` checks that each item is covered by exactly one target.
 """
 from __future__ import annotations
 
-import importlib
 import re
 
 from ..config import ConfigError
-from .target import Target
+from ..validation.target import Target
 
-__all__ = ["MODULES", "PAPERS", "all_targets", "coverage", "seed_items", "select"]
+__all__ = ["PAPERS", "all_targets", "coverage", "seed_items", "select"]
 
-#: Study modules that define targets, in report order.
-MODULES = ("autobalance.studies.targets_000", "autobalance.studies.tsr_004",
-           "autobalance.studies.targets_liquid")
+def modules() -> tuple:
+    """The paper modules that define targets, in report order (imported when first asked for)."""
+    from ..papers.liquid import targets as liquid
+    from ..papers.p000 import targets as p000
+    from ..papers.p004 import tsr as p004
+
+    return (p000, p004, liquid)
+
 
 #: Seed -> (short title, file in shared/seeds).
 PAPERS = {
@@ -37,8 +41,8 @@ GROUPS = {"all": tuple(PAPERS), "liquid": ("001", "003"), "balls": ("000", "004"
 def all_targets() -> list:
     """Every target, in report order (paper order of :data:`PAPERS`, then module order)."""
     out = []
-    for name in MODULES:
-        out.extend(importlib.import_module(name).TARGETS)
+    for mod in modules():
+        out.extend(mod.TARGETS)
     order = list(PAPERS)
     return sorted(out, key=lambda t: order.index(t.paper))
 
@@ -46,8 +50,7 @@ def all_targets() -> list:
 def seed_items() -> dict:
     """Paper -> every table and figure of that seed (from the modules' ``ITEMS_<paper>``)."""
     items = {}
-    for name in MODULES:
-        mod = importlib.import_module(name)
+    for mod in modules():
         for paper in PAPERS:
             if hasattr(mod, f"ITEMS_{paper}"):
                 items.setdefault(paper, []).extend(getattr(mod, f"ITEMS_{paper}"))

@@ -14,7 +14,7 @@ import traceback
 from pathlib import Path
 from typing import Callable, Optional
 
-from .target import Context, claims, status
+from ..validation.target import Context, claims, status
 
 __all__ = ["run_targets", "summary_lines", "summarize", "write_report"]
 

@@ -1,4 +1,4 @@
-"""Reproduction studies of the seed papers: ``compute`` (data), ``PUBLISHED`` and ``compare`` (rows)."""
-from . import washer_000
+"""Machine-agnostic studies of a System + profile (issue 13/14): statistics and analyses that
+take any machine. The seed papers' reproductions live in :mod:`autobalance.papers`."""
 
-__all__ = ["washer_000"]
+__all__: list = []

@@ -2,7 +2,7 @@
 
 Each ``compute_*`` returns plain data (SI); :data:`PUBLISHED` holds the paper's numbers;
 ``compare_*`` return rows ``{key, quantity, published, computed, tolerance, ok, note}``
-(:func:`autobalance.report.target.row`; ``key`` = prefix / path of the number in PUBLISHED).
+(:func:`autobalance.validation.target.row`; ``key`` = prefix / path of the number in PUBLISHED).
 
 Choices (the paper omits them; docs/washer-analysis.md):
 
@@ -19,7 +19,7 @@ Choices (the paper omits them; docs/washer-analysis.md):
 Tolerances: a ball with rolling resistance may stop anywhere in the dead band about its
 equilibrium (000 eq 21, 27-31), and where it stops depends on the start, which the paper does
 not give. A published angle or efficiency is therefore "ok" when it lies inside the dead band
-that we compute about our equilibrium (:func:`autobalance.analysis.error_bounds.rolling_deadband`,
+that we compute about our equilibrium (:func:`autobalance.physics.error_bounds.rolling_deadband`,
 exact Jacobian), and our simulation must lie inside the same band. Deterministic quantities (no
 friction) get +-1.2 deg, the f/r = 1e-4 half band (R/e)(f/r) of eq 30-31.
 """
@@ -30,10 +30,10 @@ import math
 
 import numpy as np
 
-from ..analysis.equilibria import find_equilibria
-from ..analysis.error_bounds import rolling_deadband, suspension_friction_deviation
-from ..analysis.vibratory import gain_phase
-from ..report.target import row
+from ...physics.equilibria import find_equilibria
+from ...physics.error_bounds import rolling_deadband, suspension_friction_deviation
+from ...physics.vibratory import gain_phase
+from ...validation.target import row
 
 __all__ = ["PUBLISHED", "RHOS_M", "START_DEG", "acceptance", "compare", "rho_key", "compare_fig13", "compare_fig16", "compare_fig18",
            "compare_table", "compute_fig13", "compute_fig16", "compute_fig18", "compute_table",
@@ -83,7 +83,7 @@ def washer(Me=0.05, f_r=0.0, rho=0.0, beta=math.pi / 2, g=0.0, c_i=2.0, friction
            friction_angle=math.radians(61.0), n=2):
     """The washer_000 preset with n balls of m R = Me [kg*m], f/r [-], rho [m], beta [rad],
     gravity g [m/s^2], ball damping c_i [1/s], damper friction F [N] at gamma [rad]."""
-    from ..config import load_config
+    from ...config import load_config
 
     base = load_config("washer_000").system
     R = base.balancer.race_radius
@@ -108,8 +108,8 @@ def _first_contact(system, t, alpha, contacts):
 
 
 def _run(system, w, duration, start_deg=START_DEG):
-    from ..models import InitialState, SimOptions, SpeedProfile
-    from ..simulate import simulate
+    from ...models import InitialState, SimOptions, SpeedProfile
+    from ...simulate import simulate
 
     sim = simulate(system, SpeedProfile.constant(w, duration),
                    initial=InitialState(ball_angles=tuple(np.radians(start_deg)), steady_state=True),
@@ -174,7 +174,7 @@ def compute_table(which: int, duration=12.0, speed=100.0, histories=False) -> di
     histories (t_s, x_m, y_m, alpha_rad) are kept only with ``histories`` (Table 4, rho = 0.5 mm
     is the case of 000 Fig. 19)."""
     if which not in (3, 4):
-        from ..models import ParameterError
+        from ...models import ParameterError
         raise ParameterError("which", which, "must be 3 or 4")
     f_r = PUBLISHED[f"table{which}"]["_f_r"]
     out = {}

@@ -25,13 +25,13 @@ from dataclasses import replace
 import numpy as np
 import xarray as xr
 
-from ..liquid import (G_STANDARD, Chamber, alpha0, alpha0_residual, balancing_efficiency,
+from ...liquid import (G_STANDARD, Chamber, alpha0, alpha0_residual, balancing_efficiency,
                       bottom_touch_speed, entrainment_speed, fill_sweep,
                       free_surface, friction_angle, friction_force, friction_tan_bound,
                       jeffcott_phase, liquid_volume, load_bench, load_liquids, mode_speeds,
                       motion_mode, residual_lambda0, run_up, steady_response)
-from ..liquid import plotting as lp
-from ..report.target import Context, Outcome, Target, row
+from ...liquid import plotting as lp
+from ...validation.target import Context, Outcome, Target, row
 
 __all__ = ["BALANCING", "ITEMS_001", "ITEMS_003", "PUBLISHED", "TARGETS"]
 

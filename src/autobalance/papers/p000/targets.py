@@ -2,13 +2,13 @@
 method for a washing machine") for ``autobalance reproduce``.
 
 :data:`ITEMS_000` lists every figure, table and numbered equation of the paper that carries a
-number; :data:`TARGETS` covers each of them exactly once (:class:`autobalance.report.target.Target`).
+number; :data:`TARGETS` covers each of them exactly once (:class:`autobalance.validation.target.Target`).
 A computed target returns one row per leaf of its ``published`` section (:data:`PUBLISHED`), our
 version of the seed figure(s) and the data behind them.
 
 The simulations and their comparison rows live in :mod:`.runup_000` (Fig. 5, 10, 11, Tables 1-2)
 and :mod:`.washer_000` (Fig. 13, 16, 18, 19, Tables 3-4); the closed forms in
-:mod:`autobalance.analysis`. Every tolerance is the one justified in docs/VALIDATION.md and
+:mod:`autobalance.physics`. Every tolerance is the one justified in docs/VALIDATION.md and
 docs/washer-analysis.md; numbers this module adds use the printed precision (half a unit of the
 last printed digit) unless stated. All cases are cheap (the whole set runs in seconds once the
 numba kernels are compiled), so ``--quick`` computes the same as ``--full``.
@@ -20,9 +20,9 @@ import re
 
 import numpy as np
 
-from ..report.target import Outcome, Target, row
-from . import runup_000, washer_000
-from .washer_000 import RHOS_M, W1000, washer
+from ...validation.target import Outcome, Target, row
+from . import runup as runup_000, washer as washer_000
+from .washer import RHOS_M, W1000, washer
 
 __all__ = ["ITEMS_000", "PUBLISHED", "TARGETS", "displacement_from_acceleration"]
 
@@ -120,8 +120,8 @@ SENSITIVITY = 0.24
 
 
 def _fig3(ctx) -> Outcome:
-    from ..analysis.vibratory import gain_phase
-    from ..plotting.washer import plot_measured_vibration
+    from ...physics.vibratory import gain_phase
+    from ...plotting.washer import plot_measured_vibration
 
     t = TARGET_BY_ID["000-fig3"]
     pub = t.published
@@ -167,7 +167,7 @@ def _fig3(ctx) -> Outcome:
 
 # -- Fig. 5 ------------------------------------------------------------------------------------
 def _fig5(ctx) -> Outcome:
-    from ..plotting.washer import plot_time_histories
+    from ...plotting.washer import plot_time_histories
 
     t = TARGET_BY_ID["000-fig5"]
     d = runup_000.compute_fig5()
@@ -183,15 +183,15 @@ def _fig5(ctx) -> Outcome:
 # -- Fig. 6-7 ----------------------------------------------------------------------------------
 def _stable_one_ball(system, w) -> float:
     """Angle [deg, 0-360) of the kinetic-static-stable equilibrium of one ball (000 eq 11-12)."""
-    from ..analysis.equilibria import find_equilibria
+    from ...physics.equilibria import find_equilibria
 
     st = [e for e in find_equilibria(system, w) if e.ks_stable]
     return float(np.mod(np.degrees(st[0].alpha[0]), 360.0)) if st else float("nan")
 
 
 def _fig6_7(ctx) -> Outcome:
-    from ..analysis.vibratory import force_extreme_ratio, single_ball_force
-    from ..plotting.washer import (plot_force_extreme_ratio, plot_vibratory_force,
+    from ...physics.vibratory import force_extreme_ratio, single_ball_force
+    from ...plotting.washer import (plot_force_extreme_ratio, plot_vibratory_force,
                                    plot_vibratory_force_damping)
 
     t = TARGET_BY_ID["000-fig6-7"]
@@ -243,8 +243,8 @@ def _fig6_7(ctx) -> Outcome:
 
 # -- Fig. 9 ------------------------------------------------------------------------------------
 def _fig9(ctx) -> Outcome:
-    from ..analysis.kinetic_static import compare_with_full
-    from ..plotting.washer import plot_ks_comparison
+    from ...physics.kinetic_static import compare_with_full
+    from ...plotting.washer import plot_ks_comparison
 
     t = TARGET_BY_ID["000-fig9"]
     pub = t.published
@@ -268,7 +268,7 @@ def _fig9(ctx) -> Outcome:
 
 # -- Tables 1-2, Fig. 10-11 --------------------------------------------------------------------
 def _table1_2(ctx) -> Outcome:
-    from ..plotting.washer import plot_published_vs_computed, plot_runups
+    from ...plotting.washer import plot_published_vs_computed, plot_runups
 
     t = TARGET_BY_ID["000-table1-2"]
     d = runup_000.compute_tables(histories=True)
@@ -305,7 +305,7 @@ def _table1_2(ctx) -> Outcome:
 
 
 def _fig10_11(ctx) -> Outcome:
-    from ..plotting.washer import plot_runups
+    from ...plotting.washer import plot_runups
 
     t = TARGET_BY_ID["000-fig10-11"]
     d = runup_000.compute_fig10_11()
@@ -322,9 +322,9 @@ def _fig10_11(ctx) -> Outcome:
 
 # -- Fig. 12, eq 30-32 -------------------------------------------------------------------------
 def _fig12_eq32(ctx) -> Outcome:
-    from ..analysis.error_bounds import rolling_deadband, rolling_deadband_single, symmetric_rolling_deviation
-    from ..analysis.vibratory import force_jacobian
-    from ..plotting.washer import plot_rolling_deviation
+    from ...physics.error_bounds import rolling_deadband, rolling_deadband_single, symmetric_rolling_deviation
+    from ...physics.vibratory import force_jacobian
+    from ...plotting.washer import plot_rolling_deviation
 
     t = TARGET_BY_ID["000-fig12-eq32"]
     pub = t.published
@@ -361,8 +361,8 @@ def _fig12_eq32(ctx) -> Outcome:
 
 # -- Fig. 15 -----------------------------------------------------------------------------------
 def _fig15(ctx) -> Outcome:
-    from ..analysis.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
-    from ..plotting.washer import plot_eccentricity_deviation
+    from ...physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
+    from ...plotting.washer import plot_eccentricity_deviation
 
     t = TARGET_BY_ID["000-fig15"]
     s = washer(Me=0.025, n=1)
@@ -388,7 +388,7 @@ def _fig15(ctx) -> Outcome:
 # -- Fig. 13, 16, 18 ---------------------------------------------------------------------------
 def _constant_speed_target(target_id, compute, compare, label, title, note):
     def run(ctx) -> Outcome:
-        from ..plotting.washer import plot_time_histories
+        from ...plotting.washer import plot_time_histories
 
         t = TARGET_BY_ID[target_id]
         d = compute()
@@ -403,7 +403,7 @@ def _constant_speed_target(target_id, compute, compare, label, title, note):
 
 # -- Tables 3-4, Fig. 19 -----------------------------------------------------------------------
 def _table3_4(ctx) -> Outcome:
-    from ..plotting.washer import plot_published_vs_computed, plot_time_histories
+    from ...plotting.washer import plot_published_vs_computed, plot_time_histories
 
     t = TARGET_BY_ID["000-table3-4"]
     d = {3: washer_000.compute_table(3), 4: washer_000.compute_table(4, histories=True)}
@@ -450,8 +450,8 @@ def _table3_4(ctx) -> Outcome:
 
 # -- eq 56-66 ----------------------------------------------------------------------------------
 def _tolerance(ctx) -> Outcome:
-    from ..analysis.error_bounds import friction_force_for_deviation
-    from ..analysis.tolerance import design_tolerances
+    from ...physics.error_bounds import friction_force_for_deviation
+    from ...physics.tolerance import design_tolerances
 
     t = TARGET_BY_ID["000-tolerance"]
     pub = t.published

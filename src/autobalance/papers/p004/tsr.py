@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..report.target import not_computed, row
+from ...validation.target import not_computed, row
 
 __all__ = ["PUBLISHED", "STUDIES", "UNBALANCE_CASES", "PLATEAU_CASES", "compare_immobility",
            "compare_monte_carlo", "compare_plateau", "compare_profile", "compare_single",
@@ -105,7 +105,7 @@ def _missing(key, quantity, published, why="not computed in this variant (run th
 
 
 def _cfg(overrides=()):
-    from ..config import load_config
+    from ...config import load_config
 
     return load_config(PRESET, list(overrides))
 
@@ -134,7 +134,7 @@ def _run_sweep(name, sets, grid, n, *, store=None, executor="local", workers=Non
 
     ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
     a temporary one."""
-    from ..sweep import spec_from_dict, sweep
+    from ...sweep import spec_from_dict, sweep
 
     n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
     n_runs = n_cells * n * (n + 1) // 2
@@ -235,7 +235,7 @@ def check_immobility(n_conf, n_balls: int, n_speeds: int = 1, n_sets: int = 1,
     """Refuse (ResourceError naming ``field``) an immobility grid of ``n_conf`` ** ``n_balls``
     configurations [-] whose memory or run time over ``n_speeds`` x ``n_sets`` evaluations
     exceeds the limits of :mod:`autobalance.limits`, before anything is allocated."""
-    from ..limits import check_memory, check_runtime
+    from ...limits import check_memory, check_runtime
 
     k = float(n_conf) ** max(int(n_balls), 1)          # float: no huge-int arithmetic
     check_memory(field, n_conf, k * (IMMOBILITY_BYTES_PER_BALL * n_balls + IMMOBILITY_BYTES),
@@ -268,7 +268,7 @@ def stick_threshold_grade(system, speed, nominal_speed):
     |Im(w e^{-i alpha_i})| <= mu_s R, and on the steady orbit |w| = A e with the residual
     eccentricity e = |U_t| / M_t [m] and the Jeffcott amplification A = M_t Omega^2 /
     |k - M_t Omega^2 + i c Omega| (textbook synchronous response,
-    :func:`autobalance.analysis.axis_response` per unit eccentricity).
+    :func:`autobalance.physics.axis_response` per unit eccentricity).
     So every configuration sticks when A e <= mu_s R, i.e. below
     G* = 1e3 Omega_nom mu_s R / A  (ISO 1940 grade at Omega_nom, 004 sec. 4).
     Above G* only configurations whose balls lie nearly along w can stay at rest, so balls that
@@ -289,7 +289,7 @@ def stick_threshold_grade(system, speed, nominal_speed):
     ndarray
         G* [mm/s], shape of ``speed``.
     """
-    from ..analysis import axis_response
+    from ...physics import axis_response
 
     s, b = system.suspension, system.balancer
     if s.kx != s.ky or s.cx != s.cy:
@@ -309,10 +309,10 @@ def kernel_required_friction(system, speed, alpha):
     compiled kernel (core/rhs.py, exact stick-slip branch) with both balls stuck, the rotor on its
     steady orbit (core/pack.steady_orbit_start) at constant speed. Also returns the rotor-frame
     accelerations (u'', v'') [m/s^2], zero on the steady orbit. Used to check the closed form."""
-    from ..core.layout import P_FLAW
-    from ..core.pack import pack_params, spin_arrays, steady_orbit_start
-    from ..core.rhs import profile_segment, rhs
-    from ..models import SimOptions, SpeedProfile
+    from ...core.layout import P_FLAW
+    from ...core.pack import pack_params, spin_arrays, steady_orbit_start
+    from ...core.rhs import profile_segment, rhs
+    from ...models import SimOptions, SpeedProfile
 
     spin = SpeedProfile.constant(float(speed), 1.0)
     P, B = pack_params(system, spin, SimOptions(friction_law="stick"))
@@ -430,8 +430,8 @@ def compute_single(save_dt: float = 0.01, G_start: float | None = 14.0, n_family
 
     import xarray as xr
 
-    from ..models import InitialState
-    from ..simulate import simulate, simulate_batch
+    from ...models import InitialState
+    from ...simulate import simulate, simulate_batch
 
     t0 = time.perf_counter()
     cfg = _cfg()
@@ -1056,8 +1056,8 @@ def compare_table1(ds=None) -> list:
 
 # -- reproduction targets (autobalance reproduce) ------------------------------------------------
 def _outcome(name, ds, ctx_note=""):
-    from ..plotting import tsr as plots
-    from ..report.target import Outcome
+    from ...plotting import tsr as plots
+    from ...validation.target import Outcome
 
     compute, compare, plot = STUDIES[name]
     fig = getattr(plots, plot)(ds)
@@ -1065,8 +1065,8 @@ def _outcome(name, ds, ctx_note=""):
 
 
 def _run_table1(ctx):
-    from ..plotting import tsr as plots
-    from ..report.target import Outcome
+    from ...plotting import tsr as plots
+    from ...validation.target import Outcome
 
     ds = compute_table1()
     return Outcome(rows=compare_table1(ds), figures={"profile": plots.plot_speed_profile(ds)},
@@ -1144,7 +1144,7 @@ def _run_descent(ctx):
 
 
 def _targets():
-    from ..report.target import Target
+    from ...validation.target import Target
 
     model = ("Model: 004 Table 1, point-mass balls, exact Coulomb stick-slip (mu_s = mu, not "
              "004's tanh law), rotor at rest at t = 0; profile read off Fig. 3 (docs/model.md "

@@ -3,7 +3,7 @@ Fig. 10-11), against the paper.
 
 Each ``compute_*`` returns plain data (SI); :data:`PUBLISHED` holds the paper's numbers (one
 leaf per number, units in the key); ``compare_*`` return keyed rows
-(:func:`autobalance.report.target.row`).
+(:func:`autobalance.validation.target.row`).
 
 Choices (the paper omits them; docs/model.md sec. 7, docs/VALIDATION.md):
 
@@ -28,8 +28,8 @@ import math
 
 import numpy as np
 
-from ..report.target import row
-from .washer_000 import W1000, washer
+from ...validation.target import row
+from .washer import W1000, washer
 
 __all__ = ["B_Z", "LAWS", "PUBLISHED", "T0", "balancing_time", "compare_fig10_11", "compare_fig5",
            "compare_tables", "compute_fig10_11", "compute_fig5", "compute_tables", "runup",
@@ -92,7 +92,7 @@ def runup_time_closed_form(law: str, fraction, tau):
     elif law == "harmonic":
         t = (2 / math.pi) * (np.tan(math.pi * (1 + s) / 4) - 1) * tau
     else:
-        from ..models import ParameterError
+        from ...models import ParameterError
         raise ParameterError("law", law, f"must be one of {list(LAWS)}")
     return float(t) if np.ndim(t) == 0 else t
 
@@ -108,7 +108,7 @@ def runup_fraction_closed_form(law: str, time, tau):
     elif law == "harmonic":
         s = 4 / math.pi * np.arctan(1 + math.pi * t / 2) - 1
     else:
-        from ..models import ParameterError
+        from ...models import ParameterError
         raise ParameterError("law", law, f"must be one of {list(LAWS)}")
     return float(s) if np.ndim(s) == 0 else s
 
@@ -125,8 +125,8 @@ def balancing_time(sim, fraction=0.05) -> float:
 def settle(c_i=2.0, duration=10.0):
     """000 Fig. 5: two balls with mR = Me = 0.025 kg m at 1000 rpm from (90, 150) deg, gravity
     on, ball damping c_i [1/s]. Returns (system, Simulation, balancing time [s])."""
-    from ..models import InitialState, SimOptions, SpeedProfile
-    from ..simulate import simulate
+    from ...models import InitialState, SimOptions, SpeedProfile
+    from ...simulate import simulate
 
     s = washer(Me=0.025, c_i=c_i, g=9.81)
     sim = simulate(s, SpeedProfile.constant(W1000, duration),
@@ -142,8 +142,8 @@ def runup(Me, law, balls=True, duration=25.0):
     Simulation."""
     import dataclasses
 
-    from ..models import InitialState, MotorDrive, SimOptions
-    from ..simulate import simulate
+    from ...models import InitialState, MotorDrive, SimOptions
+    from ...simulate import simulate
 
     s = washer(Me=Me, g=9.81)
     if balls:
