@@ -10,7 +10,7 @@ import pytest
 import autobalance as ab
 from autobalance.config import load_config
 from autobalance.core.reference import solve_reference
-from autobalance.result import grade_G
+from autobalance.physics.iso1940 import grade_value as grade_G
 from autobalance.simulate import simulate
 
 from conftest import vub_004

@@ -8,38 +8,23 @@ import numpy as np
 
 from . import __version__
 from .core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
-                          S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, STATUS)
+                          S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus)
 from .models import MotorDrive
+from .physics.iso1940 import grade_value
+from .physics.unbalance import residual_unbalance
 
-MESSAGES = {
-    "ok": "completed",
-    "max_steps": "step budget exhausted before the end time (options.max_steps)",
-    "step_size_underflow": "step size underflow (stiff or chattering dynamics)",
-    "non_finite": "the state became non-finite (NaN/inf)",
-}
 
 
 class SimulationError(RuntimeError):
     """A numerical failure of a run (raised only when throw=True)."""
 
 
-def residual_unbalance(system, alpha, t):
-    """Complex residual unbalance in the rotor frame [kg*m]:
-    U(t) + sum_i m_i (R e^{i alpha_i} + rho e^{i beta}) (000 eq 22, 47 generalised)."""
-    b = system.balancer
+def residual_unbalance_history(system, alpha, t):
+    """Complex residual unbalance [kg*m] at the times ``t`` [s] of a run: the rotor's U(t)
+    (``Rotor.unbalance_table``) with :func:`autobalance.physics.unbalance.residual_unbalance`."""
     unb_t, unb_u = system.rotor.unbalance_table()
     U = np.interp(t, unb_t, unb_u) if unb_t.size > 1 else np.full(np.shape(t), unb_u[0])
-    res = U.astype(complex)
-    if b.n_balls:
-        m = b.masses
-        res = res + (m * b.race_radius * np.exp(1j * alpha)).sum(axis=-1)
-        res = res + m.sum() * b.eccentricity * np.exp(1j * b.eccentricity_angle)
-    return res
-
-
-def grade_G(unbalance_abs, total_mass, nominal_speed):
-    """ISO 1940-1 grade G [mm/s] = e_per [mm] * Omega [rad/s], e_per = |U_res| / M_t (004 sec. 4)."""
-    return np.asarray(unbalance_abs) / total_mass * 1e3 * nominal_speed
+    return residual_unbalance(system, alpha, U)
 
 
 def _asdict(obj):
@@ -75,12 +60,13 @@ class Simulation:
         self.x = self.u * c - self.v * s
         self.y = self.u * s + self.v * c
         self.amplitude = np.hypot(self.u, self.v)
-        res = residual_unbalance(self.system, self.alpha, self.t)
+        res = residual_unbalance_history(self.system, self.alpha, self.t)
         self.residual_unbalance = np.abs(res)
         self.residual_angle = np.angle(res)
-        self.grade_G = grade_G(self.residual_unbalance, self.system.total_mass, self.spin.nominal_speed)
-        self.status = STATUS.get(int(self.stats[S_STATUS]), "unknown")
-        self.message = MESSAGES.get(self.status, self.status)
+        self.grade_G = grade_value(self.residual_unbalance, self.system.total_mass, self.spin.nominal_speed)
+        status = RunStatus.of(self.stats[S_STATUS])
+        self.status = status.label
+        self.message = status.message
         if self.status != "ok":
             self.message += f" at t = {self.stats[S_TFINAL]:.6g} s"
         self.title = f"{self.system.name or 'system'} - {getattr(self.spin, 'name', 'profile')}"
@@ -218,8 +204,8 @@ class BatchResult:
         inv = np.argsort(self.orders, axis=1) if n else self.orders
         a = self.states[:, :, 2:2 + n]
         self.alpha = np.take_along_axis(a, inv[:, None, :], axis=2) if n else a
-        res = np.stack([residual_unbalance(s, self.alpha[k], self.t) for k, s in enumerate(self.systems)])
+        res = np.stack([residual_unbalance_history(s, self.alpha[k], self.t) for k, s in enumerate(self.systems)])
         self.residual_unbalance = np.abs(res)
         mt = np.array([s.total_mass for s in self.systems])
-        self.grade_G = self.residual_unbalance / mt[:, None] * 1e3 * self.spin.nominal_speed
+        self.grade_G = grade_value(self.residual_unbalance, mt[:, None], self.spin.nominal_speed)
         self.max_amplitude = self.stats[:, S_AMAX]

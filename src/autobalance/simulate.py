@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from .core.integrate import integrate, integrate_batch
-from .core.layout import N_S, S_STATUS, STATUS
+from .core.layout import N_S, S_STATUS, RunStatus
 from .core.pack import atol_vector, initial_vector, pack_params, spin_arrays
 from .limits import check_memory, check_run
 from .models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
@@ -142,5 +142,5 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
                     stats)
     out_y = np.empty_like(out_ys)
     out_y[:, order] = out_ys
-    status = [STATUS.get(int(s), "unknown") for s in stats[:, S_STATUS]]
+    status = [RunStatus.of(s).label for s in stats[:, S_STATUS]]
     return BatchResult(systems, spin, options, out_t, out_y, stats, orders, status)

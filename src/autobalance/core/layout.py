@@ -7,6 +7,7 @@ State vector y (length 2*nq, nq = N + 3):
     y[nq + j]                         time derivative of y[j]
 Scalar parameter vector P: indices below. Ball table B[i, :]: columns below.
 """
+import enum
 
 # --- scalar parameters P ------------------------------------------------------------------
 P_MT = 0          # total translating mass M + sum(m_i) [kg]
@@ -70,4 +71,86 @@ S_IMPACTS = 11    # number of ball-ball contacts started
 S_HOLDS = 12      # constant-speed holds solved in closed form (core/hold.py)
 N_S = 13
 
-STATUS = {0: "ok", 1: "max_steps", 2: "step_size_underflow", 3: "non_finite", 4: "running"}
+
+
+class RunStatus(enum.IntEnum):
+    """The one status of a run: the code the kernel writes to stats[S_STATUS], the name results
+    and sweeps report, and the sentence a user reads. UNKNOWN (9) marks a code no kernel writes."""
+    OK = 0
+    MAX_STEPS = 1
+    STEP_SIZE_UNDERFLOW = 2
+    NON_FINITE = 3
+    RUNNING = 4
+    UNKNOWN = 9
+
+    @property
+    def label(self) -> str:
+        """snake_case name ("ok", "max_steps", ...)."""
+        return self.name.lower()
+
+    @property
+    def message(self) -> str:
+        """What the status means, for messages to the user."""
+        return _MESSAGES[self]
+
+    @classmethod
+    def of(cls, code) -> "RunStatus":
+        """The status of a kernel code (UNKNOWN for any other value)."""
+        try:
+            return cls(int(code))
+        except ValueError:
+            return cls.UNKNOWN
+
+    @classmethod
+    def from_label(cls, label: str) -> "RunStatus":
+        """The status of a snake_case name (UNKNOWN for any other name)."""
+        return cls.__members__.get(str(label).upper(), cls.UNKNOWN)
+
+
+_MESSAGES = {
+    RunStatus.OK: "completed",
+    RunStatus.MAX_STEPS: "step budget exhausted before the end time (options.max_steps)",
+    RunStatus.STEP_SIZE_UNDERFLOW: "step size underflow (stiff or chattering dynamics)",
+    RunStatus.NON_FINITE: "the state became non-finite (NaN/inf)",
+    RunStatus.RUNNING: "running",
+    RunStatus.UNKNOWN: "unknown",
+}
+
+#: kernel code -> name (the statuses a kernel writes)
+STATUS = {int(s): s.label for s in RunStatus if s is not RunStatus.UNKNOWN}
+
+
+# --- the state vector (the one Python-side description; the kernels index it the same way) ---
+def n_q(n_balls: int) -> int:
+    """Number of generalised coordinates nq = N + 3 (u, v, alpha_1..N, psi) [-]."""
+    return int(n_balls) + 3
+
+
+def state_size(n_balls: int) -> int:
+    """Length 2 nq of the state vector y (coordinates then their rates) [-]."""
+    return 2 * n_q(n_balls)
+
+
+def psi_index(n_balls: int) -> int:
+    """Index of the spin angle psi [rad] in y."""
+    return n_q(n_balls) - 1
+
+
+def speed_index(n_balls: int) -> int:
+    """Index of the spin speed psi_dot [rad/s] in y."""
+    return 2 * n_q(n_balls) - 1
+
+
+def rate_index(j: int, n_balls: int) -> int:
+    """Index of the time derivative of y[j] in y."""
+    return n_q(n_balls) + j
+
+
+def alpha_slice(n_balls: int) -> slice:
+    """Slice of the ball angles alpha_i [rad] in y."""
+    return slice(2, 2 + n_balls)
+
+
+def alpha_dot_slice(n_balls: int) -> slice:
+    """Slice of the ball angular rates alpha_dot_i [rad/s] in y."""
+    return slice(n_q(n_balls) + 2, n_q(n_balls) + 2 + n_balls)

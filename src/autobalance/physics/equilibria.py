@@ -26,6 +26,7 @@ import numpy as np
 
 from ..models import ParameterError
 from ..models._validate import finite as _finite
+from .unbalance import residual_unbalance
 from .vibratory import _speed, force_jacobian, gain_phase, vibratory_forces
 
 __all__ = [
@@ -191,8 +192,7 @@ def _make(system, w, alpha) -> Equilibrium:
     lam = np.linalg.eigvals(J)
     jscale = max(np.abs(lam).max(), 1e-300)
     escale = max(np.abs(ev).max(), 1e-300)
-    W = system.rotor.unbalance + np.sum(b.masses * (b.race_radius * np.exp(1j * alpha)
-                                                     + b.eccentricity * np.exp(1j * b.eccentricity_angle)))
+    W = residual_unbalance(system, alpha)
     srt = np.sort(np.mod(alpha, TWO_PI))
     gaps = np.diff(np.concatenate([srt, srt[:1] + TWO_PI])) if b.n_balls > 1 else np.array([TWO_PI])
     return Equilibrium(

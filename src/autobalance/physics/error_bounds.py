@@ -22,6 +22,7 @@ from ..models._validate import finite as _finite
 from ..models._validate import nonneg as _nonneg
 from ..models._validate import positive as _positive
 from .equilibria import find_equilibria
+from .unbalance import residual_unbalance
 from .vibratory import _speed, force_jacobian, gain_phase
 
 __all__ = [
@@ -151,8 +152,7 @@ def rolling_deadband(system, speed, f_r, alpha_eq=None) -> dict:
     Fr = b.masses * b.race_radius * w * w * fr
     S = np.array(list(itertools.product((-1.0, 1.0), repeat=b.n_balls)))
     V = np.linalg.solve(J, (Fr * S).T).T
-    U = system.rotor.unbalance + b.total_mass * b.eccentricity * np.exp(1j * b.eccentricity_angle)
-    res = np.abs(U + (b.masses * b.race_radius * np.exp(1j * (a + V))).sum(axis=-1))
+    res = np.abs(residual_unbalance(system, a + V))
     gx, _, gy, _ = gain_phase(system, w)
     rmax = float(res.max())
     return {"alpha_eq_rad": a, "vertices_rad": V, "max_deviation_rad": np.abs(V).max(axis=0),

@@ -14,7 +14,8 @@ import numpy as np
 
 from ..models._validate import array as _array
 
-__all__ = ["GRADES", "grade", "grade_class", "permissible_eccentricity", "unbalance_for_grade"]
+__all__ = ["GRADES", "grade", "grade_class", "grade_value", "permissible_eccentricity", "unbalance_for_grade",
+           "unbalance_value"]
 
 #: The standard ISO 1940-1 series of balance quality grades G [mm/s] (ratio 2.5 between steps).
 GRADES = (0.4, 1.0, 2.5, 6.3, 16.0, 40.0, 100.0, 250.0, 630.0, 1600.0, 4000.0)
@@ -26,6 +27,46 @@ _M_TO_MM = 1000.0
 
 def _out(a):
     return float(a) if np.ndim(a) == 0 else a
+
+
+def grade_value(residual_unbalance, mass, nominal_speed):
+    """G = 1000 (U / m) Omega [mm/s], unchecked (NaN in, NaN out): the one home of the formula.
+
+    Parameters
+    ----------
+    residual_unbalance : float or array_like
+        Residual static unbalance |U| [kg*m].
+    mass : float or array_like
+        Mass m [kg] (M_t = M + sum m_i for a balancer's rotor, 004 sec. 4).
+    nominal_speed : float or array_like
+        Highest nominal operating speed Omega [rad/s].
+
+    Returns
+    -------
+    ndarray
+        Grade G [mm/s]; :func:`grade` is the checked form for user input.
+    """
+    return np.asarray(residual_unbalance) / mass * _M_TO_MM * nominal_speed
+
+
+def unbalance_value(G, mass, nominal_speed):
+    """U = m G / (1000 Omega) [kg*m], unchecked: the inverse of :func:`grade_value`.
+
+    Parameters
+    ----------
+    G : float or array_like
+        Grade [mm/s].
+    mass : float or array_like
+        Mass m [kg].
+    nominal_speed : float or array_like
+        Highest nominal operating speed Omega [rad/s].
+
+    Returns
+    -------
+    ndarray
+        Unbalance U [kg*m].
+    """
+    return np.asarray(G, float) * mass / (_M_TO_MM * nominal_speed)
 
 
 def grade(residual_unbalance, mass, nominal_speed):
@@ -53,7 +94,7 @@ def grade(residual_unbalance, mass, nominal_speed):
     u = _array("residual_unbalance", residual_unbalance, strict=False)
     m = _array("mass", mass, strict=True)
     w = _array("nominal_speed", nominal_speed, strict=True)
-    return _out(_M_TO_MM * (u / m) * w)
+    return _out(grade_value(u, m, w))
 
 
 def unbalance_for_grade(G, mass, nominal_speed):
@@ -76,7 +117,7 @@ def unbalance_for_grade(G, mass, nominal_speed):
     g = _array("G", G, strict=False)
     m = _array("mass", mass, strict=True)
     w = _array("nominal_speed", nominal_speed, strict=True)
-    return _out(m * g / (_M_TO_MM * w))
+    return _out(unbalance_value(g, m, w))
 
 
 def permissible_eccentricity(G, nominal_speed):

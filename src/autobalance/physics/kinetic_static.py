@@ -30,6 +30,7 @@ import numpy as np
 
 from ..models import ParameterError
 from ..models._validate import finite as _finite
+from .unbalance import residual_unbalance
 from .vibratory import _angles, _speed, gain_phase
 
 __all__ = ["KineticStaticResult", "compare_with_full", "simulate_kinetic_static"]
@@ -231,8 +232,7 @@ def simulate_kinetic_static(system, speed, ball_angles, duration, f_r=None, drum
     out = out[:rows]
     t = np.arange(rows) * dt * save_every
     al = out[:, 4:4 + n]
-    W = (system.rotor.unbalance + (m * R * np.exp(1j * al)).sum(axis=1)
-         + m.sum() * b.eccentricity * np.exp(1j * b.eccentricity_angle))
+    W = residual_unbalance(system, al)
     return KineticStaticResult(t, out[:, 0], out[:, 1], al, out[:, 4 + n:], np.abs(W))
 
 

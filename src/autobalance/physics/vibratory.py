@@ -38,6 +38,7 @@ from ..models import ParameterError
 from ..models._validate import array as _array
 from ..models._validate import finite as _finite
 from .response import _transfer
+from .unbalance import residual_unbalance
 
 __all__ = [
     "DrumResponse", "SPEED_REGIMES", "drum_response", "force_extreme_ratio", "force_jacobian",
@@ -97,17 +98,6 @@ def gain_phase(system, speed):
 def _H(system, w: float) -> complex:
     gx, px, gy, py = gain_phase(system, w)
     return gx * np.exp(1j * px) + gy * np.exp(1j * py)
-
-
-def _total_unbalance(system, alpha: np.ndarray) -> np.ndarray:
-    """W = U + sum m_j (R e^{i alpha_j} + rho e^{i beta}) [kg*m], shape alpha.shape[:-1]."""
-    b = system.balancer
-    U = system.rotor.unbalance
-    if b.n_balls == 0:
-        return np.full(alpha.shape[:-1], complex(U))
-    m = b.masses
-    return (U + (m * b.race_radius * np.exp(1j * alpha)).sum(axis=-1)
-            + m.sum() * b.eccentricity * np.exp(1j * b.eccentricity_angle))
 
 
 # -- drum response -----------------------------------------------------------------------------
@@ -188,7 +178,7 @@ def drum_response(system, speed, ball_angles) -> DrumResponse:
     gx, px, gy, py = gain_phase(system, w)
     mR = b.masses * b.race_radius if b.n_balls else np.zeros(0)
     srho = b.total_mass * b.eccentricity
-    W = complex(_total_unbalance(system, a))
+    W = complex(residual_unbalance(system, a))
     U = system.rotor.unbalance
     return DrumResponse(w, U * gx, U * gy, mR * gx, mR * gy, srho * gx, srho * gy, px, py,
                         abs(W) * gx, abs(W) * gy, W)
@@ -262,7 +252,7 @@ def vibratory_forces(system, speed, ball_angles) -> np.ndarray:
     w = _speed(speed)
     a = _angles(system, ball_angles)
     b = system.balancer
-    W = _total_unbalance(system, a)[..., None]
+    W = residual_unbalance(system, a)[..., None]
     H = _H(system, w)
     m = b.masses
     return (-0.5 * m * w * w * np.imag(np.exp(1j * a) * np.conj(W) * H)
@@ -295,7 +285,7 @@ def force_jacobian(system, speed, ball_angles) -> np.ndarray:
     b = system.balancer
     n = b.n_balls
     m = b.masses
-    W = _total_unbalance(system, a)
+    W = residual_unbalance(system, a)
     H = _H(system, w)
     ai = a[..., :, None]
     aj = a[..., None, :]

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.layout import RunStatus
 from ..config import ConfigError, _read, apply_overrides, from_dict
 from ..models import InitialState, SimOptions
 from .spec import SweepError, SweepSpec, _toml_literal
@@ -276,7 +277,8 @@ def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> 
 def run_task(payload: dict) -> dict:
     """Run one task (in any process): numpy arrays per run, see store.VARIABLES."""
     from ..core.layout import S_AMAX, S_EVENTS, S_STEPS
-    from ..result import grade_G, residual_unbalance
+    from ..physics.iso1940 import grade_value
+    from ..result import residual_unbalance_history
     from ..simulate import simulate_batch
 
     spin = payload["spin"]
@@ -289,15 +291,14 @@ def run_task(payload: dict) -> dict:
     systems = payload["systems"]
     mt = np.array([s.total_mass for s in systems])
     a0 = np.array([i.ball_angles for i in payload["initials"]], float).reshape(len(systems), -1)
-    u0 = np.array([abs(residual_unbalance(s, a, np.array(0.0))) for s, a in zip(systems, a0)])
-    status = np.array([{"ok": 0, "max_steps": 1, "step_size_underflow": 2,
-                        "non_finite": 3}.get(s, 9) for s in res.status], np.int8)
+    u0 = np.array([abs(residual_unbalance_history(s, a, np.array(0.0))) for s, a in zip(systems, a0)])
+    status = np.array([int(RunStatus.from_label(s)) for s in res.status], np.int8)
     out = {
         "first": payload["first"], "count": len(systems),
         "grade_G": res.grade_G[:, :n_cp],
         "residual_unbalance": res.residual_unbalance[:, :n_cp],
         "ball_angle": np.angle(np.exp(1j * res.alpha[:, :n_cp, :])),
-        "initial_grade_G": grade_G(u0, mt, spin.nominal_speed),
+        "initial_grade_G": grade_value(u0, mt, spin.nominal_speed),
         "max_amplitude": res.stats[:, S_AMAX],
         "status": status,
         "steps": res.stats[:, S_STEPS].astype(np.int64),

@@ -36,11 +36,12 @@ from pathlib import Path
 import numpy as np
 
 from .. import __version__
+from ..core.layout import RunStatus
 from ..config import UNIT_LABEL
 from .plan import Plan
 from .spec import SweepError, SweepSpec
 
-STATUS_NAMES = "0 ok, 1 max_steps, 2 step_size_underflow, 3 non_finite"
+STATUS_NAMES = ", ".join(f"{int(s)} {s.label}" for s in RunStatus if s <= RunStatus.NON_FINITE)
 _TASK_RE = re.compile(r"r(\d{9})-(\d{9})\.npz")
 
 
