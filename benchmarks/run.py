@@ -23,7 +23,7 @@ import numpy as np
 
 import autobalance as ab
 from autobalance.config import load_config
-from autobalance.core.reference import solve_reference
+from autobalance.simulate.reference import solve_reference
 from autobalance.simulate import simulate
 
 

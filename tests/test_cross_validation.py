@@ -12,7 +12,7 @@ import pytest
 
 import autobalance as ab
 from autobalance.physics.vibratory import vibratory_forces
-from autobalance.core.pack import pack_params, spin_arrays
+from autobalance.simulate.pack import pack_params, spin_arrays
 from autobalance.core.rhs import rhs
 
 from conftest import RPM, washer_000

@@ -9,7 +9,7 @@ import pytest
 
 import autobalance as ab
 from autobalance.config import load_config
-from autobalance.core.reference import solve_reference
+from autobalance.simulate.reference import solve_reference
 from autobalance.physics.iso1940 import grade_value as grade_G
 from autobalance.simulate import simulate
 
@@ -79,7 +79,7 @@ def test_tsr_run_reports_both_checkpoints(cfg):
 def test_kernel_equals_004_eq_8_10_transcription(rng):
     """Our general right-hand side reduces to 004 eq (8)-(10) (transcribed literally in NumPy in
     core/reference.py) for the Jeffcott rig: random states, run-up (psi'' != 0) and hold."""
-    from autobalance.core.reference import make_rhs, paper_004_rhs
+    from autobalance.simulate.reference import make_rhs, paper_004_rhs
     s = vub_004()
     prof = ab.SpeedProfile((0.0, 10.0, 20.0), (0.0, 900.0, 900.0))
     fk = make_rhs(s, prof, v_sat=1e-3)

@@ -10,7 +10,7 @@ from .models import (BallBalancer, Gravity, InitialState, MotorDrive, ParameterE
 # Bind the functions after importing the submodule of the same name, so that the package
 # attribute stays the function even after ``import autobalance.simulate``.
 from .simulate import simulate, simulate_batch  # noqa: E402
-from .result import BatchResult, Simulation, SimulationError  # noqa: E402
+from .simulate import BatchResult, Simulation, SimulationError  # noqa: E402
 from .sweep import sweep  # noqa: E402  (the function; autobalance.sweep.* stays importable)
 
 __all__ = ["BallBalancer", "BatchResult", "Gravity", "InitialState", "MotorDrive",

@@ -23,9 +23,9 @@ from numba import njit, prange
 
 from .jit import inline_kernel, kernel
 
-from .layout import (B_MUS, N_S, P_BW, P_CX, P_CY, P_FDRY, P_FLAW, P_G, P_KX, P_KY, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
+from .layout import (B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
-                     S_YMAX, P_DELTA)
+                     S_YMAX, P_DELTA, P_SYM)
 from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_possible, hold_roots,
                    hold_state)
 from .layout import P_BETA, P_R, P_RHO, S_HOLDS
@@ -231,8 +231,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     t = 0.0
     exact = P[P_FLAW] == 0.0
     # isotropic, no gravity, no base motion: max|x| = max|y| = max|w| (no sub-sampling needed)
-    symmetric = (P[P_KX] == P[P_KY] and P[P_CX] == P[P_CY] and P[P_G] == 0.0
-                 and P[P_BW] == 0.0 and P[P_FDRY] == 0.0)
+    symmetric = P[P_SYM] == 1.0
     # initial modes: balls at rest relative to the race start stuck if they can
     if exact:
         for i in range(N):

@@ -41,8 +41,12 @@ P_NMODEL = 27     # normal force: 0 ball (centrifugal of the ball + gravity), 1 
 P_DELTA = 28      # contact angle between neighbouring balls [rad]
 P_WNOM = 29       # nominal speed for the grade [rad/s]
 P_MROT = 30       # rotor mass M (without balls) [kg]
-P_HOLDS = 31      # 1: solve stuck constant-speed holds in closed form (hold.py)
-N_P = 32
+P_HOLDS = 31      # 1: stuck constant-speed holds may be solved in closed form (hold.py)
+P_ISO = 32        # 1: isotropic linear suspension force in the rotor frame (rhs.py)
+P_SYM = 33        # 1: rotationally symmetric: max|x| = max|y| = max|w| (integrate.py)
+N_P = 34
+# P_HOLDS, P_ISO and P_SYM are derived from the model in one place only:
+# autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 
 # --- per-ball table B ---------------------------------------------------------------------
 B_M = 0           # mass [kg]

@@ -17,7 +17,7 @@ from .jit import kernel
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
                      P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
-                     P_VSAT, P_WF)
+                     P_VSAT, P_WF, P_ISO)
 
 
 @kernel
@@ -204,9 +204,7 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     else:
         psid = y[2 * nq - 1]
         psidd = 0.0
-    iso = (P[P_KX] == P[P_KY] and P[P_CX] == P[P_CY] and P[P_BW] == 0.0
-           and P[P_FDRY] == 0.0)
-    if iso:
+    if P[P_ISO] == 1.0:
         # isotropic suspension in the rotor frame: F = -k w - c (w' + i psi' w)  (004 eq 8-9)
         Fu = -P[P_KX] * u - P[P_CX] * (ud - psid * v)
         Fv = -P[P_KX] * v - P[P_CX] * (vd + psid * u)

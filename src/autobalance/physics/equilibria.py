@@ -330,7 +330,7 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
         "multipliers" (complex ndarray), "max_modulus" [-], "stable" (bool: max |mu| < 1 - 1e-7),
         "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0), "shooting_residual".
     """
-    from ..core.pack import steady_orbit_start
+    from ..simulate.pack import steady_orbit_start
     from ..models import SimOptions
 
     w = _speed(speed)

@@ -191,7 +191,7 @@ def simulate_kinetic_static(system, speed, ball_angles, duration, f_r=None, drum
     -------
     KineticStaticResult
     """
-    from ..core.pack import steady_orbit_start
+    from ..simulate.pack import steady_orbit_start
 
     w = _speed(speed)
     a0 = _angles(system, ball_angles)

@@ -32,7 +32,7 @@ import numpy as np
 from ..models import ParameterError
 from ..models._validate import array as _array
 
-__all__ = [
+__all__ = ["dynamic_stiffness", "synchronous_orbit", 
     "BallInfluence", "HarmonicResponse", "axis_response", "ball_influence", "damped_peak_speeds",
     "damping_ratios", "harmonic_response", "natural_frequencies", "response_table",
     "steady_displacement",
@@ -48,11 +48,63 @@ def _out(a: np.ndarray):
 
 
 # -- one axis ----------------------------------------------------------------------------------
+def dynamic_stiffness(mass, k, c, speed):
+    """Complex dynamic stiffness k - M w^2 + i c w [N/m] of one suspension axis (Jeffcott rotor,
+    000 eq 6-7, 004 eq 8-9): the one home of the denominator of every synchronous response.
+
+    Parameters
+    ----------
+    mass : float or array_like
+        Translating mass M (M_t with balls) [kg].
+    k : float or array_like
+        Stiffness [N/m].
+    c : float or array_like
+        Viscous damping [N*s/m].
+    speed : float or array_like
+        Spin speed w [rad/s].
+
+    Returns
+    -------
+    complex or ndarray of complex
+        k - M w^2 + i c w [N/m].
+    """
+    return k - mass * speed * speed + 1j * c * speed
+
+
+def synchronous_orbit(system, speed, unbalance):
+    """Complex amplitudes (X, Y) [m] of the steady synchronous orbit x = Re(X e^{i w t}),
+    y = Re(Y e^{i w t}) of the rotor under the rotating unbalance W (000 eq 6-7 with the balls
+    fixed; each axis a 1-DOF oscillator): X = w^2 W / D_x, Y = -i w^2 W / D_y with
+    D = :func:`dynamic_stiffness`. For an isotropic suspension X is also the constant deflection
+    in the rotor frame (004 eq 8-9 at constant speed).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Suspension kx, ky [N/m], cx, cy [N*s/m] and total mass M_t [kg].
+    speed : float or array_like
+        Spin speed w [rad/s].
+    unbalance : complex or array_like of complex
+        Resultant unbalance W in the rotor frame [kg*m]
+        (:func:`autobalance.physics.unbalance.residual_unbalance`).
+
+    Returns
+    -------
+    (X, Y) : complex or ndarray of complex
+        [m], broadcast shape of ``speed`` and ``unbalance``.
+    """
+    s, mt = system.suspension, system.total_mass
+    w = speed
+    return (w * w * unbalance / dynamic_stiffness(mt, s.kx, s.cx, w),
+            -1j * w * w * unbalance / dynamic_stiffness(mt, s.ky, s.cy, w))
+
+
 def _transfer(mass, k, c, speed):
     """Gain w^2/|k - M w^2 + i c w| [m/(kg*m)] and phase lag [rad] (shared by U and m_i R)."""
     w = speed
-    re = k - mass * w * w
-    im = np.abs(c * w)
+    d = dynamic_stiffness(mass, k, c, w)
+    re = np.real(d)
+    im = np.abs(np.imag(d))
     den = np.hypot(re, im)
     with np.errstate(divide="ignore", invalid="ignore"):
         gain = np.where(w == 0.0, 0.0, w * w / den)

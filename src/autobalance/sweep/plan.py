@@ -278,7 +278,7 @@ def run_task(payload: dict) -> dict:
     """Run one task (in any process): numpy arrays per run, see store.VARIABLES."""
     from ..core.layout import S_AMAX, S_EVENTS, S_STEPS
     from ..physics.iso1940 import grade_value
-    from ..result import residual_unbalance_history
+    from ..simulate.result import residual_unbalance_history
     from ..simulate import simulate_batch
 
     spin = payload["spin"]

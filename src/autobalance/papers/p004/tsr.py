@@ -162,7 +162,7 @@ def steady_deflection(system, speed, alpha):
 
     Jeffcott rotor at constant speed (004 eq 8-9 with all time derivatives zero in the rotor
     frame; textbook synchronous response): w = Omega^2 U_t / (k - M_t Omega^2 + i c Omega),
-    U_t = U + sum m_i R e^{i alpha_i}. Same as :func:`autobalance.core.pack.steady_orbit_start`
+    U_t = U + sum m_i R e^{i alpha_i}. Same as :func:`autobalance.simulate.pack.steady_orbit_start`
     (isotropic suspension).
 
     Parameters
@@ -179,13 +179,13 @@ def steady_deflection(system, speed, alpha):
     ndarray of complex
         w [m], shape broadcast(speed, alpha[..., 0]).
     """
-    s, b = system.suspension, system.balancer
+    from ...physics.response import synchronous_orbit
+    from ...physics.unbalance import residual_unbalance
+
+    s = system.suspension
     if s.kx != s.ky or s.cx != s.cy:
         raise ValueError("steady_deflection: needs an isotropic (Jeffcott) suspension")
-    a = np.asarray(alpha, float)
-    ut = system.rotor.unbalance + np.sum(b.masses * b.race_radius * np.exp(1j * a), axis=-1)
-    w = np.asarray(speed, float)
-    return w * w * ut / (s.kx - system.total_mass * w * w + 1j * s.cx * w)
+    return synchronous_orbit(system, np.asarray(speed, float), residual_unbalance(system, alpha))[0]
 
 
 def tangential_force(system, speed, alpha):
@@ -310,7 +310,7 @@ def kernel_required_friction(system, speed, alpha):
     steady orbit (core/pack.steady_orbit_start) at constant speed. Also returns the rotor-frame
     accelerations (u'', v'') [m/s^2], zero on the steady orbit. Used to check the closed form."""
     from ...core.layout import P_FLAW
-    from ...core.pack import pack_params, spin_arrays, steady_orbit_start
+    from ...simulate.pack import pack_params, spin_arrays, steady_orbit_start
     from ...core.rhs import profile_segment, rhs
     from ...models import SimOptions, SpeedProfile
 

@@ -6,12 +6,12 @@ import json
 
 import numpy as np
 
-from . import __version__
-from .core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
+from .. import __version__
+from ..core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
                           S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus)
-from .models import MotorDrive
-from .physics.iso1940 import grade_value
-from .physics.unbalance import residual_unbalance
+from ..models import MotorDrive
+from ..physics.iso1940 import grade_value
+from ..physics.unbalance import residual_unbalance
 
 
 

@@ -10,9 +10,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
-from .layout import P_FLAW, P_VSAT
+from ..core.layout import P_FLAW, P_VSAT
 from .pack import initial_vector, pack_params, spin_arrays
-from .rhs import profile_segment, rhs
+from ..core.rhs import profile_segment, rhs
 
 
 def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-6,

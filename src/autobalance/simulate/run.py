@@ -7,11 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .core.integrate import integrate, integrate_batch
-from .core.layout import N_S, S_STATUS, RunStatus
-from .core.pack import atol_vector, initial_vector, pack_params, spin_arrays
-from .limits import check_memory, check_run
-from .models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
+from ..core.integrate import integrate, integrate_batch
+from ..core.layout import N_S, S_STATUS, RunStatus
+from .pack import atol_vector, initial_vector, pack_params, spin_arrays
+from ..limits import check_memory, check_run
+from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
 
 

@@ -6,9 +6,11 @@ import math
 import numpy as np
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
-from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
+from ..physics.response import synchronous_orbit
+from ..physics.unbalance import residual_unbalance
+from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
                      P_BETA, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
-                     P_FLAW, P_G, P_GDIR, P_GDRY, P_HOLDS, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
+                     P_FLAW, P_G, P_GDIR, P_GDRY, P_HOLDS, P_ISO, P_SYM, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
                      P_R, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
 
 LAW_ID = {"constant": 0.0, "linear": 1.0, "harmonic": 2.0}
@@ -20,6 +22,28 @@ def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray
         return np.array([0.0, spin.duration]), np.array([spin.initial_speed] * 2), spin.duration
     t, w = spin.arrays()
     return t, w, spin.duration
+
+
+def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[bool, bool, bool]:
+    """The kernels' fast paths, derived from the model here and nowhere else.
+
+    Returns
+    -------
+    (holds, isotropic, symmetric) : tuple of bool
+        ``isotropic``: kx = ky, cx = cy, no base motion, no suspension dry friction, so the
+        suspension force is -k w - c (w' + i psi' w) in the rotor frame (004 eq 8-9; rhs.py).
+        ``symmetric``: isotropic and no gravity, so max|x| = max|y| = max|w| (integrate.py).
+        ``holds``: symmetric, exact stick-slip law, prescribed spin, constant unbalance and
+        ``options.exact_holds``: stuck constant-speed holds may be solved in closed form
+        (core/hold.py). A new effect that breaks a closed form must be added here.
+    """
+    s, g = system.suspension, system.gravity
+    isotropic = (s.kx == s.ky and s.cx == s.cy and s.base_frequency == 0.0
+                 and s.dry_friction_force == 0.0)
+    symmetric = isotropic and g.g == 0.0
+    holds = (symmetric and bool(options.exact_holds) and options.friction_law == "stick"
+             and not isinstance(spin, MotorDrive) and system.rotor.unbalance_table()[0].size == 1)
+    return holds, isotropic, symmetric
 
 
 def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[np.ndarray, np.ndarray]:
@@ -50,7 +74,7 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     P[P_VSAT] = options.v_sat
     P[P_NMODEL] = 0.0 if options.normal_force == "ball" else 1.0
     P[P_DELTA] = b.contact_angle
-    P[P_HOLDS] = 1.0 if options.exact_holds else 0.0
+    P[P_HOLDS], P[P_ISO], P[P_SYM] = (1.0 if f else 0.0 for f in fast_paths(system, spin, options))
     n = b.n_balls
     B = np.zeros((n, N_B))
     if n:
@@ -109,14 +133,9 @@ def steady_orbit_start(system: System, w: float, alpha) -> tuple[float, float, f
         x = Re(Hx w^2 Ut e^{i w t}),  y = Re(-i Hy w^2 Ut e^{i w t}),
         H = 1 / (k - M_t w^2 + i c w),  Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}).
     """
-    s, b = system.suspension, system.balancer
-    ut = complex(system.rotor.unbalance_table()[1][0])
-    if b.n_balls:
-        ut += complex(np.sum(b.masses * (b.race_radius * np.exp(1j * np.asarray(alpha))
-                                          + b.eccentricity * np.exp(1j * b.eccentricity_angle))))
-    mt = system.total_mass
-    fx = w * w * ut / (s.kx - mt * w * w + 1j * s.cx * w)
-    fy = -1j * w * w * ut / (s.ky - mt * w * w + 1j * s.cy * w)
+    ut = complex(residual_unbalance(system, np.asarray(alpha, float),
+                                    system.rotor.unbalance_table()[1][0]))
+    fx, fy = synchronous_orbit(system, w, ut)
     return fx.real, fy.real, (1j * w * fx).real, (1j * w * fy).real
 
 
