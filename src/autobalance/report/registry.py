@@ -17,7 +17,7 @@ def modules() -> tuple:
     """The paper modules that define targets, in report order (imported when first asked for)."""
     from ..papers.liquid import targets as liquid
     from ..papers.p000 import targets as p000
-    from ..papers.p004 import tsr as p004
+    from ..papers.p004 import targets as p004
 
     return (p000, p004, liquid)
 

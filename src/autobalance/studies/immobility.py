@@ -1,0 +1,57 @@
+"""Immobility of the balls against speed for any isotropic machine (004 Fig. 8/10 generalised):
+the closed form of :mod:`autobalance.physics.immobility` over (friction, damping) factors."""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..physics.immobility import check_immobility, immobility
+from ..physics.iso1940 import unbalance_value as grade_to_unbalance
+from .start_positions import load
+from .statistics import plateau_speed
+
+__all__ = ["compute_immobility"]
+
+
+def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), speeds_hz=None,
+                       n_conf: int = 100, quick: bool = False, field: str = "n_conf"):
+    """004 Fig. 8/10: immobility [-] against speed for the mu_r x c_r factors [-] on the machine's
+    rolling resistance and damping, at G_ini [mm/s]
+    (closed form :func:`immobility`; no time integration). ``n_conf`` positions per ball [-];
+    a grid beyond the memory or run-time limit is refused before computing (ResourceError
+    naming ``field``)."""
+    import dataclasses
+
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    cfg = load(base)
+    s0 = cfg.system
+    wn = cfg.spin.nominal_speed
+    f = np.linspace(20.0, 200.0, 91 if quick else 361) if speeds_hz is None else np.asarray(speeds_hz, float)
+    n_conf = 36 if quick else n_conf
+    check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
+    U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
+    mu0 = float(s0.balancer.rolling_resistance[0])
+    out = np.empty((len(mu_r), len(c_r), f.size))
+    for i, mr in enumerate(mu_r):
+        for j, cr in enumerate(c_r):
+            s = dataclasses.replace(
+                s0, rotor=dataclasses.replace(s0.rotor, unbalance=U),
+                suspension=dataclasses.replace(s0.suspension, cx=s0.suspension.cx * cr,
+                                               cy=s0.suspension.cy * cr),
+                balancer=dataclasses.replace(s0.balancer, rolling_resistance=mu0 * mr,
+                                             stiction=None))
+            out[i, j] = immobility(s, 2 * np.pi * f, n_conf)
+    fn = s0.natural_frequencies[0] / (2 * np.pi)
+    ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,
+                                    {"units": "-", "long_name": "share of immobile configurations"})},
+                    coords={"mu_r": list(mu_r), "c_r": list(c_r),
+                            "speed": ("speed", f, {"units": "Hz"})})
+    ds.attrs.update({"study": "immobility", "G_ini": float(G_ini), "n_conf": n_conf,
+                     "f_n_hz": fn, "nominal_hz": wn / (2 * np.pi), "plateau_hz": plateau_speed(cfg.spin) / (2 * np.pi),
+                     "method": "closed form |Im(w e^-i alpha)| <= mu R (004 eq 1), checked "
+                               "against the kernel's stuck-ball friction",
+                     "wall_s": time.perf_counter() - t0})
+    return ds

@@ -1,0 +1,119 @@
+"""The lower speed of a temporary speed reduction, for any machine (004 sec. 4.6 generalised):
+the plateau map (plateau speed x initial unbalance -> 95th percentile of the final grade, the
+ideal plateau) and a gradual descent read along the speed (004 Fig. 13)."""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..physics.immobility import stick_threshold_grade
+from ..physics.iso1940 import grade_value as _grade
+from ..physics.iso1940 import unbalance_value as grade_to_unbalance
+from .start_positions import case_sets, load, run_start_grid, store_path
+from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
+
+__all__ = ["DESCENT_PCT", "compute_descent", "compute_plateau", "plateau_grid"]
+
+
+def plateau_grid(quick: bool):
+    """(plateau / Omega_n ratios [-], initial grades [mm/s]) of the map (004 Fig. 14-15)."""
+    if quick:
+        return np.array([0.98, 1.02, 1.06, 1.10]), np.array([5.0, 15.0, 25.0])
+    return np.round(np.arange(0.96, 1.1201, 0.01), 3), np.arange(0.0, 34.1, 4.0)
+
+
+DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
+
+
+
+def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick: bool = False,
+                    store_dir=None, executor="local", workers=None, scheduler=None,
+                    g_range: float = 34.0, prefix: str = "study"):
+    """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
+    95th percentile of G_TSR (90 s); ideal plateau = argmin of its mean over G_ini <= ``g_range``
+    [mm/s] (004: G34). ``cases``: name -> (mu_r, c_r) factors (None: {"nominal": (1, 1)})."""
+    cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    cfg = load(base)
+    s = cfg.system
+    fn = s.natural_frequencies[0]
+    r0, g0 = plateau_grid(quick)
+    ratios = r0 if ratios is None else np.asarray(ratios, float)
+    Gv = g0 if G is None else np.asarray(G, float)
+    U = grade_to_unbalance(Gv, s.total_mass, cfg.spin.nominal_speed)
+    p95 = np.full((len(cases), ratios.size, Gv.size), np.nan)
+    for ci, case in enumerate(cases):
+        mu_r, c_r = cases[case]
+        raw = run_start_grid(base, f"{prefix}-plateau-{case}-n{n}", case_sets(base, mu_r, c_r),
+                         {"profile.plateau": [float(r * fn) for r in ratios],
+                          "rotor.unbalance": [float(u) for u in U]}, n,
+                             store=store_path(store_dir, f"plateau-{case}-n{n}-r{ratios.size}-g{Gv.size}"),
+                             executor=executor, workers=workers, scheduler=scheduler)
+        g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
+        p95[ci] = g.quantile(0.95, dim="sample").transpose("profile__plateau", "rotor__unbalance").values
+    ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), p95, {"units": "mm/s"})},
+                    coords={"case": list(cases), "plateau_ratio": ratios,
+                            "G_ini": ("G_ini", Gv, {"units": "mm/s"})})
+    mean = np.nanmean(np.where(Gv <= g_range, p95, np.nan), axis=2)
+    ds["mean_p95"] = (("case", "plateau_ratio"), mean, {"units": "mm/s"})
+    ds.attrs.update({"study": "plateau", "n": n, "f_n_hz": fn / (2 * np.pi),
+                     "ideal": [float(ratios[np.nanargmin(m)]) for m in mean],
+                     "ratio_step": float(np.diff(ratios).min()) if ratios.size > 1 else 0.0,
+                     "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
+    return ds
+
+
+def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
+                    down_time: float = 60.0, history_dt: float = 0.25, store_dir=None,
+                    executor="local", workers=None, scheduler=None, prefix: str = "study"):
+    """004 sec. 4.6, Fig. 13: after the standard run-up (18 s to 167 Hz), a slow linear descent
+    to ``ratio_end`` Omega_n in ``down_time`` [s]; the residual grade G [mm/s] of every start is
+    read every ``history_dt`` [s] and its percentiles over the n(n+1)/2 starts are returned
+    against the speed ratio Omega/Omega_n [-]. Also the stick threshold G*(Omega)
+    (:func:`stick_threshold_grade`) at the same speeds.
+
+    004 does not give its descent rate ("a gradual speed reduction"); ours is 82 Hz in 60 s
+    (1.4 Hz/s), a fifth of the TSR profile's 6.7 Hz/s."""
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    machine = load(base)
+    s0 = machine.system
+    fn = s0.natural_frequencies[0]
+    U = float(grade_to_unbalance(G_ini, s0.total_mass, machine.spin.nominal_speed))
+    sets = [f"rotor.unbalance={U!r}", f"profile.plateau={ratio_end * fn!r}",
+            f"profile.down_time={down_time!r}", "profile.plateau_time=1.0", "profile.up_time=1.0"]
+    cfg = load(base, sets)
+    name = f"descent-g{G_ini:g}-n{n}-r{ratio_end:g}-t{down_time:g}-dt{history_dt:g}"
+    raw = run_start_grid(base, f"{prefix}-{name}", sets, {}, n, store=store_path(store_dir, name),
+                         executor=executor, workers=workers, scheduler=scheduler,
+                         history_dt=history_dt)
+    t = raw["history_time"].values
+    t_read = cfg.spin.checkpoints[0]
+    sel = (t >= t_read) & (t <= t_read + down_time + 1e-9)
+    speed = np.interp(t[sel], cfg.spin.times, cfg.spin.speeds)
+    ok = raw["status"].values == 0
+    g = raw["grade_G_history"].values[ok][:, sel]                       # (run, time)
+    pct = np.percentile(g, DESCENT_PCT, axis=0)
+    ratio = speed / fn
+    ds = xr.Dataset({"grade_G": (("percentile", "ratio"), pct, {"units": "mm/s"}),
+                     "G_stick": ("ratio", stick_threshold_grade(cfg.system, speed,
+                                                                 cfg.spin.nominal_speed),
+                                 {"units": "mm/s", "long_name": "stick threshold G*"}),
+                     "time": ("ratio", t[sel], {"units": "s"})},
+                    coords={"percentile": list(DESCENT_PCT),
+                            "ratio": ("ratio", ratio, {"long_name": "Omega / Omega_n"})})
+    med, p95 = pct[DESCENT_PCT.index(50.0)], pct[DESCENT_PCT.index(95.0)]
+    ds.attrs.update({
+        "study": "descent", "n": n, "runs": int(ok.size), "failed": int((~ok).sum()),
+        "G_ini": G_ini, "G_balls": float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass,
+                                                cfg.spin.nominal_speed)),
+        "f_n_hz": fn / (2 * np.pi), "standard_ratio": plateau_speed(machine.spin) / fn,
+        "down_time_s": down_time, "ratio_end": ratio_end,
+        "half_drop_median": half_drop(ratio, med), "half_drop_p95": half_drop(ratio, p95),
+        **rise_after_min(ratio, p95),
+        "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
+    return ds

@@ -1,0 +1,220 @@
+"""The start-position Monte Carlo of any machine (004 sec. 4.2 generalised): one run from many
+ball start positions, the grade at each read-out of the profile, and its statistics; the single
+run with a family of starts of a given grade (004 Fig. 4); the machine's grades (004 Table 1).
+
+Every study takes ``base``, the machine: a preset name or a TOML config path (the profile, the
+options and the balls come from it), and returns an :class:`xarray.Dataset` with units in attrs.
+"""
+from __future__ import annotations
+
+import math
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..physics.immobility import stick_threshold_grade
+from ..physics.iso1940 import grade_value as _grade
+from ..physics.iso1940 import unbalance_value as grade_to_unbalance
+from .statistics import plateau_speed, profile_text, start_position_stats
+
+__all__ = ["case_sets", "compute_machine", "compute_monte_carlo", "compute_single", "load",
+           "run_start_grid", "start_family", "store_path"]
+
+
+def load(base, sets=()):
+    """The machine of a study: ``base`` (a preset name or a TOML config path) with ``sets``
+    overrides ("path=value" as for ``--set``) applied."""
+    from ..config import load_config
+
+    return load_config(base, list(sets))
+
+
+def case_sets(base, mu_r: float, c_r: float) -> list:
+    """Overrides scaling the base machine's rolling resistance by ``mu_r`` [-] and its suspension
+    damping by ``c_r`` [-] (004 sec. 4.5 varies mu and c around its Table 1 values)."""
+    s = load(base).system
+    return [f"balancer.rolling_resistance={float(s.balancer.rolling_resistance[0]) * mu_r!r}",
+            f"suspension.cx={s.suspension.cx * c_r!r}",
+            f"suspension.cy={s.suspension.cy * c_r!r}"]
+
+
+def store_path(store_dir, name):
+    """``store_dir / name`` (a resumable sweep store) or None (a temporary store)."""
+    return None if store_dir is None else Path(store_dir) / name
+
+
+def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", workers=None,
+                   scheduler=None, history_dt: float = 0.0):
+    """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2: n x n equispaced start
+    positions of two identical balls, n(n+1)/2 runs) of the machine ``base`` with ``sets``
+    overrides over ``grid`` (path -> values) and return its Dataset.
+
+    ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
+    a temporary one."""
+    from ..sweep import spec_from_dict, sweep
+
+    n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
+    n_runs = n_cells * n * (n + 1) // 2
+    w = workers or 2
+    bs = max(1, min(64, math.ceil(n_runs / (4 * w))))
+    spec = spec_from_dict({"sweep": {"name": name, "base": str(base), "set": list(sets),
+                                     "batch_size": bs},
+                           "grid": grid, "monte_carlo": {"kind": "start_grid", "n": int(n)},
+                           **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})})
+    if store is None:
+        with tempfile.TemporaryDirectory() as d:
+            return sweep(spec, Path(d) / name, executor=executor, workers=workers,
+                         scheduler=scheduler, progress=False).load()
+    return sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
+                 resume=True, progress=False).load()
+
+
+def start_family(G_start: float, system, nominal_speed: float, n: int = 24) -> np.ndarray:
+    """Ball start angles (n, 2) [rad] with the grade G_start [mm/s] at rest: ball 1 at
+    alpha_1 = 2 pi k / n, ball 2 on |U + m R (e^{i alpha_1} + e^{i alpha_2})| = U(G_start)
+    (law of cosines; the branch with alpha_2 - arg c > 0). Rows without a solution or with
+    touching balls (closer than the contact angle) are dropped."""
+    U = system.rotor.unbalance
+    Ug = float(grade_to_unbalance(G_start, system.total_mass, nominal_speed))
+    mR = system.balancer.masses[0] * system.balancer.race_radius
+    out = []
+    for a1 in 2 * np.pi * np.arange(n) / n:
+        c = U + mR * np.exp(1j * a1)
+        x = (Ug**2 - abs(c) ** 2 - mR**2) / (2 * mR * abs(c))
+        if abs(x) <= 1:
+            a2 = float(np.angle(c) + math.acos(x))
+            gap = abs(np.angle(np.exp(1j * (a2 - a1))))
+            if gap >= system.balancer.contact_angle:
+                out.append((a1, a2))
+    return np.array(out)
+
+
+def compute_single(base, save_dt: float = 0.01, G_start: float | None = 14.0, n_family: int = 24,
+                   limit: float = 16.0):
+    """004 Fig. 4: one TSR run with the balancer and the same run without it, plus the family
+    of starts with the same initial grade.
+
+    The paper's start angles are unknown. We run the profile from ``n_family`` starts with the
+    paper's initial grade G_start = G14 (:func:`start_family`; ball 1 every 360/n_family deg) and
+    plot the first of them (lowest ball-1 angle with a solution: 75/198 deg; chosen before
+    looking at the results; ``G_start=None``:
+    the preset's 45/135 deg, no family). Rotor at rest at t = 0. attrs report how many of the
+    family reproduce the paper's statements about its run (``limit``: the target grade [mm/s],
+    004: G16)."""
+    import dataclasses
+
+    import xarray as xr
+
+    from ..models import InitialState
+    from ..simulate import simulate, simulate_batch
+
+    t0 = time.perf_counter()
+    cfg = load(base)
+    sysm, spin = cfg.system, cfg.spin
+    wn = spin.nominal_speed
+    fam = None if G_start is None else start_family(G_start, sysm, wn, n_family or 24)
+    ang = cfg.initial.ball_angles if fam is None else fam[0]
+    opts = dataclasses.replace(cfg.options, save_dt=save_dt)
+    sim = simulate(sysm, spin, initial=InitialState(ball_angles=tuple(ang)), options=opts)
+    bare = dataclasses.replace(sysm, balancer=dataclasses.replace(sysm.balancer, n_balls=0))
+    sim0 = simulate(bare, spin, initial=InitialState(ball_angles=()), options=opts)
+    g_ini = float(_grade(sysm.rotor.unbalance, sysm.total_mass, wn))
+    cps = np.asarray(spin.checkpoints)
+    ds = xr.Dataset(
+        {"speed": ("time", sim.speed, {"units": "rad/s"}),
+         "amplitude": ("time", sim.amplitude, {"units": "m", "long_name": "with balancer"}),
+         "amplitude_no_balancer": ("time", np.interp(sim.t, sim0.t, sim0.amplitude),
+                                   {"units": "m", "long_name": "without balancer"}),
+         "ball_angle": (("time", "ball"), np.angle(np.exp(1j * sim.alpha)), {"units": "rad"}),
+         "grade_G": ("time", sim.grade_G, {"units": "mm/s"}),
+         "cog_angle": ("time", sim.residual_angle, {"units": "rad",
+                                                     "long_name": "direction of the residual unbalance"})},
+        coords={"time": ("time", sim.t, {"units": "s"}), "ball": np.arange(2)})
+    k_std = int(np.argmin(np.abs(sim.t - cps[0])))
+    attrs = {
+        "study": "single", "G_ini": g_ini, "G_start": float(sim.grade_G[0]),
+        "G_peak_runup": float(sim.grade_G[:k_std + 1].max()),
+        "G_STD": float(sim.grade_G[k_std]), "G_TSR": float(sim.grade_G[-1]),
+        "start_angles_deg": [float(x) for x in np.degrees(ang)], "t_std_s": float(cps[0]),
+        "t_tsr_s": float(cps[-1]), "status": sim.status, "profile": profile_text(spin)}
+    if fam is not None and n_family:
+        tt = np.unique(np.concatenate([np.arange(0.0, cps[0], 0.02), cps]))
+        res = simulate_batch([sysm] * len(fam), spin,
+                             [InitialState(ball_angles=tuple(a)) for a in fam], options=opts,
+                             out_times=tt)
+        G = res.grade_G
+        ks = int(np.argmin(np.abs(tt - cps[0])))
+        peak, gs, gt = G[:, :ks + 1].max(axis=1), G[:, ks], G[:, -1]
+        match = (peak > g_ini) & (gs > limit) & (gs <= g_ini) & (gt <= limit) & (gt < gs)
+        ds["family_start_angle"] = (("family", "ball"), fam, {"units": "rad"})
+        ds["family_G_peak_runup"] = ("family", peak, {"units": "mm/s"})
+        ds["family_G_STD"] = ("family", gs, {"units": "mm/s"})
+        ds["family_G_TSR"] = ("family", gt, {"units": "mm/s"})
+        ds["family_match"] = ("family", match.astype(np.int8))
+        attrs.update({"family_n": int(len(fam)), "family_match": int(match.sum()),
+                      "family_peak_gt_ini": int((peak > g_ini).sum()),
+                      "family_std_in_16_ini": int(((gs > limit) & (gs <= g_ini)).sum()),
+                      "family_tsr_le_16": int((gt <= limit).sum())})
+    attrs["wall_s"] = time.perf_counter() - t0
+    ds.attrs.update(attrs)
+    return ds
+
+
+def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None, store_dir=None,
+                        executor="local", workers=None, scheduler=None, limit: float = 16.0,
+                        prefix: str = "study"):
+    """004 sec. 4.2: n x n equispaced start positions, identical balls -> n(n+1)/2 runs
+    (1275 for n = 50), G at the STD (18 s) and TSR (90 s) read-outs.
+
+    ``plateau_ratio``: run with the TSR plateau at this multiple of Omega_n = sqrt(k/M_t)
+    instead of the preset's 100 Hz (a sensitivity study; None = the preset). ``limit``: the
+    target grade [mm/s] of the shares (004: G16). ``prefix``: the sweep's name prefix."""
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    cfg = load(base)
+    sets, name = [], f"mc-n{n}"
+    if plateau_ratio is not None:
+        fn = cfg.system.natural_frequencies[0]
+        sets, name = [f"profile.plateau={plateau_ratio * fn!r}"], f"{name}-plateau{plateau_ratio:g}"
+        cfg = load(base, sets)
+    raw = run_start_grid(base, f"{prefix}-{name}", sets, {}, n, store=store_path(store_dir, name),
+                         executor=executor, workers=workers, scheduler=scheduler)
+    g = raw["grade_G"].values                      # (sample, checkpoint)
+    ok = raw["status"].values == 0
+    g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
+    w_pl = plateau_speed(cfg.spin)
+    ds = xr.Dataset({"G_STD": ("sample", g[:, 0], {"units": "mm/s"}),
+                     "G_TSR": ("sample", g[:, 1], {"units": "mm/s"}),
+                     "start_angle": (("sample", "ball"), raw["start_angle"].values, {"units": "rad"}),
+                     "status": ("sample", raw["status"].values)})
+    ds.attrs.update({
+        "study": "monte_carlo", "n": n, "runs": int(ok.size), "failed": int((~ok).sum()),
+        "G_ini": g_ini, "G_balls": float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass,
+                                                cfg.spin.nominal_speed)),
+        **start_position_stats(g[ok, 0], g[ok, 1], g_ini, limit),
+        "plateau_hz": w_pl / (2 * np.pi),
+        "G_stick_plateau": float(stick_threshold_grade(cfg.system, w_pl, cfg.spin.nominal_speed)),
+        "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
+    return ds
+
+
+def compute_machine(base):
+    """The machine's derived numbers (004 Table 1): resonance f_n = sqrt(k/M_t)/2pi [Hz] (Jeffcott), the rotor's
+    grade G_ini and the balls' grade 2 m R / M_t Omega_nom [mm/s] (004 sec. 4), and the profile
+    (004 Fig. 3, our reading: docs/model.md sec. 5) sampled every 0.1 s."""
+    import xarray as xr
+
+    cfg = load(base)
+    s, spin = cfg.system, cfg.spin
+    t = np.arange(0.0, float(spin.duration) + 1e-9, 0.1)
+    ds = xr.Dataset({"speed": ("time", np.asarray(spin.speed(t), float), {"units": "rad/s"})},
+                    coords={"time": ("time", t, {"units": "s"})})
+    ds.attrs.update({
+        "study": "table1", "f_n_hz": float(s.natural_frequencies[0] / (2 * np.pi)),
+        "G_ini": float(_grade(s.rotor.unbalance, s.total_mass, spin.nominal_speed)),
+        "G_balls": float(_grade(s.balancer.capacity, s.total_mass, spin.nominal_speed)),
+        "checkpoints_s": [float(c) for c in spin.checkpoints], "profile": profile_text(spin)})
+    return ds

@@ -1,0 +1,128 @@
+"""Statistics of study results, for any machine: 004 Table 2's regions, the mode of a grade
+sample with its bootstrap error, the shares at or below a grade, valid initial-unbalance ranges
+(004 sec. 4.3), and read-outs of percentile curves along a speed descent (004 Fig. 13)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["half_drop", "mode", "plateau_speed", "profile_text", "regions", "rise_after_min",
+           "start_position_stats", "valid_ranges"]
+
+
+def regions(g_std, g_tsr, g_ini):
+    """004 Table 2 regions: shares [-] of I.A, I.B, II, III, IV (every run in exactly one).
+
+    I.A G_STD < G_TSR <= G_INI; I.B G_TSR <= G_STD <= G_INI; II G_TSR < G_INI < G_STD;
+    III G_INI < G_STD and G_INI < G_TSR; IV G_STD <= G_INI < G_TSR.
+    """
+    s, t, i = np.asarray(g_std), np.asarray(g_tsr), float(g_ini)
+    m = {"I.A": (s < t) & (t <= i), "I.B": (t <= s) & (s <= i), "II": (t < i) & (i < s),
+         "III": (i < s) & (i < t), "IV": (s <= i) & (i < t)}
+    return {k: float(v.mean()) for k, v in m.items()}
+
+
+def mode(g, width=1.0, n_boot=200, seed=0):
+    """Mode of a sample [mm/s] (centre of the fullest 1 mm/s bin, 004 Fig. 5 reads integer G) and
+    its bootstrap standard error [mm/s]."""
+    g = np.asarray(g, float)
+    g = g[np.isfinite(g)]
+    edges = np.arange(0.0, max(g.max(), 1.0) + 2 * width, width)
+
+    def mode(x):
+        h, _ = np.histogram(x, edges)
+        return edges[np.argmax(h)] + width / 2
+
+    rng = np.random.default_rng(seed)
+    boots = [mode(rng.choice(g, g.size)) for _ in range(n_boot)]
+    return float(mode(g)), float(np.std(boots))
+
+
+def valid_ranges(G_ini, p95, limit=16.0, span=50.0):
+    """Valid initial-unbalance ranges (004 sec. 4.3): where the 95th percentile of the residual
+    grade is <= limit. Boundaries by linear interpolation between grid points.
+
+    Parameters
+    ----------
+    G_ini : array_like
+        Initial-unbalance grades of the grid [mm/s], increasing.
+    p95 : array_like
+        95th percentile of the residual grade at each grid point [mm/s].
+    limit : float
+        Target grade [mm/s] (004: G16).
+    span : float
+        Length of the G_ini range the efficiency refers to [mm/s] (004 Tables 3-4: [G0, G50]).
+
+    Returns
+    -------
+    (ranges, efficiency)
+        ranges [(lo, hi)] in G [mm/s]; efficiency = total length / span [-]."""
+    x = np.asarray(G_ini, float)
+    f = np.asarray(p95, float) - limit
+    ok = f <= 0
+    ranges = []
+    start = x[0] if ok[0] else None
+    for k in range(1, x.size):
+        if ok[k] and not ok[k - 1]:
+            start = x[k - 1] + (x[k] - x[k - 1]) * f[k - 1] / (f[k - 1] - f[k])
+        if not ok[k] and ok[k - 1]:
+            end = x[k - 1] + (x[k] - x[k - 1]) * f[k - 1] / (f[k - 1] - f[k])
+            ranges.append((float(start), float(end)))
+            start = None
+    if start is not None:
+        ranges.append((float(start), float(x[-1])))
+    # an isolated valid grid point is a range of zero length: keep it (it has a boundary)
+    eff = sum(hi - lo for lo, hi in ranges) / span
+    return ranges, float(eff)
+
+
+def start_position_stats(s, t, g_ini, limit: float = 16.0) -> dict:
+    """Mode (1 mm/s bins, bootstrap SE), median, shares at or below ``limit`` [mm/s] and G_ini
+    and 004 Table 2 regions of the grades [mm/s] at a first (s, 004: STD) and a second (t, 004:
+    TSR) read-out over start positions. The ``share_G16_*`` keys keep 004's name whatever the
+    limit."""
+    (ms, ses), (mt, set_) = mode(s), mode(t)
+    return {"mode_STD": ms, "mode_STD_se": ses, "mode_TSR": mt, "mode_TSR_se": set_,
+            "median_STD": float(np.median(s)), "median_TSR": float(np.median(t)),
+            "share_G16_STD": float(np.mean(s <= limit)), "share_G16_TSR": float(np.mean(t <= limit)),
+            "success_STD": float(np.mean(s <= g_ini)), "success_TSR": float(np.mean(t <= g_ini)),
+            **{f"region_{k}": v for k, v in regions(s, t, g_ini).items()}}
+
+
+def half_drop(ratio, g) -> float:
+    """Speed ratio [-] at which g, followed from the start of the descent (highest speed), first
+    falls halfway from its start value to its minimum over ratio >= 1 (linear interpolation
+    between samples); NaN if it never drops."""
+    sup = ratio >= 1.0
+    g0, gmin = g[0], g[sup].min()
+    if not g0 > gmin:
+        return math.nan
+    level = g0 - 0.5 * (g0 - gmin)
+    j = int(np.argmax(g <= level))                 # first sample at or below the level
+    if j == 0:
+        return float(ratio[0])
+    f = (g[j - 1] - level) / (g[j - 1] - g[j])
+    return float(ratio[j - 1] + f * (ratio[j] - ratio[j - 1]))
+
+
+def rise_after_min(ratio, g, rise: float = 1.0) -> dict:
+    """Where g [mm/s], after its minimum over ratio >= 1, first exceeds that minimum by more than
+    ``rise`` later in the descent: {"p95_min", "p95_min_ratio", "p95_rise_ratio" (NaN if never),
+    "p95_max_after"}."""
+    sup = np.flatnonzero(ratio >= 1.0)
+    j = int(sup[np.argmin(g[sup])])
+    later = np.flatnonzero(g[j:] > g[j] + rise)
+    return {"p95_min": float(g[j]), "p95_min_ratio": float(ratio[j]),
+            "p95_rise_ratio": float(ratio[j + later[0]]) if later.size else math.nan,
+            "p95_max_after": float(g[j:].max())}
+
+
+def plateau_speed(spin) -> float:
+    """Lowest speed [rad/s] of a profile after its first read-out: the TSR plateau (Fig. 3)."""
+    return min(w for t, w in zip(spin.times, spin.speeds) if t > spin.checkpoints[0])
+
+
+def profile_text(spin) -> str:
+    """The profile's knots as "t s: f Hz; ..." for reports."""
+    return "; ".join(f"{t:g} s: {w / (2 * np.pi):.1f} Hz" for t, w in zip(spin.times, spin.speeds))
