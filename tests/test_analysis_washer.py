@@ -18,9 +18,9 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from autobalance.physics import error_bounds as eb
-from autobalance.physics.equilibria import (balancing_onset_speed, find_equilibria, floquet_full,
-                                             single_ball_stability, verify_by_simulation)
-from autobalance.physics.kinetic_static import compare_with_full, simulate_kinetic_static
+from autobalance.physics.equilibria import balancing_onset_speed, find_equilibria, single_ball_stability
+from autobalance.studies.equilibria import floquet_full, verify_by_simulation
+from autobalance.simulate.kinetic_static import compare_with_full, simulate_kinetic_static
 from autobalance.physics.response import ball_influence, harmonic_response
 from autobalance.physics.tolerance import design_tolerances, predict_residual
 from autobalance.physics.vibratory import (drum_response, force_jacobian, single_ball_force,

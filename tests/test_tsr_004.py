@@ -53,7 +53,7 @@ def test_immobility_closed_form_equals_kernel(alpha, f_hz):
 
 
 def test_steady_deflection_matches_pack_orbit():
-    from autobalance.simulate.pack import steady_orbit_start
+    from autobalance.physics.response import steady_orbit_start
 
     s = t._cfg().system
     a = np.array([0.4, 2.9])

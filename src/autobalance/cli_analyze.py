@@ -150,7 +150,8 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     """All ball equilibria and their stability (000 eq 12, linearised KS and full model)."""
     with _guard():
         cfg = _cfg(source, set_)
-        from .physics.equilibria import balancing_onset_speed, find_equilibria, floquet_full
+        from .physics.equilibria import balancing_onset_speed, find_equilibria
+        from .studies.equilibria import floquet_full
         from .physics.vibratory import speed_regime
 
         w = _speed(cfg, speed)
@@ -264,7 +265,7 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
     with _guard():
         _check_plot(plot)
         cfg = _cfg(source, set_)
-        from .physics.kinetic_static import compare_with_full
+        from .simulate.kinetic_static import compare_with_full
 
         w = _speed(cfg, speed)
         dur = parse_quantity(duration, "time", "--duration")

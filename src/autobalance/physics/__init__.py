@@ -1,31 +1,38 @@
-"""Closed-form analysis: harmonic (Jeffcott) response, ISO 1940 grades, and the seed-000 washer
-analysis (vibratory forces, equilibria, error bounds, tolerances, kinetic-static model)."""
-from .iso1940 import GRADES, grade, grade_class, permissible_eccentricity, unbalance_for_grade
+"""Closed forms, each formula once: residual unbalance, ISO 1940 grades, the harmonic (Jeffcott)
+response, the seed-000 washer analysis (vibratory forces, equilibria, error bounds, tolerances)
+and 004's immobility and stick threshold. Nothing here integrates the model in time
+(:mod:`autobalance.simulate` and :mod:`autobalance.studies` do)."""
+from .iso1940 import (GRADES, grade, grade_class, grade_value, permissible_eccentricity,
+                      unbalance_for_grade, unbalance_value)
+from .unbalance import residual_unbalance
 from .response import (BallInfluence, HarmonicResponse, axis_response, ball_influence,
-                       damped_peak_speeds, damping_ratios, harmonic_response, natural_frequencies,
-                       response_table, steady_displacement)
+                       damped_peak_speeds, damping_ratios, dynamic_stiffness, harmonic_response,
+                       natural_frequencies, response_table, steady_displacement, steady_orbit_start,
+                       synchronous_orbit)
 from .vibratory import (DrumResponse, drum_response, force_jacobian, single_ball_force, speed_regime,
                         vibratory_components, vibratory_forces)
-from .equilibria import (Equilibrium, balancing_onset_speed, find_equilibria, floquet_full,
-                         single_ball_stability, verify_by_simulation)
+from .equilibria import Equilibrium, balancing_onset_speed, find_equilibria, single_ball_stability
 from .error_bounds import (ball_natural_frequencies, ball_natural_frequency_single,
                            eccentricity_deviation_single, eccentricity_equilibrium, rolling_deadband,
                            rolling_deadband_single, suspension_friction_deviation,
                            symmetric_rolling_deviation)
 from .tolerance import design_tolerances, predict_residual
-from .kinetic_static import compare_with_full, simulate_kinetic_static
+from .immobility import immobile_mask, immobility, steady_deflection, stick_threshold_grade, tangential_force
 
 __all__ = [
     "BallInfluence", "GRADES", "HarmonicResponse", "axis_response", "ball_influence",
-    "damped_peak_speeds", "damping_ratios", "grade", "grade_class", "harmonic_response",
-    "natural_frequencies", "permissible_eccentricity", "response_table", "steady_displacement",
-    "unbalance_for_grade",
-    # seed-000 washer analysis (issue 4)
+    "damped_peak_speeds", "damping_ratios", "dynamic_stiffness", "grade", "grade_class",
+    "grade_value", "harmonic_response", "natural_frequencies", "permissible_eccentricity",
+    "residual_unbalance", "response_table", "steady_displacement", "steady_orbit_start",
+    "synchronous_orbit", "unbalance_for_grade", "unbalance_value",
+    # seed-000 washer analysis
     "DrumResponse", "Equilibrium", "balancing_onset_speed", "ball_natural_frequencies",
-    "ball_natural_frequency_single", "compare_with_full", "design_tolerances", "drum_response",
-    "eccentricity_deviation_single", "eccentricity_equilibrium", "find_equilibria", "floquet_full",
+    "ball_natural_frequency_single", "design_tolerances", "drum_response",
+    "eccentricity_deviation_single", "eccentricity_equilibrium", "find_equilibria",
     "force_jacobian", "predict_residual", "rolling_deadband", "rolling_deadband_single",
-    "simulate_kinetic_static", "single_ball_force", "single_ball_stability", "speed_regime",
-    "suspension_friction_deviation", "symmetric_rolling_deviation", "verify_by_simulation",
+    "single_ball_force", "single_ball_stability", "speed_regime",
+    "suspension_friction_deviation", "symmetric_rolling_deviation",
     "vibratory_components", "vibratory_forces",
+    # 004 immobility
+    "immobile_mask", "immobility", "steady_deflection", "stick_threshold_grade", "tangential_force",
 ]

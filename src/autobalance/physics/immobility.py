@@ -23,7 +23,7 @@ def steady_deflection(system, speed, alpha):
 
     Jeffcott rotor at constant speed (004 eq 8-9 with all time derivatives zero in the rotor
     frame; textbook synchronous response): w = Omega^2 U_t / (k - M_t Omega^2 + i c Omega),
-    U_t = U + sum m_i R e^{i alpha_i}. Same as :func:`autobalance.simulate.pack.steady_orbit_start`
+    U_t = U + sum m_i R e^{i alpha_i}. Same as :func:`autobalance.physics.response.steady_orbit_start`
     (isotropic suspension).
 
     Parameters

@@ -32,7 +32,7 @@ import numpy as np
 from ..models import ParameterError
 from ..models._validate import array as _array
 
-__all__ = ["dynamic_stiffness", "synchronous_orbit", 
+__all__ = ["steady_orbit_start", "dynamic_stiffness", "synchronous_orbit", 
     "BallInfluence", "HarmonicResponse", "axis_response", "ball_influence", "damped_peak_speeds",
     "damping_ratios", "harmonic_response", "natural_frequencies", "response_table",
     "steady_displacement",
@@ -407,3 +407,18 @@ def steady_displacement(system, speed, t, ball_angles=()):
             x = x + aix * np.cos(wt + a - bi.phi_x)
             y = y + aiy * np.sin(wt + a - bi.phi_y)
     return x, y
+
+
+def steady_orbit_start(system, w: float, alpha) -> tuple[float, float, float, float]:
+    """x, y [m] and vx, vy [m/s] at psi = 0 on the steady orbit of the rotor spinning at w
+    [rad/s] with the balls fixed at alpha [rad] (000 eq 6-7; each axis a 1-DOF oscillator)::
+
+        x = Re(Hx w^2 Ut e^{i w t}),  y = Re(-i Hy w^2 Ut e^{i w t}),
+        H = 1 / (k - M_t w^2 + i c w),  Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}).
+    """
+    from .unbalance import residual_unbalance
+
+    ut = complex(residual_unbalance(system, np.asarray(alpha, float),
+                                    system.rotor.unbalance_table()[1][0]))
+    fx, fy = synchronous_orbit(system, w, ut)
+    return fx.real, fy.real, (1j * w * fx).real, (1j * w * fy).real

@@ -121,7 +121,7 @@ def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, spe
 
 def plot_ks_comparison(comparison: dict) -> Figure:
     """000 Fig. 9: D_x, D_y [um] and D_alpha [rad] between the full and the kinetic-static model,
-    from :func:`autobalance.physics.kinetic_static.compare_with_full`."""
+    from :func:`autobalance.simulate.kinetic_static.compare_with_full`."""
     t = np.asarray(comparison["t_s"])
     fig = _fig((7.0, 6.0))
     ax = fig.subplots(3, 1, sharex=True)

@@ -6,8 +6,7 @@ import math
 import numpy as np
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
-from ..physics.response import synchronous_orbit
-from ..physics.unbalance import residual_unbalance
+from ..physics.response import steady_orbit_start
 from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
                      P_BETA, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
                      P_FLAW, P_G, P_GDIR, P_GDRY, P_HOLDS, P_ISO, P_SYM, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
@@ -124,19 +123,6 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
     y[nq - 1] = 0.0
     y[2 * nq - 1] = w0
     return y, order
-
-
-def steady_orbit_start(system: System, w: float, alpha) -> tuple[float, float, float, float]:
-    """x, y [m] and vx, vy [m/s] at psi = 0 on the steady orbit of the rotor spinning at w
-    [rad/s] with the balls fixed at alpha [rad] (000 eq 6-7; each axis a 1-DOF oscillator)::
-
-        x = Re(Hx w^2 Ut e^{i w t}),  y = Re(-i Hy w^2 Ut e^{i w t}),
-        H = 1 / (k - M_t w^2 + i c w),  Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}).
-    """
-    ut = complex(residual_unbalance(system, np.asarray(alpha, float),
-                                    system.rotor.unbalance_table()[1][0]))
-    fx, fy = synchronous_orbit(system, w, ut)
-    return fx.real, fy.real, (1j * w * fx).real, (1j * w * fy).real
 
 
 def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:

@@ -10,10 +10,11 @@ __all__ = ["kernel_required_friction"]
 def kernel_required_friction(system, speed, alpha):
     """Friction torque [N m] each stuck ball needs and its static limit mu_s N R [N m], from the
     compiled kernel (core/rhs.py, exact stick-slip branch) with both balls stuck, the rotor on its
-    steady orbit (core/pack.steady_orbit_start) at constant speed. Also returns the rotor-frame
+    steady orbit (physics/response.steady_orbit_start) at constant speed. Also returns the rotor-frame
     accelerations (u'', v'') [m/s^2], zero on the steady orbit. Used to check the closed form."""
     from ..core.layout import P_FLAW
-    from .pack import pack_params, spin_arrays, steady_orbit_start
+    from ..physics.response import steady_orbit_start
+    from .pack import pack_params, spin_arrays
     from ..core.rhs import profile_segment, rhs
     from ..models import SimOptions, SpeedProfile
 

@@ -243,7 +243,7 @@ def _fig6_7(ctx) -> Outcome:
 
 # -- Fig. 9 ------------------------------------------------------------------------------------
 def _fig9(ctx) -> Outcome:
-    from ...physics.kinetic_static import compare_with_full
+    from ...simulate.kinetic_static import compare_with_full
     from ...plotting.washer import plot_ks_comparison
 
     t = TARGET_BY_ID["000-fig9"]

@@ -30,8 +30,8 @@ import numpy as np
 
 from ..models import ParameterError
 from ..models._validate import finite as _finite
-from .unbalance import residual_unbalance
-from .vibratory import _angles, _speed, gain_phase
+from ..physics.unbalance import residual_unbalance
+from ..physics.vibratory import _angles, _speed, gain_phase
 
 __all__ = ["KineticStaticResult", "compare_with_full", "simulate_kinetic_static"]
 
@@ -191,7 +191,7 @@ def simulate_kinetic_static(system, speed, ball_angles, duration, f_r=None, drum
     -------
     KineticStaticResult
     """
-    from ..simulate.pack import steady_orbit_start
+    from .pack import steady_orbit_start
 
     w = _speed(speed)
     a0 = _angles(system, ball_angles)
@@ -264,7 +264,7 @@ def compare_with_full(system, speed, ball_angles, duration=6.0, steps_per_rev: i
         over the last second); plus "ks" and "full" histories of alpha.
     """
     from ..models import InitialState, SimOptions, SpeedProfile
-    from ..simulate import simulate
+    from . import simulate
 
     w = _speed(speed)
     a0 = _angles(system, ball_angles)
