@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from ..core.layout import n_q, psi_index, speed_index
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..physics.response import steady_orbit_start
 from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
@@ -102,7 +103,7 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
     """
     b = system.balancer
     n = b.n_balls
-    nq = n + 3
+    nq = n_q(n)
     a = initial.angles_for(b)
     ad = initial.speeds_for(b)
     order = np.argsort(np.mod(a, 2 * np.pi), kind="stable")
@@ -120,15 +121,15 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
     y[nq], y[nq + 1] = vx + w0 * y0_, vy - w0 * x0
     y[2:2 + n] = a_sorted
     y[nq + 2:nq + 2 + n] = ad[order]
-    y[nq - 1] = 0.0
-    y[2 * nq - 1] = w0
+    y[psi_index(n)] = 0.0
+    y[speed_index(n)] = w0
     return y, order
 
 
 def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:
     """Absolute tolerances: atol_scale times a length, an angle and their rates."""
     b = system.balancer
-    nq = b.n_balls + 3
+    nq = n_q(b.n_balls)
     sus = system.suspension
     L = max(max(system.rotor.unbalance, b.capacity, 1e-9) / system.total_mass,
             sus.base_amplitude_x, sus.base_amplitude_y)

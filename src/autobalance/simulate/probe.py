@@ -12,7 +12,7 @@ def kernel_required_friction(system, speed, alpha):
     compiled kernel (core/rhs.py, exact stick-slip branch) with both balls stuck, the rotor on its
     steady orbit (physics/response.steady_orbit_start) at constant speed. Also returns the rotor-frame
     accelerations (u'', v'') [m/s^2], zero on the steady orbit. Used to check the closed form."""
-    from ..core.layout import P_FLAW
+    from ..core.layout import P_FLAW, n_q, speed_index
     from ..physics.response import steady_orbit_start
     from .pack import pack_params, spin_arrays
     from ..core.rhs import profile_segment, rhs
@@ -22,7 +22,7 @@ def kernel_required_friction(system, speed, alpha):
     P, B = pack_params(system, spin, SimOptions(friction_law="stick"))
     P[P_FLAW] = 0.0
     N = system.balancer.n_balls
-    nq = N + 3
+    nq = n_q(N)
     a = np.asarray(alpha, float)
     x, y, vx, vy = steady_orbit_start(system, float(speed), a)
     order = np.argsort(np.mod(a, 2 * np.pi))
@@ -30,7 +30,7 @@ def kernel_required_friction(system, speed, alpha):
     st[0], st[1] = x, y                         # psi = 0: rotor frame = inertial frame
     st[nq], st[nq + 1] = vx + speed * y, vy - speed * x
     st[2:2 + N] = np.mod(a[order], 2 * np.pi)
-    st[2 * nq - 1] = speed
+    st[speed_index(N)] = speed
     prof_t, prof_w, _ = spin_arrays(spin)
     unb_t, unb_u = system.rotor.unbalance_table()
     dy, lam = np.zeros(2 * nq), np.zeros(3 * N + 1)

@@ -10,7 +10,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
-from ..core.layout import P_FLAW, P_VSAT
+from ..core.layout import P_FLAW, P_VSAT, n_q
 from .pack import initial_vector, pack_params, spin_arrays
 from ..core.rhs import profile_segment, rhs
 
@@ -22,7 +22,7 @@ def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-
     P, B = pack_params(system, spin, options)
     P[P_FLAW], P[P_VSAT] = 1.0, v_sat
     N = system.balancer.n_balls
-    nq = N + 3
+    nq = n_q(N)
     prof_t, prof_w, _ = spin_arrays(spin)
     unb_t, unb_u = system.rotor.unbalance_table()
     stuck = np.zeros(N, dtype=np.int64)
@@ -86,7 +86,7 @@ def paper_004_rhs(system: System, spin: SpeedProfile, v_sat: float = 1e-6):
     D = np.asarray(b.damping, float)
     mu = np.asarray(b.rolling_resistance, float)
     tt, ww = spin.arrays()
-    nq = n + 3
+    nq = n_q(n)
 
     def f(t, y):
         u, v = y[0], y[1]

@@ -8,7 +8,8 @@ import numpy as np
 
 from .. import __version__
 from ..core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
-                          S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus)
+                          S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus, alpha_dot_slice,
+                          alpha_slice, psi_index, speed_index)
 from ..models import MotorDrive
 from ..physics.iso1940 import grade_value
 from ..physics.unbalance import residual_unbalance
@@ -47,15 +48,14 @@ class Simulation:
 
     def __post_init__(self):
         n = self.system.balancer.n_balls
-        nq = n + 3
         y = self.states
         inv = np.argsort(self.order) if n else np.zeros(0, int)
         self.u = y[:, 0]
         self.v = y[:, 1]
-        self.psi = y[:, nq - 1]
-        self.speed = y[:, 2 * nq - 1]
-        self.alpha = y[:, 2:2 + n][:, inv]
-        self.alpha_dot = y[:, nq + 2:nq + 2 + n][:, inv]
+        self.psi = y[:, psi_index(n)]
+        self.speed = y[:, speed_index(n)]
+        self.alpha = y[:, alpha_slice(n)][:, inv]
+        self.alpha_dot = y[:, alpha_dot_slice(n)][:, inv]
         c, s = np.cos(self.psi), np.sin(self.psi)
         self.x = self.u * c - self.v * s
         self.y = self.u * s + self.v * c
@@ -202,7 +202,7 @@ class BatchResult:
     def __post_init__(self):
         n = self.systems[0].balancer.n_balls
         inv = np.argsort(self.orders, axis=1) if n else self.orders
-        a = self.states[:, :, 2:2 + n]
+        a = self.states[:, :, alpha_slice(n)]
         self.alpha = np.take_along_axis(a, inv[:, None, :], axis=2) if n else a
         res = np.stack([residual_unbalance_history(s, self.alpha[k], self.t) for k, s in enumerate(self.systems)])
         self.residual_unbalance = np.abs(res)

@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from ..core.layout import psi_index, rate_index
 from ..models import ParameterError
 from ..models._validate import finite as _finite
 from ..physics.equilibria import TWO_PI, _wrap
@@ -27,10 +28,9 @@ def _period_map(system, w, z, options):
     init = InitialState(ball_angles=tuple(z[4:4 + n]), ball_speeds=tuple(z[4 + n:]),
                         x=z[0], y=z[1], vx=z[2], vy=z[3])
     sim = simulate(system, SpeedProfile.constant(w, T), initial=init, options=options)
-    nq = n + 3
     st = sim.states[-1]
-    u, v, ud, vd = st[0], st[1], st[nq], st[nq + 1]
-    psi = st[nq - 1]
+    u, v, ud, vd = st[0], st[1], st[rate_index(0, n)], st[rate_index(1, n)]
+    psi = st[psi_index(n)]
     c, s = math.cos(psi), math.sin(psi)
     x, y = u * c - v * s, u * s + v * c
     gx, gy = ud - w * v, vd + w * u          # inertial velocity in the rotor frame

@@ -276,7 +276,7 @@ def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> 
 
 def run_task(payload: dict) -> dict:
     """Run one task (in any process): numpy arrays per run, see store.VARIABLES."""
-    from ..core.layout import S_AMAX, S_EVENTS, S_STEPS
+    from ..core.layout import S_AMAX, S_EVENTS, S_STEPS, speed_index
     from ..physics.iso1940 import grade_value
     from ..simulate.result import residual_unbalance_history
     from ..simulate import simulate_batch
@@ -305,11 +305,10 @@ def run_task(payload: dict) -> dict:
         "events": res.stats[:, S_EVENTS].astype(np.int64),
     }
     if hist.size:
-        nq = res.states.shape[2] // 2
         st = res.states[:, n_cp:, :]
         out["grade_G_history"] = res.grade_G[:, n_cp:]
         out["amplitude_history"] = np.hypot(st[:, :, 0], st[:, :, 1])
-        out["speed_history"] = st[:, :, 2 * nq - 1]
+        out["speed_history"] = st[:, :, speed_index(systems[0].balancer.n_balls)]
     # a failed run (max_steps, step-size underflow, non-finite state) has no outcome: NaN, with
     # its status, steps and events kept (its start, initial_grade_G, is still known)
     failed = status != 0

@@ -1,0 +1,114 @@
+"""One home per formula (issue 13): the compiled twins agree with their Python homes, the
+kernels' fast paths come from one derivation, and one status describes every run."""
+import dataclasses
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import autobalance as ab
+from autobalance.core.hold import ball_unbalance
+from autobalance.core.layout import (B_M, RunStatus, alpha_dot_slice, alpha_slice, n_q, psi_index,
+                                     speed_index, state_size)
+from autobalance.physics import (grade, grade_value, residual_unbalance, steady_deflection,
+                                 synchronous_orbit, unbalance_for_grade)
+from autobalance.simulate.pack import fast_paths, initial_vector, pack_params
+
+from conftest import vub_004, washer_000
+
+angles = st.lists(st.floats(-10.0, 10.0, allow_nan=False), min_size=2, max_size=2)
+
+
+@settings(max_examples=60, deadline=None)
+@given(a=angles, rho=st.floats(0.0, 2e-3), beta=st.floats(-np.pi, np.pi))
+def test_kernel_twin_of_the_residual_unbalance(a, rho, beta):
+    s = washer_000(rho=rho, beta=beta)
+    b = s.balancer
+    B = np.zeros((2, 8))
+    B[:, B_M] = b.masses
+    y = np.zeros(state_size(2))
+    y[alpha_slice(2)] = a
+    twin = ball_unbalance(y, B, 2, b.race_radius, rho, beta, s.rotor.unbalance)
+    home = residual_unbalance(s, np.array(a))
+    assert abs(twin - home) <= 1e-15 * (abs(home) + b.capacity)
+
+
+def test_residual_unbalance_limits():
+    s = vub_004()
+    m, R, U = s.balancer.masses[0], s.balancer.race_radius, s.rotor.unbalance
+    assert residual_unbalance(s, [0.0, 0.0]) == pytest.approx(U + 2 * m * R)
+    assert residual_unbalance(s, [np.pi, np.pi]) == pytest.approx(U - 2 * m * R)
+    # broadcast over configurations and a time-varying U
+    W = residual_unbalance(s, np.zeros((4, 3, 2)), unbalance=np.full(3, 0.0))
+    assert W.shape == (4, 3) and np.allclose(W, 2 * m * R)
+    bare = dataclasses.replace(s, balancer=dataclasses.replace(s.balancer, n_balls=0))
+    assert residual_unbalance(bare, np.zeros((5, 0))).shape == (5,)
+
+
+def test_grade_homes_agree_and_invert():
+    u = np.array([0.0, 1e-4, 3.19e-4])
+    assert np.array_equal(grade_value(u, 16.55, 1049.3), grade(u, 16.55, 1049.3))
+    assert unbalance_for_grade(grade(3.19e-4, 16.55, 1049.3), 16.55, 1049.3) == pytest.approx(3.19e-4)
+    assert np.isnan(grade_value(np.nan, 1.0, 1.0))      # unchecked form: a failed run stays NaN
+    with pytest.raises(ab.ParameterError, match="residual_unbalance"):
+        grade(np.nan, 1.0, 1.0)
+
+
+def test_steady_deflection_is_the_synchronous_orbit():
+    s = vub_004()
+    a = np.array([0.3, 2.0])
+    W = residual_unbalance(s, a)
+    for w in (100.0, 600.0, 1049.0):
+        X, Y = synchronous_orbit(s, w, W)
+        assert steady_deflection(s, w, a) == X
+        assert Y == pytest.approx(-1j * X)                # isotropic: a circular orbit
+
+
+@pytest.mark.parametrize("change, expected", [
+    (lambda s, o: (s, o), (True, True, True)),
+    (lambda s, o: (dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0)), o), (False, True, False)),
+    (lambda s, o: (dataclasses.replace(s, suspension=dataclasses.replace(s.suspension, ky=6e6)), o),
+     (False, False, False)),
+    (lambda s, o: (dataclasses.replace(s, suspension=dataclasses.replace(s.suspension, dry_friction_force=1.0)), o),
+     (False, False, False)),
+    (lambda s, o: (s, dataclasses.replace(o, friction_law="tanh")), (False, True, True)),
+    (lambda s, o: (s, dataclasses.replace(o, exact_holds=False)), (False, True, True)),
+    (lambda s, o: (dataclasses.replace(s, rotor=dataclasses.replace(
+        s.rotor, unbalance_schedule=((0.0, 3e-4), (1.0, 2e-4)))), o), (False, True, True)),
+])
+def test_fast_paths_derived_once(change, expected):
+    """holds / isotropic / symmetric from the model; the kernels only read P."""
+    from autobalance.core.layout import P_HOLDS, P_ISO, P_SYM
+
+    s, o = change(vub_004(), ab.SimOptions())
+    spin = ab.SpeedProfile.constant(600.0, 1.0)
+    assert fast_paths(s, spin, o) == expected
+    P, _ = pack_params(s, spin, o)
+    assert tuple(bool(P[i]) for i in (P_HOLDS, P_ISO, P_SYM)) == expected
+
+
+def test_fast_paths_motor_drive_never_holds():
+    s = dataclasses.replace(vub_004(), rotor=dataclasses.replace(vub_004().rotor, polar_inertia=0.1))
+    motor = ab.MotorDrive(law="constant", torque=1.0, final_speed=600.0, duration=1.0)
+    assert fast_paths(s, motor, ab.SimOptions())[0] is False
+
+
+def test_state_layout_helpers_match_the_packed_state():
+    s = vub_004()
+    spin = ab.SpeedProfile.constant(600.0, 1.0)
+    init = ab.InitialState(ball_angles=(0.5, 2.0), ball_speeds=(0.1, -0.2))
+    y, order = initial_vector(s, spin, init)
+    assert y.size == state_size(2) == 2 * n_q(2) == 10
+    assert y[speed_index(2)] == 600.0 and y[psi_index(2)] == 0.0
+    assert np.allclose(np.sort(y[alpha_slice(2)]), [0.5, 2.0])
+    assert np.allclose(np.sort(y[alpha_dot_slice(2)]), [-0.2, 0.1])
+
+
+def test_one_status():
+    assert [RunStatus.of(c).label for c in (0, 1, 2, 3, 4, 7)] == \
+        ["ok", "max_steps", "step_size_underflow", "non_finite", "running", "unknown"]
+    assert RunStatus.from_label("max_steps") is RunStatus.MAX_STEPS
+    assert "max_steps" in RunStatus.MAX_STEPS.message
+    sim = ab.simulate(vub_004(), ab.SpeedProfile.constant(600.0, 0.2), options=ab.SimOptions(max_steps=5), throw=False)
+    assert sim.status == "max_steps" and sim.message.startswith(RunStatus.MAX_STEPS.message)
