@@ -230,8 +230,7 @@ def natural_frequencies(system) -> tuple[float, float]:
     (w_x, w_y) : tuple of float
         [rad/s]. 000: w_x != w_y (anisotropic washer suspension); 004: 94.2 Hz.
     """
-    mt = system.total_mass
-    return math.sqrt(system.suspension.kx / mt), math.sqrt(system.suspension.ky / mt)
+    return system.natural_frequencies          # the one home: models/system.py
 
 
 def damping_ratios(system) -> tuple[float, float]:
