@@ -43,6 +43,10 @@ class ResourceError(ValueError):
         super().__init__(" ".join(str(message).split()))
 
 
+#: The default step budget of a run (``SimOptions.max_steps``) [-].
+DEFAULT_MAX_STEPS = 20_000_000
+
+
 def _physical_memory() -> int:
     try:
         return int(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
@@ -177,9 +181,7 @@ def check_run(system, spin, options, field: str = "profile.duration") -> float:
     A budget lowered below the default ``SimOptions.max_steps`` asks for a partial run (it ends
     with status "max_steps" and the history so far), so the bound is compared with the larger
     of ``options.max_steps`` and that default."""
-    from .models import SimOptions
-
-    budget = max(options.max_steps, SimOptions.max_steps)
+    budget = max(options.max_steps, DEFAULT_MAX_STEPS)
     n = steps_lower_bound(system, spin, options)
     if n > budget:
         raise ResourceError(
@@ -190,6 +192,6 @@ def check_run(system, spin, options, field: str = "profile.duration") -> float:
     return est
 
 
-__all__ = ["ResourceError", "check_memory", "check_run", "check_runtime",
+__all__ = ["DEFAULT_MAX_STEPS", "ResourceError", "check_memory", "check_run", "check_runtime",
            "fmt_bytes", "fmt_seconds", "max_balls", "max_hours", "max_memory", "parse_bytes",
            "step_cost", "steps_estimate", "steps_lower_bound"]

@@ -5,6 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..limits import DEFAULT_MAX_STEPS
 from ._validate import ParameterError, count, finite, in_range, nonneg, positive
 from .balancer import BallBalancer
 from .rotor import Gravity, Rotor, Suspension
@@ -139,7 +140,7 @@ class SimOptions:
     atol_scale: float = 1e-6
     max_step: float = 0.0
     save_dt: float = 0.0
-    max_steps: int = 20_000_000
+    max_steps: int = DEFAULT_MAX_STEPS
     exact_holds: bool = True
 
     def __post_init__(self):
