@@ -112,3 +112,20 @@ def test_one_status():
     assert "max_steps" in RunStatus.MAX_STEPS.message
     sim = ab.simulate(vub_004(), ab.SpeedProfile.constant(600.0, 0.2), options=ab.SimOptions(max_steps=5), throw=False)
     assert sim.status == "max_steps" and sim.message.startswith(RunStatus.MAX_STEPS.message)
+
+
+@pytest.mark.parametrize("w", [100.0, 592.0, 1049.3])
+def test_kernel_twin_of_the_dynamic_stiffness(w):
+    """core/hold.hold_roots' static factor is 1 / dynamic_stiffness, and its roots solve
+    M s^2 + (c + 2 i W M) s + (k - M W^2 + i c W) = 0 (the rotor-frame Jeffcott equation)."""
+    from autobalance.core.hold import hold_roots
+    from autobalance.physics import dynamic_stiffness
+
+    s = vub_004()
+    P, _ = pack_params(s, ab.SpeedProfile.constant(w, 1.0), ab.SimOptions())
+    s1, s2, h = hold_roots(P, w)
+    d = dynamic_stiffness(s.total_mass, s.suspension.kx, s.suspension.cx, w)
+    assert h == pytest.approx(1.0 / d, rel=1e-14)
+    for r in (s1, s2):
+        res = s.total_mass * r * r + (s.suspension.cx + 2j * w * s.total_mass) * r + d
+        assert abs(res) <= 1e-9 * abs(d)
