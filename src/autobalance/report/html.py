@@ -9,7 +9,8 @@ from __future__ import annotations
 from html import escape
 
 from .registry import PAPERS
-from .runner import _counts, summary_lines
+from .summary import counts as _counts
+from .summary import summary_lines
 
 __all__ = ["fmt_value", "render_html"]
 

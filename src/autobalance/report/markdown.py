@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .html import fmt_value
 from .registry import PAPERS
-from .runner import summary_lines
+from .summary import summary_lines
 
 __all__ = ["render_markdown"]
 

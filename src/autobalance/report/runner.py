@@ -15,6 +15,8 @@ from pathlib import Path
 from typing import Callable, Optional
 
 from ..validation.target import Context, claims, status
+from .summary import counts as _counts  # noqa: F401  (re-exported for the CLI)
+from .summary import summarize, summary_lines
 
 __all__ = ["run_targets", "summary_lines", "summarize", "write_report"]
 
@@ -98,33 +100,6 @@ def _run_one(target, ctx: Context) -> dict:
         rec["unreported"] = list(rec["claims"])
     rec["wall_time_s"] = round(time.perf_counter() - t0, 2)
     return rec
-
-
-def _counts(recs) -> dict:
-    c = {"targets": len(recs), "published": 0, "pass": 0, "miss": 0, "not computed": 0,
-         "unreported": 0, "errors": 0}
-    for rec in recs:
-        c["published"] += len(rec["claims"])
-        c["unreported"] += len(rec["unreported"])
-        c["errors"] += rec["status"] == "error"
-        for r in rec["rows"]:
-            if r.get("key") in rec["claims"]:
-                c[r["status"]] += 1
-    return c
-
-
-def summarize(recs) -> dict:
-    """Counts per paper and in total: published claims, pass, miss, not computed, unreported."""
-    from .registry import PAPERS
-
-    papers = {p: _counts([r for r in recs if r["paper"] == p]) for p in PAPERS
-              if any(r["paper"] == p for r in recs)}
-    return {"papers": papers, "total": _counts(recs)}
-
-
-def summary_lines(summary: dict) -> list:
-    """(paper, counts) per paper, then ("total", counts): the order of every summary table."""
-    return list(summary["papers"].items()) + [("total", summary["total"])]
 
 
 def run_targets(targets, ctx: Context, progress: Optional[Callable[[int, int, dict], None]] = None) -> dict:
