@@ -126,10 +126,12 @@ class BallBalancer:
     # -- derived quantities -------------------------------------------------------------------
     @property
     def masses(self) -> np.ndarray:
+        """Ball masses m_i as an array of length N [kg] (empty without balls)."""
         return np.asarray(self.ball_mass, float)
 
     @property
     def total_mass(self) -> float:
+        """Total ball mass sum(m_i) [kg] (0 without balls)."""
         return float(np.sum(self.masses)) if self.n_balls else 0.0
 
     @property

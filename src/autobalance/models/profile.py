@@ -62,27 +62,80 @@ class SpeedProfile:
 
     @property
     def duration(self) -> float:
+        """Length of the run, the last knot time [s]."""
         return self.times[-1]
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        """The knot table as float arrays.
+
+        Returns
+        -------
+        times : ndarray
+            Knot times [s].
+        speeds : ndarray
+            Spin speed at each knot [rad/s].
+        """
         return np.asarray(self.times, float), np.asarray(self.speeds, float)
 
     def speed(self, t):
-        """Spin speed at time t [rad/s] (linear interpolation)."""
+        """Spin speed at time t (linear interpolation between the knots).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time [s]; before 0 or after the end the first or last knot's speed holds.
+
+        Returns
+        -------
+        float or ndarray
+            Spin speed w(t) [rad/s], shaped like ``t``.
+        """
         tt, ww = self.arrays()
         return np.interp(t, tt, ww)
 
     # -- constructors -------------------------------------------------------------------------
     @classmethod
     def constant(cls, speed: float, duration: float, *, start_speed: float | None = None) -> "SpeedProfile":
-        """Constant speed [rad/s] for ``duration`` [s] (000 Figs. 5, 13, 16, 18 at 1000 rpm)."""
+        """Constant speed [rad/s] for ``duration`` [s] (000 Figs. 5, 13, 16, 18 at 1000 rpm).
+
+        Parameters
+        ----------
+        speed : float
+            Spin speed w, held from t = 0 [rad/s], > 0.
+        duration : float
+            Length of the run [s], > 0.
+        start_speed : float or None
+            Accepted for call compatibility and ignored [rad/s]: the profile starts at ``speed``.
+
+        Returns
+        -------
+        SpeedProfile
+            Two knots (0, ``duration``) at ``speed``, named "constant".
+        """
         positive("profile.speed", speed)
         positive("profile.duration", duration)
         return cls((0.0, duration), (speed, speed), name="constant")
 
     @classmethod
     def ramp(cls, start_speed: float, end_speed: float, ramp_time: float, duration: float) -> "SpeedProfile":
-        """Linear ramp from start to end speed [rad/s] over ramp_time [s], then hold to duration."""
+        """Linear ramp from start to end speed [rad/s] over ramp_time [s], then hold to duration.
+
+        Parameters
+        ----------
+        start_speed : float
+            Spin speed at t = 0 [rad/s], >= 0.
+        end_speed : float
+            Spin speed reached at ``ramp_time`` and held after [rad/s], > 0.
+        ramp_time : float
+            Length of the linear ramp [s], > 0.
+        duration : float
+            Length of the run [s], >= ``ramp_time`` (equal: no hold).
+
+        Returns
+        -------
+        SpeedProfile
+            Named "ramp", its quality read at the end.
+        """
         nonneg("profile.start_speed", start_speed)
         positive("profile.end_speed", end_speed)
         positive("profile.ramp_time", ramp_time)
@@ -105,6 +158,24 @@ class SpeedProfile:
 
         The defaults are 004's (167 Hz, 90 s, 20 %); they serve Python callers only: a config file
         or ``--set``/``--profile`` must give ``nominal`` (:data:`autobalance.config.PROFILE_KINDS`).
+
+        Parameters
+        ----------
+        nominal : float
+            Nominal speed reached at the end of the run-up [rad/s] (004: 2*pi*167 rad/s).
+        duration : float
+            Length of the run [s] (004: 90 s).
+        runup_fraction : float
+            Fraction of ``duration`` at which the STD outcome is read [-], within (0, 1]
+            (004: 0.2).
+        runup_time : float or None
+            Length of the linear run-up [s], at most ``runup_fraction * duration``; None = that
+            read-out instant.
+
+        Returns
+        -------
+        SpeedProfile
+            Named "std", with checkpoints (``runup_fraction * duration``, ``duration``) [s].
         """
         positive("profile.nominal", nominal)
         positive("profile.duration", duration)
@@ -130,6 +201,34 @@ class SpeedProfile:
 
         The defaults are 004's (167 Hz -> 100 Hz, 90 s, 20 %, 10/20/10 s); they serve Python
         callers only: a config file or ``--set``/``--profile`` must give ``nominal``.
+
+        Parameters
+        ----------
+        nominal : float
+            Nominal speed [rad/s] (004: 2*pi*167 rad/s).
+        plateau : float
+            Lower plateau speed of the reduction [rad/s], < ``nominal`` (004: 2*pi*100 rad/s,
+            above the 94.2 Hz resonance).
+        duration : float
+            Length of the run [s] (004: 90 s); must exceed the read-out plus the three
+            reduction phases.
+        runup_fraction : float
+            Fraction of ``duration`` at which the STD outcome is read and the reduction starts
+            [-], within (0, 1] (004: 0.2).
+        runup_time : float or None
+            Length of the linear run-up [s], at most ``runup_fraction * duration``; None = that
+            read-out instant.
+        down_time : float
+            Ramp from ``nominal`` down to ``plateau`` [s] (004: 10 s).
+        plateau_time : float
+            Hold at ``plateau`` [s] (004: 20 s).
+        up_time : float
+            Ramp from ``plateau`` back up to ``nominal`` [s] (004: 10 s).
+
+        Returns
+        -------
+        SpeedProfile
+            Named "tsr", with checkpoints (STD read-out, ``duration``) [s].
         """
         std = cls.standard_runup(nominal, duration, runup_fraction, runup_time)
         positive("profile.plateau", plateau)
@@ -200,16 +299,30 @@ class MotorDrive:
 
     @property
     def nominal_speed(self) -> float:
+        """Nominal speed for the ISO 1940 grade, the final speed w_f [rad/s]."""
         return self.final_speed
 
     @property
     def checkpoints(self) -> tuple:
+        """Times at which the balancing quality is reported: the end of the run [s]."""
         return (self.duration,)
 
     name = "motor"
 
     def torque_at(self, w):
-        """Motor torque [N*m] at spin speed w [rad/s] (000 Table 1 laws)."""
+        """Motor torque [N*m] at spin speed w [rad/s] (000 Table 1 laws).
+
+        Parameters
+        ----------
+        w : float or array_like
+            Spin speed [rad/s].
+
+        Returns
+        -------
+        ndarray
+            Torque T(w) [N*m], shaped like ``w``: T0, T0 (1 - w/w_f) or
+            T0 (1 - sin(pi w / 2 w_f)) for the constant, linear and harmonic laws.
+        """
         w = np.asarray(w, float)
         if self.law == "constant":
             return np.full_like(w, self.torque)

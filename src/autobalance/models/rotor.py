@@ -120,11 +120,26 @@ class Suspension:
 
     @classmethod
     def isotropic(cls, k: float, c: float = 0.0, **kw) -> "Suspension":
-        """Jeffcott support: kx = ky = k [N/m], cx = cy = c [N*s/m]."""
+        """Jeffcott support: kx = ky = k [N/m], cx = cy = c [N*s/m].
+
+        Parameters
+        ----------
+        k : float
+            Stiffness along both axes [N/m] (004 Table 1: 5.8 kN/mm).
+        c : float
+            Viscous damping along both axes [N*s/m] (004 Table 1: 1.51 kN*s/m).
+        **kw
+            Further :class:`Suspension` fields (dry friction, base excitation).
+
+        Returns
+        -------
+        Suspension
+        """
         return cls(kx=k, ky=k, cx=c, cy=c, **kw)
 
     @property
     def is_isotropic(self) -> bool:
+        """True when kx == ky and cx == cy (a Jeffcott support)."""
         return self.kx == self.ky and self.cx == self.cy
 
 

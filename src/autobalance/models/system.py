@@ -79,6 +79,25 @@ class InitialState:
                                tuple(finite("initial.ball_speeds", a) for a in self.ball_speeds))
 
     def angles_for(self, balancer: BallBalancer) -> np.ndarray:
+        """Initial ball angles alpha_i(0) for this balancer, checked against it.
+
+        Parameters
+        ----------
+        balancer : BallBalancer
+            The balancer the angles are for (its N and contact angle).
+
+        Returns
+        -------
+        ndarray
+            alpha_i(0) relative to the unbalance [rad], length N: ``ball_angles`` as given, or
+            by default N equispaced angles starting at pi/4.
+
+        Raises
+        ------
+        ParameterError
+            If the number of angles is not N or two neighbouring balls overlap (closer than
+            the contact angle 2*asin(r/R)).
+        """
         n = balancer.n_balls
         if self.ball_angles is None:
             return np.pi / 4 + 2 * np.pi * np.arange(n) / max(n, 1)
@@ -94,6 +113,23 @@ class InitialState:
         return a
 
     def speeds_for(self, balancer: BallBalancer) -> np.ndarray:
+        """Initial ball speeds d(alpha_i)/dt at t = 0 for this balancer.
+
+        Parameters
+        ----------
+        balancer : BallBalancer
+            The balancer the speeds are for (its N).
+
+        Returns
+        -------
+        ndarray
+            d(alpha_i)/dt(0) relative to the rotor [rad/s], length N; zeros by default.
+
+        Raises
+        ------
+        ParameterError
+            If the number of speeds is not N.
+        """
         n = balancer.n_balls
         if self.ball_speeds is None:
             return np.zeros(n)

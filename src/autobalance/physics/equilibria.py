@@ -74,6 +74,9 @@ class Equilibrium:
     overlap: bool
 
     def as_dict(self) -> dict:
+        """JSON-ready dict with unit-suffixed keys (SI): angles [rad] and [deg], force residual
+        [N], Jacobian [N/rad], eigenvalues' real and imaginary parts [1/s], residual unbalance
+        [kg*m] and the stability and overlap flags."""
         return {
             "alpha_rad": [float(v) for v in self.alpha],
             "alpha_deg": [float(v) for v in np.degrees(self.alpha)],

@@ -53,6 +53,16 @@ def tangential_force(system, speed, alpha):
     row of 004 eq (10) with phi_dot = phi_ddot = 0, psi_ddot = 0 and the rotor on its steady
     orbit: F_t R = m R Omega^2 (v cos alpha - u sin alpha).
 
+    Parameters
+    ----------
+    system : System
+        Isotropic suspension (k [N/m], c [N s/m]), rotor unbalance U [kg m], balls m_i [kg] at
+        radius R [m].
+    speed : array_like
+        Spin speed Omega [rad/s]; broadcast against ``alpha[..., 0]``.
+    alpha : array_like (..., N)
+        Ball angles from the unbalance [rad].
+
     Returns
     -------
     ndarray (..., N)
@@ -70,6 +80,21 @@ def immobile_mask(system, speed, alpha):
 
     Omega cancels: ball i sticks iff |Im(w e^{-i alpha_i})| <= mu_s R. Shape of ``speed`` broadcast
     with ``alpha[..., 0]``.
+
+    Parameters
+    ----------
+    system : System
+        Isotropic suspension (k [N/m], c [N s/m]), rotor unbalance U [kg m], balls at radius
+        R [m] with static friction coefficients mu_s [-] (``balancer.stiction``).
+    speed : array_like
+        Spin speed Omega [rad/s]; broadcast against ``alpha[..., 0]``.
+    alpha : array_like (..., N)
+        Ball angles from the unbalance [rad].
+
+    Returns
+    -------
+    ndarray of bool
+        True where all N balls stick, shape broadcast(speed, alpha[..., 0]).
     """
     a = np.asarray(alpha, float)
     w = np.asarray(steady_deflection(system, speed, a))
@@ -90,7 +115,29 @@ def check_immobility(n_conf, n_balls: int, n_speeds: int = 1, n_sets: int = 1,
                      field: str = "n_conf") -> None:
     """Refuse (ResourceError naming ``field``) an immobility grid of ``n_conf`` ** ``n_balls``
     configurations [-] whose memory or run time over ``n_speeds`` x ``n_sets`` evaluations
-    exceeds the limits of :mod:`autobalance.limits`, before anything is allocated."""
+    exceeds the limits of :mod:`autobalance.limits`, before anything is allocated.
+
+    The estimate uses :data:`IMMOBILITY_BYTES_PER_BALL`, :data:`IMMOBILITY_BYTES` [B] and
+    :data:`IMMOBILITY_COST_S` [s].
+
+    Parameters
+    ----------
+    n_conf : int
+        Equispaced positions per ball (the grid has n_conf ** n_balls configurations).
+    n_balls : int
+        Number of balls N.
+    n_speeds : int
+        Speeds evaluated per set.
+    n_sets : int
+        Number of such sets (e.g. machines or unbalances) evaluated with the same grid.
+    field : str
+        Parameter name the error message names.
+
+    Raises
+    ------
+    ResourceError
+        If the grid's memory or run time exceeds the limits.
+    """
     from ..limits import check_memory, check_runtime
 
     k = float(n_conf) ** max(int(n_balls), 1)          # float: no huge-int arithmetic
@@ -104,7 +151,23 @@ def immobility(system, speeds, n_conf: int = 100):
     ball, full product = uniform on the torus) in which no ball can move, at each speed [rad/s].
 
     Closed form (:func:`immobile_mask`), vectorised; no time integration. A grid beyond the
-    memory or run-time limit is refused first (:func:`check_immobility`)."""
+    memory or run-time limit is refused first (:func:`check_immobility`).
+
+    Parameters
+    ----------
+    system : System
+        Isotropic (Jeffcott) machine: suspension k [N/m], c [N s/m], unbalance U [kg m], balls
+        m_i [kg] at radius R [m] with static friction mu_s [-].
+    speeds : float or array_like
+        Spin speeds Omega [rad/s] (004 Figs. 8, 10: the speed axis).
+    n_conf : int
+        Equispaced positions per ball (004: 100).
+
+    Returns
+    -------
+    ndarray
+        Immobile share [-] in [0, 1], one per speed.
+    """
     b = system.balancer
     check_immobility(n_conf, b.n_balls, np.atleast_1d(speeds).size)
     pos = 2 * np.pi * np.arange(n_conf) / n_conf

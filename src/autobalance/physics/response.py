@@ -185,6 +185,8 @@ class HarmonicResponse:
         return getattr(self, key)
 
     def as_dict(self) -> dict:
+        """The six fields by name: speed [rad/s], unbalance [kg*m], a_x, a_y [m], phi_x, phi_y
+        [rad] (arrays stay arrays)."""
         return {k: getattr(self, k) for k in ("speed", "unbalance", "a_x", "a_y", "phi_x", "phi_y")}
 
 
@@ -414,6 +416,26 @@ def steady_orbit_start(system, w: float, alpha) -> tuple[float, float, float, fl
 
         x = Re(Hx w^2 Ut e^{i w t}),  y = Re(-i Hy w^2 Ut e^{i w t}),
         H = 1 / (k - M_t w^2 + i c w),  Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}).
+
+    The simulation starts here when ``InitialState.steady_state`` is set (000 Fig. 5: the drum
+    already vibrates when the balls are released).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine: suspension kx, ky [N/m], cx, cy [N*s/m], M_t [kg], the balls and the
+        rotor's unbalance at t = 0 (the first entry of its unbalance table) [kg*m].
+    w : float
+        Spin speed [rad/s].
+    alpha : array_like
+        Ball angles from the unbalance [rad], one per ball.
+
+    Returns
+    -------
+    x, y : float
+        Displacement from static equilibrium at spin angle psi = 0 [m].
+    vx, vy : float
+        Velocity there (inertial frame) [m/s].
     """
     from .unbalance import residual_unbalance
 

@@ -71,9 +71,9 @@ def design_tolerances(unbalance, mass, race_radius, speed, residual_fraction=0.1
         w [rad/s], > 0.
     residual_fraction : float
         q: required dMe_F / Me [-] (000: 0.1), in (0, 1].
-    split : dict, optional
-        p_j per cause ("eccentricity", "rolling", "friction", others), summing to 1 (eq 56);
-        default :data:`DEFAULT_SPLIT`.
+    split : dict of str to float, optional
+        Share p_j [-] per cause ("eccentricity", "rolling", "friction", others), summing to 1
+        (eq 56); default :data:`DEFAULT_SPLIT`.
     friction_angle : float
         gamma [rad] (000: 61 deg).
     rolling_credit, friction_credit : float

@@ -119,6 +119,27 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
     title = getattr(sim, "title", "") or ""
     if title:
         fig.suptitle(str(title), fontsize=13)
+    ax_x, ax_y, ax_amp, ax_ang, ax_g, ax_balls, ax_cog = _simulation_axes(fig)
+    _draw_displacements(sim, ax_x, ax_y, t, max_points)
+    _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit)
+    alpha, n_balls = _ball_angles(sim, n)
+    _draw_ball_angles(ax_ang, alpha, n_balls, ts, idx)
+    grade = _get(sim, "grade_G")
+    _draw_grade(ax_g, grade, ts, idx, n, grade_limit)
+    for ax in (ax_x, ax_y, ax_amp, ax_ang):
+        ax.tick_params(labelbottom=False)
+    for ax in (ax_x, ax_y, ax_amp, ax_ang, ax_g):
+        ax.grid(True, alpha=0.3)
+    ax_g.set_xlim(float(t[0]), float(t[-1]) if t[-1] > t[0] else float(t[0]) + 1.0)
+    _draw_ball_polar(ax_balls, alpha, n_balls, ts, idx, t)
+    _draw_cog(ax_cog, grade, _get(sim, "residual_angle"), idx, n, grade_limit)
+    return fig
+
+
+def _simulation_axes(fig):
+    """The seven panels of :func:`plot_simulation`: x, y, amplitude, ball angle and grade
+    against time on the left (shared time axis), ball positions and COG location (polar) on the
+    right."""
     gs = fig.add_gridspec(1, 2, width_ratios=(1.6, 1.0))
     left = gs[0].subgridspec(5, 1)
     right = gs[1].subgridspec(2, 1)
@@ -129,8 +150,12 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
     ax_g = fig.add_subplot(left[4], sharex=ax_x)
     ax_balls = fig.add_subplot(right[0], projection="polar")
     ax_cog = fig.add_subplot(right[1], projection="polar")
+    return ax_x, ax_y, ax_amp, ax_ang, ax_g, ax_balls, ax_cog
 
-    # x and y [mm], one panel each (they are bands at the spin frequency)
+
+def _draw_displacements(sim, ax_x, ax_y, t, max_points):
+    """x and y [mm], one panel each (they are bands at the spin frequency; min/max decimated)."""
+    n = t.size
     for ax, name, colour in ((ax_x, "x", "tab:blue"), (ax_y, "y", "tab:orange")):
         v = _get(sim, name)
         if v is not None and v.size == n:
@@ -142,7 +167,9 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
     ax_x.set_title("Rotor displacement (inertial frame, from static equilibrium)",
                    fontsize=10, loc="left")
 
-    # amplitude envelope [mm] and spin speed on a twin axis
+
+def _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit):
+    """Amplitude envelope [mm] and the spin speed [speed_unit] on a twin axis."""
     amp = _get(sim, "amplitude")
     if amp is not None and amp.size == n:
         ax_amp.plot(ts, 1e3 * amp[idx], color="k", lw=1.0, label="amplitude")
@@ -159,11 +186,18 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
         ax_sp.tick_params(axis="y", colors="tab:green")
         ax_sp.set_ylim(bottom=0.0)
 
-    # ball angles [deg], wrapped to [0, 360)
+
+def _ball_angles(sim, n):
+    """Ball angles [rad] as an (n, N) array and N (0 when missing or of the wrong length)."""
     alpha = _get(sim, "alpha")
     if alpha is not None and alpha.ndim == 1 and alpha.size == n:
         alpha = alpha[:, None]
     n_balls = 0 if alpha is None or alpha.ndim != 2 or alpha.shape[0] != n else alpha.shape[1]
+    return alpha, n_balls
+
+
+def _draw_ball_angles(ax_ang, alpha, n_balls, ts, idx):
+    """Ball angles [deg], wrapped to [0, 360)."""
     for i in range(n_balls):
         deg = np.degrees(np.mod(alpha[idx, i], 2.0 * np.pi))
         ax_ang.plot(ts, _break_wraps(deg, 360.0), lw=1.0,
@@ -180,8 +214,9 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
     ax_ang.set_title("Ball positions relative to the unbalance (180° = opposite)",
                      fontsize=10, loc="left")
 
-    # grade G [mm/s] with the ISO limit dashed
-    grade = _get(sim, "grade_G")
+
+def _draw_grade(ax_g, grade, ts, idx, n, grade_limit):
+    """Grade G [mm/s] with the ISO limit [mm/s] dashed."""
     if grade is not None and grade.size == n:
         ax_g.plot(ts, grade[idx], color="k", lw=1.0, label="residual unbalance")
         ax_g.set_ylim(0.0, max(1.2 * float(np.nanmax(grade)) if np.any(np.isfinite(grade)) else 0.0,
@@ -193,13 +228,10 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
     ax_g.set_ylabel("grade G [mm/s]")
     ax_g.set_xlabel("time t [s]")
     ax_g.set_title("Balance quality (ISO 1940)", fontsize=10, loc="left")
-    for ax in (ax_x, ax_y, ax_amp, ax_ang):
-        ax.tick_params(labelbottom=False)
-    for ax in (ax_x, ax_y, ax_amp, ax_ang, ax_g):
-        ax.grid(True, alpha=0.3)
-    ax_g.set_xlim(float(t[0]), float(t[-1]) if t[-1] > t[0] else float(t[0]) + 1.0)
 
-    # polar: ball positions, radius = time
+
+def _draw_ball_polar(ax_balls, alpha, n_balls, ts, idx, t):
+    """Polar: ball positions, angle = alpha [rad], radius = time [s]; open circle start, dot end."""
     for i in range(n_balls):
         th = np.unwrap(alpha[idx, i])
         c = _BALL_COLOURS[i % len(_BALL_COLOURS)]
@@ -212,8 +244,10 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
                        fontsize=10)
     ax_balls.set_rlim(0.0, float(t[-1]) if t[-1] > 0 else 1.0)
 
-    # polar: COG location, angle = residual angle, radius = grade G
-    ang = _get(sim, "residual_angle")
+
+def _draw_cog(ax_cog, grade, ang, idx, n, grade_limit):
+    """Polar: COG location, angle = residual angle [rad], radius = grade G [mm/s], with the ISO
+    limit [mm/s] as a dashed circle."""
     if grade is not None and ang is not None and grade.size == n and ang.size == n:
         th = np.unwrap(ang[idx])
         ax_cog.plot(th, grade[idx], color="k", lw=0.8)
@@ -228,7 +262,6 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
     ax_cog.set_rlim(0.0, 1.1 * rmax)
     ax_cog.set_title("COG location (angle from unbalance, radius = grade G [mm/s])\n"
                      f"○ start  ● end  red dashed: ISO G{grade_limit:g}", fontsize=10)
-    return fig
 
 
 # -- response figure ---------------------------------------------------------------------------

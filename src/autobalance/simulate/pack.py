@@ -17,7 +17,23 @@ LAW_ID = {"constant": 0.0, "linear": 1.0, "harmonic": 2.0}
 
 
 def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray, float]:
-    """Profile knots (times [s], speeds [rad/s]) and the end time [s]."""
+    """Profile knots (times [s], speeds [rad/s]) and the end time [s].
+
+    Parameters
+    ----------
+    spin : SpeedProfile or MotorDrive
+        The spin; a motor drive gives two knots at its initial speed (the kernel integrates its
+        spin as a degree of freedom and ignores the table).
+
+    Returns
+    -------
+    times : ndarray
+        Knot times [s].
+    speeds : ndarray
+        Spin speed at each knot [rad/s].
+    t_end : float
+        End of the run [s].
+    """
     if isinstance(spin, MotorDrive):
         return np.array([0.0, spin.duration]), np.array([spin.initial_speed] * 2), spin.duration
     t, w = spin.arrays()
@@ -26,6 +42,15 @@ def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray
 
 def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[bool, bool, bool]:
     """The kernels' fast paths, derived from the model here and nowhere else.
+
+    Parameters
+    ----------
+    system : System
+        The machine (suspension, gravity, unbalance schedule).
+    spin : SpeedProfile or MotorDrive
+        The spin (a motor drive has no closed-form holds).
+    options : SimOptions
+        Friction law and ``exact_holds``.
 
     Returns
     -------
@@ -47,7 +72,36 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOpti
 
 
 def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[np.ndarray, np.ndarray]:
-    """Scalar vector P (N_P,) and ball table B (N, N_B) in SI."""
+    """Scalar vector P (N_P,) and ball table B (N, N_B) in SI.
+
+    The slots are named in :mod:`autobalance.core.layout` (P_*, B_*). Besides the parameters
+    as given, P holds M_t [kg], the contact angle 2 asin(r/R) [rad], the motor law and hold
+    speed [rad/s], the model switches and the :func:`fast_paths` flags; B holds per ball m [kg],
+    I [kg*m^2], R/r [-], D [N*m*s/rad], mu and mu_s [-], and the ball-ball contact stiffness
+    [N*m/rad] and damping [N*m*s/rad] from the contact frequency [rad/s] and restitution [-]
+    (the effective inertia of two neighbours, zeta from ln e).
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    spin : SpeedProfile or MotorDrive
+        The spin (nominal speed; motor torque law).
+    options : SimOptions
+        Friction law, v_sat [rad/s], normal-force model.
+
+    Returns
+    -------
+    P : ndarray (N_P,)
+        Scalar parameters [SI].
+    B : ndarray (N, N_B)
+        Ball table [SI].
+
+    Raises
+    ------
+    ParameterError
+        A motor drive on a rotor without polar inertia.
+    """
     r, s, b, g = system.rotor, system.suspension, system.balancer, system.gravity
     P = np.zeros(N_P)
     P[P_MT] = system.total_mass
@@ -100,6 +154,27 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
 
     The kernel keeps balls sorted by angle (they cannot pass each other); alpha is unwrapped so
     that alpha_0 <= alpha_1 <= ... < alpha_0 + 2 pi.
+
+    The rotor's position and velocity are given in the inertial frame at psi = 0 and converted
+    to the rotor frame (u' = vx + w0 y, v' = vy - w0 x); with ``initial.steady_state`` they are
+    the steady orbit of :func:`autobalance.physics.response.steady_orbit_start` (000 eq 6-7).
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    spin : SpeedProfile or MotorDrive
+        The spin; its speed at t = 0 [rad/s] is the initial spin speed.
+    initial : InitialState
+        Ball angles [rad] and speeds [rad/s], rotor displacement [m] and velocity [m/s].
+
+    Returns
+    -------
+    y0 : ndarray (2*nq,)
+        Initial state (u, v [m], alpha_1..N, psi [rad], then their rates [m/s], [rad/s];
+        :mod:`autobalance.core.layout`).
+    order : ndarray of int
+        order[k] = the user's index of the kernel's ball k.
     """
     b = system.balancer
     n = b.n_balls
@@ -127,7 +202,27 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
 
 
 def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:
-    """Absolute tolerances: atol_scale times a length, an angle and their rates."""
+    """Absolute tolerances: atol_scale times a length, an angle and their rates.
+
+    The length scale is the larger of the rotor's and the balls' eccentricity
+    max(U, sum(m_i) R) / M_t and the base amplitudes [m]; the angle scale is 1 rad; the rates
+    multiply them by max(nominal speed, 1 rad/s) (docs/numerics.md).
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    spin : SpeedProfile or MotorDrive
+        The spin (its nominal speed [rad/s]).
+    options : SimOptions
+        ``atol_scale`` [-].
+
+    Returns
+    -------
+    ndarray (2*nq,)
+        Absolute tolerance of each state component in its unit (u, v [m], alpha_1..N,
+        psi [rad], then their rates [m/s], [rad/s]; :mod:`autobalance.core.layout`).
+    """
     b = system.balancer
     nq = n_q(b.n_balls)
     sus = system.suspension

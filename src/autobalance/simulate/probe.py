@@ -11,7 +11,27 @@ def kernel_required_friction(system, speed, alpha):
     """Friction torque [N m] each stuck ball needs and its static limit mu_s N R [N m], from the
     compiled kernel (core/rhs.py, exact stick-slip branch) with both balls stuck, the rotor on its
     steady orbit (physics/response.steady_orbit_start) at constant speed. Also returns the rotor-frame
-    accelerations (u'', v'') [m/s^2], zero on the steady orbit. Used to check the closed form."""
+    accelerations (u'', v'') [m/s^2], zero on the steady orbit. Used to check the closed form
+    (:func:`autobalance.physics.immobility.immobile_mask`, 004 eq 1 against mu_s N).
+
+    Parameters
+    ----------
+    system : System
+        The machine (isotropic suspension for the steady orbit to be stationary).
+    speed : float
+        Constant spin speed [rad/s].
+    alpha : array_like
+        Ball angles from the unbalance [rad], one per ball.
+
+    Returns
+    -------
+    required : ndarray (N,)
+        Friction torque each stuck ball needs [N*m], in the user's ball order.
+    limit : ndarray (N,)
+        Its static limit mu_s N R [N*m].
+    accel : ndarray (2,)
+        Rotor-frame accelerations (u'', v'') [m/s^2].
+    """
     from ..core.layout import P_FLAW, n_q, speed_index
     from ..physics.response import steady_orbit_start
     from .pack import pack_params, spin_arrays

@@ -17,7 +17,28 @@ from ..core.rhs import profile_segment, rhs
 
 def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-6,
              normal_force: str = "ball"):
-    """Return f(t, y) -> dy for solve_ivp (tanh law with saturation speed v_sat [rad/s])."""
+    """Return f(t, y) -> dy for solve_ivp (tanh law with saturation speed v_sat [rad/s]).
+
+    The compiled kernel's right-hand side (core/rhs.py: 000 eq 2-4 / 004 eq 8-10) with 004's
+    regularised friction F = mu N R tanh(alpha_dot / v_sat) forced.
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    spin : SpeedProfile or MotorDrive
+        The spin.
+    v_sat : float
+        Saturation speed of the tanh law [rad/s] (004: 1e-6 rad/s).
+    normal_force : str
+        "ball" or "drum" (:class:`~autobalance.models.SimOptions`).
+
+    Returns
+    -------
+    callable
+        f(t [s], y) -> dy/dt, y in the kernel's layout (u, v [m], alpha_1..N, psi [rad], then
+        their rates [m/s], [rad/s]; :mod:`autobalance.core.layout`).
+    """
     options = SimOptions(friction_law="tanh", v_sat=v_sat, normal_force=normal_force)
     P, B = pack_params(system, spin, options)
     P[P_FLAW], P[P_VSAT] = 1.0, v_sat
@@ -51,7 +72,40 @@ def solve_reference(system: System, spin: SpeedProfile | MotorDrive, t_end: floa
 
     ``equations="kernel"`` uses the compiled right-hand side of `rhs.py`; ``"paper"`` the NumPy
     transcription of 004 eq (8)-(10) (`paper_004_rhs`). The state keeps the kernel's ball order
-    (`sol.order` maps it to the user's order)."""
+    (`sol.order` maps it to the user's order).
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    spin : SpeedProfile or MotorDrive
+        The spin (a prescribed profile for ``equations="paper"``).
+    t_end : float
+        End time [s].
+    initial : InitialState or None
+        The state at t = 0 (None: the default :class:`~autobalance.models.InitialState`).
+    v_sat : float
+        Saturation speed of the tanh law [rad/s].
+    method : str
+        solve_ivp method, e.g. "Radau", "LSODA", "RK45".
+    rtol : float
+        Relative tolerance [-].
+    atol : float
+        Absolute tolerance, applied to every state component in its own unit
+        [m], [rad], [m/s], [rad/s].
+    t_eval : array_like or None
+        Output times [s] (None: the solver's steps).
+    normal_force : str
+        "ball" or "drum" (kernel equations only; the paper's are "ball" without gravity).
+    equations : str
+        "kernel" (:func:`make_rhs`) or "paper" (:func:`paper_004_rhs`).
+
+    Returns
+    -------
+    scipy.integrate.OdeResult
+        ``sol.t`` [s], ``sol.y`` (2*nq, n_t) in the kernel's layout (u, v [m], alpha_1..N,
+        psi [rad], then their rates [m/s], [rad/s]), plus ``sol.order``.
+    """
     y0, order = initial_vector(system, spin, initial or InitialState())
     if equations == "paper":
         f = paper_004_rhs(system, spin, v_sat)
@@ -73,6 +127,22 @@ def paper_004_rhs(system: System, spin: SpeedProfile, v_sat: float = 1e-6):
 
     Independent of `rhs.py`: it is what a researcher would write from the paper, used as the
     scipy baseline of the benchmark and to check the kernel against the printed equations.
+
+    Parameters
+    ----------
+    system : System
+        Isotropic suspension k [N/m], c [N*s/m]; M_t [kg], U [kg*m]; balls m_i [kg] on R [m]
+        with damping D_i [N*m*s/rad] and friction mu_i [-].
+    spin : SpeedProfile
+        The prescribed speed profile.
+    v_sat : float
+        Saturation speed of the tanh law [rad/s] (004: 1e-6 rad/s).
+
+    Returns
+    -------
+    callable
+        f(t [s], y) -> dy/dt in the kernel's layout (u, v [m], alpha_1..N, psi [rad], then their
+        rates [m/s], [rad/s]; :mod:`autobalance.core.layout`).
     """
     b = system.balancer
     n = b.n_balls

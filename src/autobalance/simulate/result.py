@@ -22,7 +22,22 @@ class SimulationError(RuntimeError):
 
 def residual_unbalance_history(system, alpha, t):
     """Complex residual unbalance [kg*m] at the times ``t`` [s] of a run: the rotor's U(t)
-    (``Rotor.unbalance_table``) with :func:`autobalance.physics.unbalance.residual_unbalance`."""
+    (``Rotor.unbalance_table``) with :func:`autobalance.physics.unbalance.residual_unbalance`.
+
+    Parameters
+    ----------
+    system : System
+        The machine (its unbalance table [kg*m] over time [s], balls and ring eccentricity).
+    alpha : ndarray (n_t, N)
+        Ball angles from the unbalance [rad].
+    t : ndarray (n_t,)
+        Times [s].
+
+    Returns
+    -------
+    ndarray of complex (n_t,)
+        W(t) [kg*m] (000 eq 22 / 47).
+    """
     unb_t, unb_u = system.rotor.unbalance_table()
     U = np.interp(t, unb_t, unb_u) if unb_t.size > 1 else np.full(np.shape(t), unb_u[0])
     return residual_unbalance(system, alpha, U)
@@ -74,6 +89,7 @@ class Simulation:
     # -- derived scalars -------------------------------------------------------------------
     @property
     def n_balls(self) -> int:
+        """Number of balls N of the run's balancer."""
         return self.system.balancer.n_balls
 
     def settle(self, threshold: float | None = None):
@@ -82,7 +98,21 @@ class Simulation:
         The ball counts as moving while its drift averaged over one revolution at the nominal
         speed, |alpha(t) - alpha(t - T_rev)| / T_rev, exceeds ``threshold`` [rad/s] (default
         1e-3 x nominal speed); the average removes the once-per-revolution wobble that gravity
-        forces on the balls of a horizontal rotor (000 eq 50-55)."""
+        forces on the balls of a horizontal rotor (000 eq 50-55).
+
+        Parameters
+        ----------
+        threshold : float or None
+            Drift speed above which a ball counts as moving [rad/s] (None: 1e-3 x nominal
+            speed).
+
+        Returns
+        -------
+        times : list of float
+            Per ball, the last time it was moving [s] (the first sample's if never).
+        revolutions : list of float
+            Per ball, (alpha at that time - alpha(0)) / 2 pi [-].
+        """
         w = self.spin.nominal_speed
         thr = threshold if threshold is not None else 1e-3 * w
         t_rev = 2 * np.pi / w
@@ -99,7 +129,19 @@ class Simulation:
         return times, revs
 
     def at(self, time: float) -> dict:
-        """Balancing quality at the output sample closest to ``time`` [s]."""
+        """Balancing quality at the output sample closest to ``time`` [s].
+
+        Parameters
+        ----------
+        time : float
+            Time of the read-out [s].
+
+        Returns
+        -------
+        dict
+            time_s [s], grade_G_mm_s [mm/s], residual_unbalance_kg_m [kg*m],
+            ball_angles_deg [deg], amplitude_m [m], speed_rad_s [rad/s] of that sample.
+        """
         k = int(np.argmin(np.abs(self.t - time)))
         return {
             "time_s": float(self.t[k]),
@@ -141,7 +183,13 @@ class Simulation:
         return out
 
     def to_netcdf(self, path) -> None:
-        """Write :meth:`to_xarray` to a NetCDF-4 file with zlib-compressed variables."""
+        """Write :meth:`to_xarray` to a NetCDF-4 file with zlib-compressed variables.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file to write (overwritten).
+        """
         ds = self.to_xarray()
         enc = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
         ds.to_netcdf(path, engine="netcdf4", encoding=enc)

@@ -102,6 +102,33 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     profile's checkpoints; any order, the result keeps it) and the run statistics are kept. A failed run is a status in the
     result, never an exception; a batch that cannot fit the step budget or the run-time limit
     (:func:`autobalance.limits.check_run`) is refused before it starts (ResourceError).
+
+    Parameters
+    ----------
+    systems : list of System
+        One machine per run, all with the same number of balls.
+    spin : SpeedProfile or MotorDrive
+        The spin shared by all runs.
+    initials : list of InitialState or None
+        One initial state per run (None: the default state for every run).
+    options : SimOptions or None
+        Numerical options shared by all runs (None: the defaults).
+    out_times : array_like or None
+        Times at which the states are kept [s] (None: ``spin.checkpoints``).
+
+    Returns
+    -------
+    BatchResult
+        States (n_runs, n_times, 2*nq), ball angles [rad], residual unbalance [kg*m], grade G
+        [mm/s], maximal amplitude [m] and one status label per run.
+
+    Raises
+    ------
+    ValueError
+        No systems, a number of initial states other than of systems, or different ball
+        counts.
+    ResourceError
+        Before integrating: the step budget or the run-time limit cannot be met.
     """
     options = options or SimOptions()
     if not systems:

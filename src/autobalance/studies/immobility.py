@@ -20,7 +20,33 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
     rolling resistance and damping, at G_ini [mm/s]
     (closed form :func:`immobility`; no time integration). ``n_conf`` positions per ball [-];
     a grid beyond the memory or run-time limit is refused before computing (ResourceError
-    naming ``field``)."""
+    naming ``field``).
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    G_ini : float
+        Initial grade of the rotor [mm/s] at the profile's nominal speed (sets U).
+    mu_r : sequence of float
+        Factors on the machine's rolling-resistance coefficient [-] (stiction follows it).
+    c_r : sequence of float
+        Factors on the suspension damping [-].
+    speeds_hz : array_like or None
+        Spin speeds [Hz]; None = 20-200 Hz in 0.5 Hz steps (2 Hz when ``quick``).
+    n_conf : int
+        Equispaced positions per ball (36 when ``quick``).
+    quick : bool
+        Coarser speed and configuration grids.
+    field : str
+        Parameter name a refused grid's error names.
+
+    Returns
+    -------
+    xarray.Dataset
+        immobility [-] over (mu_r, c_r, speed [Hz]); attrs f_n_hz, nominal_hz, plateau_hz [Hz].
+    """
     import dataclasses
 
     import xarray as xr

@@ -17,7 +17,20 @@ __all__ = ["DESCENT_PCT", "compute_descent", "compute_plateau", "plateau_grid"]
 
 
 def plateau_grid(quick: bool):
-    """(plateau / Omega_n ratios [-], initial grades [mm/s]) of the map (004 Fig. 14-15)."""
+    """(plateau / Omega_n ratios [-], initial grades [mm/s]) of the map (004 Fig. 14-15).
+
+    Parameters
+    ----------
+    quick : bool
+        4 ratios x 3 grades instead of 0.96-1.12 every 0.01 x G0-G32 every 4 mm/s.
+
+    Returns
+    -------
+    ratios : ndarray
+        Plateau speed / Omega_n [-].
+    grades : ndarray
+        Initial grades G_ini [mm/s].
+    """
     if quick:
         return np.array([0.98, 1.02, 1.06, 1.10]), np.array([5.0, 15.0, 25.0])
     return np.round(np.arange(0.96, 1.1201, 0.01), 3), np.arange(0.0, 34.1, 4.0)
@@ -32,7 +45,43 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
                     g_range: float = 34.0, prefix: str = "study"):
     """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
     95th percentile of G_TSR (90 s); ideal plateau = argmin of its mean over G_ini <= ``g_range``
-    [mm/s] (004: G34). ``cases``: name -> (mu_r, c_r) factors (None: {"nominal": (1, 1)})."""
+    [mm/s] (004: G34). ``cases``: name -> (mu_r, c_r) factors (None: {"nominal": (1, 1)}).
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    cases : dict of str to (float, float) or None
+        Case name -> (mu_r, c_r), factors [-] on the rolling resistance and the damping.
+    ratios : array_like or None
+        Plateau speeds as multiples of Omega_n [-]; None = :func:`plateau_grid`.
+    G : array_like or None
+        Initial grades [mm/s]; None = :func:`plateau_grid`.
+    n : int
+        Start positions per ball.
+    quick : bool
+        The coarse :func:`plateau_grid`.
+    store_dir : str or Path or None
+        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
+        same description computes nothing); None = temporary stores.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default).
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    g_range : float
+        Largest G_ini of the mean that picks the ideal plateau [mm/s] (004: G34).
+    prefix : str
+        Prefix of the sweeps' names.
+
+    Returns
+    -------
+    xarray.Dataset
+        grade_G_p95 [mm/s] over (case, plateau_ratio [-], G_ini [mm/s]), its mean over G_ini
+        mean_p95 [mm/s]; attrs: ideal ratio per case [-], f_n_hz [Hz].
+    """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
 
@@ -76,7 +125,42 @@ def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float =
     (:func:`stick_threshold_grade`) at the same speeds.
 
     004 does not give its descent rate ("a gradual speed reduction"); ours is 82 Hz in 60 s
-    (1.4 Hz/s), a fifth of the TSR profile's 6.7 Hz/s."""
+    (1.4 Hz/s), a fifth of the TSR profile's 6.7 Hz/s.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    G_ini : float
+        Initial grade [mm/s] (sets the rotor's unbalance).
+    n : int
+        Start positions per ball.
+    ratio_end : float
+        End of the descent as a multiple of Omega_n [-].
+    down_time : float
+        Length of the descent [s].
+    history_dt : float
+        Spacing of the grade read-outs [s].
+    store_dir : str or Path or None
+        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
+        same description computes nothing); None = temporary stores.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default).
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    prefix : str
+        Prefix of the sweeps' names.
+
+    Returns
+    -------
+    xarray.Dataset
+        grade_G percentiles (:data:`DESCENT_PCT`) [mm/s] and G_stick [mm/s] against the speed
+        ratio [-], with the read-out time [s]; attrs: :func:`half_drop` and
+        :func:`rise_after_min` read-outs.
+    """
     import xarray as xr
 
     t0 = time.perf_counter()

@@ -25,7 +25,21 @@ __all__ = ["case_sets", "compute_machine", "compute_monte_carlo", "compute_singl
 
 def load(base, sets=()):
     """The machine of a study: ``base`` (a preset name or a TOML config path) with ``sets``
-    overrides ("path=value" as for ``--set``) applied."""
+    overrides ("path=value" as for ``--set``) applied.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    sets : iterable of str
+        "path=value" overrides, e.g. "profile.plateau=600 rad/s".
+
+    Returns
+    -------
+    autobalance.config.Config
+        The validated machine (system, spin, initial state, options).
+    """
     from ..config import load_config
 
     return load_config(base, list(sets))
@@ -33,7 +47,23 @@ def load(base, sets=()):
 
 def case_sets(base, mu_r: float, c_r: float) -> list:
     """Overrides scaling the base machine's rolling resistance by ``mu_r`` [-] and its suspension
-    damping by ``c_r`` [-] (004 sec. 4.5 varies mu and c around its Table 1 values)."""
+    damping by ``c_r`` [-] (004 sec. 4.5 varies mu and c around its Table 1 values).
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    mu_r : float
+        Factor on the rolling-resistance coefficient mu of ball 1 (applied to all balls) [-].
+    c_r : float
+        Factor on the suspension damping cx, cy [-].
+
+    Returns
+    -------
+    list of str
+        Three "path=value" overrides (balancer.rolling_resistance, suspension.cx, suspension.cy).
+    """
     s = load(base).system
     return [f"balancer.rolling_resistance={float(s.balancer.rolling_resistance[0]) * mu_r!r}",
             f"suspension.cx={s.suspension.cx * c_r!r}",
@@ -41,7 +71,19 @@ def case_sets(base, mu_r: float, c_r: float) -> list:
 
 
 def store_path(store_dir, name):
-    """``store_dir / name`` (a resumable sweep store) or None (a temporary store)."""
+    """``store_dir / name`` (a resumable sweep store) or None (a temporary store).
+
+    Parameters
+    ----------
+    store_dir : str or Path or None
+        Directory of the study's sweep stores; None = temporary stores.
+    name : str
+        Name of this sweep's store.
+
+    Returns
+    -------
+    Path or None
+    """
     return None if store_dir is None else Path(store_dir) / name
 
 
@@ -52,7 +94,39 @@ def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", w
     overrides over ``grid`` (path -> values) and return its Dataset.
 
     ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
-    a temporary one."""
+    a temporary one.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    name : str
+        Name of the sweep.
+    sets : iterable of str
+        "path=value" overrides applied to ``base`` for every run.
+    grid : dict of str to list
+        Config path -> values of the sweep grid, in the units of that path (e.g.
+        "rotor.unbalance" [kg*m], "profile.plateau" [rad/s]); empty = one cell.
+    n : int
+        Start positions per ball of the start grid (n(n+1)/2 runs per grid cell).
+    store : str or Path or None
+        The sweep store directory (resumed), or None for a temporary one.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default); the batch size assumes 2.
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    history_dt : float
+        Spacing of the stored grade history [s]; 0 = checkpoints only.
+
+    Returns
+    -------
+    xarray.Dataset
+        The sweep's assembled result (grade_G [mm/s] per sample and checkpoint, status,
+        start_angle [rad], and the history when ``history_dt`` > 0).
+    """
     from ..sweep import spec_from_dict, sweep
 
     n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
@@ -75,7 +149,24 @@ def start_family(G_start: float, system, nominal_speed: float, n: int = 24) -> n
     """Ball start angles (n, 2) [rad] with the grade G_start [mm/s] at rest: ball 1 at
     alpha_1 = 2 pi k / n, ball 2 on |U + m R (e^{i alpha_1} + e^{i alpha_2})| = U(G_start)
     (law of cosines; the branch with alpha_2 - arg c > 0). Rows without a solution or with
-    touching balls (closer than the contact angle) are dropped."""
+    touching balls (closer than the contact angle) are dropped.
+
+    Parameters
+    ----------
+    G_start : float
+        ISO 1940 grade of the start configuration [mm/s] (004 Fig. 4: G14).
+    system : autobalance.models.System
+        Two identical balls m [kg] on radius R [m], rotor unbalance U [kg*m], total mass M_t [kg].
+    nominal_speed : float
+        Speed Omega_nom of the grade [rad/s].
+    n : int
+        Ball-1 angles tried, 2 pi k / n.
+
+    Returns
+    -------
+    ndarray (K, 2)
+        (alpha_1, alpha_2) [rad], K <= n rows.
+    """
     U = system.rotor.unbalance
     Ug = float(grade_to_unbalance(G_start, system.total_mass, nominal_speed))
     mR = system.balancer.masses[0] * system.balancer.race_radius
@@ -102,7 +193,31 @@ def compute_single(base, save_dt: float = 0.01, G_start: float | None = 14.0, n_
     looking at the results; ``G_start=None``:
     the preset's 45/135 deg, no family). Rotor at rest at t = 0. attrs report how many of the
     family reproduce the paper's statements about its run (``limit``: the target grade [mm/s],
-    004: G16)."""
+    004: G16).
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    save_dt : float
+        Spacing of the stored time history of the shown run [s].
+    G_start : float or None
+        Initial grade of the family of starts [mm/s] (004: G14); None = the preset's start
+        angles, no family.
+    n_family : int
+        Number of ball-1 angles of the family (:func:`start_family`).
+    limit : float
+        Target grade of the paper's statements [mm/s] (004: G16).
+
+    Returns
+    -------
+    xarray.Dataset
+        Time histories of speed [rad/s], amplitude with and without balancer [m], ball angles
+        [rad], grade G [mm/s] and residual angle [rad]; the family's grades [mm/s] at the peak of
+        the run-up, the STD and the TSR read-outs; attrs with the grades [mm/s], read-out times
+        [s] and the family's match counts.
+    """
     import dataclasses
 
     import xarray as xr
@@ -170,7 +285,38 @@ def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None
 
     ``plateau_ratio``: run with the TSR plateau at this multiple of Omega_n = sqrt(k/M_t)
     instead of the preset's 100 Hz (a sensitivity study; None = the preset). ``limit``: the
-    target grade [mm/s] of the shares (004: G16). ``prefix``: the sweep's name prefix."""
+    target grade [mm/s] of the shares (004: G16). ``prefix``: the sweep's name prefix.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    n : int
+        Start positions per ball (004: 50).
+    plateau_ratio : float or None
+        TSR plateau speed as a multiple of Omega_n [-]; None = the preset's plateau.
+    store_dir : str or Path or None
+        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
+        same description computes nothing); None = temporary stores.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default).
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    limit : float
+        Target grade of the shares [mm/s] (004: G16).
+    prefix : str
+        Prefix of the sweeps' names.
+
+    Returns
+    -------
+    xarray.Dataset
+        G_STD and G_TSR [mm/s] per start, start angles [rad], status; attrs: 004 Table 2
+        statistics (:func:`~autobalance.studies.statistics.start_position_stats`), G_ini and
+        the balls' grade [mm/s], plateau [Hz] and its stick threshold [mm/s].
+    """
     import xarray as xr
 
     t0 = time.perf_counter()
@@ -204,7 +350,20 @@ def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None
 def compute_machine(base):
     """The machine's derived numbers (004 Table 1): resonance f_n = sqrt(k/M_t)/2pi [Hz] (Jeffcott), the rotor's
     grade G_ini and the balls' grade 2 m R / M_t Omega_nom [mm/s] (004 sec. 4), and the profile
-    (004 Fig. 3, our reading: docs/model.md sec. 5) sampled every 0.1 s."""
+    (004 Fig. 3, our reading: docs/model.md sec. 5) sampled every 0.1 s.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+
+    Returns
+    -------
+    xarray.Dataset
+        speed [rad/s] against time [s]; attrs f_n_hz [Hz], G_ini and G_balls [mm/s],
+        checkpoints_s [s] and the profile's text.
+    """
     import xarray as xr
 
     cfg = load(base)

@@ -16,6 +16,20 @@ def regions(g_std, g_tsr, g_ini):
 
     I.A G_STD < G_TSR <= G_INI; I.B G_TSR <= G_STD <= G_INI; II G_TSR < G_INI < G_STD;
     III G_INI < G_STD and G_INI < G_TSR; IV G_STD <= G_INI < G_TSR.
+
+    Parameters
+    ----------
+    g_std : array_like
+        Grades at the STD read-out [mm/s], one per run.
+    g_tsr : array_like
+        Grades at the TSR read-out [mm/s], same shape.
+    g_ini : float
+        Initial grade G_INI [mm/s].
+
+    Returns
+    -------
+    dict of str to float
+        Region name -> share of the runs [-].
     """
     s, t, i = np.asarray(g_std), np.asarray(g_tsr), float(g_ini)
     m = {"I.A": (s < t) & (t <= i), "I.B": (t <= s) & (s <= i), "II": (t < i) & (i < s),
@@ -25,7 +39,25 @@ def regions(g_std, g_tsr, g_ini):
 
 def mode(g, width=1.0, n_boot=200, seed=0):
     """Mode of a sample [mm/s] (centre of the fullest 1 mm/s bin, 004 Fig. 5 reads integer G) and
-    its bootstrap standard error [mm/s]."""
+    its bootstrap standard error [mm/s].
+
+    Parameters
+    ----------
+    g : array_like
+        Grades [mm/s]; non-finite values are dropped.
+    width : float
+        Bin width [mm/s]; bins start at 0.
+    n_boot : int
+        Bootstrap resamples.
+    seed : int
+        Seed of the bootstrap's random generator.
+
+    Returns
+    -------
+    mode, se : float
+        Centre of the fullest bin [mm/s] and the standard deviation of the bootstrap modes
+        [mm/s].
+    """
     g = np.asarray(g, float)
     g = g[np.isfinite(g)]
     edges = np.arange(0.0, max(g.max(), 1.0) + 2 * width, width)
@@ -81,7 +113,25 @@ def start_position_stats(s, t, g_ini, limit: float = 16.0) -> dict:
     """Mode (1 mm/s bins, bootstrap SE), median, shares at or below ``limit`` [mm/s] and G_ini
     and 004 Table 2 regions of the grades [mm/s] at a first (s, 004: STD) and a second (t, 004:
     TSR) read-out over start positions. The ``share_G16_*`` keys keep 004's name whatever the
-    limit."""
+    limit.
+
+    Parameters
+    ----------
+    s : ndarray
+        Grades at the first read-out [mm/s], one per start.
+    t : ndarray
+        Grades at the second read-out [mm/s], same shape.
+    g_ini : float
+        Initial grade [mm/s].
+    limit : float
+        Target grade [mm/s] (004: G16).
+
+    Returns
+    -------
+    dict of str to float
+        mode_*, mode_*_se, median_* [mm/s]; share_G16_*, success_* (share <= G_ini) and
+        region_* (:func:`regions`) [-].
+    """
     (ms, ses), (mt, set_) = mode(s), mode(t)
     return {"mode_STD": ms, "mode_STD_se": ses, "mode_TSR": mt, "mode_TSR_se": set_,
             "median_STD": float(np.median(s)), "median_TSR": float(np.median(t)),
@@ -93,7 +143,20 @@ def start_position_stats(s, t, g_ini, limit: float = 16.0) -> dict:
 def half_drop(ratio, g) -> float:
     """Speed ratio [-] at which g, followed from the start of the descent (highest speed), first
     falls halfway from its start value to its minimum over ratio >= 1 (linear interpolation
-    between samples); NaN if it never drops."""
+    between samples); NaN if it never drops.
+
+    Parameters
+    ----------
+    ratio : ndarray
+        Speed ratio Omega/Omega_n along the descent [-], decreasing.
+    g : ndarray
+        Grade (a percentile curve) at each ratio [mm/s].
+
+    Returns
+    -------
+    float
+        The ratio [-], or NaN.
+    """
     sup = ratio >= 1.0
     g0, gmin = g[0], g[sup].min()
     if not g0 > gmin:
@@ -109,7 +172,22 @@ def half_drop(ratio, g) -> float:
 def rise_after_min(ratio, g, rise: float = 1.0) -> dict:
     """Where g [mm/s], after its minimum over ratio >= 1, first exceeds that minimum by more than
     ``rise`` later in the descent: {"p95_min", "p95_min_ratio", "p95_rise_ratio" (NaN if never),
-    "p95_max_after"}."""
+    "p95_max_after"}.
+
+    Parameters
+    ----------
+    ratio : ndarray
+        Speed ratio Omega/Omega_n along the descent [-], decreasing.
+    g : ndarray
+        Grade (004: the 95th percentile) at each ratio [mm/s].
+    rise : float
+        Rise above the minimum that counts [mm/s].
+
+    Returns
+    -------
+    dict of str to float
+        p95_min and p95_max_after [mm/s], p95_min_ratio and p95_rise_ratio [-].
+    """
     sup = np.flatnonzero(ratio >= 1.0)
     j = int(sup[np.argmin(g[sup])])
     later = np.flatnonzero(g[j:] > g[j] + rise)
@@ -119,10 +197,31 @@ def rise_after_min(ratio, g, rise: float = 1.0) -> dict:
 
 
 def plateau_speed(spin) -> float:
-    """Lowest speed [rad/s] of a profile after its first read-out: the TSR plateau (Fig. 3)."""
+    """Lowest speed [rad/s] of a profile after its first read-out: the TSR plateau (Fig. 3).
+
+    Parameters
+    ----------
+    spin : SpeedProfile
+        A profile with knots after its first checkpoint.
+
+    Returns
+    -------
+    float
+        The plateau speed [rad/s].
+    """
     return min(w for t, w in zip(spin.times, spin.speeds) if t > spin.checkpoints[0])
 
 
 def profile_text(spin) -> str:
-    """The profile's knots as "t s: f Hz; ..." for reports."""
+    """The profile's knots as "t s: f Hz; ..." for reports.
+
+    Parameters
+    ----------
+    spin : SpeedProfile
+        The profile (knot times [s], speeds [rad/s]).
+
+    Returns
+    -------
+    str
+    """
     return "; ".join(f"{t:g} s: {w / (2 * np.pi):.1f} Hz" for t, w in zip(spin.times, spin.speeds))

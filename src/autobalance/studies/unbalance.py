@@ -16,7 +16,18 @@ __all__ = ["compute_profile", "compute_unbalance", "unbalance_grid"]
 
 
 def unbalance_grid(quick: bool):
-    """Initial grades [mm/s] of the sweep: [G0, G50] every 5 (quick) or 2 mm/s (004 sec. 4.3)."""
+    """Initial grades [mm/s] of the sweep: [G0, G50] every 5 (quick) or 2 mm/s (004 sec. 4.3).
+
+    Parameters
+    ----------
+    quick : bool
+        Steps of 5 mm/s instead of 2 mm/s.
+
+    Returns
+    -------
+    ndarray
+        G_ini [mm/s].
+    """
     return np.arange(0.0, 50.1, 5.0) if quick else np.arange(0.0, 50.1, 2.0)
 
 
@@ -27,7 +38,39 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
     5/50/95 % of G_STD (18 s) and G_TSR (90 s), valid ranges for G16 and efficiencies.
 
     ``cases``: name -> (mu_r, c_r), the factors on the machine's rolling resistance and damping
-    (None: {"nominal": (1, 1)}); ``G``: the initial grades [mm/s] (None: :func:`unbalance_grid`)."""
+    (None: {"nominal": (1, 1)}); ``G``: the initial grades [mm/s] (None: :func:`unbalance_grid`).
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    cases : dict of str to (float, float) or None
+        Case name -> (mu_r, c_r), factors [-] on the rolling resistance and the damping.
+    G : array_like or None
+        Initial grades [mm/s]; None = :func:`unbalance_grid`.
+    n : int
+        Start positions per ball (004: 50).
+    quick : bool
+        The coarse :func:`unbalance_grid`.
+    store_dir : str or Path or None
+        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
+        same description computes nothing); None = temporary stores.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default).
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    prefix : str
+        Prefix of the sweeps' names.
+
+    Returns
+    -------
+    xarray.Dataset
+        grade_G [mm/s] over (case, G_ini [mm/s], procedure STD/TSR, percentile 5/50/95),
+        failed_runs per case; attrs G_balls [mm/s], grid_step [mm/s].
+    """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
 
@@ -68,7 +111,43 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
     (0 -> 167 Hz in 54 s, hold to 90 s, read at 90 s) against G_ini (nominal mu, c).
 
     ``other_sets``: the overrides that make the other profile ("slow"), e.g. 004's
-    ``SLOW_SETS``; ``other_text``: its description for the attrs."""
+    ``SLOW_SETS``; ``other_text``: its description for the attrs.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    other_sets : iterable of str
+        "path=value" overrides that make the other profile.
+    G : array_like or None
+        Initial grades [mm/s]; None = :func:`unbalance_grid`.
+    n : int
+        Start positions per ball.
+    quick : bool
+        The coarse :func:`unbalance_grid`.
+    store_dir : str or Path or None
+        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
+        same description computes nothing); None = temporary stores.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default).
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    unbalance_ds : xarray.Dataset or None
+        A :func:`compute_unbalance` result to reuse for STD and TSR when it has the same grades,
+        ``n`` and a "nominal" case; otherwise it is computed.
+    prefix : str
+        Prefix of the sweeps' names.
+    other_text : str
+        Description of the other profile for the attrs (default: ``other_sets`` joined).
+
+    Returns
+    -------
+    xarray.Dataset
+        grade_G [mm/s] over (G_ini [mm/s], procedure STD/TSR/slow, percentile 5/50/95).
+    """
     import xarray as xr
 
     t0 = time.perf_counter()
