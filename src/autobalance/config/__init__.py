@@ -28,12 +28,14 @@ Modules: :mod:`.units` (pint registry, SI by kind), :mod:`.schema` (the keys of 
 :func:`from_models`, :func:`replace_values`) and :mod:`.describe`.
 """
 from .describe import describe
+from .edit import from_models, replace_values
 from .load import Config, _read, from_dict, load_config, source_comments
 from .overrides import apply_overrides
 from .presets import list_presets, preset_path
 from .schema import PROFILE_KINDS, SECTIONS, F
 from .units import KINDS, UNIT_LABEL, ConfigError, parse_quantity, ureg
 
-__all__ = ["Config", "ConfigError", "F", "KINDS", "PROFILE_KINDS", "SECTIONS", "UNIT_LABEL",
-           "_read", "apply_overrides", "describe", "from_dict", "list_presets", "load_config",
-           "parse_quantity", "preset_path", "source_comments", "ureg"]
+__all__ = ["KINDS", "PROFILE_KINDS", "SECTIONS", "UNIT_LABEL", "Config", "ConfigError", "F",
+           "_read", "apply_overrides", "describe", "from_dict", "from_models", "list_presets",
+           "load_config", "parse_quantity", "preset_path", "replace_values", "source_comments",
+           "ureg"]

@@ -14,7 +14,6 @@ from .schema import (_MODELS, _PROFILE_MODELS, PROFILE_KINDS, REQUIRED_SECTIONS,
                      TOP_LEVEL, _build, _section)
 from .units import ConfigError
 
-
 #: The constructor of each ``[profile]`` kind, called with the kind's keys in SI.
 PROFILE_BUILDERS = {"constant": SpeedProfile.constant, "ramp": SpeedProfile.ramp,
                     "table": SpeedProfile, "std": SpeedProfile.standard_runup,
@@ -44,7 +43,23 @@ def build_profile(kind: str, params: dict) -> SpeedProfile | MotorDrive:
 
 
 def profile_params(data: Any) -> tuple[str, dict]:
-    """Validate a ``[profile]`` table: its kind and its given keys in SI."""
+    """Validate a ``[profile]`` table: its kind and its given keys in SI.
+
+    Parameters
+    ----------
+    data : dict
+        The table: ``{"kind": "tsr", "nominal": "167 Hz", ...}`` (see :data:`PROFILE_KINDS`).
+
+    Returns
+    -------
+    tuple
+        (kind, {key: SI value}) of the keys given.
+
+    Raises
+    ------
+    ConfigError
+        Not a table, missing or unknown kind, unknown key or bad value (one line).
+    """
     if not isinstance(data, dict):
         raise ConfigError(f"profile = {data!r}: expected a table [profile]")
     kinds = ", ".join(PROFILE_KINDS)
@@ -118,6 +133,7 @@ def from_dict(raw: dict, source: str = "<dict>", sources: dict | None = None) ->
     Returns
     -------
     Config
+        The models; :attr:`Config.raw` is ``raw`` itself (not copied).
 
     Raises
     ------
@@ -236,6 +252,7 @@ def load_config(source: str | Path, overrides=()) -> Config:
     Returns
     -------
     Config
+        Its ``sources`` hold the file's comments and ``--set ...`` for each override.
 
     Raises
     ------

@@ -63,15 +63,16 @@ def _parse_value(text: str) -> Any:
     return text
 
 
-def parse_override(item: str) -> tuple[str, Any]:
+def parse_override(item: str | tuple) -> tuple[str, Any]:
     """Split one ``path=value`` override and read its value.
 
     Parameters
     ----------
-    item : str
+    item : str or tuple
         ``"suspension.kx=25 N/mm"``, ``'rotor.unbalance="0.05 kg*m"'``,
         ``"initial.ball_angles=[0, 3.1]"``. The value is read as a TOML scalar or array if it
-        is one, else as a bare string (a number with units).
+        is one, else as a bare string (a number with units). Or a ``(path, value)`` pair, the
+        value as it would be in a TOML file.
 
     Returns
     -------
@@ -83,6 +84,9 @@ def parse_override(item: str) -> tuple[str, Any]:
     ConfigError
         No ``=``, or an unknown path (one line starting with ``--set``).
     """
+    if isinstance(item, tuple) and len(item) == 2:   # (path, value) given in Python
+        split_path(str(item[0]), "--set ")
+        return str(item[0]), item[1]
     if "=" not in item:
         raise ConfigError(f"--set {item!r}: expected path=value, e.g. suspension.kx='20 N/mm'")
     path, text = (s.strip() for s in item.split("=", 1))
@@ -97,9 +101,10 @@ def apply_overrides(raw: dict, overrides=()) -> dict:
     ----------
     raw : dict
         Parsed TOML (not modified).
-    overrides : iterable of str
+    overrides : iterable of str or (path, value)
         ``"suspension.kx=25 N/mm"``, ``'rotor.unbalance="0.05 kg*m"'``,
-        ``"initial.ball_angles=[0, 3.1]"``, ``"profile.kind=tsr"`` (see :func:`parse_override`).
+        ``"initial.ball_angles=[0, 3.1]"``, ``"profile.kind=tsr"``, ``("options.rtol", 1e-7)``
+        (see :func:`parse_override`).
 
     Returns
     -------

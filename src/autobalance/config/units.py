@@ -7,6 +7,7 @@ in ``Hz`` are cycles per second and become ``2*pi*f`` [rad/s]; ``rpm`` becomes `
 """
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -64,15 +65,21 @@ def _expect(kind: str) -> str:
 
 def _si(value: Any, kind: str) -> float:
     """One value of a physical kind -> SI float; raises :class:`_Bad`."""
-    unit = KINDS[kind][0]
     if isinstance(value, bool):
         raise _Bad(_expect(kind))
     if isinstance(value, (int, float)):
         return float(value)
     if not isinstance(value, str) or not value.strip():
         raise _Bad(_expect(kind))
+    return _si_text(value.strip(), kind)
+
+
+@functools.lru_cache(maxsize=4096)
+def _si_text(text: str, kind: str) -> float:
+    """A string with units -> SI float (pint parses slowly: cached; errors are not)."""
+    unit = KINDS[kind][0]
     try:
-        q = ureg.Quantity(value.strip())
+        q = ureg.Quantity(text)
     except Exception:  # pint raises several types (UndefinedUnitError, AssertionError, ...)
         raise _Bad(f"cannot parse; {_expect(kind)}") from None
     try:
