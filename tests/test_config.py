@@ -8,8 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from autobalance.config import (PROFILE_KINDS, SECTIONS, Config, ConfigError, apply_overrides,
-                                describe, from_dict, list_presets, load_config, parse_quantity,
-                                preset_path, source_comments)
+                                describe, from_dict, from_models, list_presets, load_config,
+                                parse_quantity, preset_path, replace_values, source_comments)
 from autobalance.models import MotorDrive, SpeedProfile
 
 TWO_PI = 2 * math.pi
@@ -316,3 +316,116 @@ def test_unknown_preset_and_unreadable_file(tmp_path):
 def test_source_comments_ignores_hash_in_strings():
     text = '[a]\nx = "1 # not a comment" # the source\ny = 2\n'
     assert source_comments(text) == {"a.x": "the source"}
+
+
+# -- the schema follows the models -------------------------------------------------------------
+def test_sections_are_the_model_fields():
+    import dataclasses
+
+    from autobalance.config.schema import SECTION_MODELS
+
+    def no_default(f):
+        return f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+
+    for section, cls in [*SECTION_MODELS.items(), ("motor", MotorDrive), ("table", SpeedProfile)]:
+        specs = SECTIONS.get(section) or PROFILE_KINDS[section]
+        fields = [f for f in dataclasses.fields(cls) if f.name != "name"]
+        assert list(specs) == [f.name for f in fields], section
+        assert [s.required for s in specs.values()] == [no_default(f) for f in fields], section
+
+
+# -- Configs changed and built in Python -------------------------------------------------------
+def _models(cfg):
+    return repr((cfg.system, cfg.spin, cfg.initial, cfg.options, cfg.profile_kind))
+
+
+@pytest.mark.parametrize("base, values", [
+    ("vub_jeffcott_004", {"balancer.rolling_resistance": 0.004}),
+    ("vub_jeffcott_004", {"rotor.unbalance": "0.2 g*m", "options.rtol": 1e-7}),
+    ("vub_jeffcott_004", {"profile.plateau": "96 Hz"}),
+    ("vub_jeffcott_004", {"balancer.n_balls": 3, "initial.ball_angles": [0, 2, 4]}),
+    ("vub_jeffcott_004", {"profile.kind": "std"}),
+    ("vub_jeffcott_004", {"balancer.ball_mass": ["7 g", "8 g"], "name": "x"}),
+    ("washer_000", {"profile.kind": "motor", "profile.law": "linear",
+                    "profile.torque": "25 N*m", "profile.final_speed": "1000 rpm"}),
+    ("washer_000", {"rotor.unbalance_schedule": [["0 s", "0.02 kg*m"], ["1 s", 0.03]],
+                    "initial.steady_state": False, "suspension.base_frequency": "10 Hz"}),
+])
+def test_replace_values_same_models_as_set(base, values):
+    import json
+
+    got = replace_values(load_config(base), values)
+    want = load_config(base, [f"{k}={json.dumps(v)}" for k, v in values.items()])
+    assert _models(got) == _models(want)
+    assert describe(got)["profile"] == describe(want)["profile"]
+    assert all(got.sources[k].startswith("set ") for k in values)
+
+
+@pytest.mark.parametrize("values", [
+    {"rotor.mass": -1}, {"suspension.kx": "5 kg"}, {"balancer.n_balls": 3},
+    {"profile.speed": 1}, {"rotor.foo": 1}, {"nothing": 1}, {"balancer.n_balls": "two"},
+    {"balancer.rolling_resistance": 0.5, "balancer.stiction": 0.1},
+    {"initial.ball_angles": ["30 deg"]}, {"options.friction_law": "magic"},
+    {"rotor.unbalance_schedule": [[0, 1], [1]]}, {"profile.kind": "warp"},
+])
+def test_replace_values_errors_as_set(values):
+    """The same one line as the --set of the same values (minus the --set of a bad path)."""
+    import json
+
+    with pytest.raises(ConfigError) as want:
+        load_config("vub_jeffcott_004", [f"{k}={json.dumps(v)}" for k, v in values.items()])
+    with pytest.raises(ConfigError) as got:
+        replace_values(load_config("vub_jeffcott_004"), values)
+    assert str(got.value) == str(want.value).removeprefix("--set ")
+
+
+def test_replace_values_defaults_that_follow_other_keys():
+    cfg = load_config("vub_jeffcott_004")
+    # stiction left out of the preset: it follows rolling_resistance
+    assert replace_values(cfg, {"balancer.rolling_resistance": 0.01}).system.balancer.stiction \
+        == (0.01, 0.01)
+    # given: it stays
+    given = replace_values(cfg, {"balancer.stiction": 0.02})
+    assert replace_values(given, {"balancer.rolling_resistance": 0.01}).system.balancer.stiction \
+        == (0.02, 0.02)
+    # per-ball values given as one number follow n_balls; None puts a key back to its default
+    three = replace_values(cfg, {"balancer.n_balls": 3, "initial.ball_angles": None})
+    assert three.system.balancer.ball_mass == (0.0076,) * 3
+    assert three.initial.ball_angles is None and "ball_angles" not in three.raw["initial"]
+    with pytest.raises(ConfigError, match=r"^rotor\.mass: missing; required \[kg\]$"):
+        replace_values(cfg, {"rotor.mass": None})
+    assert cfg.system.balancer.rolling_resistance == (0.002, 0.002)   # not changed
+
+
+def test_replace_values_on_models_replaced_in_python():
+    """A Config whose models were replaced in Python: its raw no longer describes them, so the
+    keys are read off the models."""
+    import dataclasses
+
+    cfg = load_config("vub_jeffcott_004")
+    b = dataclasses.replace(cfg.system.balancer, stiction=0.003)
+    cfg = dataclasses.replace(cfg, system=dataclasses.replace(cfg.system, balancer=b))
+    assert replace_values(cfg, {"balancer.rolling_resistance": 0.001}).system.balancer.stiction \
+        == (0.003, 0.003)
+    spin = SpeedProfile.constant(100.0, 2.0)
+    cfg = dataclasses.replace(cfg, spin=spin)
+    new = replace_values(cfg, {"profile.checkpoints": [1.0]})
+    assert new.spin == dataclasses.replace(spin, checkpoints=(1.0,)) and new.spin.name == "constant"
+    with pytest.raises(ConfigError, match=r"^profile\.plateau: unknown key for kind 'table'"):
+        replace_values(cfg, {"profile.plateau": "90 Hz"})
+
+
+def test_from_models_round_trip():
+    import dataclasses
+
+    cfg = load_config("vub_jeffcott_004")
+    for spin in (cfg.spin, dict(cfg.raw["profile"])):
+        m = from_models(cfg.system, spin, cfg.initial, cfg.options)
+        back = from_dict(m.raw, source="x")
+        assert (back.system, back.initial, back.options) == (m.system, m.initial, m.options)
+        assert dataclasses.replace(back.spin, name=m.spin.name) == m.spin == cfg.spin
+        assert describe(m)["profile"]["nominal_speed_rad_s"] == cfg.spin.nominal_speed
+    assert m.profile_kind == "tsr" and "stiction" not in m.raw["balancer"]
+    assert m.raw["balancer"]["ball_mass"] == 0.0076          # equal per-ball values: one number
+    with pytest.raises(ConfigError, match=r"^initial\.ball_angles = \[0\.0\]: needs 2 values"):
+        from_models(cfg.system, cfg.spin, dataclasses.replace(cfg.initial, ball_angles=(0.0,)))

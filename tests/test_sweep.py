@@ -140,6 +140,84 @@ def test_serial_equals_local_processes(tiny_ds, tmp_path):
     assert_bit_identical(ds1, ds2)
 
 
+
+# -- grid cells on the models; bases built in Python ------------------------------------------
+#: identity(make_plan(TINY)) computed on main before the grid cells were built on the models
+#: (commit f7b376a, where each cell was re-parsed from TOML override strings)
+TINY_IDENTITY = "fee275f364aaa79f"
+
+
+def test_tiny_identity_unchanged_by_building_cells_on_the_models():
+    from autobalance.sweep.store import identity
+
+    assert identity(make_plan(spec_of(TINY))) == TINY_IDENTITY
+
+
+def test_python_base_gives_the_preset_base_results(tiny_ds, tmp_path):
+    """The same sweep from a Config and from a System (+ its [profile] table) built in Python
+    gives bit-identical outcome arrays as from the preset name."""
+    import tomllib
+
+    from autobalance.config import load_config
+
+    ref, _ = tiny_ds
+    d = tomllib.loads(TINY)
+    del d["sweep"]["base"]
+    cfg = load_config("vub_jeffcott_004")
+    ds_cfg = sweep(d, tmp_path / "cfg", base=cfg, executor="serial", progress=False)
+    assert_bit_identical(ds_cfg, ref)
+    assert ds_cfg.attrs["base"] == "<python: vub_jeffcott_004>"
+    ds_sys = sweep(d, tmp_path / "sys", base=cfg.system, spin=dict(cfg.raw["profile"]),
+                   initial=cfg.initial, options=cfg.options, executor="serial", progress=False)
+    assert_bit_identical(ds_sys, ref)
+
+
+def test_python_built_system_cells_are_replaced_models():
+    """A System and SpeedProfile built in Python: every cell is the base with its grid values
+    (validated and converted like --set); stiction follows rolling_resistance by default."""
+    import autobalance as ab
+    from autobalance.config import from_models
+
+    system = ab.System(ab.Rotor(mass=16.53, unbalance=3e-4),
+                       ab.Suspension.isotropic(5.8e6, 1510.0),
+                       ab.BallBalancer(2, ball_mass=7.6e-3, race_radius=0.035,
+                                       ball_radius=6.14e-3, element="point", damping=2.7e-3,
+                                       rolling_resistance=0.002), name="mine")
+    spin = ab.SpeedProfile.constant(2 * np.pi * 100, 2.0)
+    d = {"sweep": {"set": ["options.rtol=1e-7"]},
+         "grid": {"balancer.rolling_resistance": [0.001, 0.004], "rotor.unbalance": ["0.1 g*m"]}}
+    plan = make_plan(spec_from_dict(d, base=from_models(system, spin)))
+    mu = [(0.001, 0.001), (0.004, 0.004)]
+    assert [c.system.balancer.rolling_resistance for c in plan.cells] == mu
+    assert [c.system.balancer.stiction for c in plan.cells] == mu
+    assert [c.system.rotor.unbalance for c in plan.cells] == pytest.approx([1e-4, 1e-4])
+    assert {c.options.rtol for c in plan.cells} == {1e-7}
+    assert all(c.spin == spin and c.system.name == "mine" for c in plan.cells)
+    assert plan.spec.base == "<python: mine>"
+    # the same refusals, naming the grid point, the field, the value and what is allowed
+    bad = {"sweep": {}, "grid": {"rotor.mass": ["1 kg", "-1 kg"]}}
+    with pytest.raises(SweepError, match=r"^grid point rotor\.mass='-1 kg': rotor\.mass = -1\.0: "
+                                         r"must be > 0$"):
+        make_plan(spec_from_dict(bad, base=from_models(system, spin)))
+    # a SpeedProfile built in Python is a speed table: its constructor arguments are unknown
+    bad = {"grid": {"profile.plateau": ["90 Hz"]}}
+    with pytest.raises(SweepError, match=r"profile\.plateau: unknown key for kind 'table'"):
+        make_plan(spec_from_dict(bad, base=from_models(system, spin)))
+
+
+def test_python_base_refusals(tmp_path):
+    from autobalance.config import load_config
+
+    cfg = load_config("vub_jeffcott_004")
+    with pytest.raises(SweepError, match=r"^sweep\.base = 'washer_000': given twice"):
+        spec_from_dict({"sweep": {"base": "washer_000"}}, base=cfg)
+    with pytest.raises(SweepError, match=r"^base: the description has its base already"):
+        sweep(spec_of(TINY), tmp_path / "s", base=cfg, executor="serial")
+    with pytest.raises(SweepError, match=r"^spin: missing"):
+        sweep({}, tmp_path / "s", base=cfg.system, executor="serial")
+    assert not (tmp_path / "s").exists()
+
+
 RANDOM = f"""
 [sweep]
 name = "random"

@@ -14,9 +14,9 @@ import threading
 import time
 from pathlib import Path
 
-from ..models import SimOptions
+from ..models import SimOptions, System
 from .plan import Plan, make_plan, run_task, task_payload
-from .spec import SweepError, SweepSpec, load_spec
+from .spec import SweepError, SweepSpec, as_spec, load_spec
 from .store import (StoreLock, assemble, check_identity, check_store_path, covered_runs,
                     init_store, scan_tasks, write_result, write_task)
 
@@ -224,18 +224,32 @@ def _estimate_line(plan: Plan, n_todo: int, workers: int) -> str:
             f"{fmt_seconds(sec / max(workers, 1))} on {workers} worker(s) (estimate)")
 
 
-def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | None = None,
+def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *, base=None, spin=None,
+          initial=None, executor: str | None = None,
           workers: int | None = None, scheduler: str | None = None, resume: bool = False,
           progress: bool = True, options: SimOptions | None = None, assemble_result: bool = True):
     """Run a sweep into a durable store and return the assembled xarray.Dataset.
 
     Parameters
     ----------
-    spec : SweepSpec or path
-        The sweep description (or a TOML file).
+    spec : SweepSpec, dict or path
+        The sweep description: validated, parsed (``{"sweep": ..., "grid": ...,
+        "monte_carlo": ...}``) or a TOML file.
     store : path
         Store directory; refused if it holds another sweep (description, base config contents
         or package version), is in use by another process, or exists without ``resume``.
+    base : Config or System, optional
+        A base built in Python, for a description (dict or file) without ``sweep.base``:
+        a :class:`autobalance.config.Config` (e.g. ``from_models(...)``, or a loaded config
+        changed with ``replace_values``), or a :class:`autobalance.System` with ``spin``
+        (and ``initial``, ``options``). ``sweep.set`` and every grid value are set on it
+        as on a preset; the same models give the same results and the same store identity
+        whatever they were built from.
+    spin : SpeedProfile, MotorDrive or dict, optional
+        The spin of a System base; a dict is a ``[profile]`` table (``{"kind": "tsr",
+        "nominal": "167 Hz", ...}``), whose keys can then be grid axes.
+    initial : InitialState, optional
+        The initial state of a System base.
     executor : str
         "serial", "local" (processes on this machine, the default) or "dask" (the default when
         ``scheduler`` or DASK_SCHEDULER_ADDRESS is given).
@@ -247,7 +261,7 @@ def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | No
         Continue an interrupted sweep: finished runs are kept, the others are run (whatever
         batch size made them); unreadable task files are moved aside and rerun.
     options : SimOptions
-        Override the numerical options of the base config.
+        Override the numerical options of the base config (with a System base: its options).
 
     Raises
     ------
@@ -264,8 +278,7 @@ def sweep(spec: SweepSpec | str | Path, store: str | Path, *, executor: str | No
         # a spawned worker importing a script that calls sweep() without a __main__ guard:
         # end this child quietly, the parent reports it in one line
         raise SystemExit(3)
-    if not isinstance(spec, SweepSpec):
-        spec = load_spec(spec)
+    spec = as_spec(spec, base, spin, initial, options if isinstance(base, System) else None)
     scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
     executor = executor or ("dask" if scheduler else "local")
     if executor not in EXECUTORS:

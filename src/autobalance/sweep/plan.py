@@ -9,7 +9,6 @@ run's result does not depend on the task it ran in.
 """
 from __future__ import annotations
 
-import copy
 import itertools
 import math
 import os
@@ -17,10 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..config import ConfigError, _read, apply_overrides, from_dict, replace_values
+from ..config.overrides import parse_override
 from ..core.layout import RunStatus
-from ..config import ConfigError, _read, apply_overrides, from_dict
 from ..models import InitialState, SimOptions
-from .spec import SweepError, SweepSpec, _toml_literal
+from .spec import SweepError, SweepSpec
 
 
 @dataclass
@@ -187,43 +187,81 @@ def _culprit(spec: SweepSpec, message: str, where: str) -> str:
     return f"grid point {where}" if where else f"sweep.base {spec.base!r}"
 
 
-def make_plan(spec: SweepSpec) -> Plan:
-    """Build the configs of every grid cell (validated like --set) and the samples."""
+def _refuse_mc_angles(spec: SweepSpec) -> None:
+    """A Monte-Carlo kind sets every run's start angles: angles given beside it are refused."""
+    if spec.mc_kind == "none":
+        return
+    given = [a.path for a in spec.grid] + [o.split("=", 1)[0].strip() for o in spec.overrides]
+    if "initial.ball_angles" in given:
+        where = "grid" if any(a.path == "initial.ball_angles" for a in spec.grid) else "sweep.set"
+        raise SweepError(f"{where}: initial.ball_angles is set by monte_carlo.kind = "
+                         f"{spec.mc_kind!r} (each sample's start angles); remove it, or use "
+                         "kind = 'none' to run the given angles")
+
+
+def _base_builder(spec: SweepSpec):
+    """A function (path, value) pairs -> Config: the base (preset, config file or a Config
+    built in Python) with sweep.set and the pairs. Without a Monte-Carlo dimension the base's
+    start angles stay; with one they are dropped (they may be for another ball count)."""
+    if spec.base_config is None:
+        try:
+            raw, label, _ = _read(spec.base)
+        except ConfigError as e:
+            raise SweepError(f"sweep.base: {e}") from None
+        try:
+            base_raw = apply_overrides(raw, list(spec.overrides))
+        except ConfigError as e:
+            raise SweepError(f"sweep.set: {e}") from None
+        _refuse_mc_angles(spec)
+        if spec.mc_kind != "none" and isinstance(base_raw.get("initial"), dict):
+            base_raw["initial"].pop("ball_angles", None)
+        return lambda pairs: from_dict(apply_overrides(base_raw, pairs), source=label)
     try:
-        raw, label, _ = _read(spec.base)
-    except SweepError:
-        raise
-    except ConfigError as e:
-        raise SweepError(f"sweep.base: {e}") from None
-    try:
-        base_raw = apply_overrides(raw, list(spec.overrides))
-    except SweepError:
-        raise
+        sets = [parse_override(o) for o in spec.overrides]
     except ConfigError as e:
         raise SweepError(f"sweep.set: {e}") from None
+    _refuse_mc_angles(spec)
+    base = spec.base_config
     if spec.mc_kind != "none":
-        given = [a.path for a in spec.grid] + [o.split("=", 1)[0].strip() for o in spec.overrides]
-        if "initial.ball_angles" in given:
-            where = "grid" if any(a.path == "initial.ball_angles" for a in spec.grid) else "sweep.set"
-            raise SweepError(f"{where}: initial.ball_angles is set by monte_carlo.kind = "
-                             f"{spec.mc_kind!r} (each sample's start angles); remove it, or use "
-                             "kind = 'none' to run the given angles")
-    if spec.mc_kind != "none" and isinstance(base_raw.get("initial"), dict):
-        # the Monte-Carlo dimension sets the start angles: the base's are not used (and may
-        # be for another ball count, e.g. a preset's 2 angles with --set balancer.n_balls=8)
-        base_raw["initial"].pop("ball_angles", None)
+        base = replace_values(base, {"initial.ball_angles": None})
+    return lambda pairs: replace_values(base, sets + pairs)
+
+
+def make_plan(spec: SweepSpec) -> Plan:
+    """Build the configs of every grid cell (validated like --set) and the samples.
+
+    The base with sweep.set and the first cell's grid values is built once (from the preset or
+    config file, or from the Config built in Python); every other cell is that config with its
+    grid values set on the models (:func:`autobalance.config.replace_values`). A base that is
+    valid only with the grid values (e.g. ``sweep.set`` gives a stiction that the grid's
+    rolling resistances stay below) is therefore accepted, as each cell is.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The description (``spec.base_config`` for a base built in Python).
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    SweepError
+        A bad base, ``sweep.set`` or grid point, or a sweep over the limits (one line).
+    """
+    build = _base_builder(spec)
     n_cells = math.prod(len(a.values) for a in spec.grid)
     from ..limits import check_memory
     check_memory("grid", f"{n_cells} cells", _CELL_BYTES * n_cells, "sweep's grid")
     cells = []
     for combo in itertools.product(*[range(len(a.values)) for a in spec.grid]):
-        sets = [f"{a.path}={_toml_literal(a.values[i])}" for a, i in zip(spec.grid, combo)]
+        pairs = [(a.path, a.values[i]) for a, i in zip(spec.grid, combo)]
         where = ", ".join(f"{a.path}={a.values[i]!r}" for a, i in zip(spec.grid, combo))
         try:
-            cfg = from_dict(apply_overrides(copy.deepcopy(base_raw), sets), source=label)
+            cells.append(replace_values(cells[0], pairs) if cells else build(pairs))
         except Exception as e:   # ConfigError / ParameterError / ResourceError
             raise SweepError(f"{_culprit(spec, str(e), where)}: {e}") from None
-        cells.append(cfg)
     nb = {c.system.balancer.n_balls for c in cells}
     if len(nb) != 1:
         raise SweepError(f"grid: balancer.n_balls must be the same in every cell (got {sorted(nb)})")

@@ -22,6 +22,10 @@ TOML form (every value with units where it has them)::
 
 The same description is a :class:`SweepSpec` in Python. Its canonical JSON (``spec.canonical()``)
 identifies a sweep: a durable store made from another description is refused.
+
+In Python the base may instead be a Config or System built there: ``spec_from_dict(d,
+base=config)`` or ``autobalance.sweep(d, store, base=system, spin=profile)`` (:func:`as_spec`),
+with ``d`` naming no ``sweep.base``.
 """
 from __future__ import annotations
 
@@ -35,7 +39,9 @@ from typing import Any
 
 import numpy as np
 
-from ..config import PROFILE_KINDS, SECTIONS, ConfigError, parse_quantity
+from ..config import (PROFILE_KINDS, SECTIONS, Config, ConfigError, from_models,
+                      parse_quantity)
+from ..models import System
 
 MC_KINDS = ("start_grid", "random", "none")
 _TOP = ("sweep", "grid", "monte_carlo", "outputs")
@@ -46,19 +52,6 @@ _OUT_KEYS = ("history_dt",)
 
 class SweepError(ConfigError):
     """A bad sweep description (one-line message naming the field)."""
-
-
-def _toml_literal(v: Any) -> str:
-    """A value as the right-hand side of a ``path=value`` override."""
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, str):
-        return json.dumps(v)
-    if isinstance(v, list):
-        return "[" + ", ".join(_toml_literal(x) for x in v) + "]"
-    raise SweepError(f"value {v!r}: expected a number, a string with units or a list")
 
 
 def _quantity(value: Any, kind: str, where: str) -> float:
@@ -103,7 +96,12 @@ class GridAxis:
 
 @dataclass(frozen=True)
 class SweepSpec:
-    """A sweep: ``base`` config with ``overrides``, a grid, a Monte-Carlo dimension, outputs."""
+    """A sweep: ``base`` config with ``overrides``, a grid, a Monte-Carlo dimension, outputs.
+
+    ``base`` names a preset or a config file; for a base built in Python (``base_config``, see
+    :func:`spec_from_dict`) it is a label, ``"<python: NAME>"``. The store's identity digests
+    every cell's resolved models, so the label is not what tells two bases apart.
+    """
 
     name: str
     base: str
@@ -117,6 +115,7 @@ class SweepSpec:
     history_dt: float = 0.0          # [s], 0 = no histories
     description: str = ""
     extra: dict = field(default_factory=dict)
+    base_config: Config | None = None   # a base built in Python (then ``base`` is its label)
 
     def canonical(self) -> str:
         """Deterministic JSON of everything that determines the results."""
@@ -169,19 +168,50 @@ def _axis(path: str, spec: Any) -> GridAxis:
     return GridAxis(path, tuple(spec), tuple(si), kind)
 
 
-def spec_from_dict(d: dict, label: str = "<dict>") -> SweepSpec:
-    """Validate a parsed sweep TOML; one-line SweepError naming the field on bad input."""
+def spec_from_dict(d: dict, label: str = "<dict>", *, base: Config | None = None) -> SweepSpec:
+    """Validate a parsed sweep description (the TOML form of the module docstring).
+
+    Parameters
+    ----------
+    d : dict
+        ``{"sweep": {...}, "grid": {...}, "monte_carlo": {...}, "outputs": {...}}``.
+    label : str
+        The file it came from; its stem is the default ``sweep.name``.
+    base : Config, optional
+        A base built in Python (:func:`autobalance.config.from_models`, or a loaded config
+        changed with :func:`autobalance.config.replace_values`). Then ``[sweep]`` is optional
+        and must not name a ``base``; ``sweep.set`` applies to this base as to a preset.
+
+    Returns
+    -------
+    SweepSpec
+        Its ``base`` is ``sweep.base``, or ``"<python: NAME>"`` with ``base_config``.
+
+    Raises
+    ------
+    SweepError
+        One line naming the bad field.
+    """
     for k in d:
         if k not in _TOP:
             raise SweepError(f"{k}: unknown section; allowed: {', '.join(_TOP)}")
-    sw = d.get("sweep")
+    sw = d.get("sweep", {} if base is not None else None)
     if not isinstance(sw, dict):
         raise SweepError("sweep: missing; required table [sweep] with base = PRESET|CONFIG")
     for k in sw:
         if k not in _SWEEP_KEYS:
             raise SweepError(f"sweep.{k}: unknown key; allowed: {', '.join(_SWEEP_KEYS)}")
-    if "base" not in sw or not isinstance(sw["base"], str):
+    if base is not None:
+        if "base" in sw:
+            raise SweepError(f"sweep.base = {sw['base']!r}: given twice, in the description "
+                             "and as a Config built in Python (base=); give one of them")
+        if not isinstance(base, Config):
+            raise SweepError(f"base = {base!r}: expected an autobalance.config.Config")
+        label_base = f"<python: {base.name}>" if base.name else "<python>"
+    elif "base" not in sw or not isinstance(sw["base"], str):
         raise SweepError("sweep.base: missing; required, a preset name or a config .toml path")
+    else:
+        label_base = sw["base"]
     sets = sw.get("set", [])
     if not isinstance(sets, list) or not all(isinstance(s, str) for s in sets):
         raise SweepError(f"sweep.set = {sets!r}: expected a list of 'path=value' strings")
@@ -221,14 +251,33 @@ def spec_from_dict(d: dict, label: str = "<dict>") -> SweepSpec:
     hdt = _quantity(out.get("history_dt", 0.0), "time", "outputs.history_dt")
     if hdt < 0 or not math.isfinite(hdt):
         raise SweepError(f"outputs.history_dt = {out.get('history_dt')!r}: must be >= 0")
-    return SweepSpec(name=str(sw.get("name", Path(label).stem)), base=sw["base"],
+    return SweepSpec(name=str(sw.get("name", Path(label).stem)), base=label_base,
                      overrides=tuple(sets), grid=grid, mc_kind=kind, mc_n=n,
                      mc_samples=samples if kind == "random" else 1, seed=seed, batch_size=bs,
-                     history_dt=hdt, description=str(sw.get("description", "")))
+                     history_dt=hdt, description=str(sw.get("description", "")),
+                     base_config=base)
 
 
-def load_spec(path: str | Path) -> SweepSpec:
-    """Read and validate a sweep TOML file. A relative ``base`` path is taken relative to it."""
+def load_spec(path: str | Path, *, base: Config | None = None) -> SweepSpec:
+    """Read and validate a sweep TOML file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The sweep description. A relative ``sweep.base`` path is taken relative to it.
+    base : Config, optional
+        A base built in Python instead of ``sweep.base`` (see :func:`spec_from_dict`).
+
+    Returns
+    -------
+    SweepSpec
+        Named after the file unless ``sweep.name`` is given.
+
+    Raises
+    ------
+    SweepError
+        Unreadable file, invalid TOML or a bad field (one line).
+    """
     p = Path(path)
     try:
         d = tomllib.loads(p.read_text(encoding="utf-8"))
@@ -236,11 +285,61 @@ def load_spec(path: str | Path) -> SweepSpec:
         raise SweepError(f"cannot read sweep file {str(path)!r}: {e.strerror or e}") from None
     except tomllib.TOMLDecodeError as e:
         raise SweepError(f"{path}: invalid TOML: {e}") from None
-    base = d.get("sweep", {}).get("base") if isinstance(d.get("sweep"), dict) else None
-    if isinstance(base, str) and base.endswith(".toml") and not Path(base).is_absolute():
-        d["sweep"]["base"] = str((p.parent / base).resolve())
-    return spec_from_dict(d, str(p))
+    base_path = d.get("sweep", {}).get("base") if isinstance(d.get("sweep"), dict) else None
+    if isinstance(base_path, str) and base_path.endswith(".toml") \
+            and not Path(base_path).is_absolute():
+        d["sweep"]["base"] = str((p.parent / base_path).resolve())
+    return spec_from_dict(d, str(p), base=base)
 
 
-__all__ = ["GridAxis", "MC_KINDS", "SweepError", "SweepSpec", "field_kind", "load_spec",
-           "spec_from_dict", "_toml_literal"]
+def as_spec(spec: SweepSpec | dict | str | Path, base: Config | System | None = None,
+            spin=None, initial=None, options=None) -> SweepSpec:
+    """The SweepSpec of what :func:`autobalance.sweep` was given.
+
+    Parameters
+    ----------
+    spec : SweepSpec, dict or path
+        A description: validated, parsed (see :func:`spec_from_dict`) or a TOML file.
+    base : Config or System, optional
+        A base built in Python, for a description without ``sweep.base``. A System is made a
+        Config with ``spin``, ``initial`` and ``options``
+        (:func:`autobalance.config.from_models`).
+    spin : SpeedProfile, MotorDrive or dict, optional
+        The spin of a System base (required with it); a dict is a ``[profile]`` table.
+    initial : InitialState, optional
+        The initial state of a System base.
+    options : SimOptions, optional
+        The numerical options of a System base.
+
+    Returns
+    -------
+    SweepSpec
+
+    Raises
+    ------
+    SweepError
+        A bad description or base (one line).
+    """
+    if isinstance(base, System):
+        if spin is None:
+            raise SweepError("spin: missing; a System base needs its speed profile or motor "
+                             "drive (spin=), or pass a Config as base")
+        try:
+            base = from_models(base, spin, initial, options)
+        except ConfigError as e:
+            raise SweepError(f"base: {e}") from None
+    elif spin is not None or initial is not None:
+        raise SweepError("spin, initial: only with a System base (a Config has its own; change "
+                         "it with autobalance.config.replace_values)")
+    if isinstance(spec, SweepSpec):
+        if base is not None:
+            raise SweepError(f"base: the description has its base already ({spec.base!r}); "
+                             "give it as a dict or TOML file without sweep.base")
+        return spec
+    if isinstance(spec, dict):
+        return spec_from_dict(spec, base=base)
+    return load_spec(spec, base=base)
+
+
+__all__ = ["GridAxis", "MC_KINDS", "SweepError", "SweepSpec", "as_spec", "field_kind",
+           "load_spec", "spec_from_dict"]
