@@ -2,7 +2,8 @@
 ball start positions, the grade at each read-out of the profile, and its statistics; the single
 run with a family of starts of a given grade (004 Fig. 4); the machine's grades (004 Table 1).
 
-Every study takes ``base``, the machine: a preset name or a TOML config path (the profile, the
+Every study takes ``base``, the machine: a preset name, a TOML config path or a Config built in
+Python (:func:`autobalance.config.from_models`) (the profile, the
 options and the balls come from it), and returns an :class:`xarray.Dataset` with units in attrs.
 """
 from __future__ import annotations
@@ -24,24 +25,25 @@ __all__ = ["case_sets", "compute_machine", "compute_monte_carlo", "compute_singl
 
 
 def load(base, sets=()):
-    """The machine of a study: ``base`` (a preset name or a TOML config path) with ``sets``
-    overrides ("path=value" as for ``--set``) applied.
+    """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied.
 
     Parameters
     ----------
-    base : str or Path
-        The machine: a preset name or a TOML config path (its system, profile, options and
-        balls).
-    sets : iterable of str
-        "path=value" overrides, e.g. "profile.plateau=600 rad/s".
+    base : str, Path or Config
+        A preset name, a TOML config path, or a :class:`autobalance.config.Config` built in
+        Python (:func:`autobalance.config.from_models`).
+    sets : sequence of str
+        Overrides "path=value" (values with units, as for ``--set``).
 
     Returns
     -------
-    autobalance.config.Config
-        The validated machine (system, spin, initial state, options).
+    Config
     """
-    from ..config import load_config
+    from ..config import Config, load_config, replace_values
+    from ..config.overrides import parse_override
 
+    if isinstance(base, Config):
+        return replace_values(base, dict(parse_override(s) for s in sets)) if sets else base
     return load_config(base, list(sets))
 
 
@@ -133,10 +135,16 @@ def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", w
     n_runs = n_cells * n * (n + 1) // 2
     w = workers or 2
     bs = max(1, min(64, math.ceil(n_runs / (4 * w))))
-    spec = spec_from_dict({"sweep": {"name": name, "base": str(base), "set": list(sets),
-                                     "batch_size": bs},
+    from ..config import Config
+
+    python_base = isinstance(base, Config)
+    head = {"name": name, "set": list(sets), "batch_size": bs}
+    if not python_base:
+        head["base"] = str(base)
+    spec = spec_from_dict({"sweep": head,
                            "grid": grid, "monte_carlo": {"kind": "start_grid", "n": int(n)},
-                           **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})})
+                           **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})},
+                          base=base if python_base else None)
     if store is None:
         with tempfile.TemporaryDirectory() as d:
             return sweep(spec, Path(d) / name, executor=executor, workers=workers,

@@ -39,7 +39,7 @@ from .. import __version__
 from ..core.layout import RunStatus
 from ..config import UNIT_LABEL
 from .plan import Plan
-from .spec import SweepError, SweepSpec
+from .spec import SweepError
 
 STATUS_NAMES = ", ".join(f"{int(s)} {s.label}" for s in RunStatus if s <= RunStatus.NON_FINITE)
 _TASK_RE = re.compile(r"r(\d{9})-(\d{9})\.npz")
