@@ -129,7 +129,7 @@ def _grade(U, total_mass: float, nominal_speed: float):
 
 
 def _run_sweep(name, sets, grid, n, *, store=None, executor="local", workers=None,
-               history_dt: float = 0.0):
+               history_dt: float = 0.0, scheduler=None):
     """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2) and return its Dataset.
 
     ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
@@ -147,9 +147,9 @@ def _run_sweep(name, sets, grid, n, *, store=None, executor="local", workers=Non
     if store is None:
         with tempfile.TemporaryDirectory() as d:
             return sweep(spec, Path(d) / name, executor=executor, workers=workers,
-                         progress=False).load()
+                         scheduler=scheduler, progress=False).load()
     return sweep(spec, Path(store), executor=executor, workers=workers, resume=True,
-                 progress=False).load()
+                 scheduler=scheduler, progress=False).load()
 
 
 def _store(store_dir, name):
@@ -524,7 +524,7 @@ def compare_single(ds=None) -> list:
 
 # -- 2. start-position Monte Carlo (Fig. 5-6, Table 2) ------------------------------------------
 def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None, store_dir=None,
-                        executor="local", workers=None):
+                        executor="local", workers=None, scheduler=None):
     """004 sec. 4.2: n x n equispaced start positions, identical balls -> n(n+1)/2 runs
     (1275 for n = 50), G at the STD (18 s) and TSR (90 s) read-outs.
 
@@ -540,7 +540,7 @@ def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None, stor
         sets, name = [f"profile.plateau={plateau_ratio * fn!r}"], f"{name}-plateau{plateau_ratio:g}"
         cfg = _cfg(sets)
     raw = _run_sweep(f"tsr-{name}", sets, {}, n, store=_store(store_dir, name),
-                     executor=executor, workers=workers)
+                     executor=executor, workers=workers, scheduler=scheduler)
     g = raw["grade_G"].values                      # (sample, checkpoint)
     ok = raw["status"].values == 0
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
@@ -619,7 +619,7 @@ def _g_grid(quick: bool):
 
 
 def compute_unbalance(cases=("nominal",), *, G=None, n: int = 50, quick: bool = False,
-                      store_dir=None, executor="local", workers=None):
+                      store_dir=None, executor="local", workers=None, scheduler=None):
     """004 sec. 4.3-4.5: G_ini over [G0, G50] x the start grid for each (mu_r, c_r) case;
     5/50/95 % of G_STD (18 s) and G_TSR (90 s), valid ranges for G16 and efficiencies."""
     import xarray as xr
@@ -636,7 +636,7 @@ def compute_unbalance(cases=("nominal",), *, G=None, n: int = 50, quick: bool = 
         raw = _run_sweep(f"tsr-unb-{case}-n{n}-g{Gv.size}", _case_sets(mu_r, c_r),
                          {"rotor.unbalance": [float(u) for u in U]}, n,
                          store=_store(store_dir, f"unbalance-{case}-n{n}-g{Gv.size}"),
-                         executor=executor, workers=workers)
+                         executor=executor, workers=workers, scheduler=scheduler)
         g = raw["grade_G"].where(raw["status"] == 0)
         data[ci] = g.quantile(q / 100, dim="sample").transpose("rotor__unbalance", "checkpoint",
                                                                "quantile").values
@@ -702,7 +702,7 @@ SLOW_SETS = ["profile.kind=std", "profile.runup_fraction=0.6", "profile.runup_ti
 
 
 def compute_profile(*, G=None, n: int = 50, quick: bool = False, store_dir=None, executor="local",
-                    workers=None, unbalance_ds=None):
+                    workers=None, unbalance_ds=None, scheduler=None):
     """004 sec. 4.4, Fig. 9: 95 % isolines of the STD (18 s), TSR (90 s) and a 3x slower run-up
     (0 -> 167 Hz in 54 s, hold to 90 s, read at 90 s) against G_ini (nominal mu, c)."""
     import xarray as xr
@@ -713,12 +713,12 @@ def compute_profile(*, G=None, n: int = 50, quick: bool = False, store_dir=None,
     if unbalance_ds is None or not np.array_equal(unbalance_ds["G_ini"].values, Gv) \
             or "nominal" not in unbalance_ds["case"].values or unbalance_ds.attrs["n"] != n:
         unbalance_ds = compute_unbalance(("nominal",), G=Gv, n=n, store_dir=store_dir,
-                                         executor=executor, workers=workers)
+                                         executor=executor, workers=workers, scheduler=scheduler)
     U = grade_to_unbalance(Gv, cfg.system.total_mass, cfg.spin.nominal_speed)
     raw = _run_sweep(f"tsr-slow-n{n}-g{Gv.size}", SLOW_SETS,
                      {"rotor.unbalance": [float(u) for u in U]}, n,
                      store=_store(store_dir, f"slow-n{n}-g{Gv.size}"), executor=executor,
-                     workers=workers)
+                     workers=workers, scheduler=scheduler)
     g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
     q = np.array([5.0, 50.0, 95.0])
     slow = g.quantile(q / 100, dim="sample").transpose("rotor__unbalance", "quantile").values
@@ -843,7 +843,7 @@ def _plateau_grid(quick: bool):
 
 
 def compute_plateau(cases=("nominal",), *, ratios=None, G=None, n: int = 20, quick: bool = False,
-                    store_dir=None, executor="local", workers=None):
+                    store_dir=None, executor="local", workers=None, scheduler=None):
     """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
     95th percentile of G_TSR (90 s); ideal plateau = argmin of its mean over G_ini."""
     import xarray as xr
@@ -863,7 +863,7 @@ def compute_plateau(cases=("nominal",), *, ratios=None, G=None, n: int = 20, qui
                          {"profile.plateau": [float(r * fn) for r in ratios],
                           "rotor.unbalance": [float(u) for u in U]}, n,
                          store=_store(store_dir, f"plateau-{case}-n{n}-r{ratios.size}-g{Gv.size}"),
-                         executor=executor, workers=workers)
+                         executor=executor, workers=workers, scheduler=scheduler)
         g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
         p95[ci] = g.quantile(0.95, dim="sample").transpose("profile__plateau", "rotor__unbalance").values
     ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), p95, {"units": "mm/s"})},
@@ -907,7 +907,7 @@ DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
                     down_time: float = 60.0, history_dt: float = 0.25, store_dir=None,
-                    executor="local", workers=None):
+                    executor="local", workers=None, scheduler=None):
     """004 sec. 4.6, Fig. 13: after the standard run-up (18 s to 167 Hz), a slow linear descent
     to ``ratio_end`` Omega_n in ``down_time`` [s]; the residual grade G [mm/s] of every start is
     read every ``history_dt`` [s] and its percentiles over the n(n+1)/2 starts are returned
@@ -928,7 +928,8 @@ def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
     cfg = _cfg(sets)
     name = f"descent-g{G_ini:g}-n{n}-r{ratio_end:g}-t{down_time:g}-dt{history_dt:g}"
     raw = _run_sweep(f"tsr-{name}", sets, {}, n, store=_store(store_dir, name),
-                     executor=executor, workers=workers, history_dt=history_dt)
+                     executor=executor, workers=workers, history_dt=history_dt,
+                     scheduler=scheduler)
     t = raw["history_time"].values
     t_read = cfg.spin.checkpoints[0]
     sel = (t >= t_read) & (t <= t_read + down_time + 1e-9)
@@ -1083,7 +1084,8 @@ def _mc_n(ctx):
 
 def _run_mc(ctx):
     n = _mc_n(ctx)
-    kw = dict(store_dir=ctx.stores, executor=ctx.executor, workers=ctx.workers)
+    kw = dict(store_dir=ctx.stores, executor=ctx.executor, workers=ctx.workers,
+              scheduler=ctx.scheduler)
     ds = compute_monte_carlo(n, **kw)
     ideal = PUBLISHED["plateau"]["ideal"]["nominal"]
     alt = compute_monte_carlo(n, plateau_ratio=ideal, **kw)
@@ -1110,7 +1112,7 @@ def _unb_n(ctx):
 def _run_unbalance(ctx):
     n = _unb_n(ctx)
     ds = compute_unbalance(tuple(UNBALANCE_CASES), n=n, quick=ctx.quick, store_dir=ctx.stores,
-                           executor=ctx.executor, workers=ctx.workers)
+                           executor=ctx.executor, workers=ctx.workers, scheduler=ctx.scheduler)
     return _outcome("tsr-unbalance", ds, f"G_ini every {ds.attrs['grid_step']:g} mm/s x "
                                          f"{n * (n + 1) // 2} starts x {len(UNBALANCE_CASES)} cases")
 
@@ -1118,7 +1120,7 @@ def _run_unbalance(ctx):
 def _run_profile(ctx):
     n = _unb_n(ctx)
     ds = compute_profile(n=n, quick=ctx.quick, store_dir=ctx.stores, executor=ctx.executor,
-                         workers=ctx.workers)
+                         workers=ctx.workers, scheduler=ctx.scheduler)
     return _outcome("tsr-profile", ds, f"{n * (n + 1) // 2} starts per G_ini; the STD/TSR "
                                        f"isolines reuse the nominal initial-unbalance sweep")
 
@@ -1130,7 +1132,7 @@ def _run_immobility(ctx):
 def _run_plateau(ctx):
     n = 6 if ctx.quick else 20
     ds = compute_plateau(tuple(PLATEAU_CASES), n=n, quick=ctx.quick, store_dir=ctx.stores,
-                         executor=ctx.executor, workers=ctx.workers)
+                         executor=ctx.executor, workers=ctx.workers, scheduler=ctx.scheduler)
     return _outcome("tsr-plateau", ds, f"{ds.sizes['plateau_ratio']} plateaus x "
                                        f"{ds.sizes['G_ini']} G_ini x {n * (n + 1) // 2} starts")
 
@@ -1138,7 +1140,7 @@ def _run_plateau(ctx):
 def _run_descent(ctx):
     n = 6 if ctx.quick else 50
     ds = compute_descent(n=n, history_dt=0.5 if ctx.quick else 0.25, store_dir=ctx.stores,
-                         executor=ctx.executor, workers=ctx.workers)
+                         executor=ctx.executor, workers=ctx.workers, scheduler=ctx.scheduler)
     return _outcome("tsr-descent", ds, f"G{ds.attrs['G_ini']:g}, {ds.attrs['runs']} starts, "
                                        f"G read every {0.5 if ctx.quick else 0.25:g} s")
 
