@@ -25,7 +25,7 @@ from autobalance.physics.response import ball_influence, harmonic_response
 from autobalance.physics.tolerance import design_tolerances, predict_residual
 from autobalance.physics.vibratory import (drum_response, force_jacobian, single_ball_force,
                                             speed_regime, vibratory_components, vibratory_forces)
-from autobalance.cli_analyze import app
+from autobalance.cli.analyze import app
 from autobalance.models import ParameterError
 from autobalance.papers.p000 import washer as study
 
@@ -378,7 +378,7 @@ def test_cli_forces_damping_plot_fig7(tmp_path):
     """000 Fig. 7 from the CLI: the one-ball force for suspension damping x0.5/1/2."""
     from typer.testing import CliRunner
 
-    from autobalance.cli_analyze import app
+    from autobalance.cli.analyze import app
 
     out = tmp_path / "fig7.png"
     r = CliRunner().invoke(app, ["forces", "washer_000", "--damping-plot", str(out), "--json"])

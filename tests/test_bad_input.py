@@ -160,7 +160,7 @@ def test_sweep_grade_is_checked(grade, tmp_path):
 
 
 def test_check_grade():
-    from autobalance.cli_common import check_grade
+    from autobalance.cli.common import check_grade
 
     assert check_grade(16) == 16.0
     with pytest.raises(ConfigError, match=r"^--grade = nan: must be a finite ISO 1940 grade"):
@@ -234,7 +234,7 @@ def test_reproduce_workers_bounded():
 
 
 def test_liquid_count_bounded():
-    from autobalance.cli_liquid import app as liquid_app
+    from autobalance.cli.liquid import app as liquid_app
 
     r = CliRunner().invoke(liquid_app, ["surface", "--omega", "0:60 1/s:1000000000"])
     assert isinstance(r.exception, ResourceError) and "omega" in str(r.exception)

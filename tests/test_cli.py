@@ -235,3 +235,61 @@ def test_demo(tmp_path):
     for name in ("washer_000", "vub_jeffcott_004"):
         assert name in d["presets"]
         assert (out / f"{name}.nc").is_file() and (out / f"{name}.png").is_file()
+
+
+# -- entry points and layering (issue 13) ------------------------------------------------------
+def run_module(*args):
+    """``python -m autobalance ...`` in a subprocess."""
+    return subprocess.run([sys.executable, "-m", "autobalance", *args],
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_python_m_autobalance_help():
+    r = run_module("--help")
+    assert r.returncode == 0 and r.stderr == ""
+    for command in ("presets", "show", "simulate", "response", "sweep", "demo", "analyze",
+                    "reproduce", "liquid"):
+        assert command in r.stdout
+    assert "Usage: autobalance" in r.stdout
+    assert "Parameters" not in r.stdout     # the docstrings' numpydoc part stays out of --help
+
+
+def test_python_m_autobalance_end_to_end():
+    """Same output as the typer app in this process, same one-line errors as the script."""
+    args = ("response", "washer_000", "--speeds", "0:2000 rpm:11", "--json")
+    r = run_module(*args)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout) == json.loads(run(*args).stdout)
+    r = run_module("show", "washer_000", "--set", 'suspension.kx="5 kg"')
+    assert r.returncode == 2 and r.stdout == ""
+    assert_one_line_error(r.stderr, "suspension.kx")
+
+
+def test_library_does_not_import_the_cli():
+    code = ("import sys, autobalance, autobalance.report.runner, autobalance.jsonable; "
+            "print([m for m in sys.modules if m.startswith('autobalance.cli')])")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and r.stdout.strip() == "[]", r.stdout + r.stderr
+
+
+def test_reproduce_passes_the_scheduler_in_the_context(tmp_path, monkeypatch):
+    """``--scheduler`` reaches the targets' sweeps through the Context, not the environment."""
+    import importlib
+    import os
+
+    seen = []
+
+    def fake_sweep(spec, store, **kw):
+        seen.append({**kw, "env": os.environ.get("DASK_SCHEDULER_ADDRESS")})
+        raise RuntimeError("stopped by the test")
+
+    monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
+    monkeypatch.setattr(importlib.import_module("autobalance.sweep"), "sweep", fake_sweep)
+    r = run("reproduce", "tsr-mc", "--scheduler", "tcp://127.0.0.1:1", "--out",
+            str(tmp_path / "out"), "--json")
+    assert r.exit_code == 1, r.output               # the target's error is in the report
+    assert seen and seen[0]["scheduler"] == "tcp://127.0.0.1:1"
+    assert seen[0]["executor"] == "dask" and seen[0]["env"] is None
+    assert "DASK_SCHEDULER_ADDRESS" not in os.environ
+    err = json.loads(r.stdout)["targets"][0]["error"]
+    assert "stopped by the test" in err

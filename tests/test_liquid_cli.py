@@ -6,7 +6,7 @@ import sys
 import pytest
 from typer.testing import CliRunner
 
-from autobalance.cli_liquid import app
+from autobalance.cli.liquid import app
 from autobalance.config import ConfigError
 from autobalance.models import ParameterError
 
@@ -67,9 +67,9 @@ def test_bad_input_raises_one_line(args, exc):
 
 
 def test_standalone_bad_input_exit_2_no_traceback():
-    """Subprocess: one ``error:`` line, exit code 2 (cli.py's main() does the same once the
-    sub-app is registered as ``autobalance liquid``)."""
-    p = subprocess.run([sys.executable, "-m", "autobalance.cli_liquid", "surface", "--volume",
+    """Subprocess (``python -m autobalance liquid ...``): one ``error:`` line, exit code 2
+    (the entry point's main() turns the group's exceptions into that line)."""
+    p = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "surface", "--volume",
                         "7 l"], capture_output=True, text=True, timeout=60)
     assert p.returncode == 2
     assert p.stderr.startswith("error: volume") and p.stderr.count("\n") == 1

@@ -1,4 +1,4 @@
-"""Seed-004 TSR studies (papers/p004/tsr.py, cli_reproduce.py): quick variants only.
+"""Seed-004 TSR studies (papers/p004/tsr.py, cli/reproduce.py): quick variants only.
 
 Checks the comparison-row machinery, that every published number is compared (never silently
 skipped), the immobility closed form against the kernel, and the CLI end to end."""

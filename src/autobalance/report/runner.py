@@ -25,7 +25,7 @@ STATUSES = ("pass", "miss", "not computed")
 
 def _netcdf_safe(ds):
     """Copy of ``ds`` that NetCDF accepts: list/dict/bool attrs as JSON text, object coords as str."""
-    from ..cli_common import _clean
+    from ..jsonable import to_jsonable as _clean
 
     def safe(attrs):
         return {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
@@ -67,7 +67,7 @@ def _save_figures(figures: dict, out: Path, tid: str) -> list:
 
 
 def _run_one(target, ctx: Context) -> dict:
-    from ..cli_common import _clean
+    from ..jsonable import to_jsonable as _clean
 
     rec = {"id": target.id, "paper": target.paper, "items": list(target.items),
            "title": target.title, "notes": target.notes, "quick": target.quick,
@@ -121,7 +121,7 @@ def run_targets(targets, ctx: Context, progress: Optional[Callable[[int, int, di
 
 def write_report(report: dict, out: Path) -> dict:
     """Write report.json, report.html and VALIDATION.md into ``out``; returns their paths."""
-    from ..cli_common import _clean
+    from ..jsonable import to_jsonable as _clean
     from .html import render_html
     from .markdown import render_markdown
 

@@ -1,0 +1,79 @@
+"""Command line interface (typer), thin: parse, call the library, print.
+
+Every command takes ``--json`` and then prints exactly one JSON object on stdout (SI units,
+snake_case keys with unit suffixes; NaN and inf become ``null``). Input errors (bad config, bad
+value, unknown preset, unreadable file) print one line ``error: <message>`` on stderr and exit
+with code 2, never a traceback. A simulation whose status is not ``"ok"`` exits with code 1.
+
+One module per task: :mod:`.machine` (presets, show, demo), :mod:`.simulate`, :mod:`.response`
+(``response`` and ``analyze response``), :mod:`.sweep`, :mod:`.analyze`, :mod:`.liquid`,
+:mod:`.reproduce`; :mod:`.common` holds the options, the error guard, the JSON printer and the
+checks they share. The physics modules are imported inside the commands so that ``presets`` and
+``show`` stay fast.
+"""
+from __future__ import annotations
+
+import sys
+from typing import Optional
+
+import typer
+
+from . import analyze, liquid, machine, reproduce, response, simulate, sweep
+from .common import USER_ERRORS, one_line, print_error
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
+                  pretty_exceptions_enable=False,
+                  help="Simulate and design passive automatic balancers: presets, show, simulate, "
+                       "response, sweep, analyze, liquid, reproduce, demo.")
+
+app.command()(machine.presets)
+app.command()(machine.show)
+app.command("simulate")(simulate.simulate_cmd)
+app.command()(response.response)
+app.command("sweep")(sweep.sweep_cmd)
+app.command()(machine.demo)
+app.add_typer(analyze.app, name="analyze",
+              help="Washer analysis (seed 000): response, vibratory forces, equilibria, error "
+                   "bounds, tolerance design, kinetic-static model, studies; 004 immobility.")
+app.command("reproduce")(reproduce.reproduce)
+app.add_typer(liquid.app, name="liquid",
+              help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "
+                   "entrainment speeds, kinetostatics, run-up simulation.")
+
+
+def main(argv: Optional[list[str]] = None) -> None:
+    """Console entry point ``autobalance`` (also ``python -m autobalance``).
+
+    Input errors, usage errors included (a bad option value, a missing argument, an unknown
+    command), exit 2 with one line on stderr; Ctrl-C exits 130 with one line; never a traceback
+    for either.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after the program name; default ``sys.argv[1:]``.
+
+    Raises
+    ------
+    SystemExit
+        Always, with the command's exit code.
+    """
+    from typer._click.exceptions import NoArgsIsHelpError, UsageError
+
+    try:
+        rv = app(args=argv, prog_name="autobalance", standalone_mode=False)
+    except NoArgsIsHelpError:           # the help was printed
+        sys.exit(0)
+    except UsageError as exc:
+        cmd = exc.ctx.command_path if exc.ctx is not None else "autobalance"
+        print_error(f"{' '.join(exc.format_message().split())} (see {cmd} --help)")
+        sys.exit(2)
+    except USER_ERRORS as exc:
+        print_error(one_line(exc))
+        sys.exit(2)
+    except KeyboardInterrupt as exc:    # a SweepInterrupted says what was kept
+        print_error(one_line(exc) if str(exc) else "interrupted")
+        sys.exit(128 + int(getattr(exc, "signal", 2)))
+    sys.exit(rv if isinstance(rv, int) else 0)

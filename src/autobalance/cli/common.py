@@ -1,0 +1,339 @@
+"""What every command of the command line shares: the option types, the error guard, the JSON
+printer and the checks made before any work.
+
+* Options (the commands' parameter names in brackets): :data:`SourceArg` (``source``: a preset
+  name or a .toml file), :data:`SetOpt` (``set_``: ``--set PATH=VALUE`` overrides, values with
+  units), :data:`ProfileOpt` (``profile``: switch the speed profile kind), :data:`JsonOpt`
+  (``json_``: print one JSON object instead of text), :data:`PlotOpt` (``plot``: a figure
+  file), :data:`WorkersOpt`, :data:`ExecutorOpt`, :data:`SchedulerOpt` (``workers``,
+  ``executor``, ``scheduler``: where sweeps run).
+* Errors: the user's input errors (:data:`USER_ERRORS`) become one line ``error: <message>`` on
+  stderr and exit code 2 (:func:`guard`, :func:`fail`); never a traceback.
+* Output: :func:`print_json` prints exactly one strict JSON object (SI units, NaN and inf as
+  ``null``; :func:`autobalance.jsonable.to_jsonable`).
+* Checks before the work: :func:`check_output_file` / :func:`check_plot` (files written at the
+  end), :func:`check_grade`, :func:`check_workers`, :func:`check_executor`.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated, Iterator, NoReturn, Optional
+
+import typer
+
+from ..config import ConfigError, load_config
+from ..jsonable import to_jsonable
+from ..limits import ResourceError
+from ..models import ParameterError
+
+__all__ = ["USER_ERRORS", "ExecutorOpt", "JsonOpt", "PlotOpt", "ProfileOpt", "SchedulerOpt",
+           "SetOpt", "SourceArg", "WORKER_BYTES", "WorkersOpt", "check_executor", "check_grade",
+           "check_output_file", "check_plot", "check_workers", "echo_fields", "fail", "guard",
+           "load_machine", "one_line", "print_error", "print_json", "quiet_dask_logs"]
+
+# -- the shared options -------------------------------------------------------------------------
+SourceArg = Annotated[str, typer.Argument(metavar="PRESET|CONFIG",
+                                          help="Preset name or path of a .toml file.")]
+SetOpt = Annotated[Optional[list[str]], typer.Option(
+    "--set", "-s", metavar="PATH=VALUE",
+    help="Override a value, e.g. --set suspension.kx='25 N/mm' (repeatable).")]
+ProfileOpt = Annotated[Optional[str], typer.Option(
+    "--profile", help="Switch the speed profile kind (constant, ramp, table, std, tsr, motor); "
+                      "profile keys from the file that the new kind does not take are dropped.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object (SI) on stdout.")]
+#: A figure file; each command checks its suffix (:func:`check_plot`) before any work.
+PlotOpt = Annotated[Optional[str], typer.Option(
+    "--plot", metavar="FILE.png", help="Write a figure to this file (the suffix sets the format).")]
+WorkersOpt = Annotated[Optional[int], typer.Option(
+    "--workers", help="Local worker processes (default: all cores).")]
+ExecutorOpt = Annotated[Optional[str], typer.Option(
+    "--executor", help="Where the sweeps run: serial, local (processes on this machine) or dask.")]
+SchedulerOpt = Annotated[Optional[str], typer.Option(
+    "--scheduler", help="Dask scheduler address (default: $DASK_SCHEDULER_ADDRESS); the sweeps "
+                        "run on that cluster.")]
+
+# -- errors -------------------------------------------------------------------------------------
+#: Exceptions that are the user's input errors: one line on stderr, exit code 2.
+USER_ERRORS = (ConfigError, ParameterError, ResourceError, OSError)
+
+
+def one_line(exc: BaseException) -> str:
+    """The message of an input error on one line.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error; an OSError with a file name gives ``"<strerror>: <file>"``.
+
+    Returns
+    -------
+    str
+        Its message with every run of white space (newlines included) made one space, or the
+        exception's class name if it has no message.
+    """
+    msg = " ".join(str(exc).split())
+    if isinstance(exc, OSError) and exc.filename and exc.strerror:
+        msg = f"{exc.strerror}: {exc.filename!s}"
+    return msg or type(exc).__name__
+
+
+def print_error(message: str) -> None:
+    """Print ``error: <message>`` on stderr, on one line.
+
+    Parameters
+    ----------
+    message : str
+        What went wrong; its white space (newlines included) is collapsed.
+    """
+    typer.echo(f"error: {' '.join(message.split())}", err=True)
+
+
+def fail(message: str, code: int = 2) -> NoReturn:
+    """Stop the command: ``error: <message>`` on stderr, then exit with ``code``.
+
+    Parameters
+    ----------
+    message : str
+        What went wrong (printed on one line).
+    code : int
+        Exit code: 2 for the user's input errors (the default), 1 for a failed run, 128 + the
+        signal number for an interruption.
+
+    Raises
+    ------
+    typer.Exit
+        Always.
+    """
+    print_error(message)
+    raise typer.Exit(code)
+
+
+@contextmanager
+def guard() -> Iterator[None]:
+    """Context manager: an input error (:data:`USER_ERRORS`) raised inside becomes one line
+    ``error: <message>`` on stderr and exit code 2 (:func:`fail`); other exceptions pass.
+
+    Raises
+    ------
+    typer.Exit
+        With code 2, after printing the error line.
+    """
+    try:
+        yield
+    except USER_ERRORS as exc:
+        fail(one_line(exc))
+
+
+# -- output -------------------------------------------------------------------------------------
+def print_json(obj: dict) -> None:
+    """Print ``obj`` as one strict JSON object on stdout (one line, no NaN: ``null``).
+
+    Parameters
+    ----------
+    obj : dict
+        The result (numpy values, tuples and paths allowed: see
+        :func:`autobalance.jsonable.to_jsonable`).
+    """
+    typer.echo(json.dumps(to_jsonable(obj), allow_nan=False))
+
+
+def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optional[str] = None):
+    """The configuration named on the command line, with its ``--set`` and ``--profile``.
+
+    Parameters
+    ----------
+    source : str
+        Preset name or path of a .toml file.
+    sets : list of str, optional
+        ``PATH=VALUE`` overrides, applied in order.
+    profile : str, optional
+        A speed profile kind to switch to (``--profile``): the override ``profile.kind=...``
+        after the others.
+
+    Returns
+    -------
+    autobalance.config.Config
+
+    Raises
+    ------
+    ConfigError, ParameterError, OSError
+        Bad file, value or override (one line).
+    """
+    return load_config(source, list(sets or []) + ([f"profile.kind={profile}"] if profile else []))
+
+
+# -- checks before the work ---------------------------------------------------------------------
+def check_output_file(path, what: str, example: str = "out.nc", suffixes=()) -> None:
+    """Refuse, before any work, an output file the command could not write at the end.
+
+    Parameters
+    ----------
+    path : str or Path or None
+        The file; None (option not given) passes.
+    what : str
+        The option, e.g. ``"--out"``, for the message.
+    example : str
+        A file name for the message, e.g. ``"run.nc"``.
+    suffixes : tuple of str
+        Allowed lower-case suffixes (``".png"``, ...); empty: any.
+
+    Raises
+    ------
+    ConfigError
+        ``path`` is a directory, its directory is missing or not writable, the file exists and is
+        not writable, or its suffix is not one of ``suffixes`` (one line).
+    """
+    if path is None:
+        return
+    path = Path(path)
+    name = str(path)
+    if path.is_dir():
+        raise ConfigError(f"{what} {name!r}: is a directory; give a file name, e.g. "
+                          f"{path / example}")
+    parent = path.parent
+    if not parent.is_dir():
+        raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} does not exist")
+    if suffixes and path.suffix.lower() not in suffixes:
+        raise ConfigError(f"{what} {name!r}: expected a file ending in {', '.join(suffixes)}")
+    if path.exists() and not os.access(path, os.W_OK):
+        raise ConfigError(f"{what} {name!r}: the file is not writable")
+    if not path.exists() and not os.access(parent, os.W_OK | os.X_OK):
+        raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} is not writable")
+
+
+def check_plot(path, suffixes: tuple = (".png",), what: str = "--plot",
+               example: str = "plot.png") -> None:
+    """Refuse, before any work, a figure file that could not be written (a directory, a missing
+    or read-only directory, a suffix not in ``suffixes``): :func:`check_output_file`.
+
+    Parameters
+    ----------
+    path : str or Path or None
+        The figure file; None passes.
+    suffixes : tuple of str
+        The formats this command writes, e.g. ``(".png", ".svg", ".pdf")``.
+    what : str
+        The option for the message.
+    example : str
+        A file name for the message.
+
+    Raises
+    ------
+    ConfigError
+        One line naming ``what``.
+    """
+    check_output_file(path, what, example, suffixes)
+
+
+def check_grade(value: float, field: str = "--grade") -> float:
+    """An ISO 1940 balance-quality grade G [mm/s]: finite and > 0.
+
+    Parameters
+    ----------
+    value : float
+        The grade G [mm/s].
+    field : str
+        The option for the message.
+
+    Returns
+    -------
+    float
+        ``value`` as a float [mm/s].
+
+    Raises
+    ------
+    ConfigError
+        Not a finite number > 0 (one line).
+    """
+    number = isinstance(value, (int, float)) and not isinstance(value, bool)
+    v = float(value) if number else float("nan")
+    if not (math.isfinite(v) and v > 0):
+        shown = f"{v:g}" if number else repr(value)
+        raise ConfigError(f"{field} = {shown}: must be a finite ISO 1940 grade G > 0 [mm/s], "
+                          "e.g. 16")
+    return v
+
+
+def check_executor(executor: Optional[str]) -> None:
+    """``--executor``: None (the default) or one of :data:`autobalance.sweep.EXECUTORS`.
+
+    Parameters
+    ----------
+    executor : str or None
+        ``"serial"``, ``"local"`` or ``"dask"``.
+
+    Raises
+    ------
+    ConfigError
+        Any other name (one line).
+    """
+    from ..sweep import EXECUTORS
+
+    if executor is not None and executor not in EXECUTORS:
+        raise ConfigError(f"--executor = {executor!r}: must be {', '.join(EXECUTORS)}")
+
+
+#: Rough resident memory of one local worker process (Python, numpy, numba, xarray) [B].
+WORKER_BYTES = 256 * 2**20
+
+
+def check_workers(workers: Optional[int], field: str = "--workers") -> None:
+    """A local worker count: an integer >= 1 whose processes fit the memory limit
+    (:func:`autobalance.limits.check_memory`, :data:`WORKER_BYTES` each).
+
+    Parameters
+    ----------
+    workers : int or None
+        Number of worker processes; None (all cores) passes.
+    field : str
+        The option for the message.
+
+    Raises
+    ------
+    ConfigError
+        Not an integer >= 1.
+    ResourceError
+        The processes would not fit the memory limit.
+    """
+    if workers is None:
+        return
+    if isinstance(workers, bool) or int(workers) != workers or workers < 1:
+        raise ConfigError(f"{field} = {workers}: must be an integer >= 1")
+    from ..limits import check_memory
+
+    check_memory(field, workers, workers * WORKER_BYTES, "worker processes")
+
+
+def quiet_dask_logs() -> None:
+    """Silence distributed's own log records in this process.
+
+    The CLI reports a lost or unreachable Dask scheduler in one line itself; distributed would
+    otherwise log a traceback for every reconnection attempt.
+    """
+    import logging
+
+    import distributed  # noqa: F401  (configures its loggers on import)
+
+    for name in ["distributed", *logging.root.manager.loggerDict]:
+        if name.startswith("distributed"):
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+def echo_fields(result: dict, skip: tuple = ()) -> None:
+    """Print ``key: value`` lines (indented by two spaces) for a text summary.
+
+    Parameters
+    ----------
+    result : dict
+        The values to show, in order.
+    skip : tuple of str
+        Keys not to show.
+    """
+    for key, value in result.items():
+        if key not in skip:
+            typer.echo(f"  {key}: {value}")
+

@@ -1,0 +1,332 @@
+"""``autobalance liquid ...``: liquid (Leblanc) balancer commands (seeds 001, 003).
+
+Every command takes ``--json`` (one JSON object on stdout, SI, unit-suffixed keys). Values take
+units: ``--volume "100 ml"``, ``--radius "0.2 m"``, ``--omega "28 1/s"``, ``--delta "30 deg"``.
+
+The liquid options: ``volume`` the liquid volume [m^3], ``radius`` and ``height`` the chamber's
+[m], ``omega`` the speed(s) [1/s], ``g`` the gravity [m/s^2] (each with units, or a bare number
+in SI; a list ``'a, b, c unit'`` or ``'start:stop unit:count'`` where several are allowed);
+``as_json`` (``--json``) one JSON object instead of text.
+Input errors raise ConfigError / ParameterError / ResourceError with one-line messages; they
+leave this group's commands as exceptions (so the group can be driven as a library), and
+``autobalance``'s entry point (:func:`autobalance.cli.main`) prints them as ``error: ...`` and
+exits with code 2.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Annotated, Optional
+
+import numpy as np
+import typer
+
+from ..config import ConfigError
+from ..jsonable import to_jsonable
+from ..models import ParameterError
+from .common import JsonOpt, PlotOpt, check_plot, print_json
+
+app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
+                  pretty_exceptions_enable=False,
+                  help="Liquid (Leblanc) balancers: free surface, modes, kinetostatics, dynamics.")
+
+VolOpt = Annotated[str, typer.Option("--volume", "-V", help="Liquid volume, e.g. '100 ml'.")]
+ROpt = Annotated[str, typer.Option("--radius", "-R", help="Chamber radius, e.g. '0.2 m'.")]
+HOpt = Annotated[str, typer.Option("--height", help="Chamber height, e.g. '0.05 m'.")]
+GOpt = Annotated[str, typer.Option("--g", help="Gravity; 003's printed speeds use '10 m/s^2'.")]
+
+#: Figure formats of the liquid commands' ``--plot``.
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def _out(obj: dict, as_json: bool) -> None:
+    """One JSON object, or ``key  value`` lines (long lists cut to their first 8 values)."""
+    if as_json:
+        print_json(obj)
+        return
+    for k, v in to_jsonable(obj).items():
+        if isinstance(v, list) and len(v) > 8:
+            v = f"[{', '.join(f'{x:.4g}' if isinstance(x, float) else str(x) for x in v[:8])}, ...]"
+        elif isinstance(v, float):
+            v = f"{v:.6g}"
+        typer.echo(f"{k:<34} {v}")
+
+
+def _q(value: str, kind: str, field: str) -> float:
+    from ..liquid.config import parse_quantity
+    return parse_quantity(value, kind, field)
+
+
+#: Memory of one value of a 'a:b:n' list [B]: its result row (a dict of floats) and JSON text.
+LIST_BYTES_PER_POINT = 2048
+
+
+def _list(value: str, kind: str, field: str) -> list[float]:
+    """'a:b:n' (linspace) or 'a,b,c' with units on each item or on the last; n >= 1 must fit
+    the memory limit (:func:`autobalance.limits.check_memory`), checked before allocating."""
+    v = value.strip()
+    if v.count(":") == 2:
+        a, b, n = v.split(":")
+        unit = b.strip().partition(" ")[2]
+        lo = _q(a if " " in a.strip() or not unit else f"{a} {unit}", kind, field)
+        try:
+            num = int(n)
+        except ValueError:
+            raise ConfigError(f"{field} = {value!r}: expected 'start:stop:count'") from None
+        if num < 1:
+            raise ConfigError(f"{field} = {value!r}: count must be >= 1")
+        from ..limits import check_memory
+
+        check_memory(field, value, float(num) * LIST_BYTES_PER_POINT, f"table of {num} values")
+        return list(np.linspace(lo, _q(b, kind, field), num))
+    items = [x.strip() for x in v.split(",") if x.strip()]
+    if not items:
+        raise ConfigError(f"{field} = {value!r}: expected a value or a list 'a, b, c'")
+    unit = items[-1].partition(" ")[2]
+    return [_q(x if " " in x or not unit else f"{x} {unit}", kind, field) for x in items]
+
+
+def _check_plot(plot: Optional[str]) -> None:
+    """Refuse a figure file that could not be written before computing (an empty name: none)."""
+    check_plot(plot or None, PLOT_SUFFIXES)
+
+
+def _liquid(name: str):
+    """A liquid of liquids_001 by name; ConfigError naming the known ones."""
+    from ..liquid import load_liquids
+
+    lq = load_liquids()
+    if name not in lq:
+        raise ConfigError(f"liquid = {name!r}: one of {', '.join(lq)}")
+    return lq[name]
+
+
+@app.command()
+def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
+            omega: Annotated[str, typer.Option("--omega", help="Speed(s): '0, 0.89, 10, 28 1/s' "
+                                               "or '0:60 1/s:7'.")] = "0, 0.6, 0.89, 10, 28, 60 1/s",
+            g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False, plot: PlotOpt = None):
+    """Free surface z(r) = z_* + omega^2 r^2/(2g) clipped to the chamber (003 eq 2-5).\f
+
+    Parameters
+    ----------
+    volume, radius, height, omega, g, as_json
+        The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` may list several speeds.
+    plot : str
+        Figure of the surfaces (.png, .pdf, .svg).
+    """
+    from ..liquid import free_surface, liquid_volume
+
+    _check_plot(plot)
+    V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
+               _q(height, "length", "height"))
+    gg = _q(g, "acceleration", "g")
+    ws = _list(omega, "speed", "omega")
+    rows = []
+    for w in ws:
+        fs = free_surface(w, V, R, h, gg)
+        d = fs.to_dict()
+        d["volume_check_m3"] = liquid_volume(fs.z_star, w, R, h, gg)
+        rows.append(d)
+    if plot:
+        from ..liquid.plotting import plot_surface
+        plot_surface(plot, ws, V, R, h, gg)
+    _out({"volume_m3": V, "radius_m": R, "height_m": h, "g_m_s2": gg, "surfaces": rows,
+          "plot": plot} if as_json else
+         {f"omega={r['omega_rad_s']:.4g}": f"mode {r['mode']} regime {r['regime']} "
+          f"z*={r['z_star_m']:.4g} m wall={r['wall_height_m']:.4g} m "
+          f"r_dry={r['r_dry_m']:.4g} m" for r in rows}, as_json)
+
+
+@app.command()
+def speeds(volume: Annotated[str, typer.Option("--volume", "-V", help="Volume(s): "
+                                               "'100, 200, 300 ml'.")] = "100, 200, 300 ml",
+           radius: ROpt = "0.2 m", height: HOpt = "0.05 m", g: GOpt = "9.80665 m/s^2",
+           gravity_fraction: Annotated[float, typer.Option(help="Mode-1 criterion f: centre "
+                                                           "sunk by f*h0.")] = 0.25,
+           as_json: JsonOpt = False):
+    """Mode-change speeds: bottom touch (003 eq 4), lid touch, entrainment omega_0 (003 eq 6).\f
+
+    Parameters
+    ----------
+    volume, radius, height, g, as_json
+        The liquid options (:mod:`autobalance.cli.liquid`); ``volume`` may list several volumes.
+    gravity_fraction : float
+        Mode-1 criterion f [-]: the centre of the surface sunk by f*h0.
+    """
+    from ..liquid import mode_speeds
+
+    R, h, gg = _q(radius, "length", "radius"), _q(height, "length", "height"), \
+        _q(g, "acceleration", "g")
+    vols = _list(volume, "volume", "volume")
+    rows = [dict(volume_m3=V, **mode_speeds(V, R, h, gg, gravity_fraction)) for V in vols]
+    _out({"radius_m": R, "height_m": h, "g_m_s2": gg, "speeds": rows} if as_json else
+         {f"V={r['volume_m3'] * 1e6:.4g} ml": f"omega_1={r['omega_1_rad_s']:.4g} "
+          f"omega_2={r['omega_2_rad_s']:.4g} bottom={r['bottom_touch_rad_s']:.4g} "
+          f"omega_0={r['omega_0_rad_s']:.4g} 1/s" for r in rows}, as_json)
+
+
+@app.command()
+def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
+          omega: Annotated[str, typer.Option("--omega", help="Speeds.")] = "0:60 1/s:13",
+          g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False):
+    """003 motion mode (1..4) at each speed.\f
+
+    Parameters
+    ----------
+    volume, radius, height, omega, g, as_json
+        The liquid options (:mod:`autobalance.cli.liquid`); one mode per speed of ``omega``.
+    """
+    from ..liquid import MODE_NAMES, mode_speeds, motion_mode
+
+    V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
+               _q(height, "length", "height"))
+    gg = _q(g, "acceleration", "g")
+    ws = _list(omega, "speed", "omega")
+    m = [motion_mode(w, V, R, h, gg) for w in ws]
+    _out({"volume_m3": V, "omega_rad_s": ws, "mode": m,
+          "mode_name": [MODE_NAMES[i] for i in m], **mode_speeds(V, R, h, gg)}, as_json)
+
+
+@app.command()
+def kinetostatic(delta: Annotated[str, typer.Option(help="Rotor phase angle(s).")] = "10, 30, 60 deg",
+                 k: Annotated[float, typer.Option(help="k = D0/D.")] = 1.1,
+                 liquid: Annotated[str, typer.Option(help="Liquid of liquids_001 for beta.")] = "water",
+                 volume: VolOpt = "150 ml", radius: ROpt = "0.2 m",
+                 omega: Annotated[str, typer.Option(help="Speed for beta.")] = "30 1/s",
+                 arc: Annotated[str, typer.Option(help="Liquid arc xi (001 eq 5).")] = "180 deg",
+                 as_json: JsonOpt = False):
+    """Liquid angle alpha0 (001 eq 3), e_c/e, lambda0 (001 eq 4), friction angle beta (eq 6).\f
+
+    Parameters
+    ----------
+    delta : str
+        Rotor phase angle(s) [rad or with units].
+    k : float
+        Capacity ratio k = D0/D [-], > 0.
+    liquid : str
+        Liquid of liquids_001 (for the friction angle beta).
+    volume, radius, omega, as_json
+        The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` is the speed for beta.
+    arc : str
+        Liquid arc xi [rad or with units] (001 eq 5).
+    """
+    from ..liquid import (alpha0, alpha0_residual, balancing_efficiency, eccentricity_ratio,
+                          friction_angle, friction_tan_bound, residual_lambda0)
+
+    ds = np.array(_list(delta, "angle", "delta"))
+    if k <= 0 or not math.isfinite(k):
+        raise ParameterError("k", k, "k = D0/D must be > 0 and finite")
+    L = _liquid(liquid)
+    V, R = _q(volume, "volume", "volume"), _q(radius, "length", "radius")
+    w = _q(omega, "speed", "omega")
+    xi = math.degrees(_q(arc, "angle", "arc"))
+    a0 = alpha0(ds, k)
+    beta = float(friction_angle(L.dynamic_viscosity, R, xi, L.density * V, w))
+    _out({"k": k, "delta_deg": np.degrees(ds), "alpha0_deg": np.degrees(a0),
+          "eq2_residual": alpha0_residual(a0, ds, k),
+          "ec_over_e": eccentricity_ratio(k, a0), "lambda0": residual_lambda0(k, a0),
+          "liquid": liquid, "density_kg_m3": L.density,
+          "kinematic_viscosity_m2_s": L.kinematic_viscosity, "omega_rad_s": w,
+          "beta_deg": math.degrees(beta),
+          "tan_beta_bound": float(friction_tan_bound(L.dynamic_viscosity, R, xi,
+                                                     L.density * V, w)),
+          "efficiency_with_friction": balancing_efficiency(k, ds, beta)}, as_json)
+
+
+def _bench(preset, radius, liquid, volume, unbalance, placement):
+    """The bench preset with the command line's changes: (bench, balancer, rotor, model)."""
+    from ..liquid import load_bench
+
+    b = load_bench(preset)
+    bal, rot, model = b.balancer, b.rotor, b.model
+    if radius:
+        bal = replace(bal, chamber=replace(bal.chamber, radius=_q(radius, "length", "radius")))
+    if liquid:
+        bal = replace(bal, liquid=_liquid(liquid))
+    if volume:
+        bal = replace(bal, volume=_q(volume, "volume", "volume"))
+    if unbalance:
+        rot = replace(rot, unbalance=_q(unbalance, "unbalance", "unbalance"))
+    if placement:
+        model = replace(model, placement=placement)
+    return b, bal, rot, model
+
+
+def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model) -> None:
+    """The steady response (with the run-up) or, with a fill sweep, the amplitude vs fill."""
+    from ..liquid.plotting import plot_fill, plot_response
+
+    if sw is not None:
+        # the fill sweep varies V: name the fixed quantities only
+        fixed = (f"R = {bal.chamber.radius:g} m, {bal.liquid.name}, "
+                 f"D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
+        plot_fill(plot, sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
+                  "Amplitude vs fill (003 Fig. 5)\n" + fixed)
+    else:
+        title = (f"R = {bal.chamber.radius:g} m, V = {bal.volume * 1e6:.4g} ml "
+                 f"{bal.liquid.name}, D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
+        plot_response(plot, st, w0, wn, ru, title)
+
+
+@app.command()
+def simulate(preset: Annotated[str, typer.Argument(help="Bench preset or .toml.")] = "bench_003",
+             volume: Annotated[Optional[str], typer.Option("--volume", "-V")] = None,
+             radius: Annotated[Optional[str], typer.Option("--radius", "-R")] = None,
+             unbalance: Annotated[Optional[str], typer.Option(help="e.g. '2000 g*cm'.")] = None,
+             liquid: Annotated[Optional[str], typer.Option(help="Liquid of liquids_001.")] = None,
+             placement: Annotated[Optional[str], typer.Option(help="drach | deflection")] = None,
+             omega: Annotated[str, typer.Option(help="Steady speeds.")] = "5:100 1/s:96",
+             run: Annotated[bool, typer.Option("--run-up/--no-run-up",
+                                               help="Also integrate the run-up.")] = False,
+             fill: Annotated[bool, typer.Option("--fill-sweep", help="Amplitude vs fill at "
+                                                "0.6, 0.8, 1, 1.2 omega_r (003 Fig. 5).")] = False,
+             as_json: JsonOpt = False, plot: PlotOpt = None):
+    """Rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
+
+    Parameters
+    ----------
+    preset : str
+        Bench preset name or .toml file.
+    volume, radius, unbalance, liquid, placement : str
+        Changes to the preset: volume [m^3], chamber radius [m], rotor unbalance [kg m] (with
+        units or bare SI), a liquid of liquids_001, drach or deflection; default the preset's.
+    omega, as_json
+        The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` lists the steady speeds.
+    run : bool
+        Also integrate the run-up.
+    fill : bool
+        Amplitude vs fill at 0.6, 0.8, 1, 1.2 omega_r (003 Fig. 5).
+    plot : str
+        Figure (.png, .pdf, .svg): the response, or the fill sweep with ``--fill-sweep``.
+    """
+    from ..liquid import entrainment_speed, fill_sweep, run_up, steady_response
+
+    b, bal, rot, model = _bench(preset, radius, liquid, volume, unbalance, placement)
+    _check_plot(plot)
+    ws = _list(omega, "speed", "omega")
+    st = steady_response(rot, bal, ws, model)
+    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g)
+    wn = rot.natural_frequency(bal.mass)
+    out = {"preset": preset, "volume_m3": bal.volume, "radius_m": bal.chamber.radius,
+           "liquid": bal.liquid.name, "unbalance_kg_m": rot.unbalance,
+           "capacity_kg_m": bal.capacity, "k": bal.capacity / rot.unbalance
+           if rot.unbalance else None, "placement": model.placement,
+           "omega_0_rad_s": w0, "omega_n_rad_s": wn, **st}
+    ru = sw = None
+    if run:
+        ru = run_up(rot, bal, model, b.omega_end, b.duration, n_out=1500)
+        out["run_up"] = ru.summary()
+    if fill:
+        sw = [fill_sweep(rot, bal, b.sweep_volumes, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
+        out["fill_sweep"] = [{"omega_rad_s": s["omega_rad_s"], "volume_m3": s["volume_m3"],
+                              "amplitude_m": s["amplitude_m"],
+                              "optimum_volume_m3": s["optimum_volume_m3"]} for s in sw]
+    if plot:
+        _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model)
+        out["plot"] = plot
+    if not as_json:
+        out = {k: v for k, v in out.items() if not isinstance(v, (np.ndarray, list, dict))} | {
+            "max_amplitude_m": float(np.max(st["amplitude_m"])),
+            "max_amplitude_dry_m": float(np.max(st["amplitude_dry_m"]))}
+    _out(out, as_json)

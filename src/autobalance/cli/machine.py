@@ -1,0 +1,128 @@
+"""``autobalance presets``, ``show`` and ``demo``: the machines shipped with the package."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+
+from ..config import describe, list_presets, load_config
+from ..jsonable import to_jsonable
+from .common import JsonOpt, ProfileOpt, SetOpt, SourceArg, guard, load_machine, print_json
+from .simulate import fmt_value, run_config, write_outputs
+
+
+def presets(json_: JsonOpt = False) -> None:
+    """List the presets shipped with the package.\f
+
+    Parameters
+    ----------
+    json_ : bool
+        Print ``{"presets": [...]}`` (name, description) instead of a table.
+    """
+    with guard():
+        items = list_presets()
+    if json_:
+        print_json({"presets": items})
+        return
+    width = max((len(p["name"]) for p in items), default=4)
+    for p in items:
+        typer.echo(f"{p['name']:<{width}}  {p['description']}")
+
+
+def _raw_key(dkey: str, raw_section: dict) -> Optional[str]:
+    """The key of the config file that a described key (``kx_N_m``) comes from (``kx``)."""
+    best = None
+    for k in raw_section:
+        if (dkey == k or dkey.startswith(k + "_")) and (best is None or len(k) > len(best)):
+            best = k
+    return best
+
+
+def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+         json_: JsonOpt = False) -> None:
+    """Show the full parameter set in SI with the source of each value.\f
+
+    Parameters
+    ----------
+    source, set_, profile, json_
+        The shared options (:mod:`autobalance.cli.common`); the JSON object is :func:`autobalance.config.describe`.
+    """
+    with guard():
+        cfg = load_machine(source, set_, profile)
+        d = describe(cfg)
+    if json_:
+        print_json(d)
+        return
+    typer.echo(f"{d['name']}: {d['description']}")
+    typer.echo(f"source: {d['source']}")
+    for section in ("rotor", "suspension", "balancer", "gravity", "profile", "initial", "options",
+                    "derived"):
+        typer.echo(f"[{section}]")
+        raw = cfg.raw.get(section, {}) if isinstance(cfg.raw.get(section), dict) else {}
+        for key, value in d[section].items():
+            line = f"  {key:<30} {fmt_value(value)}"
+            rk = _raw_key(key, raw)
+            if rk is not None:
+                if isinstance(raw[rk], (str, list)) and str(raw[rk]) != str(value):
+                    line += f"   (= {raw[rk]!s})" if isinstance(raw[rk], list) else \
+                        f"   (= {raw[rk]})"
+                src = d["sources"].get(f"{section}.{rk}")
+                if src:
+                    line += f"   # {src}"
+            typer.echo(line)
+
+
+def _num(v: Any, scale: float = 1.0) -> str:
+    ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+    return f"{v * scale:.4g}" if ok else "-"
+
+
+def _row(name: str, status: str, wall: Any, summary: dict) -> str:
+    """One line of the demo table (G initial, G final [mm/s], max amplitude [mm])."""
+    final = summary.get("final") if isinstance(summary.get("final"), dict) else {}
+    return (f"{name:<20} {status:<10} {wall:>8.2f} {_num(summary.get('initial_grade_G_mm_s')):>10}"
+            f" {_num(final.get('grade_G_mm_s')):>10} {_num(summary.get('max_amplitude_m'), 1e3):>12}")
+
+
+def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("demo"),
+         json_: JsonOpt = False) -> None:
+    """Simulate every preset; write DIR/summary.json, DIR/<preset>.nc and DIR/<preset>.png.\f
+
+    Parameters
+    ----------
+    out : Path
+        Output directory (created).
+    json_ : bool
+        Print the summary of every run as one JSON object instead of a table.
+
+    Exits with code 1 if a run's status is not ``"ok"``.
+    """
+    results: dict[str, dict] = {}
+    with guard():
+        out.mkdir(parents=True, exist_ok=True)
+        items = list_presets()
+        if not json_:
+            typer.echo(f"{'preset':<20} {'status':<10} {'wall [s]':>8} {'G0 [mm/s]':>10}"
+                       f" {'G [mm/s]':>10} {'max amp [mm]':>12}")
+        for p in items:
+            cfg = load_config(p["name"])
+            sim, wall = run_config(cfg)
+            files = write_outputs(sim, out / f"{p['name']}.nc", out / f"{p['name']}.png")
+            summary = dict(sim.summary())
+            summary.setdefault("status", sim.status)
+            results[p["name"]] = {**summary, "wall_time_s": wall, "files": files}
+            if not json_:
+                typer.echo(_row(p["name"], sim.status, wall, summary))
+        ok = all(r.get("status") == "ok" for r in results.values())
+        report = {"status": "ok" if ok else "failed", "out": str(out), "presets": results}
+        (out / "summary.json").write_text(json.dumps(to_jsonable(report), indent=1,
+                                                     allow_nan=False))
+    if json_:
+        print_json(report)
+    else:
+        typer.echo(f"wrote {out / 'summary.json'}")
+    if not ok:
+        raise typer.Exit(1)

@@ -1,0 +1,238 @@
+"""The two harmonic (steady-state) response commands and the speed and ball-angle options they
+share with the other analysis commands.
+
+* ``autobalance response``: the unbalance response of the suspended rotor over a speed grid
+  (balls held out of it) and its critical speeds (:func:`autobalance.physics.response.response_table`).
+* ``autobalance analyze response``: at one speed, the drum response to the unbalance and to each
+  ball at given angles (000 eq 6-7, 37-38; :func:`autobalance.physics.vibratory.drum_response`).
+
+Both read the machine the same way (:func:`~autobalance.cli.common.load_machine`), take their
+speeds as quantities with units (bare numbers in rad/s, :func:`parse_speed`) and default to the
+configuration's nominal speed.
+"""
+from __future__ import annotations
+
+import math
+from typing import Annotated, Optional
+
+import typer
+
+from ..config import ConfigError, parse_quantity
+from .common import (JsonOpt, ProfileOpt, SetOpt, SourceArg, echo_fields, guard, load_machine,
+                     print_json)
+
+SpeedOpt = Annotated[Optional[str], typer.Option(
+    "--speed", help="Spin speed, e.g. '1000 rpm' (bare number: rad/s); default the preset's.")]
+AnglesOpt = Annotated[Optional[str], typer.Option(
+    "--angles", help="Ball angles, comma separated, e.g. '120 deg,-120 deg' (bare: rad).")]
+SpeedsOpt = Annotated[Optional[str], typer.Option(
+    "--speeds", metavar="LO:HI:N",
+    help="Speed grid, e.g. '0:2000 rpm:200' (bare numbers in rad/s); "
+         "default 200 points from 0 to 2x the nominal speed.")]
+
+#: Memory of one speed of ``response`` [B]: the numpy work arrays, five lists of Python floats
+#: and their JSON text (generous).
+RESPONSE_BYTES_PER_SPEED = 1024
+
+
+def parse_speed(text: str, field: str) -> float:
+    """A speed given on the command line.
+
+    Parameters
+    ----------
+    text : str
+        A quantity with units (``"1000 rpm"``, ``"50 Hz"``) or a bare number [rad/s].
+    field : str
+        The option for the message, e.g. ``"--speed"``.
+
+    Returns
+    -------
+    float
+        The speed [rad/s] (not checked for sign or finiteness).
+
+    Raises
+    ------
+    ConfigError
+        Not a speed (one line).
+    """
+    return parse_quantity(text, "speed", field)
+
+
+def speed_at(cfg, spec: Optional[str]) -> float:
+    """``--speed``: one spin speed, default the configuration's nominal speed.
+
+    Parameters
+    ----------
+    cfg : autobalance.config.Config
+        The machine.
+    spec : str or None
+        The option's text (:func:`parse_speed`).
+
+    Returns
+    -------
+    float
+        The speed [rad/s], finite and > 0.
+
+    Raises
+    ------
+    ConfigError
+        Not a speed, or not finite and > 0 (one line).
+    """
+    w = cfg.spin.nominal_speed if spec is None else parse_speed(spec, "--speed")
+    if not (math.isfinite(w) and w > 0):
+        raise ConfigError(f"--speed = {spec!r}: must be > 0, e.g. '1000 rpm'")
+    return w
+
+
+def _count(text: str) -> int:
+    """A point count: ``"200"``, or an integral float such as ``"1e3"``; 0 if neither."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        v = float(text)
+    except ValueError:
+        return 0
+    return int(v) if math.isfinite(v) and v == int(v) else 0
+
+
+def speed_grid(spec: Optional[str], nominal: float):
+    """``--speeds LO:HI:N``: a grid of n speeds from lo to hi.
+
+    n is a positive integer (``1e3`` is read as 1000) whose table must fit the memory limit
+    (:func:`autobalance.limits.check_memory`), checked before anything is allocated.
+
+    Parameters
+    ----------
+    spec : str or None
+        ``"lo:hi:n"`` with speeds as for :func:`parse_speed` (an empty lo is 0); None gives 200
+        points from 0 to twice ``nominal``.
+    nominal : float
+        The nominal speed [rad/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds [rad/s].
+
+    Raises
+    ------
+    ConfigError
+        Malformed, or not 0 <= lo < hi with n >= 2 (one line).
+    ResourceError
+        The table would not fit the memory limit.
+    """
+    import numpy as np
+
+    from ..limits import check_memory
+
+    if spec is None:
+        return np.linspace(0.0, 2.0 * nominal, 200)
+    parts = spec.split(":")
+    if len(parts) != 3:
+        raise ConfigError(f"--speeds = {spec!r}: expected 'lo:hi:n', e.g. '0:2000 rpm:200' "
+                          "(bare numbers in rad/s)")
+    lo = parse_speed(parts[0] or "0", "--speeds lo")
+    hi = parse_speed(parts[1], "--speeds hi")
+    n = _count(parts[2].strip())
+    if n < 2 or not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0 or hi <= lo:
+        raise ConfigError(f"--speeds = {spec!r}: need 0 <= lo < hi and an integer n >= 2")
+    check_memory("--speeds", spec, float(n) * RESPONSE_BYTES_PER_SPEED,
+                 f"response table of {n} speeds")
+    return np.linspace(lo, hi, n)
+
+
+def ball_angles(cfg, spec: Optional[str]):
+    """``--angles``: one angle per ball, default the configuration's initial ball angles.
+
+    Parameters
+    ----------
+    cfg : autobalance.config.Config
+        The machine.
+    spec : str or None
+        Comma-separated angles with units (``"120 deg,-120 deg"``) or bare [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ball angles [rad].
+
+    Raises
+    ------
+    ConfigError
+        Not angles, or not one per ball (one line).
+    """
+    import numpy as np
+
+    if spec is None:
+        return np.asarray(cfg.initial.angles_for(cfg.system.balancer), float)
+    vals = [parse_quantity(p.strip(), "angle", "--angles") for p in spec.split(",") if p.strip()]
+    n = cfg.system.balancer.n_balls
+    if len(vals) != n:
+        raise ConfigError(f"--angles = {spec!r}: needs {n} angles, one per ball")
+    return np.asarray(vals, float)
+
+
+def response(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+             speeds: SpeedsOpt = None, json_: JsonOpt = False) -> None:
+    """Harmonic (steady-state) unbalance response of the suspended rotor and its critical speeds.\f
+
+    Parameters
+    ----------
+    source, set_, profile, json_
+        The shared options (:mod:`autobalance.cli.common`); the JSON object is the table (SI).
+    speeds : str
+        Speed grid ``"lo:hi:n"`` [rad/s or with units] (:func:`speed_grid`).
+    """
+    with guard():
+        cfg = load_machine(source, set_, profile)
+        grid = speed_grid(speeds, cfg.spin.nominal_speed)
+        from ..physics.response import response_table
+
+        table = dict(response_table(cfg.system, grid))
+    result = {"name": cfg.name, "config": cfg.source, **table}
+    if json_:
+        print_json(result)
+        return
+    typer.echo(f"{cfg.name}: harmonic response, {len(grid)} speeds "
+               f"{grid[0]:.4g} .. {grid[-1]:.4g} rad/s")
+    hz = table.get("natural_frequencies_hz", [])
+    typer.echo("  natural frequencies: " + ", ".join(
+        f"{f:.4g} Hz ({f * 60:.4g} rpm)" for f in hz))
+    w = list(table.get("speed_rad_s", []))
+    for axis in ("x", "y"):
+        amp = list(table.get(f"amplitude_{axis}_m", []))
+        if amp and w:
+            i = max(range(len(amp)), key=lambda j: amp[j])
+            typer.echo(f"  peak amplitude {axis}: {amp[i]:.4g} m at {w[i]:.4g} rad/s "
+                       f"({w[i] * 30 / math.pi:.4g} rpm)")
+
+
+#: The values ``analyze response`` shows as text.
+DRUM_TEXT_KEYS = ("a_0x_m", "a_0y_m", "a_ix_m", "a_iy_m", "phi_x_rad", "phi_y_rad",
+                  "amplitude_x_m", "amplitude_y_m", "residual_unbalance_kg_m")
+
+
+def analyze_response(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
+                     angles: AnglesOpt = None, json_: JsonOpt = False) -> None:
+    """Drum response to the unbalance, each ball and the eccentricity (000 eq 6-7, 37-38).\f
+
+    Parameters
+    ----------
+    source, set_, speed, angles, json_
+        The options of every analysis (:mod:`autobalance.cli.analyze`).
+    """
+    with guard():
+        cfg = load_machine(source, set_)
+        from ..physics.vibratory import drum_response, speed_regime
+
+        w = speed_at(cfg, speed)
+        r = drum_response(cfg.system, w, ball_angles(cfg, angles))
+        out = {"name": cfg.name, **r.as_dict(), "regime": speed_regime(cfg.system, w),
+               "natural_frequencies_rad_s": list(cfg.system.natural_frequencies)}
+    if json_:
+        print_json(out)
+        return
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s ({out['regime']} the suspension frequencies)")
+    echo_fields({k: out[k] for k in DRUM_TEXT_KEYS})
