@@ -1,14 +1,20 @@
-"""Kinetostatic steady state of a liquid (Leblanc) balancer on a vertical rotor (seed 001).
+"""Kinetostatic steady state of a liquid (Leblanc) balancer on a vertical rotor (seed 001): the
+one home of the liquid's equilibrium angle alpha0 (001 eq 2-3) and friction angle beta (001 eq 6).
 
 Notation of 001: rotor unbalance D (angle 0), liquid unbalance D0 at angle alpha from D,
 k = D0/D, resultant D_c; the eccentricities e = D/(M+m), e_c = D_c/(M+m); delta is the rotor's
 phase angle between the unbalance force and the deflection ("external resistance").
 
-All functions are pure and vectorise over numpy arrays.
+Each formula is written once (:func:`_alpha0` for 001 eq 3, :func:`_sin_beta` and
+:func:`_beta` for 001 eq 6) and evaluated either with numpy (the public functions, which
+validate and vectorise over arrays) or with :mod:`math` on floats
+(:func:`liquid_angle_scalar`, the right-hand side of the run-up integrator in
+:mod:`.dynamics`, where numpy's per-call overhead would dominate).
 """
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -16,7 +22,34 @@ from ..models._validate import ParameterError, positive
 
 __all__ = ["alpha0", "alpha0_residual", "balancing_efficiency", "eccentricity_ratio",
            "friction_angle", "friction_force", "friction_tan_bound", "jeffcott_phase",
-           "residual_lambda0"]
+           "liquid_angle_scalar", "residual_lambda0"]
+
+#: Elementary functions on arrays (numpy) and on floats (math); same results, see the module doc.
+_NUMPY = SimpleNamespace(sqrt=np.sqrt, arccos=np.arccos, arcsin=np.arcsin, clip=np.clip)
+_MATH = SimpleNamespace(sqrt=math.sqrt, arccos=math.acos, arcsin=math.asin,
+                        clip=lambda x, lo, hi: min(max(x, lo), hi))
+
+
+def _alpha0(sin2_delta, k, ops=_NUMPY):
+    """001 eq 3 from sin^2(delta): alpha0 = pi - arccos((s2 + sqrt((s2 - 1)(s2 - k^2)))/k) [rad].
+
+    The square root is clipped at 0 where 001 eq 2 has no root (k < |sin delta|) and the arccos
+    argument to [-1, 1] (see :func:`alpha0`). No validation.
+    """
+    s2 = sin2_delta
+    root = ops.sqrt(ops.clip((s2 - 1.0) * (s2 - k * k), 0.0, math.inf))
+    return math.pi - ops.arccos(ops.clip((s2 + root) / k, -1.0, 1.0))
+
+
+def _sin_beta(mu, radius, arc_deg, liquid_mass, omega):
+    """001 eq 6 before clipping: sin(beta) = 8 pi^2 mu R xi / (180 m omega) [-]. No validation."""
+    return 8.0 * math.pi ** 2 * mu * radius * arc_deg / (180.0 * liquid_mass * omega)
+
+
+def _beta(sin_beta, ops=_NUMPY):
+    """beta = arcsin(sin beta) [rad], sin(beta) clipped to [0, 1] (friction holds the liquid at
+    sin(beta) >= 1: beta = pi/2, our clip)."""
+    return ops.arcsin(ops.clip(sin_beta, 0.0, 1.0))
 
 
 def _k(k):
@@ -56,10 +89,7 @@ def alpha0(delta, k):
     k : float or array
         D0/D [-] > 0.
     """
-    k = _k(k)
-    s2 = np.sin(delta) ** 2
-    root = np.sqrt(np.maximum((s2 - 1.0) * (s2 - k * k), 0.0))
-    return math.pi - np.arccos(np.clip((s2 + root) / k, -1.0, 1.0))
+    return _alpha0(np.sin(delta) ** 2, _k(k))
 
 
 def alpha0_residual(alpha, delta, k):
@@ -126,9 +156,36 @@ def friction_angle(mu, radius, arc_deg, liquid_mass, omega):
     if np.any(np.asarray(mu) <= 0):
         raise ParameterError("mu", mu, "viscosity must be > 0")
     positive("liquid_mass", liquid_mass)
-    s = 8.0 * math.pi ** 2 * np.asarray(mu) * radius * arc_deg / (180.0 * liquid_mass
-                                                                   * np.asarray(omega, float))
-    return np.arcsin(np.clip(s, 0.0, 1.0))
+    return _beta(_sin_beta(np.asarray(mu), radius, arc_deg, liquid_mass, np.asarray(omega, float)))
+
+
+def liquid_angle_scalar(delta: float, k: float, mu: float, radius: float, arc_deg: float,
+                        liquid_mass: float, omega: float) -> float:
+    """The liquid's equilibrium angle alpha0(delta, k) - beta(omega) [rad] (001 eq 3 and 6) for
+    floats, without validation: the same formulas as :func:`alpha0` and
+    :func:`friction_angle`, evaluated with :mod:`math` (the integrator's right-hand side calls it
+    at every step). At omega <= 0 the liquid is held, beta = pi/2.
+
+    Parameters
+    ----------
+    delta : float
+        Rotor phase angle [rad].
+    k : float
+        D0/D [-] > 0.
+    mu : float
+        Dynamic viscosity [Pa*s] > 0.
+    radius : float
+        Chamber radius R [m].
+    arc_deg : float
+        Arc xi occupied by the liquid [deg].
+    liquid_mass : float
+        m = rho V [kg] > 0.
+    omega : float
+        Rotation speed [rad/s].
+    """
+    beta = (0.5 * math.pi if omega <= 0.0 else
+            _beta(_sin_beta(mu, radius, arc_deg, liquid_mass, omega), _MATH))
+    return _alpha0(math.sin(delta) ** 2, k, _MATH) - beta
 
 
 def friction_tan_bound(mu, radius, arc_deg, liquid_mass, omega):
