@@ -1,5 +1,7 @@
-"""Reproduction targets of the liquid seeds 003 and 001 (autobalance.papers.liquid.targets)."""
+"""Reproduction targets of the liquid seeds 003 and 001 (autobalance.papers.p003.targets,
+autobalance.papers.p001.targets)."""
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -8,7 +10,11 @@ from matplotlib.figure import Figure
 
 from autobalance.validation.target import Context, Target, claims
 from conftest import assert_rows_answer_claims
-from autobalance.papers.liquid import targets as tl
+from autobalance.papers.p001 import targets as t001
+from autobalance.papers.p003 import targets as t003
+
+tl = SimpleNamespace(TARGETS=t003.TARGETS + t001.TARGETS, ITEMS_003=t003.ITEMS_003,
+                     ITEMS_001=t001.ITEMS_001, PUBLISHED={**t003.PUBLISHED, **t001.PUBLISHED})
 
 COMPUTED = [t for t in tl.TARGETS if t.run is not None]
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 
@@ -77,6 +77,26 @@ class Bench:
     omega_r: float
     omega_end: float
     duration: float
+
+    def balancer_with(self, volume: float | None = None, radius: float | None = None,
+                      liquid: Liquid | None = None) -> LiquidBalancer:
+        """The bench's balancer with another fill, chamber radius (same height) or liquid.
+
+        Parameters
+        ----------
+        volume : float or None
+            Liquid volume V [m^3]; None keeps the preset's.
+        radius : float or None
+            Chamber radius R [m]; None keeps the preset's.
+        liquid : Liquid or None
+            Working liquid; None keeps the preset's.
+        """
+        bal = self.balancer
+        if radius is not None:
+            bal = replace(bal, chamber=Chamber(radius, bal.chamber.height))
+        if liquid is not None:
+            bal = replace(bal, liquid=liquid)
+        return bal if volume is None else replace(bal, volume=volume)
 
 
 def load_bench(name: str = "bench_003") -> Bench:

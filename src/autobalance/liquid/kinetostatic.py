@@ -22,7 +22,7 @@ from ..models._validate import ParameterError, positive
 
 __all__ = ["alpha0", "alpha0_residual", "balancing_efficiency", "eccentricity_ratio",
            "friction_angle", "friction_force", "friction_tan_bound", "jeffcott_phase",
-           "liquid_angle_scalar", "residual_lambda0"]
+           "laminar_pipe_force", "liquid_angle_scalar", "residual_lambda0"]
 
 #: Elementary functions on arrays (numpy) and on floats (math); same results, see the module doc.
 _NUMPY = SimpleNamespace(sqrt=np.sqrt, arccos=np.arccos, arcsin=np.arcsin, clip=np.clip)
@@ -106,6 +106,30 @@ def residual_lambda0(k, alpha):
     k = _k(k)
     with np.errstate(divide="ignore"):
         return k / eccentricity_ratio(k, alpha)
+
+
+def laminar_pipe_force(mu, density, speed, length, diameter):
+    """Laminar friction force F_T = pi/4 dP d^2 [N] in 001's first form of eq 5.
+
+    dP = rho lambda (l/d) v^2/2 with the Hagen-Poiseuille lambda = 64/Re, Re = v rho d/mu; 001
+    simplifies it to 8 pi mu l v (the diameter cancels), which :func:`friction_force` uses.
+
+    Parameters
+    ----------
+    mu : float or array
+        Dynamic viscosity [Pa*s].
+    density : float or array
+        Liquid density rho [kg/m^3].
+    speed : float or array
+        Flow speed v [m/s].
+    length : float or array
+        Length l of the flow [m].
+    diameter : float or array
+        Pipe diameter d [m].
+    """
+    re = speed * density * diameter / mu
+    return (math.pi / 4 * diameter ** 2 * density * (64 / re) * (length / diameter)
+            * speed ** 2 / 2)
 
 
 def friction_force(mu, radius, arc_deg, omega, offset):
