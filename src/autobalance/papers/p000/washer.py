@@ -2,7 +2,7 @@
 
 Each ``compute_*`` returns plain data (SI); :data:`PUBLISHED` holds the paper's numbers;
 ``compare_*`` return rows ``{key, quantity, published, computed, tolerance, ok, note}``
-(:func:`autobalance.validation.target.row`; ``key`` = prefix / path of the number in PUBLISHED).
+(:class:`autobalance.validation.target.Rows`; ``key`` = prefix / path of the number in PUBLISHED).
 
 Choices (the paper omits them; docs/washer-analysis.md):
 
@@ -33,7 +33,7 @@ import numpy as np
 from ...physics.equilibria import find_equilibria
 from ...physics.error_bounds import rolling_deadband, suspension_friction_deviation
 from ...physics.vibratory import gain_phase
-from ...validation.target import row
+from ...validation.target import Rows
 
 __all__ = ["PUBLISHED", "RHOS_M", "START_DEG", "acceptance", "compare", "rho_key", "compare_fig13", "compare_fig16", "compare_fig18",
            "compare_table", "compute_fig13", "compute_fig16", "compute_fig18", "compute_table",
@@ -209,102 +209,97 @@ def acceptance(band, unbalance=0.05) -> dict:
             "amplitude_m": np.array([best, worst]) * band["gain_max"]}
 
 
-def _angle_rows(prefix, label, pub_deg, sim_dev, band):
-    """Rows d_alpha1, d_alpha2 [deg]: published within our dead band about our equilibrium."""
-    rows = []
+def _angle_rows(rows, path, label, sim_dev, band) -> list:
+    """Rows ``<path>d_alpha1_deg``, ``<path>d_alpha2_deg`` [deg]: published within our dead band
+    about our equilibrium. Returns the two rows (also added to ``rows``)."""
     acc = acceptance(band)
+    out = []
     for i in range(2):
         lo, hi = acc["d_alpha_deg"][i]
         ours = abs(math.degrees(sim_dev[i]))
-        ok = lo <= pub_deg[i] <= hi
-        rows.append(row(f"{prefix}/d_alpha{i + 1}_deg", f"{label} d_alpha{i + 1} [deg]", pub_deg[i],
-                        round(ours, 2), f"[{lo:.1f}, {hi:.1f}]", ok,
-                        f"equilibrium {acc['eq_deviation_deg'][i]:.1f} deg +- dead band "
-                        f"{acc['half_band_deg'][i]:.1f} deg"
-                        + ("" if lo <= ours <= hi + 0.3 else "; our run outside the band")))
-    return rows
+        key = f"{path}d_alpha{i + 1}_deg"
+        ok = lo <= rows.published(key) <= hi
+        out.append(rows.add(key, f"{label} d_alpha{i + 1} [deg]", round(ours, 2),
+                            f"[{lo:.1f}, {hi:.1f}]", ok,
+                            f"equilibrium {acc['eq_deviation_deg'][i]:.1f} deg +- dead band "
+                            f"{acc['half_band_deg'][i]:.1f} deg"
+                            + ("" if lo <= ours <= hi + 0.3 else "; our run outside the band")))
+    return out
 
 
 def compare_fig13(data=None, prefix="000-fig13") -> list:
     d = data or compute_fig13()
-    pub = PUBLISHED["fig13"]
-    rows = _angle_rows(prefix, "000 Fig. 13 (f/r = 1e-3)", (pub["d_alpha1_deg"], pub["d_alpha2_deg"]),
-                       d["deviation_rad"], d["band"])
-    for r in rows:
+    rows = Rows(prefix, PUBLISHED["fig13"])
+    for r in _angle_rows(rows, "", "000 Fig. 13 (f/r = 1e-3)", d["deviation_rad"], d["band"]):
         r["note"] += "; published values exceed the paper's own eq 32 bound 2(R/e)(f/r) = 23.7 deg" \
             if r["published"] > 23.7 else ""
     t_imp = d["first_contact_s"]
     start = f"start {START_DEG[0]:g} / {START_DEG[1]:g} deg (the paper's start is not given)"
-    rows.append(row(f"{prefix}/impact_time_wt", "000 Fig. 13 first ball impact [w t]",
-                    pub["impact_time_wt"], "no impact" if t_imp is None else round(t_imp * W1000, 1),
-                    "+-0.5 (printed digits)", t_imp is not None and abs(t_imp * W1000 - 35.0) <= 0.5,
-                    f"{d['ball_contacts']} ball-ball contacts in our run; {start}: whether and "
-                    "when the balls meet depends on where they start"))
+    rows.add("impact_time_wt", "000 Fig. 13 first ball impact [w t]",
+             "no impact" if t_imp is None else round(t_imp * W1000, 1), "+-0.5 (printed digits)",
+             t_imp is not None and abs(t_imp * W1000 - 35.0) <= 0.5,
+             f"{d['ball_contacts']} ball-ball contacts in our run; {start}: whether and "
+             "when the balls meet depends on where they start")
     return rows
 
 
 def compare_fig16(data=None, prefix="000-fig16") -> list:
     d = data or compute_fig16()
-    pub = PUBLISHED["fig16"]
+    rows = Rows(prefix, PUBLISHED["fig16"])
     sim = sorted(np.abs(d["deviation_rad"]))[::-1]
     eq = sorted(np.abs(d["band"]["eq_deviation_rad"]))[::-1]
-    rows = []
     for i in range(2):
-        p = pub[f"d_alpha{i + 1}_deg"]
+        p = rows.published(f"d_alpha{i + 1}_deg")
         ours = math.degrees(sim[i])
         ok = abs(p - math.degrees(eq[i])) <= 1.2
-        rows.append(row(f"{prefix}/d_alpha{i + 1}_deg", f"000 Fig. 16 d_alpha{i + 1} [deg] (larger first)",
-                        p, round(ours, 2), "+-1.2", ok,
-                        f"deterministic equilibrium {math.degrees(eq[i]):.1f} deg; the paper's own "
-                        "Table 4 (rho = 1 mm) gives 42.9 / 29.9"))
+        rows.add(f"d_alpha{i + 1}_deg", f"000 Fig. 16 d_alpha{i + 1} [deg] (larger first)",
+                 round(ours, 2), "+-1.2", ok, f"deterministic equilibrium "
+                 f"{math.degrees(eq[i]):.1f} deg; the paper's own Table 4 (rho = 1 mm) gives 42.9 / 29.9")
     amp = d["amplitude_m"] * 1e3
-    p = pub["amplitude_mm"]
-    rows.append(row(f"{prefix}/amplitude_mm", "000 Fig. 16 residual amplitude [mm]", p, round(amp, 3),
-                    "+-10 %", abs(amp - p) <= 0.1 * p, "max(|x|, |y|) over the last 0.5 s; |W| g = "
-                    "rho-driven; Table 4 (rho = 1 mm) gives A = 1 mm"))
+    p = rows.published("amplitude_mm")
+    rows.add("amplitude_mm", "000 Fig. 16 residual amplitude [mm]", round(amp, 3), "+-10 %",
+             abs(amp - p) <= 0.1 * p, "max(|x|, |y|) over the last 0.5 s; |W| g = "
+             "rho-driven; Table 4 (rho = 1 mm) gives A = 1 mm")
     return rows
 
 
 def compare_fig18(data=None, prefix="000-fig18") -> list:
     d = data or compute_fig18()
-    pub = PUBLISHED["fig18"]
+    rows = Rows(prefix, PUBLISHED["fig18"])
     b = d["eq49_bound_rad"]
-    rows = [row(f"{prefix}/eq49_bound_rad", "000 eq 49 bound [rad]", pub["eq49_bound_rad"], round(b, 4),
-                "+-0.0005", abs(b - pub["eq49_bound_rad"]) <= 5e-4,
-                "F cos(gamma)/(Me sin(2pi/3) w^2), F = 70 N")]
+    rows.add("eq49_bound_rad", "000 eq 49 bound [rad]", round(b, 4), "+-0.0005",
+             abs(b - rows.published("eq49_bound_rad")) <= 5e-4,
+             "F cos(gamma)/(Me sin(2pi/3) w^2), F = 70 N")
     dev = np.abs(d["deviation_rad"])
     for i in range(2):
-        p = pub[f"d_alpha{i + 1}_rad"]
-        rows.append(row(f"{prefix}/d_alpha{i + 1}_rad", f"000 Fig. 18 d_alpha{i + 1} [rad]", p,
-                        round(float(dev[i]), 3), "+-0.03", abs(dev[i] - p) <= 0.03,
-                        "start-dependent: the tub sticks wherever the residual force drops below the "
-                        "friction; both the paper's and our runs exceed eq 49, which checks only x"))
+        p = rows.published(f"d_alpha{i + 1}_rad")
+        rows.add(f"d_alpha{i + 1}_rad", f"000 Fig. 18 d_alpha{i + 1} [rad]",
+                 round(float(dev[i]), 3), "+-0.03", abs(dev[i] - p) <= 0.03,
+                 "start-dependent: the tub sticks wherever the residual force drops below the "
+                 "friction; both the paper's and our runs exceed eq 49, which checks only x")
     return rows
 
 
 def compare_table(which: int, data=None, prefix=None) -> list:
     d = data or compute_table(which)
-    pub = PUBLISHED[f"table{which}"]
-    prefix = prefix or f"000-table3-4/table{which}"
-    rows = []
+    rows = Rows(prefix or f"000-table3-4/table{which}", PUBLISHED[f"table{which}"])
     for rho in RHOS_M:
-        p, r, b = pub[rho_key(rho)], d[rho], d[rho]["band"]
-        key = f"{prefix}/{rho_key(rho)}"
+        key = rho_key(rho)
+        p, r, b = rows.published(key), d[rho], d[rho]["band"]
         lab = f"000 Table {which} rho = {rho * 1e3:g} mm"
-        rows += _angle_rows(key, lab, (p["d_alpha1_deg"], p["d_alpha2_deg"]), r["deviation_rad"], b)
+        _angle_rows(rows, f"{key}/", lab, r["deviation_rad"], b)
         acc = acceptance(b)
         lo, hi = acc["rme"]
         rme = p["RMe_pct"] / 100
-        rows.append(row(f"{key}/RMe_pct", f"{lab} RMe [%]", p["RMe_pct"], round(r["rme"] * 100, 1),
-                        f"[{lo * 100:.1f}, {hi * 100:.1f}]", lo - 1e-3 <= rme <= hi + 1e-3,
-                        "range of RMe over the dead band"))
+        rows.add(f"{key}/RMe_pct", f"{lab} RMe [%]", round(r["rme"] * 100, 1),
+                 f"[{lo * 100:.1f}, {hi * 100:.1f}]", lo - 1e-3 <= rme <= hi + 1e-3,
+                 "range of RMe over the dead band")
         amin, amax = acc["amplitude_m"]
         A = p["A_mm"] * 1e-3
-        rows.append(row(f"{key}/A_mm", f"{lab} A [mm]", p["A_mm"], round(r["amplitude_m"] * 1e3, 3),
-                        f"[{amin * 1e3:.3f}, {amax * 1e3:.3f}] +- 0.01",
-                        amin - 1e-5 <= A <= amax + 1e-5,
-                        "range of the residual amplitude over the dead band (ours includes the "
-                        "gravity wobble)"))
+        rows.add(f"{key}/A_mm", f"{lab} A [mm]", round(r["amplitude_m"] * 1e3, 3),
+                 f"[{amin * 1e3:.3f}, {amax * 1e3:.3f}] +- 0.01", amin - 1e-5 <= A <= amax + 1e-5,
+                 "range of the residual amplitude over the dead band (ours includes the "
+                 "gravity wobble)")
     return rows
 
 
