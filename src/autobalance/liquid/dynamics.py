@@ -85,6 +85,15 @@ class RunUp:
     amplitude_dry: np.ndarray
 
     def summary(self) -> dict:
+        """Peak and final values of the run-up: amplitudes [m], speeds [rad/s], liquid angle [deg].
+
+        Returns
+        -------
+        dict
+            ``peak_amplitude_m``, ``peak_speed_rad_s``, ``peak_amplitude_dry_m``,
+            ``peak_speed_dry_rad_s``, ``final_amplitude_m``, ``final_amplitude_dry_m``,
+            ``final_liquid_angle_deg``, ``n_samples``.
+        """
         i = int(np.argmax(self.amplitude))
         j = int(np.argmax(self.amplitude_dry))
         return {"peak_amplitude_m": float(self.amplitude[i]),
@@ -180,10 +189,14 @@ def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas,
 
     Parameters
     ----------
-    rotor, bal, model
-        As in :func:`run_up`.
+    rotor : VerticalRotor
+        Rotor and supports (mass [kg], stiffness [N/m], damping [N*s/m], unbalance [kg*m]).
+    bal : LiquidBalancer
+        Chamber [m], liquid, volume [m^3].
     omegas : array
         Speeds [rad/s] >= 0.
+    model : LiquidModel
+        Reduced-order choices (placement law, engagement ratio [-], lag time [s], g [m/s^2]).
     iterations : int
         Fixed-point iterations.
 
@@ -225,6 +238,19 @@ def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas,
 def fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes, omega: float,
                model: LiquidModel = LiquidModel()) -> dict:
     """Steady amplitude [m] at one speed for several fill volumes [m^3] (003 Fig. 5).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        Rotor and supports (mass [kg], stiffness [N/m], damping [N*s/m], unbalance [kg*m]).
+    bal : LiquidBalancer
+        Chamber [m] and liquid; its volume is replaced by each of ``volumes``.
+    volumes : array
+        Fill volumes V [m^3].
+    omega : float
+        Rotor speed [rad/s].
+    model : LiquidModel
+        Reduced-order choices.
 
     Returns
     -------

@@ -93,7 +93,17 @@ def alpha0(delta, k):
 
 
 def alpha0_residual(alpha, delta, k):
-    """Residual of 001 eq 2: sin(alpha) - sin(delta) sqrt(1 + 2k cos(alpha) + k^2)/k [-]."""
+    """Residual of 001 eq 2: sin(alpha) - sin(delta) sqrt(1 + 2k cos(alpha) + k^2)/k [-].
+
+    Parameters
+    ----------
+    alpha : float or array
+        Liquid angle from the rotor's unbalance [rad].
+    delta : float or array
+        Rotor phase angle [rad].
+    k : float or array
+        D0/D [-] > 0.
+    """
     k = _k(k)
     return np.sin(alpha) - np.sin(delta) * eccentricity_ratio(k, alpha) / k
 
@@ -102,6 +112,13 @@ def residual_lambda0(k, alpha):
     """lambda0 = k / sqrt(1 + 2 k cos(alpha0) + k^2) = D0/D_c [-] (001 eq 4).
 
     Infinite (complete balance) at k = 1, alpha0 = pi (001, after eq 4).
+
+    Parameters
+    ----------
+    k : float or array
+        D0/D [-] > 0.
+    alpha : float or array
+        Liquid angle alpha0 [rad].
     """
     k = _k(k)
     with np.errstate(divide="ignore"):
@@ -213,7 +230,21 @@ def liquid_angle_scalar(delta: float, k: float, mu: float, radius: float, arc_de
 
 
 def friction_tan_bound(mu, radius, arc_deg, liquid_mass, omega):
-    """|tan(beta)| bound of 001 eq 7: s / sqrt(1 - s^2), s = sin(beta) of eq 6 [-]."""
+    """|tan(beta)| bound of 001 eq 7: s / sqrt(1 - s^2), s = sin(beta) of eq 6 [-].
+
+    Parameters
+    ----------
+    mu : float or array
+        Dynamic viscosity [Pa*s] > 0.
+    radius : float
+        Chamber radius R [m].
+    arc_deg : float
+        Arc xi occupied by the liquid [deg].
+    liquid_mass : float
+        m = rho V [kg] > 0.
+    omega : float or array
+        Rotation speed [rad/s] > 0.
+    """
     return np.tan(friction_angle(mu, radius, arc_deg, liquid_mass, omega))
 
 
@@ -236,5 +267,14 @@ def balancing_efficiency(k, delta, beta=0.0):
 
     The ratio of the eccentricity without and with the liquid, i.e. 003's empirical efficiency
     (amplitude without / with liquid) when the liquid does not change the rotor's dynamics.
+
+    Parameters
+    ----------
+    k : float or array
+        D0/D [-] > 0.
+    delta : float or array
+        Rotor phase angle [rad].
+    beta : float or array
+        Friction angle of the liquid [rad] (001 eq 6).
     """
     return 1.0 / eccentricity_ratio(k, alpha0(delta, k) - np.asarray(beta))

@@ -44,7 +44,15 @@ class Chamber:
         return math.pi * self.radius ** 2 * self.height
 
     def check_fill(self, volume: float, field: str = "volume") -> float:
-        """Validate a liquid volume 0 < V < pi*R^2*h [m^3] for this chamber; return it."""
+        """Validate a liquid volume 0 < V < pi*R^2*h for this chamber; return it.
+
+        Parameters
+        ----------
+        volume : float
+            Liquid volume V [m^3].
+        field : str
+            Field name for the error message.
+        """
         v = positive(field, volume)
         if v >= self.volume:
             raise ParameterError(field, volume, f"must be < the chamber volume "
@@ -166,11 +174,23 @@ class VerticalRotor:
         nonneg("rotor.unbalance", self.unbalance)
 
     def natural_frequency(self, added_mass: float = 0.0) -> float:
-        """Undamped natural frequency sqrt(k/(M + added_mass)) [rad/s]."""
+        """Undamped natural frequency sqrt(k/(M + added_mass)) [rad/s].
+
+        Parameters
+        ----------
+        added_mass : float
+            Mass translating with the rotor, e.g. the liquid's rho V [kg].
+        """
         return math.sqrt(self.stiffness / (self.mass + nonneg("added_mass", added_mass)))
 
     def damping_ratio(self, added_mass: float = 0.0) -> float:
-        """Damping ratio c / (2 sqrt(k (M + added_mass))) [-]."""
+        """Damping ratio c / (2 sqrt(k (M + added_mass))) [-].
+
+        Parameters
+        ----------
+        added_mass : float
+            Mass translating with the rotor, e.g. the liquid's rho V [kg].
+        """
         return self.damping / (2.0 * math.sqrt(self.stiffness * (self.mass + added_mass)))
 
     def support_force(self, amplitude, omega):
