@@ -21,8 +21,16 @@ RPM = 2 * math.pi / 60
 
 
 def displacement_from_acceleration(acceleration, n_rpm):
-    """Harmonic displacement amplitude A = a / w^2 [m] of an acceleration amplitude a [m/s^2] at
-    n [rpm] (000 p. 3, below Fig. 3: A = a_x / (pi n / 30)^2)."""
+    """Harmonic displacement amplitude A = a / w^2 [m] (000 p. 3, below Fig. 3: A = a_x / (pi n /
+    30)^2).
+
+    Parameters
+    ----------
+    acceleration : float or array
+        Acceleration amplitude a [m/s^2].
+    n_rpm : float or array
+        Drum speed n [rpm].
+    """
     return np.asarray(acceleration, float) / (np.asarray(n_rpm, float) * RPM) ** 2
 
 
@@ -34,6 +42,14 @@ SENSITIVITY = 0.24
 
 
 def run_fig3(ctx) -> Outcome:
+    """000 Fig. 3: the published accelerations [m/s^2] converted to amplitudes [mm], and the drum
+    model's amplitude vs speed [rpm].
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...physics.vibratory import gain_phase
     from ...plotting.washer import plot_measured_vibration
 
@@ -88,6 +104,14 @@ def _stable_one_ball(system, w) -> float:
 
 
 def run_fig6_7(ctx) -> Outcome:
+    """000 Fig. 6-7: the stable position of one ball [deg], the extremes of the vibratory force
+    [-] and its change with the suspension damping.
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...physics.vibratory import force_extreme_ratio, single_ball_force
     from ...plotting.washer import (plot_force_extreme_ratio, plot_vibratory_force,
                                    plot_vibratory_force_damping)
@@ -135,6 +159,13 @@ def run_fig6_7(ctx) -> Outcome:
 
 # -- Fig. 9 ------------------------------------------------------------------------------------
 def run_fig9(ctx) -> Outcome:
+    """000 Fig. 9: full model minus kinetic-static model, D_x, D_y [um] and D_alpha [rad].
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...physics.kinetic_static import compare_with_full
     from ...plotting.washer import plot_ks_comparison
 
@@ -156,6 +187,14 @@ def run_fig9(ctx) -> Outcome:
 
 # -- Fig. 12, eq 30-32 -------------------------------------------------------------------------
 def run_fig12_eq32(ctx) -> Outcome:
+    """000 Fig. 12, eq 30-32: coefficients of the rolling-resistance bounds [-] and the largest
+    position error [deg].
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...physics.error_bounds import rolling_deadband, rolling_deadband_single, symmetric_rolling_deviation
     from ...physics.vibratory import force_jacobian
     from ...plotting.washer import plot_rolling_deviation
@@ -190,6 +229,13 @@ def run_fig12_eq32(ctx) -> Outcome:
 
 # -- Fig. 15 -----------------------------------------------------------------------------------
 def run_fig15(ctx) -> Outcome:
+    """000 Fig. 15: the ring-eccentricity angle beta [deg] of the largest ball deviation.
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
     from ...plotting.washer import plot_eccentricity_deviation
 
@@ -215,6 +261,14 @@ def run_fig15(ctx) -> Outcome:
 
 # -- eq 56-66 ----------------------------------------------------------------------------------
 def run_tolerance(ctx) -> Outcome:
+    """000 eq 56-66: the residual-unbalance budget, rho_max [um], f/r max [-] and the damper
+    friction F max [N].
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...physics.error_bounds import friction_force_for_deviation
     from ...physics.tolerance import design_tolerances
 

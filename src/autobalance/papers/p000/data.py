@@ -15,7 +15,15 @@ def _name(s: str) -> str:
 
 
 def dataset(variables: dict, **attrs):
-    """xarray.Dataset from {name: (dims, values, units)}; attrs: str / numbers only."""
+    """xarray.Dataset from {name: (dims, values, units)}; attrs: str / numbers only.
+
+    Parameters
+    ----------
+    variables : dict
+        Name -> (dims, values, units); names are made NetCDF-safe.
+    **attrs
+        Dataset attributes (other types are stored as text).
+    """
     import xarray as xr
 
     ds = xr.Dataset({_name(k): xr.Variable(dims, np.asarray(v, dtype=float), {"units": u})
@@ -25,7 +33,16 @@ def dataset(variables: dict, **attrs):
 
 
 def histories(runs: dict, **attrs):
-    """Time histories of constant-speed or run-up runs {name: run dict}, one time axis per run."""
+    """Time histories of constant-speed or run-up runs {name: run dict}, one time axis per run.
+
+    Parameters
+    ----------
+    runs : dict
+        Name -> run dict with ``t_s`` [s], ``x_m``, ``y_m`` [m], ``alpha_rad`` [rad] and
+        optionally ``speed_rad_s`` [rad/s].
+    **attrs
+        Dataset attributes.
+    """
     v = {}
     for name, r in runs.items():
         tn = f"time_{_name(name)}"
@@ -41,5 +58,16 @@ def histories(runs: dict, **attrs):
 
 
 def run_dict(d: dict, label: str, ideal=(120.0, -120.0)) -> dict:
+    """A run dict labelled for :func:`autobalance.plotting.washer.plot_time_histories`.
+
+    Parameters
+    ----------
+    d : dict
+        Run dict (time histories in SI).
+    label : str
+        Legend label.
+    ideal : (float, float)
+        Ideal ball angles drawn as reference lines [deg].
+    """
     return {**d, "label": label, "ideal_deg": ideal}
 

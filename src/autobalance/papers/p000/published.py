@@ -76,6 +76,12 @@ SECTIONS = {
 
 
 def rows(target_id: str) -> Rows:
-    """The (empty) comparison rows of a 000 target: key prefix = the target id, paths in its
-    section (:data:`SECTIONS`)."""
+    """The (empty) comparison rows of a 000 target: key prefix = the target id, paths in its section
+    (:data:`SECTIONS`).
+
+    Parameters
+    ----------
+    target_id : str
+        A computed target's id, e.g. ``"000-fig3"``.
+    """
     return Rows(target_id, SECTIONS[target_id])

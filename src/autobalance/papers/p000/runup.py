@@ -83,6 +83,15 @@ def runup_time_closed_form(law: str, fraction, tau):
     constant T0: t = s tau; linear T0 (1 - w/w_f): t = -tau ln(1 - s); harmonic
     T0 (1 - sin(pi w / 2 w_f)): t = (2/pi)(tan(pi (1 + s)/4) - 1) tau (the integral of
     1/(1 - sin(pi s/2))).
+
+    Parameters
+    ----------
+    law : str
+        Torque law, one of :data:`LAWS`.
+    fraction : float or array
+        s = w/w_f [-], 0 <= s < 1.
+    tau : float
+        Time scale B_z w_f / T0 [s].
     """
     s = np.asarray(fraction, float)
     if law == "constant":
@@ -98,8 +107,18 @@ def runup_time_closed_form(law: str, fraction, tau):
 
 
 def runup_fraction_closed_form(law: str, time, tau):
-    """Fraction of w_f [-] that the unloaded drum reaches at ``time`` [s]: the inverse of
-    :func:`runup_time_closed_form` (000 eq 15, Table 1 laws); tau = B_z w_f / T0 [s]."""
+    """Fraction of w_f [-] that the unloaded drum reaches at ``time``: the inverse of
+    :func:`runup_time_closed_form` (000 eq 15, Table 1 laws).
+
+    Parameters
+    ----------
+    law : str
+        Torque law, one of :data:`LAWS`.
+    time : float or array
+        Time from standstill [s].
+    tau : float
+        Time scale B_z w_f / T0 [s].
+    """
     t = np.asarray(time, float) / tau
     if law == "constant":
         s = np.minimum(t, 1.0)
@@ -116,15 +135,35 @@ def runup_fraction_closed_form(law: str, time, tau):
 # -- simulations -------------------------------------------------------------------------------
 def balancing_time(sim, fraction=0.05) -> float:
     """Last time [s] at which the whirl amplitude exceeds ``fraction`` of the unbalanced drum's
-    amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e)."""
+    amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e).
+
+    Parameters
+    ----------
+    sim : Simulation
+        A run of :func:`autobalance.simulate.simulate` (time [s], amplitude [m]).
+    fraction : float
+        Threshold as a fraction of e [-].
+    """
     s = sim.system
     k = np.nonzero(sim.amplitude > fraction * s.rotor.unbalance / s.total_mass)[0]
     return float(sim.t[k[-1]]) if k.size else 0.0
 
 
 def settle(c_i=2.0, duration=10.0):
-    """000 Fig. 5: two balls with mR = Me = 0.025 kg m at 1000 rpm from (90, 150) deg, gravity
-    on, ball damping c_i [1/s]. Returns (system, Simulation, balancing time [s])."""
+    """000 Fig. 5: two balls with mR = Me = 0.025 kg m at 1000 rpm from (90, 150) deg, gravity on.
+
+    Parameters
+    ----------
+    c_i : float
+        Ball damping c_i [1/s] (D = c_i m R^2).
+    duration : float
+        Simulated time [s].
+
+    Returns
+    -------
+    tuple
+        (system, Simulation, balancing time [s]).
+    """
     from ...models import InitialState, SimOptions, SpeedProfile
     from ...simulate import simulate
 
@@ -137,9 +176,24 @@ def settle(c_i=2.0, duration=10.0):
 
 
 def runup(Me, law, balls=True, duration=25.0):
-    """000 Tables 1-2 run-up: T0 = 25 N m to n_f = 1000 rpm under ``law`` (000 eq 15-18), Me [kg*m]
-    with two balls of mR = Me starting together at the bottom (or without balls). Returns the
-    Simulation."""
+    """000 Tables 1-2 run-up: T0 = 25 N m to n_f = 1000 rpm under ``law`` (000 eq 15-18), two balls
+    of mR = Me starting together at the bottom (or without balls).
+
+    Parameters
+    ----------
+    Me : float
+        Static unbalance Me = m R of each ball [kg*m].
+    law : str
+        Torque law, one of :data:`LAWS`.
+    balls : bool
+        With the two balls (False: the drum alone).
+    duration : float
+        Simulated time [s].
+
+    Returns
+    -------
+    Simulation
+    """
     import dataclasses
 
     from ...models import InitialState, MotorDrive, SimOptions
@@ -162,7 +216,13 @@ def _history(sim) -> dict:
 
 
 def compute_fig5(duration=10.0) -> dict:
-    """000 Fig. 5 with the preset c_i = 2 1/s and with c_i = 7.1 1/s: {case: run dict}."""
+    """000 Fig. 5 with the preset c_i = 2 1/s and with c_i = 7.1 1/s: {case: run dict}.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time of each run [s].
+    """
     out = {}
     for case, c_i in FIG5_C_I.items():
         s, sim, tb = settle(c_i, duration)
@@ -182,8 +242,13 @@ def _summary(sim) -> dict:
 
 
 def compute_tables(histories=False) -> dict:
-    """000 Tables 1-2: {(table, law): summary dict} for the six run-ups (with the time histories
-    when ``histories``)."""
+    """000 Tables 1-2: {(table, law): summary dict} for the six run-ups.
+
+    Parameters
+    ----------
+    histories : bool
+        Also keep the time histories (t [s], x, y [m], ball angles [rad], speed [rad/s]).
+    """
     out = {}
     for tab, Me in TABLE_ME.items():
         for law in LAWS:
@@ -202,6 +267,15 @@ def compute_fig10_11() -> dict:
 
 # -- comparisons -------------------------------------------------------------------------------
 def compare_fig5(data=None, prefix="000-fig5") -> list:
+    """Rows of 000 Fig. 5: final ball angles [deg], balancing times [s], settling [w t].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig5` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig5()
     rows = Rows(prefix, PUBLISHED["fig5"])
     bound = 250 / W1000
@@ -227,6 +301,15 @@ def compare_fig5(data=None, prefix="000-fig5") -> list:
 
 
 def compare_tables(data=None, prefix="000-table1-2") -> list:
+    """Rows of 000 Tables 1-2: t_f [s], x_max and y_max [mm], ball revolutions [-] per table and law.
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_tables` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_tables()
     tau = B_Z * W1000 / T0
     rows = Rows(prefix, {f"table{tab}": PUBLISHED[f"table{tab}"] for tab in TABLE_ME})
@@ -263,6 +346,15 @@ def compare_tables(data=None, prefix="000-table1-2") -> list:
 
 
 def compare_fig10_11(data=None, prefix="000-fig10-11") -> list:
+    """Rows of 000 Fig. 10-11: ball direction, revolutions [-], amplitude with vs without balls [%].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig10_11` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig10_11()
     rows = Rows(prefix, {"fig10": PUBLISHED["fig10"], "fig11": PUBLISHED["fig11"]})
     rev = d[("constant", True)]["signed_revolutions"]

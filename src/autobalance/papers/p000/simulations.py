@@ -20,6 +20,13 @@ __all__ = ["constant_speed_target", "run_fig10_11", "run_fig5", "run_table1_2", 
 
 # -- Fig. 5 ------------------------------------------------------------------------------------
 def run_fig5(ctx) -> Outcome:
+    """000 Fig. 5: two balls balancing the drum at 1000 rpm (c_i = 2 and 7.1 1/s).
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...plotting.washer import plot_time_histories
 
     d = runup_000.compute_fig5()
@@ -33,6 +40,13 @@ def run_fig5(ctx) -> Outcome:
 
 # -- Tables 1-2, Fig. 10-11 --------------------------------------------------------------------
 def run_table1_2(ctx) -> Outcome:
+    """000 Tables 1-2: six run-ups to 1000 rpm (t_f [s], x_max, y_max [mm], revolutions).
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...plotting.washer import plot_published_vs_computed, plot_runups
 
     section = SECTIONS["000-table1-2"]
@@ -70,6 +84,13 @@ def run_table1_2(ctx) -> Outcome:
 
 
 def run_fig10_11(ctx) -> Outcome:
+    """000 Fig. 10-11: run-ups under constant and linear torque, with and without the balls.
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...plotting.washer import plot_runups
 
     d = runup_000.compute_fig10_11()
@@ -85,6 +106,24 @@ def run_fig10_11(ctx) -> Outcome:
 
 # -- Fig. 13, 16, 18 ---------------------------------------------------------------------------
 def constant_speed_target(target_id, compute, compare, label, title, note):
+    """The run of a constant-speed target (000 Fig. 13, 16, 18): compute, compare, one time-history
+    figure and its data.
+
+    Parameters
+    ----------
+    target_id : str
+        Target id (= key prefix of its rows); the figure is named after its part after "000-".
+    compute : callable() -> dict
+        The run (:mod:`.washer`'s ``compute_*``).
+    compare : callable(dict, prefix=str) -> list
+        Its rows (:mod:`.washer`'s ``compare_*``).
+    label : str
+        Legend label of the run.
+    title : str
+        Figure title.
+    note : str
+        What the run did (the outcome's notes).
+    """
     def run(ctx) -> Outcome:
         from ...plotting.washer import plot_time_histories
 
@@ -99,6 +138,13 @@ def constant_speed_target(target_id, compute, compare, label, title, note):
 
 # -- Tables 3-4, Fig. 19 -----------------------------------------------------------------------
 def run_table3_4(ctx) -> Outcome:
+    """000 Tables 3-4 and Fig. 19: eccentricity and rolling resistance together at 100 rad/s.
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant (the quick and full variants compute the same).
+    """
     from ...plotting.washer import plot_published_vs_computed, plot_time_histories
 
     d = {3: washer_000.compute_table(3), 4: washer_000.compute_table(4, histories=True)}

@@ -49,7 +49,13 @@ RHOS_M = (0.0, 0.05e-3, 0.1e-3, 0.5e-3, 1e-3)
 
 
 def rho_key(rho) -> str:
-    """Key of a Table 3-4 row: rho [m] -> "rho_0.05mm"."""
+    """Key of a Table 3-4 row: rho [m] -> "rho_0.05mm".
+
+    Parameters
+    ----------
+    rho : float
+        Race eccentricity rho [m].
+    """
     return f"rho_{rho * 1e3:g}mm"
 
 
@@ -81,8 +87,29 @@ _IDEAL = np.radians([120.0, -120.0])
 
 def washer(Me=0.05, f_r=0.0, rho=0.0, beta=math.pi / 2, g=0.0, c_i=2.0, friction_force=0.0,
            friction_angle=math.radians(61.0), n=2):
-    """The washer_000 preset with n balls of m R = Me [kg*m], f/r [-], rho [m], beta [rad],
-    gravity g [m/s^2], ball damping c_i [1/s], damper friction F [N] at gamma [rad]."""
+    """The washer_000 preset with n balls of m R = Me and the given imperfections.
+
+    Parameters
+    ----------
+    Me : float
+        Static unbalance of the drum, = m R of each ball [kg*m].
+    f_r : float
+        Rolling resistance f/r [-].
+    rho : float
+        Race eccentricity rho [m].
+    beta : float
+        Angle of the eccentricity [rad].
+    g : float
+        Gravity [m/s^2].
+    c_i : float
+        Ball damping c_i [1/s] (D = c_i m R^2).
+    friction_force : float
+        Dry friction force F of each damper [N].
+    friction_angle : float
+        Damper angle gamma [rad].
+    n : int
+        Number of balls.
+    """
     from ...config import load_config
 
     base = load_config("washer_000").system
@@ -145,7 +172,13 @@ def _band(system, w, f_r):
 
 # -- computations ------------------------------------------------------------------------------
 def compute_fig13(duration=10.0) -> dict:
-    """000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3, no gravity."""
+    """000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3, no gravity.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    """
     s = washer(Me=0.05, f_r=1e-3)
     out = _run(s, W1000, duration)
     out["band"] = _band(s, W1000, 1e-3)
@@ -153,7 +186,13 @@ def compute_fig13(duration=10.0) -> dict:
 
 
 def compute_fig16(duration=15.0) -> dict:
-    """000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m, f/r = 0, no gravity."""
+    """000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m, f/r = 0, no gravity.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    """
     s = washer(Me=0.05, rho=1e-3)
     out = _run(s, W1000, duration)
     out["band"] = _band(s, W1000, 0.0)
@@ -161,7 +200,13 @@ def compute_fig16(duration=15.0) -> dict:
 
 
 def compute_fig18(duration=10.0) -> dict:
-    """000 Fig. 18: damper friction 2F = 140 N at gamma = 61 deg, 1000 rpm, Me = 0.05 kg m."""
+    """000 Fig. 18: damper friction 2F = 140 N at gamma = 61 deg, 1000 rpm, Me = 0.05 kg m.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    """
     s = washer(Me=0.05, friction_force=70.0)
     out = _run(s, W1000, duration)
     out["eq49_bound_rad"] = suspension_friction_deviation(70.0, math.radians(61), 0.05, W1000)
@@ -170,9 +215,25 @@ def compute_fig18(duration=10.0) -> dict:
 
 def compute_table(which: int, duration=12.0, speed=100.0, histories=False) -> dict:
     """000 Table 3 (f = 1e-3 r) or Table 4 (f = 1e-4 r): rho = 0..1 mm, beta = pi/2, Me = mR =
-    0.05 kg m, gravity on, w = 100 rad/s. Returns {rho [m]: run dict with 'band'}; the time
-    histories (t_s, x_m, y_m, alpha_rad) are kept only with ``histories`` (Table 4, rho = 0.5 mm
-    is the case of 000 Fig. 19)."""
+    0.05 kg m, gravity on.
+
+    Parameters
+    ----------
+    which : int
+        3 or 4.
+    duration : float
+        Simulated time of each run [s].
+    speed : float
+        Drum speed w [rad/s] (Fig. 19's caption: 100 rad/s).
+    histories : bool
+        Keep the time histories (t_s, x_m, y_m, alpha_rad) (Table 4, rho = 0.5 mm is the case of
+        000 Fig. 19).
+
+    Returns
+    -------
+    dict
+        rho [m] -> run dict with 'band'.
+    """
     if which not in (3, 4):
         from ...models import ParameterError
         raise ParameterError("which", which, "must be 3 or 4")
@@ -195,10 +256,24 @@ TOL_DETERMINISTIC_DEG = 1.2
 
 
 def acceptance(band, unbalance=0.05) -> dict:
-    """Where a published Table 3-4 / Fig. 13 number counts as reproduced, from our equilibrium
-    and the rolling dead band about it (000 eq 21-22, 27-31): "d_alpha_deg" (2, 2) [lo, hi] per
-    ball [deg] (equilibrium +- max(half band, 1.2 deg)), "rme" [lo, hi] [-] (eq 22 over the band,
-    RMe = (Me - dMe)/Me), "amplitude_m" [lo, hi] [m] (residual x gain)."""
+    """Where a published Table 3-4 / Fig. 13 number counts as reproduced, from our equilibrium and
+    the rolling dead band about it (000 eq 21-22, 27-31).
+
+    Parameters
+    ----------
+    band : dict
+        ``band`` of a run dict: equilibrium deviation and half band [rad], residuals [kg*m], gain
+        [m/(kg*m)].
+    unbalance : float
+        Drum unbalance Me [kg*m].
+
+    Returns
+    -------
+    dict
+        "d_alpha_deg" (2, 2) [lo, hi] per ball [deg] (equilibrium +- max(half band, 1.2 deg)),
+        "rme" [lo, hi] [-] (eq 22 over the band, RMe = (Me - dMe)/Me), "amplitude_m" [lo, hi] [m]
+        (residual x gain).
+    """
     eq = np.abs(np.degrees(band["eq_deviation_rad"]))
     half = np.maximum(np.degrees(band["half_band_rad"]), TOL_DETERMINISTIC_DEG)
     ang = np.stack([np.maximum(eq - half, 0.0), eq + half], axis=1)
@@ -228,6 +303,15 @@ def _angle_rows(rows, path, label, sim_dev, band) -> list:
 
 
 def compare_fig13(data=None, prefix="000-fig13") -> list:
+    """Rows of 000 Fig. 13: ball deviations [deg] in our dead band, first impact [w t].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig13` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig13()
     rows = Rows(prefix, PUBLISHED["fig13"])
     for r in _angle_rows(rows, "", "000 Fig. 13 (f/r = 1e-3)", d["deviation_rad"], d["band"]):
@@ -244,6 +328,15 @@ def compare_fig13(data=None, prefix="000-fig13") -> list:
 
 
 def compare_fig16(data=None, prefix="000-fig16") -> list:
+    """Rows of 000 Fig. 16: ball deviations [deg] and residual amplitude [mm].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig16` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig16()
     rows = Rows(prefix, PUBLISHED["fig16"])
     sim = sorted(np.abs(d["deviation_rad"]))[::-1]
@@ -264,6 +357,15 @@ def compare_fig16(data=None, prefix="000-fig16") -> list:
 
 
 def compare_fig18(data=None, prefix="000-fig18") -> list:
+    """Rows of 000 Fig. 18 and eq 49: the eq 49 bound and the ball deviations [rad].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig18` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig18()
     rows = Rows(prefix, PUBLISHED["fig18"])
     b = d["eq49_bound_rad"]
@@ -281,6 +383,17 @@ def compare_fig18(data=None, prefix="000-fig18") -> list:
 
 
 def compare_table(which: int, data=None, prefix=None) -> list:
+    """Rows of 000 Table 3 or 4: deviations [deg], RMe [%] and A [mm] for each rho.
+
+    Parameters
+    ----------
+    which : int
+        3 or 4.
+    data : dict or None
+        :func:`compute_table` output (computed when None).
+    prefix : str or None
+        Key prefix of the rows (default ``000-table3-4/table<which>``).
+    """
     d = data or compute_table(which)
     rows = Rows(prefix or f"000-table3-4/table{which}", PUBLISHED[f"table{which}"])
     for rho in RHOS_M:
@@ -304,7 +417,13 @@ def compare_table(which: int, data=None, prefix=None) -> list:
 
 
 def compare(which=("fig13", "fig16", "fig18", "table3", "table4")) -> list:
-    """All comparison rows of the requested studies."""
+    """All comparison rows of the requested studies (``autobalance analyze washer-study``).
+
+    Parameters
+    ----------
+    which : sequence of str
+        Studies among fig13, fig16, fig18, table3, table4.
+    """
     fns = {"fig13": compare_fig13, "fig16": compare_fig16, "fig18": compare_fig18,
            "table3": lambda: compare_table(3), "table4": lambda: compare_table(4)}
     rows = []

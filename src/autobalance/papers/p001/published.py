@@ -60,5 +60,11 @@ PUBLISHED = {
 
 def rows(target_id: str) -> Rows:
     """The (empty) comparison rows of a 001 target: key prefix = the target id, paths in its
-    section of PUBLISHED."""
+    section of PUBLISHED.
+
+    Parameters
+    ----------
+    target_id : str
+        The target's id, e.g. ``"001-eq3-4"``.
+    """
     return Rows(target_id, PUBLISHED[target_id])

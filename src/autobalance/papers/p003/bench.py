@@ -32,5 +32,13 @@ def bench() -> Bench:
 
 
 def grid(ctx: Context, quick: int, full: int) -> int:
-    """Number of grid points of a figure: ``quick`` in the quick variant, else ``full``."""
+    """Number of grid points of a figure: ``quick`` in the quick variant, else ``full``.
+
+    Parameters
+    ----------
+    ctx : Context
+        Variant.
+    quick, full : int
+        Points in the quick and in the full variant.
+    """
     return quick if ctx.quick else full

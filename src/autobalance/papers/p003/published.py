@@ -99,12 +99,24 @@ PUBLISHED = {
 
 
 def rows(target_id: str) -> Rows:
-    """The (empty) comparison rows of a 003 target: key prefix = the target id, paths in
-    its section of PUBLISHED."""
+    """The (empty) comparison rows of a 003 target: key prefix = the target id, paths in its
+    section of PUBLISHED.
+
+    Parameters
+    ----------
+    target_id : str
+        The target's id, e.g. ``"003-eq4-6"``.
+    """
     return Rows(target_id, PUBLISHED[target_id])
 
 
 def printed_tolerance(printed: str) -> float:
-    """Half a unit of the last printed digit of a number as printed, e.g. '19.8' -> 0.05."""
+    """Half a unit of the last printed digit of a number as printed, e.g. '19.8' -> 0.05.
+
+    Parameters
+    ----------
+    printed : str
+        The number as the seed prints it; the result has its unit.
+    """
     dec = len(printed.partition(".")[2])
     return 0.5 * 10.0 ** -dec
