@@ -86,13 +86,14 @@ def run_fig3(ctx) -> Outcome:
          (720.0, amps["A_720rpm_mm"], "720 rpm, wet towel")], n, model,
         f"drum model (000 eq 2-3, no balls), U = {U:.3f} kg m from the 930 rpm point")
     data = dataset({"speed": (("speed",), n, "rpm"), "model_amplitude": (("speed",), model, "m"),
-                     "measured_speed": (("point",), [930.0, 680.0, 720.0], "rpm"),
-                     "measured_amplitude": (("point",), list(amps.values()), "m")},
-                    implied_unbalance_kg_m=float(U), sensitivity_m_s2_per_mV=SENSITIVITY)
+                    "measured_speed": (("point",), [930.0, 680.0, 720.0], "rpm"),
+                    "measured_amplitude": (("point",), list(amps.values()), "m")},
+                   implied_unbalance_kg_m=float(U), sensitivity_m_s2_per_mV=SENSITIVITY)
     return Outcome(rows, {"fig3": fig}, data,
                    f"Conversions of the published measurements; the drum model with U = {U:.3f} kg m "
                    f"(1.2 mm at 930 rpm) gives {A680 * 1e3:.2f} mm at 680 rpm, where 3.3 mm was "
                    "measured: the laundry unbalance is not the same in both measurements.")
+
 
 # -- Fig. 6-7 ----------------------------------------------------------------------------------
 def _stable_one_ball(system, w) -> float:
@@ -113,8 +114,9 @@ def run_fig6_7(ctx) -> Outcome:
         Variant (the quick and full variants compute the same).
     """
     from ...physics.vibratory import force_extreme_ratio, single_ball_force
-    from ...plotting.washer import (plot_force_extreme_ratio, plot_vibratory_force,
-                                   plot_vibratory_force_damping)
+    from ...physics.vibratory import speed_regime
+    from ...plotting.washer import (force_extreme_ratio_figure, speed_title,
+                                   vibratory_force_damping_figure, vibratory_force_figure)
 
     rows = rows_of("000-fig6-7")
     s = washer(Me=0.025, n=1)
@@ -146,16 +148,23 @@ def run_fig6_7(ctx) -> Outcome:
              "moves downwards" if down else "does not move downwards", "sign of the change",
              down, "mean F/(m R w^2) over alpha for c x 0.5 / 1 / 2: " + "; ".join(
                  f"{w:.3g} rad/s: " + ", ".join(f"{v:.2e}" for v in m) for w, m in means.items()))
-    figs = {"fig6": plot_vibratory_force(s, [W1000, w_mid]),
-            "fig6_extreme_ratio": plot_force_extreme_ratio(s, np.linspace(5.0, 60.0, 500), p),
-            "fig7": plot_vibratory_force_damping(s, [W1000, w_mid], scales)}
-    F = {f"F_norm_{w:.4g}": (("alpha",), single_ball_force(s, w, al)["F_norm"], "1") for w in (W1000, w_mid)}
+    panels = (W1000, w_mid)
+    forces = {w: single_ball_force(s, w, al) for w in panels}
+    titles = [speed_title(w, speed_regime(s, w)) for w in panels]
+    ws = np.linspace(5.0, 60.0, 500)
+    figs = {"fig6": vibratory_force_figure(al, [forces[w] for w in panels], titles),
+            "fig6_extreme_ratio": force_extreme_ratio_figure(ws, force_extreme_ratio(s, ws), (wx, wy), p),
+            "fig7": vibratory_force_damping_figure(
+                al, [[(c, single_ball_force(s, w, al, damping_scale=c)["F_norm"]) for c in scales]
+                     for w in panels], titles)}
+    F = {f"F_norm_{w:.4g}": (("alpha",), forces[w]["F_norm"], "1") for w in panels}
     data = dataset({"alpha": (("alpha",), al, "rad"), **F,
-                     "speed_between": (("speed_between",), between, "rad/s"),
-                     "extreme_ratio_between": (("speed_between",), ratio, "1")},
-                    w_x_rad_s=wx, w_y_rad_s=wy, w_fig6b_rad_s=w_mid)
+                    "speed_between": (("speed_between",), between, "rad/s"),
+                    "extreme_ratio_between": (("speed_between",), ratio, "1")},
+                   w_x_rad_s=wx, w_y_rad_s=wy, w_fig6b_rad_s=w_mid)
     return Outcome(rows, figs, data, f"One ball, mR = Me = 0.025 kg m; Fig. 6a at 1000 rpm, Fig. 6b at "
                    f"(w_x + w_y)/2 = {w_mid:.2f} rad/s; ratio on 399 speeds between w_y and w_x.")
+
 
 # -- Fig. 9 ------------------------------------------------------------------------------------
 def run_fig9(ctx) -> Outcome:
@@ -180,10 +189,11 @@ def run_fig9(ctx) -> Outcome:
                  f"the start and c_i, which the paper omits; max |D_alpha| after 5 s "
                  f"{np.abs(c['D_alpha_rad'][c['t_s'] > 5.0]).max():.1e} rad")
     data = dataset({"t": (("time",), c["t_s"], "s"), "D_x": (("time",), c["D_x_m"], "m"),
-                     "D_y": (("time",), c["D_y_m"], "m"), "D_alpha": (("time", "ball"), c["D_alpha_rad"], "rad")},
-                    c_i_per_s=7.1, speed_rad_s=W1000)
+                    "D_y": (("time",), c["D_y_m"], "m"), "D_alpha": (("time", "ball"), c["D_alpha_rad"], "rad")},
+                   c_i_per_s=7.1, speed_rad_s=W1000)
     return Outcome(rows, {"fig9": plot_ks_comparison(c)}, data,
                    "Me = 0.025 kg m, 1000 rpm, 6 s; full model (rtol 1e-9) vs kinetic-static RK4.")
+
 
 # -- Fig. 12, eq 30-32 -------------------------------------------------------------------------
 def run_fig12_eq32(ctx) -> Outcome:
@@ -197,7 +207,7 @@ def run_fig12_eq32(ctx) -> Outcome:
     """
     from ...physics.error_bounds import rolling_deadband, rolling_deadband_single, symmetric_rolling_deviation
     from ...physics.vibratory import force_jacobian
-    from ...plotting.washer import plot_rolling_deviation
+    from ...plotting.washer import rolling_deviation_figure
 
     rows = rows_of("000-fig12-eq32")
     s2 = washer(Me=0.05)
@@ -220,12 +230,14 @@ def run_fig12_eq32(ctx) -> Outcome:
              f"{np.degrees(db['max_deviation_rad'].max()):.2f} deg for f/r = 1e-4")
     s1 = washer(Me=0.025, n=1)
     w = np.linspace(1.0, 2 * W1000, 400)
-    fig = plot_rolling_deviation(s1, w, (1e-3, 2e-3))
-    dev = {f"d_alpha_max_f_r_{fr:g}": (("speed",), rolling_deadband_single(s1, w, fr), "rad") for fr in (1e-3, 2e-3)}
+    devs = {fr: rolling_deadband_single(s1, w, fr) for fr in (1e-3, 2e-3)}
+    fig = rolling_deviation_figure(w, devs, s1.natural_frequencies)
+    dev = {f"d_alpha_max_f_r_{fr:g}": (("speed",), d, "rad") for fr, d in devs.items()}
     data = dataset({"speed": (("speed",), w, "rad/s"), **dev}, Me_kg_m=0.025,
-                    eq32_exact_deadband_deg=float(np.degrees(db["max_deviation_rad"].max())))
+                   eq32_exact_deadband_deg=float(np.degrees(db["max_deviation_rad"].max())))
     return Outcome(rows, {"fig12": fig}, data, "Closed forms: eq 24 for one ball (Fig. 12, Me = 0.025 kg m), "
                    "eq 28-32 and the exact dead band for two balls.")
+
 
 # -- Fig. 15 -----------------------------------------------------------------------------------
 def run_fig15(ctx) -> Outcome:
@@ -237,7 +249,7 @@ def run_fig15(ctx) -> Outcome:
         Variant (the quick and full variants compute the same).
     """
     from ...physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
-    from ...plotting.washer import plot_eccentricity_deviation
+    from ...plotting.washer import eccentricity_deviation_figure
 
     rows = rows_of("000-fig15")
     s = washer(Me=0.025, n=1)
@@ -253,11 +265,16 @@ def run_fig15(ctx) -> Outcome:
              bool(top.min() <= p <= top.max()),
              f"exact root of eq 44, one ball, rho = 0.05 mm (rho/e = {rho / e:.3f}), 1000 rpm; eq 45 and "
              "the exact root agree to 1 % at beta = pi/2; for rho -> e the maximum moves away from pi/2")
-    fig = plot_eccentricity_deviation(e, (0.05e-3, 0.1e-3, 0.3e-3), system=s, speed=W1000)
+    b = np.linspace(0, 2 * math.pi, 181)
+    rhos = (0.05e-3, 0.1e-3, 0.3e-3)
+    fig = eccentricity_deviation_figure(
+        b, {r: eccentricity_deviation_single(e, r, b) for r in rhos},
+        {r: (b[::10], eccentricity_deviation_exact(s, W1000, r, b[::10])) for r in rhos})
     data = dataset({"beta": (("beta",), beta, "rad"), "exact": (("beta",), ex, "rad"),
-                     "eq45": (("beta",), np.abs(eccentricity_deviation_single(e, rho, beta)), "rad")},
-                    rho_m=rho, e_m=e, speed_rad_s=W1000)
+                    "eq45": (("beta",), np.abs(eccentricity_deviation_single(e, rho, beta)), "rad")},
+                   rho_m=rho, e_m=e, speed_rad_s=W1000)
     return Outcome(rows, {"fig15": fig}, data, "One ball, Me = 0.025 kg m, 1000 rpm; beta in 1 deg steps.")
+
 
 # -- eq 56-66 ----------------------------------------------------------------------------------
 def run_tolerance(ctx) -> Outcome:

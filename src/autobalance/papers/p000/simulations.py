@@ -35,7 +35,7 @@ def run_fig5(ctx) -> Outcome:
             for c in d]
     fig = plot_time_histories(runs, "000 Fig. 5: two balls, Me = mR = 0.025 kg m, 1000 rpm (ours)")
     data = histories(d, balancing_time_c_i_2_s=d["c_i_2"]["balancing_time_s"],
-                      balancing_time_c_i_7_1_s=d["c_i_7.1"]["balancing_time_s"])
+                     balancing_time_c_i_7_1_s=d["c_i_7.1"]["balancing_time_s"])
     return Outcome(rows, {"fig5": fig}, data, "10 s at 1000 rpm from (90, 150) deg, c_i = 2 and 7.1 1/s.")
 
 # -- Tables 1-2, Fig. 10-11 --------------------------------------------------------------------
@@ -132,7 +132,7 @@ def constant_speed_target(target_id, compute, compare, label, title, note):
         fig = plot_time_histories([run_dict(d, label)], title)
         keep = ("amplitude_m", "residual_unbalance_kg_m", "rme", "ball_contacts")
         data = histories({"run": d}, **{k: d[k] for k in keep},
-                          final_deviation_deg=", ".join(f"{v:.2f}" for v in np.degrees(d["deviation_rad"])))
+                         final_deviation_deg=", ".join(f"{v:.2f}" for v in np.degrees(d["deviation_rad"])))
         return Outcome(rows, {target_id.split("-", 1)[1]: fig}, data, note)
     return run
 
