@@ -147,6 +147,9 @@ def _shown(value):
     return value
 
 
+_LEAF = object()  # Rows.add's default "shown": the published leaf itself
+
+
 class Rows(list):
     """The comparison rows of one target: the one convention for writing them.
 
@@ -157,8 +160,9 @@ class Rows(list):
     (KeyError). Typical use in a target's run::
 
         rows = Rows.of(target)                  # or Rows(prefix, PUBLISHED[section])
-        rows.add("omega0_rad_s/V100ml", "omega_0, V = 100 ml [1/s]", 28.04, "+-0.5", ok, note)
-        rows.missing("monte_carlo/runs", "runs")   # a claim this variant does not compute
+        rows.add("omega0_rad_s/V100ml/g10", "omega_0, V = 100 ml [1/s]", 28.04, "+-0.5", ok)
+        rows.add("share_std", "share [%]", 41.0, "+-5", ok, shown=100 * share)  # leaf in %
+        rows.missing("runs", "runs")            # a claim this variant does not compute
         return Outcome(rows, figures, data)
 
     Parameters
@@ -181,6 +185,10 @@ class Rows(list):
         """The rows of ``target``: its key prefix and its published section."""
         return cls(target.key_prefix, target.published or {})
 
+    def _published_shown(self, path: str, shown):
+        leaf = self.published(path)
+        return _shown(leaf) if shown is _LEAF else shown
+
     def published(self, path: str):
         """The published leaf at ``path`` ("a/b/c") of the section (KeyError if absent)."""
         node = self.section
@@ -188,7 +196,8 @@ class Rows(list):
             node = node[p]
         return node
 
-    def add(self, path: str, quantity: str, computed, tolerance, ok, note: str = "") -> dict:
+    def add(self, path: str, quantity: str, computed, tolerance, ok, note: str = "", *,
+            shown=_LEAF) -> dict:
         """Append and return the row answering the published number at ``path``.
 
         Parameters
@@ -205,15 +214,20 @@ class Rows(list):
             Whether the published value is reproduced within the tolerance.
         note : str
             Why, how, or the reason for a miss.
+        shown : optional
+            The published number as the row shows it when that is not the leaf itself: the
+            leaf in other units (a fraction shown in %) or formatted (a list of ranges). The
+            leaf must still exist. Default: the leaf (a (lo, hi) range as ``"lo-hi"``).
         """
-        r = row(f"{self.prefix}/{path}", quantity, _shown(self.published(path)), computed,
+        r = row(f"{self.prefix}/{path}", quantity, self._published_shown(path, shown), computed,
                 tolerance, bool(ok), note)
         self.append(r)
         return r
 
-    def missing(self, path: str, quantity: str, why: str = NOT_COMPUTED) -> dict:
-        """Append and return the :func:`not_computed` row of the published number at ``path``."""
-        r = not_computed(f"{self.prefix}/{path}", quantity, _shown(self.published(path)), why)
+    def missing(self, path: str, quantity: str, why: str = NOT_COMPUTED, *, shown=_LEAF) -> dict:
+        """Append and return the :func:`not_computed` row of the published number at ``path``
+        (``shown`` as in :meth:`add`)."""
+        r = not_computed(f"{self.prefix}/{path}", quantity, self._published_shown(path, shown), why)
         self.append(r)
         return r
 
