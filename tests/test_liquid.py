@@ -158,6 +158,18 @@ def test_alpha0_in_balancing_half_plane(d, k):
         assert abs(float(alpha0_residual(a, d, k))) < 1e-9
 
 
+@settings(max_examples=200, deadline=None)
+@given(d=st.floats(-3.2, 3.2), k=st.floats(1e-3, 50.0), mu=st.floats(1e-5, 0.5),
+       w=st.floats(-1.0, 300.0))
+def test_scalar_liquid_angle_is_alpha0_minus_beta(d, k, mu, w):
+    """The integrator's scalar alpha0 - beta (kinetostatic.liquid_angle_scalar) is the same
+    formula as the vectorised alpha0 (001 eq 3) and friction_angle (001 eq 6)."""
+    from autobalance.liquid.kinetostatic import liquid_angle_scalar
+    a = liquid_angle_scalar(d, k, mu, 0.2, 180.0, 0.15, w)
+    beta = 0.5 * math.pi if w <= 0 else float(friction_angle(mu, 0.2, 180.0, 0.15, w))
+    assert isinstance(a, float) and a == pytest.approx(float(alpha0(d, k)) - beta, abs=1e-12)
+
+
 # -- dynamics: bench behaviour (003) and 001 trends --------------------------------------------
 @pytest.fixture(scope="module")
 def bench():

@@ -1,14 +1,20 @@
-"""Reproduction targets of the liquid seeds 003 and 001 (autobalance.papers.liquid.targets)."""
+"""Reproduction targets of the liquid seeds 003 and 001 (autobalance.papers.p003.targets,
+autobalance.papers.p001.targets)."""
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
-from autobalance.validation.target import Context, Target, claims
+from autobalance.validation.target import Context, Rows, Target, claims
 from conftest import assert_rows_answer_claims
-from autobalance.papers.liquid import targets as tl
+from autobalance.papers.p001 import targets as t001
+from autobalance.papers.p003 import targets as t003
+
+tl = SimpleNamespace(TARGETS=t003.TARGETS + t001.TARGETS, ITEMS_003=t003.ITEMS_003,
+                     ITEMS_001=t001.ITEMS_001, PUBLISHED={**t003.PUBLISHED, **t001.PUBLISHED})
 
 COMPUTED = [t for t in tl.TARGETS if t.run is not None]
 
@@ -143,3 +149,20 @@ def test_001_liquid_trends(outcomes):
     assert not r["density_optimal_fill"]["ok"]
     by_v, by_d = (float(x) for x in r["viscosity_over_density"]["computed"].split(" / "))
     assert by_d == pytest.approx(1650 / 670, rel=0.02) and by_v > 90
+
+
+def test_rows_convention_keys_and_published_come_from_the_path():
+    """validation.target.Rows (the one row convention): key = prefix/path, published = the leaf
+    (a (lo, hi) range shown as 'lo-hi'), an unknown path fails, shown= overrides the display."""
+    rows = Rows("003-fig5", tl.PUBLISHED["003-fig5"])
+    r = rows.add("resonance_rad_s", "omega_n [1/s]", "53.8-54.2", "spans", False, "why")
+    assert r == {"key": "003-fig5/resonance_rad_s", "quantity": "omega_n [1/s]",
+                 "published": "49-57", "computed": "53.8-54.2", "tolerance": "spans",
+                 "ok": False, "note": "why"} and rows == [r]
+    assert rows.add("optimum_fill_ml/R200mm", "fill [ml]", "150", "50 ml", True)["published"] == 150.0
+    m = rows.missing("suspension_frequency_hz", "f [Hz]", shown="9-10 Hz")
+    assert m["computed"] is None and m["published"] == "9-10 Hz" and len(rows) == 3
+    with pytest.raises(KeyError):
+        rows.add("no_such_claim", "x", 1, "-", True)
+    t = next(t for t in tl.TARGETS if t.id == "003-eq4-6")
+    assert Rows.of(t).prefix == t.key_prefix and Rows.of(t).section is t.published

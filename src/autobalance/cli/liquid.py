@@ -129,8 +129,9 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
         d["volume_check_m3"] = liquid_volume(fs.z_star, w, R, h, gg)
         rows.append(d)
     if plot:
-        from ..liquid.plotting import plot_surface
-        plot_surface(plot, ws, V, R, h, gg)
+        from ..liquid import surface_profiles
+        from ..plotting.liquid import surface_figure
+        surface_figure(surface_profiles(ws, V, R, h, gg)).savefig(plot, dpi=120)
     _out({"volume_m3": V, "radius_m": R, "height_m": h, "g_m_s2": gg, "surfaces": rows,
           "plot": plot} if as_json else
          {f"omega={r['omega_rad_s']:.4g}": f"mode {r['mode']} regime {r['regime']} "
@@ -255,18 +256,19 @@ def _bench(preset, radius, liquid, volume, unbalance, placement):
 
 def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model) -> None:
     """The steady response (with the run-up) or, with a fill sweep, the amplitude vs fill."""
-    from ..liquid.plotting import plot_fill, plot_response
+    from ..plotting.liquid import fill_figure, response_figure
 
     if sw is not None:
         # the fill sweep varies V: name the fixed quantities only
         fixed = (f"R = {bal.chamber.radius:g} m, {bal.liquid.name}, "
                  f"D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
-        plot_fill(plot, sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
-                  "Amplitude vs fill (003 Fig. 5)\n" + fixed)
+        fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
+                          "Amplitude vs fill (003 Fig. 5)\n" + fixed)
     else:
         title = (f"R = {bal.chamber.radius:g} m, V = {bal.volume * 1e6:.4g} ml "
                  f"{bal.liquid.name}, D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
-        plot_response(plot, st, w0, wn, ru, title)
+        fig = response_figure(st, w0, wn, ru, title)
+    fig.savefig(plot, dpi=120)
 
 
 @app.command()

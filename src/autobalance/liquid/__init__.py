@@ -4,12 +4,13 @@ from .config import Bench, list_liquid_presets, load_bench, load_liquids
 from .dynamics import RunUp, engagement, fill_sweep, run_up, steady_response
 from .free_surface import (MODE_NAMES, FreeSurface, bottom_touch_speed, entrainment_speed,
                            free_surface, gravity_mode_speed, lid_touch_speed, liquid_volume,
-                           mode_speeds, motion_mode, surface_height)
+                           mode_speeds, motion_mode, surface_height,
+                           surface_profiles)
 from .kinetostatic import (alpha0, alpha0_residual, balancing_efficiency, eccentricity_ratio,
                            friction_angle, friction_force, friction_tan_bound, jeffcott_phase,
-                           residual_lambda0)
+                           laminar_pipe_force, residual_lambda0)
 from .models import (G_STANDARD, PLACEMENT_LAWS, WATER, Chamber, Liquid, LiquidBalancer,
-                     LiquidModel, VerticalRotor)
+                     LiquidModel, VerticalRotor, sufficient_volume)
 
 __all__ = [
     "Bench", "Chamber", "FreeSurface", "G_STANDARD", "Liquid", "LiquidBalancer", "LiquidModel",
@@ -17,7 +18,7 @@ __all__ = [
     "alpha0_residual", "balancing_efficiency", "bottom_touch_speed", "eccentricity_ratio",
     "engagement", "entrainment_speed", "fill_sweep", "free_surface", "friction_angle",
     "friction_force", "friction_tan_bound", "gravity_mode_speed", "jeffcott_phase",
-    "lid_touch_speed", "liquid_volume", "list_liquid_presets", "load_bench", "load_liquids",
-    "mode_speeds", "motion_mode", "residual_lambda0", "run_up", "steady_response",
-    "surface_height",
+    "laminar_pipe_force", "lid_touch_speed", "liquid_volume", "list_liquid_presets", "load_bench",
+    "load_liquids", "mode_speeds", "motion_mode", "residual_lambda0", "run_up", "steady_response",
+    "sufficient_volume", "surface_height", "surface_profiles",
 ]

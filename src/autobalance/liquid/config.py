@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 
@@ -16,7 +16,23 @@ _EXTRA = {"density": ("kg/m^3", "'1000 kg/m^3'"), "volume": ("m^3", "'150 ml'"),
 
 
 def parse_quantity(value, kind: str, field: str = "value") -> float:
-    """SI float of a number or a string with units; adds density, volume, kinematic viscosity."""
+    """SI float of a number or a string with units; adds density, volume, kinematic viscosity.
+
+    Parameters
+    ----------
+    value : float or str
+        A number (taken as SI) or a quantity with units, e.g. ``"150 ml"``.
+    kind : str
+        Kind of quantity (``"density"``, ``"volume"``, ``"kin_viscosity"`` or a kind of
+        :func:`autobalance.config.parse_quantity`); fixes the SI unit of the result.
+    field : str
+        Field name for the error message.
+
+    Returns
+    -------
+    float
+        The value in SI units (kg/m^3, m^3, m^2/s, ...).
+    """
     if kind not in _EXTRA:
         return _parse(value, kind, field)
     unit, example = _EXTRA[kind]
@@ -54,7 +70,18 @@ def list_liquid_presets() -> list[str]:
 
 
 def load_liquids(name: str = "liquids_001") -> dict[str, Liquid]:
-    """Liquids of a liquids preset, by name (SI)."""
+    """Liquids of a liquids preset, by name (SI).
+
+    Parameters
+    ----------
+    name : str
+        Preset name (``liquids_001``) or path of a TOML file.
+
+    Returns
+    -------
+    dict
+        Liquid name -> :class:`Liquid` (density [kg/m^3], kinematic viscosity [m^2/s]).
+    """
     out = {}
     for key, sec in _read(name).items():
         out[key] = Liquid(parse_quantity(sec["density"], "density", f"{key}.density"),
@@ -78,9 +105,40 @@ class Bench:
     omega_end: float
     duration: float
 
+    def balancer_with(self, volume: float | None = None, radius: float | None = None,
+                      liquid: Liquid | None = None) -> LiquidBalancer:
+        """The bench's balancer with another fill, chamber radius (same height) or liquid.
+
+        Parameters
+        ----------
+        volume : float or None
+            Liquid volume V [m^3]; None keeps the preset's.
+        radius : float or None
+            Chamber radius R [m]; None keeps the preset's.
+        liquid : Liquid or None
+            Working liquid; None keeps the preset's.
+        """
+        bal = self.balancer
+        if radius is not None:
+            bal = replace(bal, chamber=Chamber(radius, bal.chamber.height))
+        if liquid is not None:
+            bal = replace(bal, liquid=liquid)
+        return bal if volume is None else replace(bal, volume=volume)
+
 
 def load_bench(name: str = "bench_003") -> Bench:
-    """Load a bench preset (default 003's bench) into SI model objects."""
+    """Load a bench preset (default 003's bench) into SI model objects.
+
+    Parameters
+    ----------
+    name : str
+        Preset name (``bench_003``) or path of a TOML file.
+
+    Returns
+    -------
+    Bench
+        Rotor, balancer, model and the sweep values of the paper, in SI.
+    """
     d = _read(name)
     q = parse_quantity
     r, ch, lq, fl, md, ru = (d[k] for k in ("rotor", "chamber", "liquid", "fill", "model",

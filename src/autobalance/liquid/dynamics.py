@@ -23,6 +23,7 @@ from scipy.integrate import solve_ivp
 
 from ..models._validate import ParameterError, nonneg, positive
 from .free_surface import entrainment_speed
+from .kinetostatic import liquid_angle_scalar
 from .models import LiquidBalancer, LiquidModel, VerticalRotor
 
 __all__ = ["RunUp", "engagement", "run_up", "steady_response", "fill_sweep"]
@@ -57,21 +58,6 @@ def engagement(omega, omega0: float, ratio: float):
     return out if w.ndim else float(out)
 
 
-def _alpha0(s2: float, k: float) -> float:
-    """Scalar 001 eq 3 (see kinetostatic.alpha0)."""
-    root = math.sqrt(max((s2 - 1.0) * (s2 - k * k), 0.0))
-    return math.pi - math.acos(min(max((s2 + root) / k, -1.0), 1.0))
-
-
-def _beta(bal: LiquidBalancer, omega: float) -> float:
-    """Scalar 001 eq 6 friction angle [rad]."""
-    if omega <= 0.0:
-        return 0.5 * math.pi
-    s = (8.0 * math.pi ** 2 * bal.liquid.dynamic_viscosity * bal.chamber.radius * bal.arc_deg
-         / (180.0 * bal.mass * omega))
-    return math.asin(min(s, 1.0))
-
-
 def _target(theta: float, W: complex, ut: complex, D: float, D0: float,
             bal: LiquidBalancer, model: LiquidModel, omega: float) -> float:
     """Equilibrium angle theta* of the liquid (chamber frame, from the rotor's unbalance)."""
@@ -81,7 +67,8 @@ def _target(theta: float, W: complex, ut: complex, D: float, D0: float,
         return cmath.phase(ut)
     delta = _wrap(cmath.phase(W) - cmath.phase(ut))
     k = max(D0 / D, 1e-12)
-    a = _alpha0(math.sin(delta) ** 2, k) - _beta(bal, omega)
+    a = liquid_angle_scalar(delta, k, bal.liquid.dynamic_viscosity, bal.chamber.radius,
+                            bal.arc_deg, bal.mass, omega)
     side = math.copysign(1.0, ut.imag) if ut.imag != 0.0 else -1.0
     return side * a
 
@@ -98,6 +85,15 @@ class RunUp:
     amplitude_dry: np.ndarray
 
     def summary(self) -> dict:
+        """Peak and final values of the run-up: amplitudes [m], speeds [rad/s], liquid angle [deg].
+
+        Returns
+        -------
+        dict
+            ``peak_amplitude_m``, ``peak_speed_rad_s``, ``peak_amplitude_dry_m``,
+            ``peak_speed_dry_rad_s``, ``final_amplitude_m``, ``final_amplitude_dry_m``,
+            ``final_liquid_angle_deg``, ``n_samples``.
+        """
         i = int(np.argmax(self.amplitude))
         j = int(np.argmax(self.amplitude_dry))
         return {"peak_amplitude_m": float(self.amplitude[i]),
@@ -193,10 +189,14 @@ def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas,
 
     Parameters
     ----------
-    rotor, bal, model
-        As in :func:`run_up`.
+    rotor : VerticalRotor
+        Rotor and supports (mass [kg], stiffness [N/m], damping [N*s/m], unbalance [kg*m]).
+    bal : LiquidBalancer
+        Chamber [m], liquid, volume [m^3].
     omegas : array
         Speeds [rad/s] >= 0.
+    model : LiquidModel
+        Reduced-order choices (placement law, engagement ratio [-], lag time [s], g [m/s^2]).
     iterations : int
         Fixed-point iterations.
 
@@ -238,6 +238,19 @@ def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas,
 def fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes, omega: float,
                model: LiquidModel = LiquidModel()) -> dict:
     """Steady amplitude [m] at one speed for several fill volumes [m^3] (003 Fig. 5).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        Rotor and supports (mass [kg], stiffness [N/m], damping [N*s/m], unbalance [kg*m]).
+    bal : LiquidBalancer
+        Chamber [m] and liquid; its volume is replaced by each of ``volumes``.
+    volumes : array
+        Fill volumes V [m^3].
+    omega : float
+        Rotor speed [rad/s].
+    model : LiquidModel
+        Reduced-order choices.
 
     Returns
     -------

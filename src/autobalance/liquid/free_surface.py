@@ -29,7 +29,7 @@ from .models import G_STANDARD
 
 __all__ = ["FreeSurface", "MODE_NAMES", "bottom_touch_speed", "entrainment_speed",
            "free_surface", "gravity_mode_speed", "lid_touch_speed", "liquid_volume",
-           "mode_speeds", "motion_mode", "surface_height"]
+           "mode_speeds", "motion_mode", "surface_height", "surface_profiles"]
 
 #: 003 sec. 5.1 names of the four motion modes (1..4).
 MODE_NAMES = {1: "full priority of gravity", 2: "partial priority of gravity",
@@ -111,11 +111,32 @@ class FreeSurface:
     h0: float
 
     def depth(self, r) -> np.ndarray:
-        """Liquid depth clip(z_* + omega^2 r^2/(2g), 0, h) [m] at radii r [m] (003 eq 3)."""
+        """Liquid depth clip(z_* + omega^2 r^2/(2g), 0, h) [m] at radii r [m] (003 eq 3).
+
+        Parameters
+        ----------
+        r : float or array
+            Radii [m], 0 <= r <= R.
+        """
         r = np.asarray(r, dtype=float)
         return np.clip(self.z_star + self.omega ** 2 * r * r / (2.0 * self.g), 0.0, self.height)
 
+    def mean_radius(self, n: int = 40001) -> float:
+        """Volume-weighted mean radius of the liquid [m]: integral r^2 z dr / integral r z dr.
+
+        It sets the unbalance the liquid can create.
+
+        Parameters
+        ----------
+        n : int
+            Points of the trapezoidal rule over 0..R.
+        """
+        r = np.linspace(0.0, self.radius, n)
+        d = self.depth(r)
+        return float(np.trapezoid(r * r * d, r) / np.trapezoid(r * d, r))
+
     def to_dict(self) -> dict:
+        """The surface as a dict with SI units in the keys (``omega_rad_s``, ``z_star_m``, ...)."""
         d = asdict(self)
         return {"omega_rad_s": d["omega"], "volume_m3": d["volume"], "radius_m": d["radius"],
                 "height_m": d["height"], "g_m_s2": d["g"], "z_star_m": d["z_star"],
@@ -196,6 +217,17 @@ def lid_touch_speed(volume: float, radius: float, height: float, g: float = G_ST
     V <= V_c/2: in regime B the wall height is H = omega sqrt(V/(pi g)), so the lid is reached at
     omega_0 = sqrt(pi g h^2 / V) (= 003 eq 6). V > V_c/2: in regime A, H = h0 + omega^2 R^2/(4 g)
     reaches h at (2/R) sqrt(g (h - h0)).
+
+    Parameters
+    ----------
+    volume : float
+        Liquid volume V [m^3], 0 < V < pi R^2 h.
+    radius : float
+        Chamber radius R [m].
+    height : float
+        Chamber height h [m].
+    g : float
+        Gravity [m/s^2].
     """
     V, R, h = _check(volume, radius, height, g)
     h0 = V / (math.pi * R * R)
@@ -214,9 +246,11 @@ def entrainment_speed(volume: float, radius: float, height: float,
     Parameters
     ----------
     volume : float
-        V [m^3], 0 < V < pi R^2 h.
-    radius, height : float
-        R, h [m].
+        Liquid volume V [m^3], 0 < V < pi R^2 h.
+    radius : float
+        Chamber radius R [m].
+    height : float
+        Chamber height h [m].
     g : float
         Gravity [m/s^2].
     """
@@ -228,6 +262,19 @@ def entrainment_speed(volume: float, radius: float, height: float,
 def mode_speeds(volume: float, radius: float, height: float, g: float = G_STANDARD,
                 gravity_fraction: float = 0.25) -> dict:
     """Speeds [rad/s] where the modes change: end of mode 1, 2 and 3 (start of mode 4).
+
+    Parameters
+    ----------
+    volume : float
+        Liquid volume V [m^3], 0 < V < pi R^2 h.
+    radius : float
+        Chamber radius R [m].
+    height : float
+        Chamber height h [m].
+    g : float
+        Gravity [m/s^2].
+    gravity_fraction : float
+        Mode-1 criterion f in (0, 1] [-] (:func:`gravity_mode_speed`).
 
     Returns
     -------
@@ -250,7 +297,23 @@ def mode_speeds(volume: float, radius: float, height: float, g: float = G_STANDA
 
 def motion_mode(omega: float, volume: float, radius: float, height: float,
                 g: float = G_STANDARD, gravity_fraction: float = 0.25) -> int:
-    """003 motion mode (1..4) at speed omega [rad/s] (003 sec. 5.1, boundaries of mode_speeds)."""
+    """003 motion mode (1..4) at speed omega (003 sec. 5.1, boundaries of :func:`mode_speeds`).
+
+    Parameters
+    ----------
+    omega : float
+        Rotation speed [rad/s] >= 0.
+    volume : float
+        Liquid volume V [m^3], 0 < V < pi R^2 h.
+    radius : float
+        Chamber radius R [m].
+    height : float
+        Chamber height h [m].
+    g : float
+        Gravity [m/s^2].
+    gravity_fraction : float
+        Mode-1 criterion f in (0, 1] [-].
+    """
     s = mode_speeds(volume, radius, height, g, gravity_fraction)
     w = nonneg("omega", omega)
     if w >= s["omega_0_rad_s"]:
@@ -294,5 +357,60 @@ def free_surface(omega: float, volume: float, radius: float, height: float,
 
 def surface_height(r, omega: float, volume: float, radius: float, height: float,
                    g: float = G_STANDARD) -> np.ndarray:
-    """Liquid depth [m] at radii r [m] (vectorised :meth:`FreeSurface.depth`)."""
+    """Liquid depth [m] at radii r (vectorised :meth:`FreeSurface.depth`).
+
+    Parameters
+    ----------
+    r : float or array
+        Radii [m], 0 <= r <= R.
+    omega : float
+        Rotation speed [rad/s] >= 0.
+    volume : float
+        Liquid volume V [m^3], 0 < V < pi R^2 h.
+    radius : float
+        Chamber radius R [m].
+    height : float
+        Chamber height h [m].
+    g : float
+        Gravity [m/s^2].
+    """
     return free_surface(omega, volume, radius, height, g).depth(r)
+
+
+def surface_profiles(omegas, volume: float, radius: float, height: float, g: float = G_STANDARD,
+                     n: int = 1201, wall_zoom: float = 0.1) -> dict:
+    """Liquid depth z(r) [m] at several speeds on one radial grid, for a figure (003 eq 3-5).
+
+    The grid has ``n`` points over the whole radius and ``n`` more over the last ``wall_zoom``
+    fraction of it at the wall, where the surface of the fast modes lies.
+
+    Parameters
+    ----------
+    omegas : sequence of float
+        Speeds [rad/s].
+    volume : float
+        Liquid volume V [m^3].
+    radius : float
+        Chamber radius R [m].
+    height : float
+        Chamber height h [m].
+    g : float
+        Gravity [m/s^2].
+    n : int
+        Points per part of the grid.
+    wall_zoom : float
+        Fraction of the radius next to the wall sampled densely [-].
+
+    Returns
+    -------
+    dict
+        ``omega_rad_s``, ``r_m`` (grid), ``depth_m`` (speeds x grid), ``mode``, ``regime`` (one
+        per speed), ``volume_m3``, ``radius_m``, ``height_m``, ``g_m_s2``, ``wall_zoom``.
+    """
+    r = np.union1d(np.linspace(0.0, radius, n),
+                   np.linspace(radius - wall_zoom * radius, radius, n))
+    fss = [free_surface(w, volume, radius, height, g) for w in omegas]
+    return {"omega_rad_s": np.array([float(w) for w in omegas]), "r_m": r,
+            "depth_m": np.array([f.depth(r) for f in fss]), "mode": [f.mode for f in fss],
+            "regime": [f.regime for f in fss], "volume_m3": volume, "radius_m": radius,
+            "height_m": height, "g_m_s2": g, "wall_zoom": wall_zoom}

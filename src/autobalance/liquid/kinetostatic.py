@@ -1,14 +1,20 @@
-"""Kinetostatic steady state of a liquid (Leblanc) balancer on a vertical rotor (seed 001).
+"""Kinetostatic steady state of a liquid (Leblanc) balancer on a vertical rotor (seed 001): the
+one home of the liquid's equilibrium angle alpha0 (001 eq 2-3) and friction angle beta (001 eq 6).
 
 Notation of 001: rotor unbalance D (angle 0), liquid unbalance D0 at angle alpha from D,
 k = D0/D, resultant D_c; the eccentricities e = D/(M+m), e_c = D_c/(M+m); delta is the rotor's
 phase angle between the unbalance force and the deflection ("external resistance").
 
-All functions are pure and vectorise over numpy arrays.
+Each formula is written once (:func:`_alpha0` for 001 eq 3, :func:`_sin_beta` and
+:func:`_beta` for 001 eq 6) and evaluated either with numpy (the public functions, which
+validate and vectorise over arrays) or with :mod:`math` on floats
+(:func:`liquid_angle_scalar`, the right-hand side of the run-up integrator in
+:mod:`.dynamics`, where numpy's per-call overhead would dominate).
 """
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -16,7 +22,34 @@ from ..models._validate import ParameterError, positive
 
 __all__ = ["alpha0", "alpha0_residual", "balancing_efficiency", "eccentricity_ratio",
            "friction_angle", "friction_force", "friction_tan_bound", "jeffcott_phase",
-           "residual_lambda0"]
+           "laminar_pipe_force", "liquid_angle_scalar", "residual_lambda0"]
+
+#: Elementary functions on arrays (numpy) and on floats (math); same results, see the module doc.
+_NUMPY = SimpleNamespace(sqrt=np.sqrt, arccos=np.arccos, arcsin=np.arcsin, clip=np.clip)
+_MATH = SimpleNamespace(sqrt=math.sqrt, arccos=math.acos, arcsin=math.asin,
+                        clip=lambda x, lo, hi: min(max(x, lo), hi))
+
+
+def _alpha0(sin2_delta, k, ops=_NUMPY):
+    """001 eq 3 from sin^2(delta): alpha0 = pi - arccos((s2 + sqrt((s2 - 1)(s2 - k^2)))/k) [rad].
+
+    The square root is clipped at 0 where 001 eq 2 has no root (k < |sin delta|) and the arccos
+    argument to [-1, 1] (see :func:`alpha0`). No validation.
+    """
+    s2 = sin2_delta
+    root = ops.sqrt(ops.clip((s2 - 1.0) * (s2 - k * k), 0.0, math.inf))
+    return math.pi - ops.arccos(ops.clip((s2 + root) / k, -1.0, 1.0))
+
+
+def _sin_beta(mu, radius, arc_deg, liquid_mass, omega):
+    """001 eq 6 before clipping: sin(beta) = 8 pi^2 mu R xi / (180 m omega) [-]. No validation."""
+    return 8.0 * math.pi ** 2 * mu * radius * arc_deg / (180.0 * liquid_mass * omega)
+
+
+def _beta(sin_beta, ops=_NUMPY):
+    """beta = arcsin(sin beta) [rad], sin(beta) clipped to [0, 1] (friction holds the liquid at
+    sin(beta) >= 1: beta = pi/2, our clip)."""
+    return ops.arcsin(ops.clip(sin_beta, 0.0, 1.0))
 
 
 def _k(k):
@@ -56,14 +89,21 @@ def alpha0(delta, k):
     k : float or array
         D0/D [-] > 0.
     """
-    k = _k(k)
-    s2 = np.sin(delta) ** 2
-    root = np.sqrt(np.maximum((s2 - 1.0) * (s2 - k * k), 0.0))
-    return math.pi - np.arccos(np.clip((s2 + root) / k, -1.0, 1.0))
+    return _alpha0(np.sin(delta) ** 2, _k(k))
 
 
 def alpha0_residual(alpha, delta, k):
-    """Residual of 001 eq 2: sin(alpha) - sin(delta) sqrt(1 + 2k cos(alpha) + k^2)/k [-]."""
+    """Residual of 001 eq 2: sin(alpha) - sin(delta) sqrt(1 + 2k cos(alpha) + k^2)/k [-].
+
+    Parameters
+    ----------
+    alpha : float or array
+        Liquid angle from the rotor's unbalance [rad].
+    delta : float or array
+        Rotor phase angle [rad].
+    k : float or array
+        D0/D [-] > 0.
+    """
     k = _k(k)
     return np.sin(alpha) - np.sin(delta) * eccentricity_ratio(k, alpha) / k
 
@@ -72,10 +112,41 @@ def residual_lambda0(k, alpha):
     """lambda0 = k / sqrt(1 + 2 k cos(alpha0) + k^2) = D0/D_c [-] (001 eq 4).
 
     Infinite (complete balance) at k = 1, alpha0 = pi (001, after eq 4).
+
+    Parameters
+    ----------
+    k : float or array
+        D0/D [-] > 0.
+    alpha : float or array
+        Liquid angle alpha0 [rad].
     """
     k = _k(k)
     with np.errstate(divide="ignore"):
         return k / eccentricity_ratio(k, alpha)
+
+
+def laminar_pipe_force(mu, density, speed, length, diameter):
+    """Laminar friction force F_T = pi/4 dP d^2 [N] in 001's first form of eq 5.
+
+    dP = rho lambda (l/d) v^2/2 with the Hagen-Poiseuille lambda = 64/Re, Re = v rho d/mu; 001
+    simplifies it to 8 pi mu l v (the diameter cancels), which :func:`friction_force` uses.
+
+    Parameters
+    ----------
+    mu : float or array
+        Dynamic viscosity [Pa*s].
+    density : float or array
+        Liquid density rho [kg/m^3].
+    speed : float or array
+        Flow speed v [m/s].
+    length : float or array
+        Length l of the flow [m].
+    diameter : float or array
+        Pipe diameter d [m].
+    """
+    re = speed * density * diameter / mu
+    return (math.pi / 4 * diameter ** 2 * density * (64 / re) * (length / diameter)
+            * speed ** 2 / 2)
 
 
 def friction_force(mu, radius, arc_deg, omega, offset):
@@ -126,13 +197,54 @@ def friction_angle(mu, radius, arc_deg, liquid_mass, omega):
     if np.any(np.asarray(mu) <= 0):
         raise ParameterError("mu", mu, "viscosity must be > 0")
     positive("liquid_mass", liquid_mass)
-    s = 8.0 * math.pi ** 2 * np.asarray(mu) * radius * arc_deg / (180.0 * liquid_mass
-                                                                   * np.asarray(omega, float))
-    return np.arcsin(np.clip(s, 0.0, 1.0))
+    return _beta(_sin_beta(np.asarray(mu), radius, arc_deg, liquid_mass, np.asarray(omega, float)))
+
+
+def liquid_angle_scalar(delta: float, k: float, mu: float, radius: float, arc_deg: float,
+                        liquid_mass: float, omega: float) -> float:
+    """The liquid's equilibrium angle alpha0(delta, k) - beta(omega) [rad] (001 eq 3 and 6) for
+    floats, without validation: the same formulas as :func:`alpha0` and
+    :func:`friction_angle`, evaluated with :mod:`math` (the integrator's right-hand side calls it
+    at every step). At omega <= 0 the liquid is held, beta = pi/2.
+
+    Parameters
+    ----------
+    delta : float
+        Rotor phase angle [rad].
+    k : float
+        D0/D [-] > 0.
+    mu : float
+        Dynamic viscosity [Pa*s] > 0.
+    radius : float
+        Chamber radius R [m].
+    arc_deg : float
+        Arc xi occupied by the liquid [deg].
+    liquid_mass : float
+        m = rho V [kg] > 0.
+    omega : float
+        Rotation speed [rad/s].
+    """
+    beta = (0.5 * math.pi if omega <= 0.0 else
+            _beta(_sin_beta(mu, radius, arc_deg, liquid_mass, omega), _MATH))
+    return _alpha0(math.sin(delta) ** 2, k, _MATH) - beta
 
 
 def friction_tan_bound(mu, radius, arc_deg, liquid_mass, omega):
-    """|tan(beta)| bound of 001 eq 7: s / sqrt(1 - s^2), s = sin(beta) of eq 6 [-]."""
+    """|tan(beta)| bound of 001 eq 7: s / sqrt(1 - s^2), s = sin(beta) of eq 6 [-].
+
+    Parameters
+    ----------
+    mu : float or array
+        Dynamic viscosity [Pa*s] > 0.
+    radius : float
+        Chamber radius R [m].
+    arc_deg : float
+        Arc xi occupied by the liquid [deg].
+    liquid_mass : float
+        m = rho V [kg] > 0.
+    omega : float or array
+        Rotation speed [rad/s] > 0.
+    """
     return np.tan(friction_angle(mu, radius, arc_deg, liquid_mass, omega))
 
 
@@ -155,5 +267,14 @@ def balancing_efficiency(k, delta, beta=0.0):
 
     The ratio of the eccentricity without and with the liquid, i.e. 003's empirical efficiency
     (amplitude without / with liquid) when the liquid does not change the rotor's dynamics.
+
+    Parameters
+    ----------
+    k : float or array
+        D0/D [-] > 0.
+    delta : float or array
+        Rotor phase angle [rad].
+    beta : float or array
+        Friction angle of the liquid [rad] (001 eq 6).
     """
     return 1.0 / eccentricity_ratio(k, alpha0(delta, k) - np.asarray(beta))

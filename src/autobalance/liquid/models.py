@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..models._validate import ParameterError, finite, nonneg, positive
 
 #: Standard gravity [m/s^2] (CGPM 1901). 003's printed speeds follow from g = 10 m/s^2.
@@ -42,7 +44,15 @@ class Chamber:
         return math.pi * self.radius ** 2 * self.height
 
     def check_fill(self, volume: float, field: str = "volume") -> float:
-        """Validate a liquid volume 0 < V < pi*R^2*h [m^3] for this chamber; return it."""
+        """Validate a liquid volume 0 < V < pi*R^2*h for this chamber; return it.
+
+        Parameters
+        ----------
+        volume : float
+            Liquid volume V [m^3].
+        field : str
+            Field name for the error message.
+        """
         v = positive(field, volume)
         if v >= self.volume:
             raise ParameterError(field, volume, f"must be < the chamber volume "
@@ -120,6 +130,22 @@ class LiquidBalancer:
         return self.mass * self.chamber.radius
 
 
+def sufficient_volume(unbalance: float, density: float, radius: float) -> float:
+    """Fill V [m^3] whose capacity rho V R equals the rotor's unbalance D (k = 1: 003's
+    "sufficient volume", sec. 5.3, with our capacity of :attr:`LiquidBalancer.capacity`).
+
+    Parameters
+    ----------
+    unbalance : float
+        Rotor unbalance D [kg*m].
+    density : float
+        Liquid density rho [kg/m^3].
+    radius : float
+        Chamber radius R [m].
+    """
+    return unbalance / (density * radius)
+
+
 @dataclass(frozen=True)
 class VerticalRotor:
     """Isotropic vertical-axis rotor on elastic supports (Jeffcott model, textbook).
@@ -148,12 +174,37 @@ class VerticalRotor:
         nonneg("rotor.unbalance", self.unbalance)
 
     def natural_frequency(self, added_mass: float = 0.0) -> float:
-        """Undamped natural frequency sqrt(k/(M + added_mass)) [rad/s]."""
+        """Undamped natural frequency sqrt(k/(M + added_mass)) [rad/s].
+
+        Parameters
+        ----------
+        added_mass : float
+            Mass translating with the rotor, e.g. the liquid's rho V [kg].
+        """
         return math.sqrt(self.stiffness / (self.mass + nonneg("added_mass", added_mass)))
 
     def damping_ratio(self, added_mass: float = 0.0) -> float:
-        """Damping ratio c / (2 sqrt(k (M + added_mass))) [-]."""
+        """Damping ratio c / (2 sqrt(k (M + added_mass))) [-].
+
+        Parameters
+        ----------
+        added_mass : float
+            Mass translating with the rotor, e.g. the liquid's rho V [kg].
+        """
         return self.damping / (2.0 * math.sqrt(self.stiffness * (self.mass + added_mass)))
+
+    def support_force(self, amplitude, omega):
+        """Dynamic force on the supports |u| |k + i c omega| [N] of a synchronous whirl.
+
+        Parameters
+        ----------
+        amplitude : float or array
+            Whirl amplitude |u| [m].
+        omega : float or array
+            Rotor speed [rad/s].
+        """
+        return np.asarray(amplitude) * np.hypot(self.stiffness,
+                                                self.damping * np.asarray(omega, float))
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,11 @@
 """Figures of the washer analysis and studies in the style of 000 Fig. 3, 5-7, 9-13, 15, 16, 18, 19
 and Tables 1-4.
 
-Matplotlib ``Figure`` objects on an Agg canvas (no pyplot). The physics is computed by
-:mod:`autobalance.physics` functions called here; this module only converts units and draws.
+Matplotlib ``Figure`` objects on an Agg canvas (no pyplot). The ``*_figure`` functions and the
+time-history / comparison plots take computed data (SI, angles in radians) and only convert units
+and draw. The ``plot_*`` functions that take a ``system`` are adapters that first evaluate
+:mod:`autobalance.physics` on a grid (kept for ``autobalance analyze``; the reproduction targets
+compute their data in :mod:`autobalance.papers.p000` and call the ``*_figure`` functions).
 """
 from __future__ import annotations
 
@@ -12,10 +15,12 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["plot_eccentricity_deviation", "plot_force_extreme_ratio", "plot_ks_comparison",
+__all__ = ["eccentricity_deviation_figure", "force_extreme_ratio_figure",
+           "plot_eccentricity_deviation", "plot_force_extreme_ratio", "plot_ks_comparison",
            "plot_measured_vibration", "plot_published_vs_computed", "plot_rolling_deviation",
            "plot_runups", "plot_time_histories", "plot_vibratory_force",
-           "plot_vibratory_force_damping"]
+           "plot_vibratory_force_damping", "rolling_deviation_figure", "speed_title",
+           "vibratory_force_damping_figure", "vibratory_force_figure"]
 
 
 def _fig(size=(7.0, 4.5)) -> Figure:
@@ -24,23 +29,29 @@ def _fig(size=(7.0, 4.5)) -> Figure:
     return fig
 
 
-def plot_vibratory_force(system, speeds, labels=None) -> Figure:
-    """000 Fig. 6: F_x, F_y and F = F_x + F_y over m R w^2 versus the ball angle, one ball with
-    mR = Me, one panel per speed [rad/s] (e.g. above both natural frequencies and between them)."""
-    from ..physics.vibratory import single_ball_force, speed_regime
+def vibratory_force_figure(alpha, forces, titles) -> Figure:
+    """000 Fig. 6: F_x, F_y and F = F_x + F_y over m R w^2 versus the ball angle, one panel per
+    speed.
 
-    speeds = list(np.atleast_1d(speeds))
-    fig = _fig((4.2 * len(speeds), 4.0))
-    axes = fig.subplots(1, len(speeds), squeeze=False)[0]
-    al = np.linspace(0, 2 * math.pi, 361)
-    for k, (ax, w) in enumerate(zip(axes, speeds)):
-        c = single_ball_force(system, w, al)
-        ax.plot(np.degrees(al), c["Fx_norm"], "--", label="F_x")
-        ax.plot(np.degrees(al), c["Fy_norm"], ":", label="F_y")
-        ax.plot(np.degrees(al), c["F_norm"], "k-", label="F = F_x + F_y")
+    Parameters
+    ----------
+    alpha : array
+        Ball angles [rad] (drawn in degrees).
+    forces : list of dict
+        One per panel: ``Fx_norm``, ``Fy_norm``, ``F_norm`` [-] on ``alpha``
+        (:func:`autobalance.physics.vibratory.single_ball_force`).
+    titles : list of str
+        Panel titles (e.g. the speed and its regime); prefixed a), b), ...
+    """
+    fig = _fig((4.2 * len(forces), 4.0))
+    axes = fig.subplots(1, len(forces), squeeze=False)[0]
+    a = np.degrees(alpha)
+    for k, (ax, c, title) in enumerate(zip(axes, forces, titles)):
+        ax.plot(a, c["Fx_norm"], "--", label="F_x")
+        ax.plot(a, c["Fy_norm"], ":", label="F_y")
+        ax.plot(a, c["F_norm"], "k-", label="F = F_x + F_y")
         ax.axhline(0, color="0.6", lw=0.8)
-        lab = labels[k] if labels else f"w = {w:.3g} rad/s ({speed_regime(system, w)})"
-        ax.set_title(f"{chr(97 + k)}) {lab}", fontsize=9)
+        ax.set_title(f"{chr(97 + k)}) {title}", fontsize=9)
         ax.set_xlabel("ball angle alpha [deg]")
         ax.set_xticks(range(0, 361, 90))
     axes[0].set_ylabel("F / (m R w^2) [-]")
@@ -49,20 +60,25 @@ def plot_vibratory_force(system, speeds, labels=None) -> Figure:
     return fig
 
 
-def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0)) -> Figure:
-    """000 Fig. 7: F/(m R w^2) of one ball for several suspension damping factors, per speed."""
-    from ..physics.vibratory import single_ball_force, speed_regime
+def vibratory_force_damping_figure(alpha, panels, titles) -> Figure:
+    """000 Fig. 7: F/(m R w^2) of one ball for several suspension damping factors, per speed.
 
-    speeds = list(np.atleast_1d(speeds))
-    fig = _fig((4.2 * len(speeds), 4.0))
-    axes = fig.subplots(1, len(speeds), squeeze=False)[0]
-    al = np.linspace(0, 2 * math.pi, 361)
-    for ax, w in zip(axes, speeds):
-        for ds in damping_scales:
-            c = single_ball_force(system, w, al, damping_scale=ds)
-            ax.plot(np.degrees(al), c["F_norm"], label=f"c x {ds:g}")
+    Parameters
+    ----------
+    alpha : array
+        Ball angles [rad] (drawn in degrees).
+    panels : list of list of (float, array)
+        One list per panel of (damping factor [-], F/(m R w^2) [-] on ``alpha``).
+    titles : list of str
+        Panel titles.
+    """
+    fig = _fig((4.2 * len(panels), 4.0))
+    axes = fig.subplots(1, len(panels), squeeze=False)[0]
+    for ax, curves, title in zip(axes, panels, titles):
+        for scale, F in curves:
+            ax.plot(np.degrees(alpha), F, label=f"c x {scale:g}")
         ax.axhline(0, color="0.6", lw=0.8)
-        ax.set_title(f"w = {w:.3g} rad/s ({speed_regime(system, w)})", fontsize=9)
+        ax.set_title(title, fontsize=9)
         ax.set_xlabel("ball angle alpha [deg]")
         ax.set_xticks(range(0, 361, 90))
     axes[0].set_ylabel("F / (m R w^2) [-]")
@@ -71,17 +87,25 @@ def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0))
     return fig
 
 
-def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
-    """000 Fig. 12: largest position error of one ball (eq 24) versus spin speed [rad/s]."""
-    from ..physics.error_bounds import rolling_deadband_single
+def rolling_deviation_figure(speeds, deviations, natural_frequencies) -> Figure:
+    """000 Fig. 12: largest position error of one ball (eq 24) versus spin speed.
 
+    Parameters
+    ----------
+    speeds : array
+        Spin speeds w [rad/s].
+    deviations : dict
+        f/r [-] -> largest deviation [rad] on ``speeds`` (inf/nan where unbounded; drawn in
+        degrees).
+    natural_frequencies : (float, float)
+        w_x, w_y [rad/s], drawn as vertical lines.
+    """
     w = np.asarray(speeds, float)
     fig = _fig()
     ax = fig.subplots()
-    for fr in f_r_values:
-        d = rolling_deadband_single(system, w, fr)
+    for fr, d in deviations.items():
         ax.plot(w, np.degrees(np.where(np.isfinite(d), d, np.nan)), label=f"f/r = {fr:g}")
-    for wn, name in zip(system.natural_frequencies, ("w_x", "w_y")):
+    for wn, name in zip(natural_frequencies, ("w_x", "w_y")):
         ax.axvline(wn, color="0.6", ls="--", lw=0.8)
         ax.text(wn, 0.95, name, transform=ax.get_xaxis_transform(), fontsize=8)
     ax.set_xlabel("spin speed w [rad/s]")
@@ -93,22 +117,29 @@ def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
     return fig
 
 
-def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, speed=None) -> Figure:
-    """000 Fig. 15: deviation of one ball from alpha = pi versus beta (eq 45) for several rho [m];
-    with ``system`` and ``speed`` also the exact kinetic-static root of eq 44 (dots)."""
-    from ..physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
+def eccentricity_deviation_figure(betas, eq45, exact=None) -> Figure:
+    """000 Fig. 15: deviation of one ball from alpha = pi versus beta (eq 45) for several rho,
+    optionally with the exact kinetic-static root of eq 44 (dots).
 
-    b = np.linspace(0, 2 * math.pi, 181) if betas is None else np.asarray(betas, float)
+    Parameters
+    ----------
+    betas : array
+        Eccentricity angles beta [rad] (drawn in degrees).
+    eq45 : dict
+        rho [m] -> deviation of eq 45 [rad] on ``betas``; drawn in degrees, blank beyond 90 deg
+        (eq 45 diverges where e + rho cos(beta) = 0).
+    exact : dict or None
+        rho [m] -> (betas [rad], deviation [rad]) of the exact root.
+    """
+    b = np.asarray(betas, float)
     fig = _fig()
     ax = fig.subplots()
-    for rho in rhos:
-        d = np.degrees(eccentricity_deviation_single(eccentricity, rho, b))
-        d = np.where(np.abs(d) > 90.0, np.nan, d)        # eq 45 diverges where e + rho cos(beta) = 0
-        line, = ax.plot(np.degrees(b), d,
-                        label=f"rho = {rho * 1e3:g} mm (eq 45)")
-        if system is not None and speed is not None:
-            bb = b[::10]
-            ex = eccentricity_deviation_exact(system, speed, rho, bb)
+    for rho, dev in eq45.items():
+        d = np.degrees(dev)
+        d = np.where(np.abs(d) > 90.0, np.nan, d)
+        line, = ax.plot(np.degrees(b), d, label=f"rho = {rho * 1e3:g} mm (eq 45)")
+        if exact is not None and rho in exact:
+            bb, ex = exact[rho]
             ax.plot(np.degrees(bb), np.degrees(ex), "o", color=line.get_color(), ms=3)
     ax.axhline(0, color="0.6", lw=0.8)
     ax.set_xlabel("beta [deg]")
@@ -117,6 +148,118 @@ def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, spe
     ax.legend(fontsize=8)
     ax.set_title("Ball deviation from the race eccentricity (000 eq 45, Fig. 15)", fontsize=10)
     return fig
+
+
+def force_extreme_ratio_figure(speeds, ratio, natural_frequencies, published=None) -> Figure:
+    """000 Fig. 6: -min F / max F of the one-ball vibratory force versus the spin speed, the
+    range between the natural frequencies shaded and the published ratio as a dashed line.
+
+    Parameters
+    ----------
+    speeds : array
+        Spin speeds w [rad/s].
+    ratio : array
+        -min F / max F [-] on ``speeds``
+        (:func:`autobalance.physics.vibratory.force_extreme_ratio`).
+    natural_frequencies : (float, float)
+        w_x, w_y [rad/s].
+    published : float or None
+        The published ratio [-].
+    """
+    fig = _fig()
+    ax = fig.subplots()
+    ax.plot(np.asarray(speeds, float), ratio, "k-", label="ours (eq 11)")
+    wx, wy = natural_frequencies
+    ax.axvspan(min(wx, wy), max(wx, wy), color="0.9", label="between w_y and w_x")
+    if published is not None:
+        ax.axhline(published, color="tab:red", ls="--", label=f"000 Fig. 6b: {published:g}")
+    ax.set_yscale("log")
+    ax.set_xlabel("spin speed w [rad/s]")
+    ax.set_ylabel("-min F / max F [-]")
+    ax.legend(fontsize=8)
+    ax.set_title("Negative vs positive extreme of the vibratory force, one ball (000 Fig. 6)",
+                 fontsize=10)
+    return fig
+
+
+# -- adapters that evaluate the physics first (for cli_analyze.py; to move out with the CLI
+# -- package, issue 13). New code computes the data and calls the *_figure functions above.
+_ALPHA = np.linspace(0, 2 * math.pi, 361)
+
+
+def speed_title(speed, regime) -> str:
+    """Panel title of a speed: "w = ... rad/s (regime)".
+
+    Parameters
+    ----------
+    speed : float
+        Spin speed w [rad/s].
+    regime : str
+        Its regime (:func:`autobalance.physics.vibratory.speed_regime`).
+    """
+    return f"w = {speed:.3g} rad/s ({regime})"
+
+
+def _titles(system, speeds) -> list:
+    from ..physics.vibratory import speed_regime
+
+    return [speed_title(w, speed_regime(system, w)) for w in speeds]
+
+
+def plot_vibratory_force(system, speeds, labels=None) -> Figure:
+    """:func:`vibratory_force_figure` of ``system`` at ``speeds`` [rad/s] (one ball, mR = Me);
+    ``labels`` replace the panel titles."""
+    from ..physics.vibratory import single_ball_force
+
+    speeds = list(np.atleast_1d(speeds))
+    return vibratory_force_figure(_ALPHA, [single_ball_force(system, w, _ALPHA) for w in speeds],
+                                  labels or _titles(system, speeds))
+
+
+def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0)) -> Figure:
+    """:func:`vibratory_force_damping_figure` of ``system`` at ``speeds`` [rad/s] for the
+    suspension damping factors ``damping_scales`` [-]."""
+    from ..physics.vibratory import single_ball_force
+
+    speeds = list(np.atleast_1d(speeds))
+    return vibratory_force_damping_figure(
+        _ALPHA, [[(c, single_ball_force(system, w, _ALPHA, damping_scale=c)["F_norm"])
+                  for c in damping_scales] for w in speeds],
+        _titles(system, speeds))
+
+
+def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
+    """:func:`rolling_deviation_figure` of ``system`` (eq 24) at ``speeds`` [rad/s] for the
+    rolling resistances ``f_r_values`` [-]."""
+    from ..physics.error_bounds import rolling_deadband_single
+
+    w = np.asarray(speeds, float)
+    return rolling_deviation_figure(w, {fr: rolling_deadband_single(system, w, fr)
+                                        for fr in f_r_values}, system.natural_frequencies)
+
+
+def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, speed=None) -> Figure:
+    """:func:`eccentricity_deviation_figure` of eq 45 for the eccentricity e [m] and ring
+    eccentricities ``rhos`` [m] over ``betas`` [rad]; with ``system`` and ``speed`` [rad/s] also
+    the exact root of eq 44 on every tenth beta."""
+    from ..physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
+
+    b = np.linspace(0, 2 * math.pi, 181) if betas is None else np.asarray(betas, float)
+    exact = None
+    if system is not None and speed is not None:
+        exact = {rho: (b[::10], eccentricity_deviation_exact(system, speed, rho, b[::10]))
+                 for rho in rhos}
+    return eccentricity_deviation_figure(
+        b, {rho: eccentricity_deviation_single(eccentricity, rho, b) for rho in rhos}, exact)
+
+
+def plot_force_extreme_ratio(system, speeds, published=None) -> Figure:
+    """:func:`force_extreme_ratio_figure` of ``system`` at ``speeds`` [rad/s]."""
+    from ..physics.vibratory import force_extreme_ratio
+
+    w = np.asarray(speeds, float)
+    return force_extreme_ratio_figure(w, force_extreme_ratio(system, w), system.natural_frequencies,
+                                      published)
 
 
 def plot_ks_comparison(comparison: dict) -> Figure:
@@ -136,29 +279,6 @@ def plot_ks_comparison(comparison: dict) -> Figure:
     ax[2].set_xlabel("t [s]")
     ax[2].legend(fontsize=8)
     fig.suptitle("Full model minus kinetic-static model (000 Fig. 9)", fontsize=10)
-    return fig
-
-
-def plot_force_extreme_ratio(system, speeds, published=None) -> Figure:
-    """000 Fig. 6: -min F / max F of the one-ball vibratory force versus the spin speed [rad/s]
-    (:func:`autobalance.physics.vibratory.force_extreme_ratio`), the range between the natural
-    frequencies shaded and the published ratio as a dashed line."""
-    from ..physics.vibratory import force_extreme_ratio
-
-    w = np.asarray(speeds, float)
-    fig = _fig()
-    ax = fig.subplots()
-    ax.plot(w, force_extreme_ratio(system, w), "k-", label="ours (eq 11)")
-    wx, wy = system.natural_frequencies
-    ax.axvspan(min(wx, wy), max(wx, wy), color="0.9", label="between w_y and w_x")
-    if published is not None:
-        ax.axhline(published, color="tab:red", ls="--", label=f"000 Fig. 6b: {published:g}")
-    ax.set_yscale("log")
-    ax.set_xlabel("spin speed w [rad/s]")
-    ax.set_ylabel("-min F / max F [-]")
-    ax.legend(fontsize=8)
-    ax.set_title("Negative vs positive extreme of the vibratory force, one ball (000 Fig. 6)",
-                 fontsize=10)
     return fig
 
 

@@ -15,11 +15,12 @@ __all__ = ["PAPERS", "all_targets", "coverage", "seed_items", "select"]
 
 def modules() -> tuple:
     """The paper modules that define targets, in report order (imported when first asked for)."""
-    from ..papers.liquid import targets as liquid
     from ..papers.p000 import targets as p000
+    from ..papers.p001 import targets as p001
+    from ..papers.p003 import targets as p003
     from ..papers.p004 import targets as p004
 
-    return (p000, p004, liquid)
+    return (p000, p004, p003, p001)
 
 
 #: Seed -> (short title, file in shared/seeds).

@@ -3,7 +3,7 @@ Fig. 10-11), against the paper.
 
 Each ``compute_*`` returns plain data (SI); :data:`PUBLISHED` holds the paper's numbers (one
 leaf per number, units in the key); ``compare_*`` return keyed rows
-(:func:`autobalance.validation.target.row`).
+(:class:`autobalance.validation.target.Rows`).
 
 Choices (the paper omits them; docs/model.md sec. 7, docs/VALIDATION.md):
 
@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from ...validation.target import row
+from ...validation.target import Rows
 from .washer import W1000, washer
 
 __all__ = ["B_Z", "LAWS", "PUBLISHED", "T0", "balancing_time", "compare_fig10_11", "compare_fig5",
@@ -83,6 +83,15 @@ def runup_time_closed_form(law: str, fraction, tau):
     constant T0: t = s tau; linear T0 (1 - w/w_f): t = -tau ln(1 - s); harmonic
     T0 (1 - sin(pi w / 2 w_f)): t = (2/pi)(tan(pi (1 + s)/4) - 1) tau (the integral of
     1/(1 - sin(pi s/2))).
+
+    Parameters
+    ----------
+    law : str
+        Torque law, one of :data:`LAWS`.
+    fraction : float or array
+        s = w/w_f [-], 0 <= s < 1.
+    tau : float
+        Time scale B_z w_f / T0 [s].
     """
     s = np.asarray(fraction, float)
     if law == "constant":
@@ -98,8 +107,18 @@ def runup_time_closed_form(law: str, fraction, tau):
 
 
 def runup_fraction_closed_form(law: str, time, tau):
-    """Fraction of w_f [-] that the unloaded drum reaches at ``time`` [s]: the inverse of
-    :func:`runup_time_closed_form` (000 eq 15, Table 1 laws); tau = B_z w_f / T0 [s]."""
+    """Fraction of w_f [-] that the unloaded drum reaches at ``time``: the inverse of
+    :func:`runup_time_closed_form` (000 eq 15, Table 1 laws).
+
+    Parameters
+    ----------
+    law : str
+        Torque law, one of :data:`LAWS`.
+    time : float or array
+        Time from standstill [s].
+    tau : float
+        Time scale B_z w_f / T0 [s].
+    """
     t = np.asarray(time, float) / tau
     if law == "constant":
         s = np.minimum(t, 1.0)
@@ -116,15 +135,35 @@ def runup_fraction_closed_form(law: str, time, tau):
 # -- simulations -------------------------------------------------------------------------------
 def balancing_time(sim, fraction=0.05) -> float:
     """Last time [s] at which the whirl amplitude exceeds ``fraction`` of the unbalanced drum's
-    amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e)."""
+    amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e).
+
+    Parameters
+    ----------
+    sim : Simulation
+        A run of :func:`autobalance.simulate.simulate` (time [s], amplitude [m]).
+    fraction : float
+        Threshold as a fraction of e [-].
+    """
     s = sim.system
     k = np.nonzero(sim.amplitude > fraction * s.rotor.unbalance / s.total_mass)[0]
     return float(sim.t[k[-1]]) if k.size else 0.0
 
 
 def settle(c_i=2.0, duration=10.0):
-    """000 Fig. 5: two balls with mR = Me = 0.025 kg m at 1000 rpm from (90, 150) deg, gravity
-    on, ball damping c_i [1/s]. Returns (system, Simulation, balancing time [s])."""
+    """000 Fig. 5: two balls with mR = Me = 0.025 kg m at 1000 rpm from (90, 150) deg, gravity on.
+
+    Parameters
+    ----------
+    c_i : float
+        Ball damping c_i [1/s] (D = c_i m R^2).
+    duration : float
+        Simulated time [s].
+
+    Returns
+    -------
+    tuple
+        (system, Simulation, balancing time [s]).
+    """
     from ...models import InitialState, SimOptions, SpeedProfile
     from ...simulate import simulate
 
@@ -137,9 +176,24 @@ def settle(c_i=2.0, duration=10.0):
 
 
 def runup(Me, law, balls=True, duration=25.0):
-    """000 Tables 1-2 run-up: T0 = 25 N m to n_f = 1000 rpm under ``law`` (000 eq 15-18), Me [kg*m]
-    with two balls of mR = Me starting together at the bottom (or without balls). Returns the
-    Simulation."""
+    """000 Tables 1-2 run-up: T0 = 25 N m to n_f = 1000 rpm under ``law`` (000 eq 15-18), two balls
+    of mR = Me starting together at the bottom (or without balls).
+
+    Parameters
+    ----------
+    Me : float
+        Static unbalance Me = m R of each ball [kg*m].
+    law : str
+        Torque law, one of :data:`LAWS`.
+    balls : bool
+        With the two balls (False: the drum alone).
+    duration : float
+        Simulated time [s].
+
+    Returns
+    -------
+    Simulation
+    """
     import dataclasses
 
     from ...models import InitialState, MotorDrive, SimOptions
@@ -162,7 +216,13 @@ def _history(sim) -> dict:
 
 
 def compute_fig5(duration=10.0) -> dict:
-    """000 Fig. 5 with the preset c_i = 2 1/s and with c_i = 7.1 1/s: {case: run dict}."""
+    """000 Fig. 5 with the preset c_i = 2 1/s and with c_i = 7.1 1/s: {case: run dict}.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time of each run [s].
+    """
     out = {}
     for case, c_i in FIG5_C_I.items():
         s, sim, tb = settle(c_i, duration)
@@ -182,8 +242,13 @@ def _summary(sim) -> dict:
 
 
 def compute_tables(histories=False) -> dict:
-    """000 Tables 1-2: {(table, law): summary dict} for the six run-ups (with the time histories
-    when ``histories``)."""
+    """000 Tables 1-2: {(table, law): summary dict} for the six run-ups.
+
+    Parameters
+    ----------
+    histories : bool
+        Also keep the time histories (t [s], x, y [m], ball angles [rad], speed [rad/s]).
+    """
     out = {}
     for tab, Me in TABLE_ME.items():
         for law in LAWS:
@@ -202,41 +267,56 @@ def compute_fig10_11() -> dict:
 
 # -- comparisons -------------------------------------------------------------------------------
 def compare_fig5(data=None, prefix="000-fig5") -> list:
+    """Rows of 000 Fig. 5: final ball angles [deg], balancing times [s], settling [w t].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig5` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig5()
-    pub = PUBLISHED["fig5"]
+    rows = Rows(prefix, PUBLISHED["fig5"])
     bound = 250 / W1000
-    rows = []
     a = d["c_i_2"]["final_alpha_deg"]
     for i, (key, ours) in enumerate((("alpha1_deg", a[1]), ("alpha2_deg", a[0]))):
-        rows.append(row(f"{prefix}/{key}", f"000 Fig. 5 final angle of ball {i + 1} [deg]", pub[key],
-                        round(float(ours), 2), "+-0.5", abs(ours - pub[key]) <= 0.5,
-                        "c_i = 2 1/s, gravity on (wobble ~0.13 deg)"))
+        rows.add(key, f"000 Fig. 5 final angle of ball {i + 1} [deg]", round(float(ours), 2),
+                 "+-0.5", abs(ours - rows.published(key)) <= 0.5,
+                 "c_i = 2 1/s, gravity on (wobble ~0.13 deg)")
     notes = {"c_i_2": "amplitude < 5 % of unbalanced; c_i = 2 1/s chosen for Tables 1-2; the "
                       "paper's c_i is unknown",
              "c_i_7.1": "same start, stiffer ball damping (settles in the published time but makes "
                         "only ~2.5 run-up revolutions)"}
     for case, note in notes.items():
         t = d[case]["balancing_time_s"]
-        rows.append(row(f"{prefix}/balancing_time_s/{case}",
-                        f"000 Fig. 5 balancing time [s] (c_i = {d[case]['c_i']:g} 1/s)",
-                        pub["balancing_time_s"][case], round(t, 2), f"< {bound:.2f} (250/w)", t < bound, note))
+        rows.add(f"balancing_time_s/{case}",
+                 f"000 Fig. 5 balancing time [s] (c_i = {d[case]['c_i']:g} 1/s)", round(t, 2),
+                 f"< {bound:.2f} (250/w)", t < bound, note)
     t = d["c_i_7.1"]["balancing_time_s"] * W1000
-    rows.append(row(f"{prefix}/settle_time_conclusions_wt", "000 Conclusions: balls settled [w t]",
-                    pub["settle_time_conclusions_wt"], round(t, 1), "< 150", t < 150.0,
-                    f"c_i = 7.1 1/s (the Fig. 5 settling); with the preset c_i = 2 1/s w t = "
-                    f"{d['c_i_2']['balancing_time_s'] * W1000:.0f}"))
+    rows.add("settle_time_conclusions_wt", "000 Conclusions: balls settled [w t]", round(t, 1),
+             "< 150", t < 150.0, f"c_i = 7.1 1/s (the Fig. 5 settling); with the preset c_i = 2 "
+             f"1/s w t = {d['c_i_2']['balancing_time_s'] * W1000:.0f}")
     return rows
 
 
 def compare_tables(data=None, prefix="000-table1-2") -> list:
+    """Rows of 000 Tables 1-2: t_f [s], x_max and y_max [mm], ball revolutions [-] per table and law.
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_tables` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_tables()
     tau = B_Z * W1000 / T0
-    rows = []
+    rows = Rows(prefix, {f"table{tab}": PUBLISHED[f"table{tab}"] for tab in TABLE_ME})
     for tab in TABLE_ME:
-        pub = PUBLISHED[f"table{tab}"]
         for law in LAWS:
-            p, S = pub[law], d[(tab, law)]
-            key = f"{prefix}/table{tab}/{law}"
+            key = f"table{tab}/{law}"
+            p, S = rows.published(key), d[(tab, law)]
             lab = f"000 Table {tab} {law}"
             if law == "constant":
                 note = ("B_z calibrated on this row" if tab == 1 else
@@ -251,46 +331,51 @@ def compare_tables(data=None, prefix="000-table1-2") -> list:
                         f"0.95 n_f and reaches {runup_fraction_closed_form(law, p['t_f_s'], tau):.2f} n_f "
                         f"at {p['t_f_s']:g} s (closed form): not reachable")
             t = S["t_f_s"]
-            rows.append(row(f"{key}/t_f_s", f"{lab} t_f [s]", p["t_f_s"],
-                            "not reached in 25 s" if t is None else round(t, 2), "+-5 %",
-                            t is not None and abs(t - p["t_f_s"]) <= 0.05 * p["t_f_s"], note))
+            rows.add(f"{key}/t_f_s", f"{lab} t_f [s]",
+                     "not reached in 25 s" if t is None else round(t, 2), "+-5 %",
+                     t is not None and abs(t - p["t_f_s"]) <= 0.05 * p["t_f_s"], note)
             for ax in ("x", "y"):
                 v = S[f"{ax}_max_m"] * 1e3
                 q = p[f"{ax}_max_mm"]
-                rows.append(row(f"{key}/{ax}_max_mm", f"{lab} {ax}_max [mm]", q, round(v, 2), "+-30 %",
-                                abs(v - q) <= 0.3 * q, "tolerance = sensitivity to the unknown c_i"))
+                rows.add(f"{key}/{ax}_max_mm", f"{lab} {ax}_max [mm]", round(v, 2), "+-30 %",
+                         abs(v - q) <= 0.3 * q, "tolerance = sensitivity to the unknown c_i")
             r = S["revolutions"]
-            rows.append(row(f"{key}/revolutions", f"{lab} ball revolutions", p["revolutions"], round(r, 1),
-                            "+-2.5", abs(r - p["revolutions"]) <= 2.5,
-                            "mean of the two balls, relative to the drum"))
+            rows.add(f"{key}/revolutions", f"{lab} ball revolutions", round(r, 1), "+-2.5",
+                     abs(r - p["revolutions"]) <= 2.5, "mean of the two balls, relative to the drum")
     return rows
 
 
 def compare_fig10_11(data=None, prefix="000-fig10-11") -> list:
+    """Rows of 000 Fig. 10-11: ball direction, revolutions [-], amplitude with vs without balls [%].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig10_11` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig10_11()
-    rows = []
+    rows = Rows(prefix, {"fig10": PUBLISHED["fig10"], "fig11": PUBLISHED["fig11"]})
     rev = d[("constant", True)]["signed_revolutions"]
     opposite = all(v < 0 for v in rev)
-    rows.append(row(f"{prefix}/fig10/ball_direction", "000 Fig. 10 ball motion during the run-up",
-                    PUBLISHED["fig10"]["ball_direction"],
-                    "opposite to the drum rotation" if opposite else "with the drum", "sign",
-                    opposite, "net revolutions relative to the drum: "
-                    + ", ".join(f"{v:.1f}" for v in rev)))
+    rows.add("fig10/ball_direction", "000 Fig. 10 ball motion during the run-up",
+             "opposite to the drum rotation" if opposite else "with the drum", "sign",
+             opposite, "net revolutions relative to the drum: " + ", ".join(f"{v:.1f}" for v in rev))
     r = d[("linear", True)]["revolutions"]
-    p = PUBLISHED["fig11"]["revolutions"]
-    rows.append(row(f"{prefix}/fig11/revolutions", "000 Fig. 11 ball revolutions (linear torque)", p,
-                    round(r, 1), "+-2.5", abs(r - p) <= 2.5,
-                    "mean of the two balls relative to the drum, Me = 0.025 kg m (Table 1)"))
+    p = rows.published("fig11/revolutions")
+    rows.add("fig11/revolutions", "000 Fig. 11 ball revolutions (linear torque)", round(r, 1),
+             "+-2.5", abs(r - p) <= 2.5,
+             "mean of the two balls relative to the drum, Me = 0.025 kg m (Table 1)")
     for fig, law in (("fig10", "constant"), ("fig11", "linear")):
         w, wo = d[(law, True)], d[(law, False)]
         aw = max(w["x_max_m"], w["y_max_m"])
         awo = max(wo["x_max_m"], wo["y_max_m"])
         diff = 100 * (aw / awo - 1)
-        rows.append(row(f"{prefix}/{fig}/amplitude_with_vs_without_balls",
-                        f"000 {fig.replace('fig', 'Fig. ')} max amplitude with vs without balls [%]",
-                        PUBLISHED[fig]["amplitude_with_vs_without_balls"], round(diff, 1),
-                        "+-30 % (the x_max sensitivity to c_i)", abs(diff) <= 30.0,
-                        f"max(x_max, y_max) {aw * 1e3:.2f} mm with, {awo * 1e3:.2f} mm without the "
-                        "balls; the balls start together opposite the unbalance and are dragged "
-                        "round with the drum through the resonances"))
+        rows.add(f"{fig}/amplitude_with_vs_without_balls",
+                 f"000 {fig.replace('fig', 'Fig. ')} max amplitude with vs without balls [%]",
+                 round(diff, 1), "+-30 % (the x_max sensitivity to c_i)", abs(diff) <= 30.0,
+                 f"max(x_max, y_max) {aw * 1e3:.2f} mm with, {awo * 1e3:.2f} mm without the "
+                 "balls; the balls start together opposite the unbalance and are dragged "
+                 "round with the drum through the resonances")
     return rows

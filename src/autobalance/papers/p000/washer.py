@@ -2,7 +2,7 @@
 
 Each ``compute_*`` returns plain data (SI); :data:`PUBLISHED` holds the paper's numbers;
 ``compare_*`` return rows ``{key, quantity, published, computed, tolerance, ok, note}``
-(:func:`autobalance.validation.target.row`; ``key`` = prefix / path of the number in PUBLISHED).
+(:class:`autobalance.validation.target.Rows`; ``key`` = prefix / path of the number in PUBLISHED).
 
 Choices (the paper omits them; docs/washer-analysis.md):
 
@@ -33,7 +33,7 @@ import numpy as np
 from ...physics.equilibria import find_equilibria
 from ...physics.error_bounds import rolling_deadband, suspension_friction_deviation
 from ...physics.vibratory import gain_phase
-from ...validation.target import row
+from ...validation.target import Rows
 
 __all__ = ["PUBLISHED", "RHOS_M", "START_DEG", "acceptance", "compare", "rho_key", "compare_fig13", "compare_fig16", "compare_fig18",
            "compare_table", "compute_fig13", "compute_fig16", "compute_fig18", "compute_table",
@@ -49,7 +49,13 @@ RHOS_M = (0.0, 0.05e-3, 0.1e-3, 0.5e-3, 1e-3)
 
 
 def rho_key(rho) -> str:
-    """Key of a Table 3-4 row: rho [m] -> "rho_0.05mm"."""
+    """Key of a Table 3-4 row: rho [m] -> "rho_0.05mm".
+
+    Parameters
+    ----------
+    rho : float
+        Race eccentricity rho [m].
+    """
     return f"rho_{rho * 1e3:g}mm"
 
 
@@ -81,8 +87,29 @@ _IDEAL = np.radians([120.0, -120.0])
 
 def washer(Me=0.05, f_r=0.0, rho=0.0, beta=math.pi / 2, g=0.0, c_i=2.0, friction_force=0.0,
            friction_angle=math.radians(61.0), n=2):
-    """The washer_000 preset with n balls of m R = Me [kg*m], f/r [-], rho [m], beta [rad],
-    gravity g [m/s^2], ball damping c_i [1/s], damper friction F [N] at gamma [rad]."""
+    """The washer_000 preset with n balls of m R = Me and the given imperfections.
+
+    Parameters
+    ----------
+    Me : float
+        Static unbalance of the drum, = m R of each ball [kg*m].
+    f_r : float
+        Rolling resistance f/r [-].
+    rho : float
+        Race eccentricity rho [m].
+    beta : float
+        Angle of the eccentricity [rad].
+    g : float
+        Gravity [m/s^2].
+    c_i : float
+        Ball damping c_i [1/s] (D = c_i m R^2).
+    friction_force : float
+        Dry friction force F of each damper [N].
+    friction_angle : float
+        Damper angle gamma [rad].
+    n : int
+        Number of balls.
+    """
     from ...config import load_config
 
     base = load_config("washer_000").system
@@ -145,7 +172,13 @@ def _band(system, w, f_r):
 
 # -- computations ------------------------------------------------------------------------------
 def compute_fig13(duration=10.0) -> dict:
-    """000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3, no gravity."""
+    """000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3, no gravity.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    """
     s = washer(Me=0.05, f_r=1e-3)
     out = _run(s, W1000, duration)
     out["band"] = _band(s, W1000, 1e-3)
@@ -153,7 +186,13 @@ def compute_fig13(duration=10.0) -> dict:
 
 
 def compute_fig16(duration=15.0) -> dict:
-    """000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m, f/r = 0, no gravity."""
+    """000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m, f/r = 0, no gravity.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    """
     s = washer(Me=0.05, rho=1e-3)
     out = _run(s, W1000, duration)
     out["band"] = _band(s, W1000, 0.0)
@@ -161,7 +200,13 @@ def compute_fig16(duration=15.0) -> dict:
 
 
 def compute_fig18(duration=10.0) -> dict:
-    """000 Fig. 18: damper friction 2F = 140 N at gamma = 61 deg, 1000 rpm, Me = 0.05 kg m."""
+    """000 Fig. 18: damper friction 2F = 140 N at gamma = 61 deg, 1000 rpm, Me = 0.05 kg m.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    """
     s = washer(Me=0.05, friction_force=70.0)
     out = _run(s, W1000, duration)
     out["eq49_bound_rad"] = suspension_friction_deviation(70.0, math.radians(61), 0.05, W1000)
@@ -170,9 +215,25 @@ def compute_fig18(duration=10.0) -> dict:
 
 def compute_table(which: int, duration=12.0, speed=100.0, histories=False) -> dict:
     """000 Table 3 (f = 1e-3 r) or Table 4 (f = 1e-4 r): rho = 0..1 mm, beta = pi/2, Me = mR =
-    0.05 kg m, gravity on, w = 100 rad/s. Returns {rho [m]: run dict with 'band'}; the time
-    histories (t_s, x_m, y_m, alpha_rad) are kept only with ``histories`` (Table 4, rho = 0.5 mm
-    is the case of 000 Fig. 19)."""
+    0.05 kg m, gravity on.
+
+    Parameters
+    ----------
+    which : int
+        3 or 4.
+    duration : float
+        Simulated time of each run [s].
+    speed : float
+        Drum speed w [rad/s] (Fig. 19's caption: 100 rad/s).
+    histories : bool
+        Keep the time histories (t_s, x_m, y_m, alpha_rad) (Table 4, rho = 0.5 mm is the case of
+        000 Fig. 19).
+
+    Returns
+    -------
+    dict
+        rho [m] -> run dict with 'band'.
+    """
     if which not in (3, 4):
         from ...models import ParameterError
         raise ParameterError("which", which, "must be 3 or 4")
@@ -195,10 +256,24 @@ TOL_DETERMINISTIC_DEG = 1.2
 
 
 def acceptance(band, unbalance=0.05) -> dict:
-    """Where a published Table 3-4 / Fig. 13 number counts as reproduced, from our equilibrium
-    and the rolling dead band about it (000 eq 21-22, 27-31): "d_alpha_deg" (2, 2) [lo, hi] per
-    ball [deg] (equilibrium +- max(half band, 1.2 deg)), "rme" [lo, hi] [-] (eq 22 over the band,
-    RMe = (Me - dMe)/Me), "amplitude_m" [lo, hi] [m] (residual x gain)."""
+    """Where a published Table 3-4 / Fig. 13 number counts as reproduced, from our equilibrium and
+    the rolling dead band about it (000 eq 21-22, 27-31).
+
+    Parameters
+    ----------
+    band : dict
+        ``band`` of a run dict: equilibrium deviation and half band [rad], residuals [kg*m], gain
+        [m/(kg*m)].
+    unbalance : float
+        Drum unbalance Me [kg*m].
+
+    Returns
+    -------
+    dict
+        "d_alpha_deg" (2, 2) [lo, hi] per ball [deg] (equilibrium +- max(half band, 1.2 deg)),
+        "rme" [lo, hi] [-] (eq 22 over the band, RMe = (Me - dMe)/Me), "amplitude_m" [lo, hi] [m]
+        (residual x gain).
+    """
     eq = np.abs(np.degrees(band["eq_deviation_rad"]))
     half = np.maximum(np.degrees(band["half_band_rad"]), TOL_DETERMINISTIC_DEG)
     ang = np.stack([np.maximum(eq - half, 0.0), eq + half], axis=1)
@@ -209,107 +284,146 @@ def acceptance(band, unbalance=0.05) -> dict:
             "amplitude_m": np.array([best, worst]) * band["gain_max"]}
 
 
-def _angle_rows(prefix, label, pub_deg, sim_dev, band):
-    """Rows d_alpha1, d_alpha2 [deg]: published within our dead band about our equilibrium."""
-    rows = []
+def _angle_rows(rows, path, label, sim_dev, band) -> list:
+    """Rows ``<path>d_alpha1_deg``, ``<path>d_alpha2_deg`` [deg]: published within our dead band
+    about our equilibrium. Returns the two rows (also added to ``rows``)."""
     acc = acceptance(band)
+    out = []
     for i in range(2):
         lo, hi = acc["d_alpha_deg"][i]
         ours = abs(math.degrees(sim_dev[i]))
-        ok = lo <= pub_deg[i] <= hi
-        rows.append(row(f"{prefix}/d_alpha{i + 1}_deg", f"{label} d_alpha{i + 1} [deg]", pub_deg[i],
-                        round(ours, 2), f"[{lo:.1f}, {hi:.1f}]", ok,
-                        f"equilibrium {acc['eq_deviation_deg'][i]:.1f} deg +- dead band "
-                        f"{acc['half_band_deg'][i]:.1f} deg"
-                        + ("" if lo <= ours <= hi + 0.3 else "; our run outside the band")))
-    return rows
+        key = f"{path}d_alpha{i + 1}_deg"
+        ok = lo <= rows.published(key) <= hi
+        out.append(rows.add(key, f"{label} d_alpha{i + 1} [deg]", round(ours, 2),
+                            f"[{lo:.1f}, {hi:.1f}]", ok,
+                            f"equilibrium {acc['eq_deviation_deg'][i]:.1f} deg +- dead band "
+                            f"{acc['half_band_deg'][i]:.1f} deg"
+                            + ("" if lo <= ours <= hi + 0.3 else "; our run outside the band")))
+    return out
 
 
 def compare_fig13(data=None, prefix="000-fig13") -> list:
+    """Rows of 000 Fig. 13: ball deviations [deg] in our dead band, first impact [w t].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig13` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig13()
-    pub = PUBLISHED["fig13"]
-    rows = _angle_rows(prefix, "000 Fig. 13 (f/r = 1e-3)", (pub["d_alpha1_deg"], pub["d_alpha2_deg"]),
-                       d["deviation_rad"], d["band"])
-    for r in rows:
+    rows = Rows(prefix, PUBLISHED["fig13"])
+    for r in _angle_rows(rows, "", "000 Fig. 13 (f/r = 1e-3)", d["deviation_rad"], d["band"]):
         r["note"] += "; published values exceed the paper's own eq 32 bound 2(R/e)(f/r) = 23.7 deg" \
             if r["published"] > 23.7 else ""
     t_imp = d["first_contact_s"]
     start = f"start {START_DEG[0]:g} / {START_DEG[1]:g} deg (the paper's start is not given)"
-    rows.append(row(f"{prefix}/impact_time_wt", "000 Fig. 13 first ball impact [w t]",
-                    pub["impact_time_wt"], "no impact" if t_imp is None else round(t_imp * W1000, 1),
-                    "+-0.5 (printed digits)", t_imp is not None and abs(t_imp * W1000 - 35.0) <= 0.5,
-                    f"{d['ball_contacts']} ball-ball contacts in our run; {start}: whether and "
-                    "when the balls meet depends on where they start"))
+    rows.add("impact_time_wt", "000 Fig. 13 first ball impact [w t]",
+             "no impact" if t_imp is None else round(t_imp * W1000, 1), "+-0.5 (printed digits)",
+             t_imp is not None and abs(t_imp * W1000 - 35.0) <= 0.5,
+             f"{d['ball_contacts']} ball-ball contacts in our run; {start}: whether and "
+             "when the balls meet depends on where they start")
     return rows
 
 
 def compare_fig16(data=None, prefix="000-fig16") -> list:
+    """Rows of 000 Fig. 16: ball deviations [deg] and residual amplitude [mm].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig16` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig16()
-    pub = PUBLISHED["fig16"]
+    rows = Rows(prefix, PUBLISHED["fig16"])
     sim = sorted(np.abs(d["deviation_rad"]))[::-1]
     eq = sorted(np.abs(d["band"]["eq_deviation_rad"]))[::-1]
-    rows = []
     for i in range(2):
-        p = pub[f"d_alpha{i + 1}_deg"]
+        p = rows.published(f"d_alpha{i + 1}_deg")
         ours = math.degrees(sim[i])
         ok = abs(p - math.degrees(eq[i])) <= 1.2
-        rows.append(row(f"{prefix}/d_alpha{i + 1}_deg", f"000 Fig. 16 d_alpha{i + 1} [deg] (larger first)",
-                        p, round(ours, 2), "+-1.2", ok,
-                        f"deterministic equilibrium {math.degrees(eq[i]):.1f} deg; the paper's own "
-                        "Table 4 (rho = 1 mm) gives 42.9 / 29.9"))
+        rows.add(f"d_alpha{i + 1}_deg", f"000 Fig. 16 d_alpha{i + 1} [deg] (larger first)",
+                 round(ours, 2), "+-1.2", ok, f"deterministic equilibrium "
+                 f"{math.degrees(eq[i]):.1f} deg; the paper's own Table 4 (rho = 1 mm) gives 42.9 / 29.9")
     amp = d["amplitude_m"] * 1e3
-    p = pub["amplitude_mm"]
-    rows.append(row(f"{prefix}/amplitude_mm", "000 Fig. 16 residual amplitude [mm]", p, round(amp, 3),
-                    "+-10 %", abs(amp - p) <= 0.1 * p, "max(|x|, |y|) over the last 0.5 s; |W| g = "
-                    "rho-driven; Table 4 (rho = 1 mm) gives A = 1 mm"))
+    p = rows.published("amplitude_mm")
+    rows.add("amplitude_mm", "000 Fig. 16 residual amplitude [mm]", round(amp, 3), "+-10 %",
+             abs(amp - p) <= 0.1 * p, "max(|x|, |y|) over the last 0.5 s; |W| g = "
+             "rho-driven; Table 4 (rho = 1 mm) gives A = 1 mm")
     return rows
 
 
 def compare_fig18(data=None, prefix="000-fig18") -> list:
+    """Rows of 000 Fig. 18 and eq 49: the eq 49 bound and the ball deviations [rad].
+
+    Parameters
+    ----------
+    data : dict or None
+        :func:`compute_fig18` output (computed when None).
+    prefix : str
+        Key prefix of the rows (the target id).
+    """
     d = data or compute_fig18()
-    pub = PUBLISHED["fig18"]
+    rows = Rows(prefix, PUBLISHED["fig18"])
     b = d["eq49_bound_rad"]
-    rows = [row(f"{prefix}/eq49_bound_rad", "000 eq 49 bound [rad]", pub["eq49_bound_rad"], round(b, 4),
-                "+-0.0005", abs(b - pub["eq49_bound_rad"]) <= 5e-4,
-                "F cos(gamma)/(Me sin(2pi/3) w^2), F = 70 N")]
+    rows.add("eq49_bound_rad", "000 eq 49 bound [rad]", round(b, 4), "+-0.0005",
+             abs(b - rows.published("eq49_bound_rad")) <= 5e-4,
+             "F cos(gamma)/(Me sin(2pi/3) w^2), F = 70 N")
     dev = np.abs(d["deviation_rad"])
     for i in range(2):
-        p = pub[f"d_alpha{i + 1}_rad"]
-        rows.append(row(f"{prefix}/d_alpha{i + 1}_rad", f"000 Fig. 18 d_alpha{i + 1} [rad]", p,
-                        round(float(dev[i]), 3), "+-0.03", abs(dev[i] - p) <= 0.03,
-                        "start-dependent: the tub sticks wherever the residual force drops below the "
-                        "friction; both the paper's and our runs exceed eq 49, which checks only x"))
+        p = rows.published(f"d_alpha{i + 1}_rad")
+        rows.add(f"d_alpha{i + 1}_rad", f"000 Fig. 18 d_alpha{i + 1} [rad]",
+                 round(float(dev[i]), 3), "+-0.03", abs(dev[i] - p) <= 0.03,
+                 "start-dependent: the tub sticks wherever the residual force drops below the "
+                 "friction; both the paper's and our runs exceed eq 49, which checks only x")
     return rows
 
 
 def compare_table(which: int, data=None, prefix=None) -> list:
+    """Rows of 000 Table 3 or 4: deviations [deg], RMe [%] and A [mm] for each rho.
+
+    Parameters
+    ----------
+    which : int
+        3 or 4.
+    data : dict or None
+        :func:`compute_table` output (computed when None).
+    prefix : str or None
+        Key prefix of the rows (default ``000-table3-4/table<which>``).
+    """
     d = data or compute_table(which)
-    pub = PUBLISHED[f"table{which}"]
-    prefix = prefix or f"000-table3-4/table{which}"
-    rows = []
+    rows = Rows(prefix or f"000-table3-4/table{which}", PUBLISHED[f"table{which}"])
     for rho in RHOS_M:
-        p, r, b = pub[rho_key(rho)], d[rho], d[rho]["band"]
-        key = f"{prefix}/{rho_key(rho)}"
+        key = rho_key(rho)
+        p, r, b = rows.published(key), d[rho], d[rho]["band"]
         lab = f"000 Table {which} rho = {rho * 1e3:g} mm"
-        rows += _angle_rows(key, lab, (p["d_alpha1_deg"], p["d_alpha2_deg"]), r["deviation_rad"], b)
+        _angle_rows(rows, f"{key}/", lab, r["deviation_rad"], b)
         acc = acceptance(b)
         lo, hi = acc["rme"]
         rme = p["RMe_pct"] / 100
-        rows.append(row(f"{key}/RMe_pct", f"{lab} RMe [%]", p["RMe_pct"], round(r["rme"] * 100, 1),
-                        f"[{lo * 100:.1f}, {hi * 100:.1f}]", lo - 1e-3 <= rme <= hi + 1e-3,
-                        "range of RMe over the dead band"))
+        rows.add(f"{key}/RMe_pct", f"{lab} RMe [%]", round(r["rme"] * 100, 1),
+                 f"[{lo * 100:.1f}, {hi * 100:.1f}]", lo - 1e-3 <= rme <= hi + 1e-3,
+                 "range of RMe over the dead band")
         amin, amax = acc["amplitude_m"]
         A = p["A_mm"] * 1e-3
-        rows.append(row(f"{key}/A_mm", f"{lab} A [mm]", p["A_mm"], round(r["amplitude_m"] * 1e3, 3),
-                        f"[{amin * 1e3:.3f}, {amax * 1e3:.3f}] +- 0.01",
-                        amin - 1e-5 <= A <= amax + 1e-5,
-                        "range of the residual amplitude over the dead band (ours includes the "
-                        "gravity wobble)"))
+        rows.add(f"{key}/A_mm", f"{lab} A [mm]", round(r["amplitude_m"] * 1e3, 3),
+                 f"[{amin * 1e3:.3f}, {amax * 1e3:.3f}] +- 0.01", amin - 1e-5 <= A <= amax + 1e-5,
+                 "range of the residual amplitude over the dead band (ours includes the "
+                 "gravity wobble)")
     return rows
 
 
 def compare(which=("fig13", "fig16", "fig18", "table3", "table4")) -> list:
-    """All comparison rows of the requested studies."""
+    """All comparison rows of the requested studies (``autobalance analyze washer-study``).
+
+    Parameters
+    ----------
+    which : sequence of str
+        Studies among fig13, fig16, fig18, table3, table4.
+    """
     fns = {"fig13": compare_fig13, "fig16": compare_fig16, "fig18": compare_fig18,
            "table3": lambda: compare_table(3), "table4": lambda: compare_table(4)}
     rows = []
