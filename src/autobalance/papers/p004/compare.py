@@ -1,5 +1,6 @@
 """Seed 004: comparison rows of every study's Dataset against :data:`PUBLISHED` (a number we do
 not reproduce is a row with ``ok = False`` and its reason)."""
+
 from __future__ import annotations
 
 import math
@@ -7,19 +8,23 @@ import math
 import numpy as np
 
 from ...studies.statistics import valid_ranges
-from ...validation.target import not_computed, row
+from ...validation.target import Rows
 from .published import G_LIMIT, G_SPAN, PLATEAU_CASES, PUBLISHED, UNBALANCE_CASES
 
-__all__ = ["compare_descent", "compare_immobility", "compare_monte_carlo", "compare_plateau",
-           "compare_profile", "compare_single", "compare_table1", "compare_unbalance"]
+__all__ = [
+    "compare_descent",
+    "compare_immobility",
+    "compare_monte_carlo",
+    "compare_plateau",
+    "compare_profile",
+    "compare_single",
+    "compare_table1",
+    "compare_unbalance",
+]
 
 
-def _row(key, quantity, published, computed, tolerance, ok, note=""):
-    return row(key, quantity, published, computed, tolerance, ok, note)
-
-
-def _missing(key, quantity, published, why="not computed in this variant (run the case / --full)"):
-    return not_computed(key, quantity, published, why)
+#: Why a published number has no row in this variant (the studies of a case run on demand).
+WHY = "not computed in this variant (run the case / --full)"
 
 
 def _fmt_ranges(r):
@@ -40,33 +45,64 @@ def _boundaries(r):
 def compare_single(ds=None) -> list:
     ds = ds if ds is not None else _compute("single")
     a, p = ds.attrs, PUBLISHED["single"]
-    one = ("our run: balls at %.1f/%.1f deg (a G14 start, our choice); 004 gives neither its "
-           "start angles nor the exact profile, so the row checks the paper's statement about "
-           "its run, not the number" % tuple(a["start_angles_deg"]))
-    fam = (f"; of {a['family_n']} G14 starts: " if "family_n" in a else "")
-    rows = [
-        _row("single/G_ini", "004 Fig. 4 G_ini (rotor alone) [mm/s]", p["G_ini"], round(a["G_ini"], 2), "+-0.5",
-             abs(a["G_ini"] - p["G_ini"]) <= 0.5, "deterministic: U/M_t*Omega_nom; paper rounds"),
-        _row("single/G_start", "004 Fig. 4 G at start [mm/s]", p["G_start"], round(a["G_start"], 2), "+-0.1",
-             abs(a["G_start"] - p["G_start"]) <= 0.1, "by construction of the start"),
-        _row("single/G_peak_runup", "004 Fig. 4 peak G during the run-up [mm/s]", p["G_peak_runup"],
-             round(a["G_peak_runup"], 2), f"> G_ini = {a['G_ini']:.1f} (balls slung near resonance)",
-             a["G_peak_runup"] > a["G_ini"],
-             one + (fam + f"{a['family_peak_gt_ini']} exceed G_ini" if fam else "")),
-        _row("single/G_STD", "004 Fig. 4 G_STD at 18 s [mm/s]", p["G_STD"], round(a["G_STD"], 2),
-             f"in (16, {a['G_ini']:.1f}]: below G_ini, above G16 (sec. 4.1)",
-             G_LIMIT < a["G_STD"] <= a["G_ini"],
-             one + (fam + f"{a['family_std_in_16_ini']} in (16, G_ini]" if fam else "")),
-        _row("single/G_TSR", "004 Fig. 4 G_TSR at 90 s [mm/s]", p["G_TSR"], round(a["G_TSR"], 2),
-             "<= 16 and < G_STD (TSR qualifies G16)",
-             a["G_TSR"] <= G_LIMIT and a["G_TSR"] < a["G_STD"],
-             one + (fam + f"{a['family_tsr_le_16']} <= G16" if fam else "")),
-    ]
+    one = (
+        "our run: balls at %.1f/%.1f deg (a G14 start, our choice); 004 gives neither its "
+        "start angles nor the exact profile, so the row checks the paper's statement about "
+        "its run, not the number" % tuple(a["start_angles_deg"])
+    )
+    fam = f"; of {a['family_n']} G14 starts: " if "family_n" in a else ""
+    rows = Rows("single", p)
+    rows.add(
+        "G_ini",
+        "004 Fig. 4 G_ini (rotor alone) [mm/s]",
+        round(a["G_ini"], 2),
+        "+-0.5",
+        abs(a["G_ini"] - p["G_ini"]) <= 0.5,
+        "deterministic: U/M_t*Omega_nom; paper rounds",
+    )
+    rows.add(
+        "G_start",
+        "004 Fig. 4 G at start [mm/s]",
+        round(a["G_start"], 2),
+        "+-0.1",
+        abs(a["G_start"] - p["G_start"]) <= 0.1,
+        "by construction of the start",
+    )
+    rows.add(
+        "G_peak_runup",
+        "004 Fig. 4 peak G during the run-up [mm/s]",
+        round(a["G_peak_runup"], 2),
+        f"> G_ini = {a['G_ini']:.1f} (balls slung near resonance)",
+        a["G_peak_runup"] > a["G_ini"],
+        one + (fam + f"{a['family_peak_gt_ini']} exceed G_ini" if fam else ""),
+    )
+    rows.add(
+        "G_STD",
+        "004 Fig. 4 G_STD at 18 s [mm/s]",
+        round(a["G_STD"], 2),
+        f"in (16, {a['G_ini']:.1f}]: below G_ini, above G16 (sec. 4.1)",
+        G_LIMIT < a["G_STD"] <= a["G_ini"],
+        one + (fam + f"{a['family_std_in_16_ini']} in (16, G_ini]" if fam else ""),
+    )
+    rows.add(
+        "G_TSR",
+        "004 Fig. 4 G_TSR at 90 s [mm/s]",
+        round(a["G_TSR"], 2),
+        "<= 16 and < G_STD (TSR qualifies G16)",
+        a["G_TSR"] <= G_LIMIT and a["G_TSR"] < a["G_STD"],
+        one + (fam + f"{a['family_tsr_le_16']} <= G16" if fam else ""),
+    )
     if "family_n" in a:
-        rows.append(_row("single/run_exists", "004 Fig. 4 a G14 start reproducing the whole run (peak > G_ini, "
-                         "16 < G_STD <= G_ini, G_TSR <= 16)", "the paper's run exists",
-                         f"{a['family_match']}/{a['family_n']} starts", ">= 1", a["family_match"] >= 1,
-                         "starts with G14 at rest: ball 1 every 15 deg, ball 2 by the law of cosines"))
+        rows.add(
+            "run_exists",
+            "004 Fig. 4 a G14 start reproducing the whole run (peak > G_ini, "
+            "16 < G_STD <= G_ini, G_TSR <= 16)",
+            f"{a['family_match']}/{a['family_n']} starts",
+            ">= 1",
+            a["family_match"] >= 1,
+            "starts with G14 at rest: ball 1 every 15 deg, ball 2 by the law of cosines",
+            shown="the paper's run exists",
+        )
     return rows
 
 
@@ -74,34 +110,60 @@ def compare_monte_carlo(ds=None) -> list:
     ds = ds if ds is not None else _compute("monte_carlo")
     a, p = ds.attrs, PUBLISHED["monte_carlo"]
     n = int(a["runs"])
-    rows = [
-        _row("monte_carlo/runs", "004 sec. 4.2 runs", p["runs"], n, "= 1275 (full) / n(n+1)/2 (quick)",
-             n == a["n"] * (a["n"] + 1) // 2, "50 x 50 starts, swapped duplicates removed"),
-    ]
+    rows = Rows("monte_carlo", p)
+    rows.add(
+        "runs",
+        "004 sec. 4.2 runs",
+        n,
+        "= 1275 (full) / n(n+1)/2 (quick)",
+        n == a["n"] * (a["n"] + 1) // 2,
+        "50 x 50 starts, swapped duplicates removed",
+    )
     for cp in ("STD", "TSR"):
         m, se = a[f"mode_{cp}"], a[f"mode_{cp}_se"]
         tol = max(1.0, 2 * se)
-        rows.append(_row(f"monte_carlo/mode_{cp}", f"004 Fig. 5 most frequent G_{cp} [mm/s]", p[f"mode_{cp}"], round(m, 2),
-                         f"+-{tol:.1f}", abs(m - p[f"mode_{cp}"]) <= tol,
-                         f"mode of 1 mm/s bins; tolerance max(1 bin, 2 x bootstrap SE {se:.1f}); "
-                         f"median {a[f'median_{cp}']:.1f}"
-                         + (f"; closed-form stick threshold at our plateau G* = "
-                            f"{a['G_stick_plateau']:.2f} (stick_threshold_grade; 11.45 at "
-                            f"1.02 Omega_n)" if cp == "TSR" and "G_stick_plateau" in a else "")))
+        rows.add(
+            f"mode_{cp}",
+            f"004 Fig. 5 most frequent G_{cp} [mm/s]",
+            round(m, 2),
+            f"+-{tol:.1f}",
+            abs(m - p[f"mode_{cp}"]) <= tol,
+            f"mode of 1 mm/s bins; tolerance max(1 bin, 2 x bootstrap SE {se:.1f}); "
+            f"median {a[f'median_{cp}']:.1f}"
+            + (
+                f"; closed-form stick threshold at our plateau G* = "
+                f"{a['G_stick_plateau']:.2f} (stick_threshold_grade; 11.45 at "
+                f"1.02 Omega_n)"
+                if cp == "TSR" and "G_stick_plateau" in a
+                else ""
+            ),
+        )
     for key, lab in (("share_G16", "share qualifying G16"), ("success", "share with G <= G_ini")):
         for cp in ("STD", "TSR"):
             pub = p[f"{key}_{cp}"]
             c = a[f"{key}_{cp}"]
             tol = _share_tol(pub, n)
-            rows.append(_row(f"monte_carlo/{key}_{cp}", f"004 sec. 4.2 {lab} {cp} [%]", 100 * pub, round(100 * c, 1),
-                             f"+-{100 * tol:.1f}", abs(c - pub) <= tol,
-                             f"2 sigma of the difference of two binomial shares ({n} and 1275 runs)"))
+            rows.add(
+                f"{key}_{cp}",
+                f"004 sec. 4.2 {lab} {cp} [%]",
+                round(100 * c, 1),
+                f"+-{100 * tol:.1f}",
+                abs(c - pub) <= tol,
+                f"2 sigma of the difference of two binomial shares ({n} and 1275 runs)",
+                shown=100 * pub,
+            )
     for k, pub in p["regions"].items():
         c = a[f"region_{k}"]
         tol = _share_tol(pub, n)
-        rows.append(_row(f"monte_carlo/regions/{k}", f"004 Table 2 region {k} [%]", 100 * pub, round(100 * c, 1),
-                         f"+-{100 * tol:.1f}", abs(c - pub) <= tol,
-                         "2 sigma binomial (both samples); G_INI = rotor's own grade"))
+        rows.add(
+            f"regions/{k}",
+            f"004 Table 2 region {k} [%]",
+            round(100 * c, 1),
+            f"+-{100 * tol:.1f}",
+            abs(c - pub) <= tol,
+            "2 sigma binomial (both samples); G_INI = rotor's own grade",
+            shown=100 * pub,
+        )
     return rows
 
 
@@ -109,37 +171,51 @@ def compare_unbalance(ds=None) -> list:
     ds = ds if ds is not None else _compute("unbalance")
     pub = PUBLISHED["unbalance"]
     step = float(ds.attrs["grid_step"])
-    tb = step / 2 + 1.0          # a boundary: half our grid step + the paper's 1 G reading
-    rows = []
+    tb = step / 2 + 1.0  # a boundary: half our grid step + the paper's 1 G reading
+    rows = Rows("unbalance", pub)
     for case in UNBALANCE_CASES:
         mu_r, c_r = UNBALANCE_CASES[case]
         for proc in ("STD", "TSR"):
             pr, pe = pub[case][proc]["ranges"], pub[case][proc]["efficiency"]
-            key = f"unbalance/{case}/{proc}"
             lab = f"004 Table {3 if c_r == 1 else 4} mu_r={mu_r:g} c_r={c_r:g} {proc}"
             if case not in ds["case"].values:
-                rows.append(_missing(f"{key}/ranges", f"{lab} valid range G16", _fmt_ranges(pr)))
-                rows.append(_missing(f"{key}/efficiency", f"{lab} efficiency [%]", 100 * pe))
+                rows.missing(f"{case}/{proc}/ranges", f"{lab} valid range G16", WHY, shown=_fmt_ranges(pr))
+                rows.missing(f"{case}/{proc}/efficiency", f"{lab} efficiency [%]", WHY, shown=100 * pe)
                 continue
             p95 = ds["grade_G"].sel(case=case, procedure=proc, percentile=95.0).values
             cr, ce = valid_ranges(ds["G_ini"].values, p95)
             pb, cb = _boundaries(pr), _boundaries(cr)
-            ok_r = len(pr) == len(cr) and len(pb) == len(cb) and all(
-                abs(x - y) <= tb for x, y in zip(pb, cb))
+            ok_r = (
+                len(pr) == len(cr) and len(pb) == len(cb) and all(abs(x - y) <= tb for x, y in zip(pb, cb))
+            )
             top = ""
-            if pr and cr:               # the highest interval: the over-excited range
+            if pr and cr:  # the highest interval: the over-excited range
                 d = max(abs(pr[-1][0] - cr[-1][0]), abs(pr[-1][1] - cr[-1][1]))
-                top = (f"; highest interval G{cr[-1][0]:.1f}-G{cr[-1][1]:.1f}: its boundaries "
-                       f"{'within' if d <= tb else 'outside'} +-{tb:g} G of 004's (max "
-                       f"difference {d:.1f} G)")
-            rows.append(_row(f"{key}/ranges", f"{lab} valid range G16", _fmt_ranges(pr), _fmt_ranges(cr),
-                             f"same intervals, each boundary +-{tb:g} G", ok_r,
-                             "p95 <= G16, linear interpolation between grid points" + top))
+                top = (
+                    f"; highest interval G{cr[-1][0]:.1f}-G{cr[-1][1]:.1f}: its boundaries "
+                    f"{'within' if d <= tb else 'outside'} +-{tb:g} G of 004's (max "
+                    f"difference {d:.1f} G)"
+                )
+            rows.add(
+                f"{case}/{proc}/ranges",
+                f"{lab} valid range G16",
+                _fmt_ranges(cr),
+                f"same intervals, each boundary +-{tb:g} G",
+                ok_r,
+                "p95 <= G16, linear interpolation between grid points" + top,
+                shown=_fmt_ranges(pr),
+            )
             nb = max(len(pb), len(cb), 1)
             tol = nb * tb / G_SPAN
-            rows.append(_row(f"{key}/efficiency", f"{lab} efficiency [%]", 100 * pe, round(100 * ce, 1),
-                             f"+-{100 * tol:.0f}", abs(ce - pe) <= tol + 1e-9,
-                             f"{nb} boundaries x +-{tb:g} G over [G0, G50]"))
+            rows.add(
+                f"{case}/{proc}/efficiency",
+                f"{lab} efficiency [%]",
+                round(100 * ce, 1),
+                f"+-{100 * tol:.0f}",
+                abs(ce - pe) <= tol + 1e-9,
+                f"{nb} boundaries x +-{tb:g} G over [G0, G50]",
+                shown=100 * pe,
+            )
     return rows
 
 
@@ -153,72 +229,128 @@ def compare_profile(ds=None) -> list:
     worse = G[inside & (slow > std)]
     out = ~inside
     d_out = float(np.mean(slow[out] - std[out])) if out.any() else float("nan")
-    return [
-        _row("profile/slow_worse_range", "004 Fig. 9 slow run-up p95 worse than STD in [G10, G21]", "[G10, G21]",
-             ", ".join(f"G{x:g}" for x in worse) or "none", "at least one grid G_ini in [10, 21]",
-             worse.size > 0, "grid points of [G10, G21] where slow p95 > STD p95"),
-        _row("profile/slow_better_elsewhere", "004 Fig. 9 slow run-up better than STD elsewhere (mean p95 change) [mm/s]", "< 0",
-             round(d_out, 2), "< 0", d_out < 0, "mean over grid G_ini outside [G10, G21]"),
-        _row("profile/tsr_better", "004 Fig. 9 TSR p95 <= STD p95 (mean change) [mm/s]", "< 0",
-             round(float(np.mean(tsr - std)), 2), "< 0", float(np.mean(tsr - std)) < 0,
-             "004: TSR improves STD, mostly at low G_ini"),
-    ]
+    rows = Rows("profile", PUBLISHED["profile"])
+    rows.add(
+        "slow_worse_range",
+        "004 Fig. 9 slow run-up p95 worse than STD in [G10, G21]",
+        ", ".join(f"G{x:g}" for x in worse) or "none",
+        "at least one grid G_ini in [10, 21]",
+        worse.size > 0,
+        "grid points of [G10, G21] where slow p95 > STD p95",
+        shown="[G10, G21]",
+    )
+    rows.add(
+        "slow_better_elsewhere",
+        "004 Fig. 9 slow run-up better than STD elsewhere (mean p95 change) [mm/s]",
+        round(d_out, 2),
+        "< 0",
+        d_out < 0,
+        "mean over grid G_ini outside [G10, G21]",
+        shown="< 0",
+    )
+    rows.add(
+        "tsr_better",
+        "004 Fig. 9 TSR p95 <= STD p95 (mean change) [mm/s]",
+        round(float(np.mean(tsr - std)), 2),
+        "< 0",
+        float(np.mean(tsr - std)) < 0,
+        "004: TSR improves STD, mostly at low G_ini",
+        shown="< 0",
+    )
+    return rows
 
 
 def compare_immobility(ds=None) -> list:
     ds = ds if ds is not None else _compute("immobility")
-    rows = []
+    rows = Rows("immobility", PUBLISHED["immobility"])
     fn = ds.attrs["f_n_hz"]
     f = ds["speed"].values
     im = ds["immobility"]
     have = 1.0 in ds["mu_r"].values and 1.0 in ds["c_r"].values
     if not have:
-        return [_missing(f"immobility/{k}", f"004 Fig. 8/10 {k}", v, "needs mu_r = c_r = 1")
-                for k, v in PUBLISHED["immobility"].items() if k != "source"]
+        for k in PUBLISHED["immobility"]:
+            if k != "source":
+                rows.missing(k, f"004 Fig. 8/10 {k}", "needs mu_r = c_r = 1")
+        return rows
     nom = im.sel(mu_r=1.0, c_r=1.0).values
     fmin = float(f[np.argmin(nom)])
-    rows.append(_row("immobility/valley_at_resonance", "004 Fig. 8 speed of least immobility / f_n [-]", "near resonance (~1)",
-                     round(fmin / fn, 3), "0.9-1.1", 0.9 <= fmin / fn <= 1.1,
-                     f"min immobility {nom.min():.3f} at {fmin:.1f} Hz (G_ini = G{ds.attrs['G_ini']:g})"))
+    rows.add(
+        "valley_at_resonance",
+        "004 Fig. 8 speed of least immobility / f_n [-]",
+        round(fmin / fn, 3),
+        "0.9-1.1",
+        0.9 <= fmin / fn <= 1.1,
+        f"min immobility {nom.min():.3f} at {fmin:.1f} Hz (G_ini = G{ds.attrs['G_ini']:g})",
+        shown="near resonance (~1)",
+    )
     i_nom = float(np.interp(ds.attrs["nominal_hz"], f, nom))
     i_pl = float(np.interp(ds.attrs["plateau_hz"], f, nom))
-    rows.append(_row("immobility/nominal_above_plateau", "004 Fig. 8 immobility at 167 Hz > at the 100 Hz plateau", "higher at nominal",
-                     f"{i_nom:.3f} vs {i_pl:.3f}", ">", i_nom > i_pl,
-                     "TSR lowers immobility for as long as needed (sec. 4.4)"))
+    rows.add(
+        "nominal_above_plateau",
+        "004 Fig. 8 immobility at 167 Hz > at the 100 Hz plateau",
+        f"{i_nom:.3f} vs {i_pl:.3f}",
+        ">",
+        i_nom > i_pl,
+        "TSR lowers immobility for as long as needed (sec. 4.4)",
+        shown="higher at nominal",
+    )
     mono_mu = bool(np.all(np.diff(im.values, axis=0) >= -1e-12))
-    rows.append(_row("immobility/monotone_mu", "004 Fig. 10 immobility non-decreasing in mu_r (every c_r, speed)",
-                     "more stiction, more immobility", mono_mu, "True", mono_mu,
-                     f"mu_r = {list(ds['mu_r'].values)}"))
+    rows.add(
+        "monotone_mu",
+        "004 Fig. 10 immobility non-decreasing in mu_r (every c_r, speed)",
+        mono_mu,
+        "True",
+        mono_mu,
+        f"mu_r = {list(ds['mu_r'].values)}",
+        shown="more stiction, more immobility",
+    )
     near = (f >= 0.95 * fn) & (f <= 1.05 * fn)
     mean_c = im.sel(mu_r=1.0).values[:, near].mean(axis=1)
     order_c = np.argsort(ds["c_r"].values)
     mono_c = bool(np.all(np.diff(mean_c[order_c]) >= -1e-12))
-    rows.append(_row("immobility/monotone_c", "004 Fig. 10 immobility near resonance increasing in c_r (mu_r = 1)",
-                     "more damping, more immobility", [round(float(x), 3) for x in mean_c[order_c]],
-                     "non-decreasing", mono_c, "mean over 0.95-1.05 f_n"))
+    rows.add(
+        "monotone_c",
+        "004 Fig. 10 immobility near resonance increasing in c_r (mu_r = 1)",
+        [round(float(x), 3) for x in mean_c[order_c]],
+        "non-decreasing",
+        mono_c,
+        "mean over 0.95-1.05 f_n",
+        shown="more damping, more immobility",
+    )
     return rows
 
 
 def compare_plateau(ds=None) -> list:
     ds = ds if ds is not None else _compute("plateau")
-    rows = []
+    rows = Rows("plateau", PUBLISHED["plateau"])
     step = ds.attrs["ratio_step"]
-    tol = step / 2 + 0.005          # half our grid step + the paper's 2-decimal rounding
+    tol = step / 2 + 0.005  # half our grid step + the paper's 2-decimal rounding
     cases = list(ds["case"].values)
-    rows.append(_row("plateau/standard", "004 sec. 4.6 standard plateau 100 Hz / f_n [-]",
-                     round(PUBLISHED["plateau"]["standard"], 2),
-                     round(100.0 / ds.attrs["f_n_hz"], 3), "+-0.005",
-                     abs(100.0 / ds.attrs["f_n_hz"] - 1.06) <= 0.005, "f_n = sqrt(k/M_t)"))
+    rows.add(
+        "standard",
+        "004 sec. 4.6 standard plateau 100 Hz / f_n [-]",
+        round(100.0 / ds.attrs["f_n_hz"], 3),
+        "+-0.005",
+        abs(100.0 / ds.attrs["f_n_hz"] - 1.06) <= 0.005,
+        "f_n = sqrt(k/M_t)",
+        shown=round(PUBLISHED["plateau"]["standard"], 2),
+    )
     for case, pub in PUBLISHED["plateau"]["ideal"].items():
         mu_r, c_r = PLATEAU_CASES[case]
         lab = f"004 Fig. {14 if case == 'nominal' else 15} ideal plateau mu_r={mu_r:g} c_r={c_r:g} [-]"
         if case not in cases:
-            rows.append(_missing(f"plateau/ideal/{case}", lab, pub))
+            rows.missing(f"ideal/{case}", lab, WHY)
             continue
         c = ds.attrs["ideal"][cases.index(case)]
-        rows.append(_row(f"plateau/ideal/{case}", lab, pub, c, f"+-{tol:.3f}", abs(c - pub) <= tol + 1e-9,
-                         f"argmin over plateau of the mean p95 G_TSR over G_ini <= G34; grid "
-                         f"{ds['plateau_ratio'].values.min():g}-{ds['plateau_ratio'].values.max():g}"))
+        rows.add(
+            f"ideal/{case}",
+            lab,
+            c,
+            f"+-{tol:.3f}",
+            abs(c - pub) <= tol + 1e-9,
+            f"argmin over plateau of the mean p95 G_TSR over G_ini <= G34; grid "
+            f"{ds['plateau_ratio'].values.min():g}-{ds['plateau_ratio'].values.max():g}",
+        )
     return rows
 
 
@@ -227,36 +359,63 @@ def compare_descent(ds=None) -> list:
     a, p = ds.attrs, PUBLISHED["descent"]
     hd = a["half_drop_median"]
     worse = bool(np.isfinite(a["p95_rise_ratio"]))
-    return [
-        _row("descent/prompt_reduction", "004 Fig. 13 speed of the prompt reduction / Omega_n [-]",
-             p["prompt_reduction"], round(hd, 3), "+-0.05", abs(hd - p["prompt_reduction"]) <= 0.05,
-             f"half-drop point of the median G along the descent (p95: "
-             f"{a['half_drop_p95']:.3f}); tolerance: 004 reads 'near 1.1', one decimal; "
-             f"G_ini = G{a['G_ini']:g}, {a['runs']} starts, descent 167 Hz -> "
-             f"{a['ratio_end']:g} Omega_n in {a['down_time_s']:g} s"),
-        _row("descent/worse_near_resonance", "004 Fig. 13 outcomes deteriorate nearing resonance",
-             p["worse_near_resonance"],
-             (f"p95 rises from {a['p95_min']:.1f} (at {a['p95_min_ratio']:.3f}) to "
-              f"{a['p95_max_after']:.1f}, past +1 at {a['p95_rise_ratio']:.3f} Omega_n") if worse
-             else f"no rise: p95 min {a['p95_min']:.1f} at {a['p95_min_ratio']:.3f}",
-             "p95 rises > 1 mm/s above its minimum later in the descent", worse,
-             "95th percentile of G (the worst outcomes) along the descent to 0.9 Omega_n; its "
-             "minimum taken over Omega >= Omega_n"),
-    ]
+    rows = Rows("descent", p)
+    rows.add(
+        "prompt_reduction",
+        "004 Fig. 13 speed of the prompt reduction / Omega_n [-]",
+        round(hd, 3),
+        "+-0.05",
+        abs(hd - p["prompt_reduction"]) <= 0.05,
+        f"half-drop point of the median G along the descent (p95: "
+        f"{a['half_drop_p95']:.3f}); tolerance: 004 reads 'near 1.1', one decimal; "
+        f"G_ini = G{a['G_ini']:g}, {a['runs']} starts, descent 167 Hz -> "
+        f"{a['ratio_end']:g} Omega_n in {a['down_time_s']:g} s",
+    )
+    rows.add(
+        "worse_near_resonance",
+        "004 Fig. 13 outcomes deteriorate nearing resonance",
+        (
+            f"p95 rises from {a['p95_min']:.1f} (at {a['p95_min_ratio']:.3f}) to "
+            f"{a['p95_max_after']:.1f}, past +1 at {a['p95_rise_ratio']:.3f} Omega_n"
+        )
+        if worse
+        else f"no rise: p95 min {a['p95_min']:.1f} at {a['p95_min_ratio']:.3f}",
+        "p95 rises > 1 mm/s above its minimum later in the descent",
+        worse,
+        "95th percentile of G (the worst outcomes) along the descent to 0.9 Omega_n; its "
+        "minimum taken over Omega >= Omega_n",
+    )
+    return rows
 
 
 def compare_table1(ds=None) -> list:
     a, p = (ds if ds is not None else _compute("table1")).attrs, PUBLISHED["table1"]
-    return [
-        _row("table1/f_n_hz", "004 sec. 4 resonance f_n [Hz]", p["f_n_hz"], round(a["f_n_hz"], 2),
-             "+-0.05", abs(a["f_n_hz"] - p["f_n_hz"]) <= 0.05, "sqrt(k/M_t)/2pi, M_t = M + 2m"),
-        _row("table1/G_ini", "004 Table 1 rotor unbalance G_ini [mm/s]", p["G_ini"],
-             round(a["G_ini"], 2), "+-0.5", abs(a["G_ini"] - p["G_ini"]) <= 0.5,
-             "eps = 19.3 um at 167 Hz, mass M_t; paper rounds to integer G"),
-        _row("table1/G_balls", "004 sec. 4.6 total ball unbalance [mm/s]", p["G_balls"],
-             round(a["G_balls"], 2), "+-0.5", abs(a["G_balls"] - p["G_balls"]) <= 0.5,
-             "2 m R / M_t * Omega_nom (2 x 7.6 g at 35 mm)"),
-    ]
+    rows = Rows("table1", p)
+    rows.add(
+        "f_n_hz",
+        "004 sec. 4 resonance f_n [Hz]",
+        round(a["f_n_hz"], 2),
+        "+-0.05",
+        abs(a["f_n_hz"] - p["f_n_hz"]) <= 0.05,
+        "sqrt(k/M_t)/2pi, M_t = M + 2m",
+    )
+    rows.add(
+        "G_ini",
+        "004 Table 1 rotor unbalance G_ini [mm/s]",
+        round(a["G_ini"], 2),
+        "+-0.5",
+        abs(a["G_ini"] - p["G_ini"]) <= 0.5,
+        "eps = 19.3 um at 167 Hz, mass M_t; paper rounds to integer G",
+    )
+    rows.add(
+        "G_balls",
+        "004 sec. 4.6 total ball unbalance [mm/s]",
+        round(a["G_balls"], 2),
+        "+-0.5",
+        abs(a["G_balls"] - p["G_balls"]) <= 0.5,
+        "2 m R / M_t * Omega_nom (2 x 7.6 g at 35 mm)",
+    )
+    return rows
 
 
 def _compute(study):
