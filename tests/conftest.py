@@ -138,6 +138,7 @@ def file_modes_bind() -> dict:
 
 
 # -- the real quick report, once per test session (test_report.py, test_golden_rows.py) ----------
+# Every test that takes the `quick_report` fixture is marked `report` (pytest_collection_modifyitems).
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -150,3 +151,9 @@ def quick_report(tmp_path_factory):
                        capture_output=True, text=True, timeout=900)
     assert p.returncode == 0, p.stderr[-3000:]
     return json.loads(p.stdout), out
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if "quick_report" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.report)
