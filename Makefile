@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test bench faults browser validation clean
+.PHONY: setup run test test-fast bench faults browser validation clean
 
 # Debian's Chromium opens the HTML report in the tests (installed once, with sudo if not root).
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
@@ -24,6 +24,12 @@ run: setup
 
 test: setup browser
 	$(BIN)/python -m pytest -q
+
+# The fast tier (under a minute): everything but the markers declared in pyproject.toml
+# (slow simulations and subprocesses, the quick report, Chromium, a real Dask cluster).
+FAST := not slow and not report and not chromium and not dask
+test-fast: setup
+	$(BIN)/python -m pytest -q -m "$(FAST)"
 
 browser:
 	@command -v chromium >/dev/null 2>&1 || { $(SUDO) apt-get update -qq && \

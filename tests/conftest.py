@@ -2,6 +2,8 @@
 import json
 import shutil
 import subprocess
+import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -111,8 +113,9 @@ def assert_rows_answer_claims(target, rows, allow_not_computed=False):
     assert set(keys) == set(claims(target)), target.id
     allowed = ("pass", "miss", "not computed") if allow_not_computed else ("pass", "miss")
     for r in rows:
-        assert set(r) == ROW_FIELDS, r
+        assert set(r) - {"status"} == ROW_FIELDS, r      # the report adds the status it derived
         assert status(r) in allowed, r
+        assert r.get("status", status(r)) == status(r), r
         if not r["ok"]:
             assert r["note"], r["key"]
 
@@ -137,16 +140,93 @@ def file_modes_bind() -> dict:
     return {"preexec_fn": drop}
 
 
-# -- the real quick report, once per test session (test_report.py, test_golden_rows.py) ----------
+# -- the real quick report, once per test session ------------------------------------------------
+# Every test that takes the `quick_report` fixture is marked `report` (pytest_collection_modifyitems
+# below): test_report.py, test_golden_rows.py, test_targets_*.py and test_tsr_004.py read its rows,
+# figures and data instead of running the targets again.
 ROOT = Path(__file__).resolve().parents[1]
+_REPORT_TIMES: dict = {}
+
+
+def _autobalance_exe() -> Path:
+    """The console script of the interpreter running the tests (then PATH, then ./.venv)."""
+    here = Path(sys.executable).parent / "autobalance"
+    return here if here.exists() else Path(shutil.which("autobalance") or ROOT / ".venv" / "bin" / "autobalance")
 
 
 @pytest.fixture(scope="session")
 def quick_report(tmp_path_factory):
-    """`autobalance reproduce all --quick --json` as a user runs it (a real process)."""
+    """`autobalance reproduce all --quick --json` as a user runs it (a real process):
+    (the report dict, its out directory with figures/, data/ and stores/)."""
     out = tmp_path_factory.mktemp("report")
-    exe = Path(shutil.which("autobalance") or ROOT / ".venv" / "bin" / "autobalance")
-    p = subprocess.run([str(exe), "reproduce", "all", "--quick", "--out", str(out), "--json"],
-                       capture_output=True, text=True, timeout=900)
+    t0 = time.perf_counter()
+    p = subprocess.run([str(_autobalance_exe()), "reproduce", "all", "--quick", "--out", str(out), "--json"],
+                       capture_output=True, text=True, timeout=1800)
     assert p.returncode == 0, p.stderr[-3000:]
-    return json.loads(p.stdout), out
+    rep = json.loads(p.stdout)
+    _REPORT_TIMES.update(process_s=time.perf_counter() - t0, report_s=rep["wall_time_s"],
+                         targets={t["id"]: t["wall_time_s"] for t in rep["targets"]})
+    return rep, out
+
+
+@pytest.fixture(scope="session")
+def report_targets(quick_report):
+    """The quick report's target records by id (rows, figures, data, run_notes, ...)."""
+    rep, _ = quick_report
+    return {t["id"]: t for t in rep["targets"]}
+
+
+def report_rows(rec) -> dict:
+    """A target record's rows by key without the ``<prefix>/`` of its claims."""
+    return {r["key"].split("/", 1)[1]: r for r in rec["rows"]}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if "quick_report" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.report)
+
+
+def pytest_terminal_summary(terminalreporter):
+    """Wall times of the quick report (information, not a test: budgets live in benchmarks/)."""
+    if not _REPORT_TIMES:
+        return
+    t = _REPORT_TIMES
+    slow = sorted(t["targets"].items(), key=lambda kv: -kv[1])[:6]
+    terminalreporter.write_sep("-", "quick report wall time")
+    terminalreporter.write_line(f"process {t['process_s']:.0f} s, targets {t['report_s']:.0f} s; slowest: "
+                                + ", ".join(f"{k} {v:.0f} s" for k, v in slow))
+
+
+# -- figures as written (SVG): the text of titles and axis labels ---------------------------------
+_SVG = "{http://www.w3.org/2000/svg}"
+
+
+def svg_text(path) -> dict:
+    """Texts of a matplotlib SVG by role: ``suptitle`` (figure texts) and per drawn axes its
+    ``texts`` (title and annotations), ``xlabel`` and ``ylabel``. matplotlib writes each text as
+    paths preceded by a comment holding the string, inside groups named figure_1 / axes_N /
+    matplotlib.axis_N (xtick_N / ytick_N for tick labels) / text_N."""
+    import xml.etree.ElementTree as ET
+
+    tree = ET.parse(path, parser=ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
+
+    def gid(e):
+        return e.get("id", "") if e.tag == _SVG + "g" else ""
+
+    def text_of(e):
+        return " ".join(c.text.strip() for c in e if c.tag is ET.Comment)
+
+    def texts(parent):
+        return [text_of(c) for c in parent if gid(c).startswith("text_")]
+
+    fig = next(e for e in tree.getroot().iter() if gid(e) == "figure_1")
+    axes = []
+    for ax in (c for c in fig if gid(c).startswith("axes_")):
+        rec = {"texts": texts(ax), "xlabel": [], "ylabel": []}
+        for i, axis in enumerate(c for c in ax if gid(c).startswith("matplotlib.axis_")):
+            ticks = {gid(c).split("_")[0] for c in axis} & {"xtick", "ytick"}
+            which = "x" if ticks == {"xtick"} else "y" if ticks == {"ytick"} else "xy"[min(i, 1)]
+            rec[which + "label"] += [t for t in texts(axis) if t]
+        axes.append(rec)
+    return {"suptitle": texts(fig), "axes": axes}

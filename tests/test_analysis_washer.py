@@ -131,6 +131,7 @@ def test_ball_natural_frequency_eq54_eq55():
     assert w54 < 0.1 * W                           # "w_alpha << w"
 
 
+@pytest.mark.slow
 def test_kinetic_static_settles_to_the_balanced_state_and_respects_the_dead_band():
     s = washer_000(Me=0.05, g=0.0)
     ks = simulate_kinetic_static(s, W, np.radians([90, 150]), 20.0)
@@ -187,6 +188,7 @@ def test_eq66_friction_force_is_a_documented_miss():
     assert whole_budget == pytest.approx(49.0, abs=0.5)
 
 
+@pytest.mark.slow
 def test_fig9_kinetic_static_vs_full_model():
     """000 Fig. 9: differences "almost 10 um" (x), "25 um" (y), 0.005 rad (alpha) at the start,
     vanishing "in a matter of seconds". With c_i = 7.1 1/s (the Fig. 5 settling, VALIDATION.md)
@@ -209,6 +211,7 @@ def rows():
     return {r["quantity"]: r for r in study.compare()}
 
 
+@pytest.mark.slow
 def test_table4_reproduced(rows):
     """000 Table 4 (f = 1e-4 r): every Delta alpha, RMe and A lies in our dead band about our
     equilibrium (docs: tolerance = dead band, the start is unknown); ours e.g. rho = 0.5 mm:
@@ -219,6 +222,7 @@ def test_table4_reproduced(rows):
     assert rows["000 Table 4 rho = 1 mm RMe [%]"]["computed"] == pytest.approx(29.3, abs=2.0)
 
 
+@pytest.mark.slow
 def test_table3_documented_misses(rows):
     """000 Table 3 (f = 1e-3 r): 17 of 20 published values lie in our dead band. MISSES:
     rho = 0.5 mm d_alpha2 = 0.3 deg and rho = 1 mm d_alpha2 = 7.8 deg, A = 0.38 mm: in our model
@@ -230,6 +234,7 @@ def test_table3_documented_misses(rows):
                     "000 Table 3 rho = 1 mm A [mm]"}
 
 
+@pytest.mark.slow
 def test_fig13_fig16_fig18_rows(rows):
     """Fig. 13: 21 deg in the band; 25 deg is a MISS (it exceeds the paper's own eq 32 bound,
     23.7 deg); the impact at w t = 35 is a MISS (from our start the balls never meet). Fig. 16:
@@ -246,6 +251,7 @@ def test_fig13_fig16_fig18_rows(rows):
     assert rows["000 Fig. 16 d_alpha1 [deg] (larger first)"]["computed"] == pytest.approx(43.5, abs=0.3)
 
 
+@pytest.mark.slow
 def test_predicted_residual_matches_table4_simulation():
     """Reverse of eq 56-66: the kinetic-static prediction for rho = 0.5 mm, f = 1e-4 r brackets the
     simulated Table 4 efficiency (64.0 %)."""
@@ -258,6 +264,7 @@ def test_predicted_residual_matches_table4_simulation():
 CASES = [(dict(Me=0.05, g=0.0), W), (dict(Me=0.025, n=1, g=0.0), W), (dict(Me=0.025, n=1, g=0.0), 18.0)]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kw,w", CASES)
 def test_stability_verdicts_agree_with_full_model(kw, w):
     """eq 12 / linearised KS / Floquet of the full model / 20 s full simulation from +-0.05 rad all
@@ -323,6 +330,7 @@ def test_cli_json(args, key):
     assert key in out
 
 
+@pytest.mark.slow
 def test_cli_plots(tmp_path):
     for cmd in (["forces", "washer_000"], ["bounds", "washer_000", "--f-r", "1e-3"],
                 ["kinetic-static", "washer_000", "--duration", "1 s"]):
@@ -332,6 +340,7 @@ def test_cli_plots(tmp_path):
         assert p.stat().st_size > 5000
 
 
+@pytest.mark.slow
 def test_plotting_module_figures():
     from autobalance.plotting.washer import (plot_eccentricity_deviation, plot_vibratory_force_damping)
     s = washer_000(Me=0.025, n=1)
@@ -374,6 +383,7 @@ def test_cli_bad_input_exit_2(args):
     assert r.stderr.startswith("error: ") and r.stderr.count("\n") == 1
 
 
+@pytest.mark.slow
 def test_cli_forces_damping_plot_fig7(tmp_path):
     """000 Fig. 7 from the CLI: the one-ball force for suspension damping x0.5/1/2."""
     from typer.testing import CliRunner

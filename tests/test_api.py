@@ -2,6 +2,7 @@
 import json
 
 import numpy as np
+import pytest
 import xarray as xr
 
 import autobalance as ab
@@ -9,6 +10,7 @@ import autobalance.simulate  # noqa: F401  (must not shadow ab.simulate)
 from autobalance.config import load_config
 
 
+@pytest.mark.slow
 def test_readme_snippet_runs():
     cfg = load_config("vub_jeffcott_004", ["balancer.rolling_resistance=0.001"])
     assert callable(ab.simulate)

@@ -130,6 +130,7 @@ def test_n_balls_huge_is_refused_at_once(n):
         assert "AUTOBALANCE_MAX_BALLS" in r.stderr
 
 
+@pytest.mark.slow
 def test_n_balls_from_toml_file_is_refused_quickly(tmp_path):
     from autobalance.config import preset_path
 
@@ -220,6 +221,7 @@ def test_response_speed_count_integral_float_accepted():
     assert len(json.loads(r.stdout)["speed_rad_s"]) == 10
 
 
+@pytest.mark.slow
 def test_response_speed_count_memory_limit_is_a_setting():
     r = run_exe("response", "washer_000", "--speeds", "0:2000 rpm:100000",
                 env={"AUTOBALANCE_MAX_MEMORY": "1 MB"})
@@ -233,6 +235,7 @@ def test_reproduce_workers_bounded():
     assert not Path("unused-dir").exists()
 
 
+@pytest.mark.slow
 def test_liquid_count_bounded():
     from autobalance.cli.liquid import app as liquid_app
 
@@ -251,6 +254,7 @@ def test_simulate_output_is_a_directory(tmp_path, opt, example):
     assert "wall" not in r.stdout  # nothing simulated
 
 
+@pytest.mark.slow
 def test_simulate_output_not_writable(tmp_path):
     """A read-only directory / file (the kernel's permission check, made binding for root by
     dropping CAP_DAC_OVERRIDE in the child): refused before simulating."""
@@ -283,6 +287,7 @@ def test_analyze_plot_is_checked_first(tmp_path):
     assert_refused(r, "--plot")
 
 
+@pytest.mark.slow
 def test_subprocess_out_directory(tmp_path):
     p = run_exe("simulate", "washer_000", "--out", tmp_path)
     assert_refused(p, "--out")

@@ -167,6 +167,7 @@ def test_invalid_toml_exit_2(tmp_path):
     assert_one_line_error(r.stderr, "invalid TOML")
 
 
+@pytest.mark.slow
 def test_main_entry_point_errors_no_traceback():
     r = run_main("show", "washer_000", "--set", 'suspension.kx="5 kg"')
     assert r.returncode == 2 and r.stdout == ""
@@ -177,6 +178,7 @@ def test_main_entry_point_errors_no_traceback():
     assert_one_line_error(r.stderr, "no_such_preset")
 
 
+@pytest.mark.slow
 def test_main_entry_point_presets_json():
     r = run_main("presets", "--json")
     assert r.returncode == 0
@@ -184,6 +186,7 @@ def test_main_entry_point_presets_json():
 
 
 # -- end to end (need the physics modules) ----------------------------------------------------
+@pytest.mark.slow
 def test_simulate_json_and_files(tmp_path):
     nc, png = tmp_path / "w.nc", tmp_path / "w.png"
     r = run("simulate", "washer_000", "--set", "profile.duration=1 s", "--out", str(nc),

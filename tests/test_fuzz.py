@@ -20,6 +20,9 @@ from hypothesis import strategies as st
 from autobalance.cli import main
 from autobalance.config import KINDS, PROFILE_KINDS, SECTIONS, preset_path
 
+# ~280 generated cases through the real entry point: 3-8 s per test on 2 cores (make test).
+pytestmark = pytest.mark.slow
+
 COUNT: dict[str, int] = {}
 FUZZ = settings(max_examples=60, deadline=None, derandomize=True,
                 suppress_health_check=[HealthCheck.function_scoped_fixture,

@@ -268,6 +268,7 @@ def test_classical_law_gives_no_subcritical_balancing(bench):
     assert np.all(r["efficiency"] < 1.0)
 
 
+@pytest.mark.slow
 def test_run_up_through_resonance(bench):
     """Run-up 0 -> 100 1/s in 20 s: the liquid removes the resonance peak (efficiency > 5)."""
     ru = run_up(bench.rotor, bench.balancer, bench.model, 100.0, 20.0, n_out=400)

@@ -27,6 +27,7 @@ def test_speeds_json_reproduces_003_with_g10():
     assert d["speeds"][0]["bottom_touch_rad_s"] == pytest.approx(0.89, abs=0.005)
 
 
+@pytest.mark.slow
 def test_surface_json_and_plot(tmp_path):
     png = tmp_path / "s.png"
     d = _json(["surface", "--omega", "0, 0.6, 10, 28, 60 1/s", "--plot", str(png)])
@@ -43,6 +44,7 @@ def test_modes_and_kinetostatic_json():
     assert all(abs(x) < 1e-9 for x in k["eq2_residual"]) and k["beta_deg"] > 5
 
 
+@pytest.mark.slow
 def test_simulate_json_and_plots(tmp_path):
     png = tmp_path / "r.png"
     d = _json(["simulate", "--omega", "10:90 1/s:9", "--plot", str(png)])
@@ -66,6 +68,7 @@ def test_bad_input_raises_one_line(args, exc):
     assert "\n" not in str(r.exception)
 
 
+@pytest.mark.slow
 def test_standalone_bad_input_exit_2_no_traceback():
     """Subprocess (``python -m autobalance liquid ...``): one ``error:`` line, exit code 2
     (the entry point's main() turns the group's exceptions into that line)."""

@@ -24,6 +24,7 @@ def fake_result(n=2000, n_balls=2, duration=10.0):
         residual_unbalance=resid, residual_angle=0.3 * t, title="fake run")
 
 
+@pytest.mark.slow
 def test_plot_simulation_png(tmp_path):
     fig = plot_simulation(fake_result())
     assert isinstance(fig, Figure)
@@ -33,6 +34,7 @@ def test_plot_simulation_png(tmp_path):
     assert len(fig.axes) >= 7  # 5 time panels, speed twin axis, 2 polar plots
 
 
+@pytest.mark.slow
 def test_plot_simulation_without_balls(tmp_path):
     sim = fake_result(n_balls=0)
     assert sim.alpha.shape == (2000, 0)
@@ -42,6 +44,7 @@ def test_plot_simulation_without_balls(tmp_path):
     assert out.stat().st_size > 10_000
 
 
+@pytest.mark.slow
 def test_plot_simulation_decimates_long_history(tmp_path):
     sim = fake_result(n=100_003, n_balls=3, duration=50.0)
     fig = plot_simulation(sim)
@@ -58,6 +61,7 @@ def test_plot_simulation_bad_input():
         plot_simulation(types.SimpleNamespace(t=np.array([])))
 
 
+@pytest.mark.slow
 def test_plot_response_png(tmp_path):
     s = System(Rotor(37.0, 0.025), Suspension(20e3, 6e3, 200.0, 110.0),
                BallBalancer(2, 0.0893, 0.28, 0.01))
@@ -70,6 +74,7 @@ def test_plot_response_png(tmp_path):
     fig.savefig(tmp_path / "resp_log.png")
 
 
+@pytest.mark.slow
 def test_plot_sweep_png(tmp_path):
     """A real (tiny) sweep: figure with the PDF, the checkpoint scatter and one grid panel."""
     from autobalance.plotting import plot_sweep

@@ -154,6 +154,7 @@ class _Dom(HTMLParser):
             self.ids[a["id"]] = a
 
 
+@pytest.mark.chromium
 def test_html_report_in_headless_chromium(quick_report, tmp_path):
     """Open out/report.html in Debian's Chromium: every figure loads (checked by the page's own
     script after the load event), every target has its section, the summary matches --json."""
@@ -181,6 +182,7 @@ def test_html_report_in_headless_chromium(quick_report, tmp_path):
             assert int(attrs[f"data-{k.replace(' ', '-')}"]) == v, (paper, k)
 
 
+@pytest.mark.chromium
 def test_broken_image_is_detected_by_the_browser_check(quick_report, tmp_path):
     """The same check fails when a figure file is missing (the check can fail)."""
     if CHROMIUM is None:

@@ -118,6 +118,7 @@ def test_separate_coinciding_to_contact_angle():
 
 
 # -- reproducibility --------------------------------------------------------------------------
+@pytest.mark.slow
 def test_same_description_same_dataset_serial(tiny_ds, tmp_path):
     ds1, store1 = tiny_ds
     assert ds1.attrs["n_runs"] == 20 and ds1.attrs["n_missing_runs"] == 0
@@ -133,6 +134,7 @@ def test_same_description_same_dataset_serial(tiny_ds, tmp_path):
     assert_bit_identical(open_sweep(tmp_path / "s2"), ds2)
 
 
+@pytest.mark.slow
 def test_serial_equals_local_processes(tiny_ds, tmp_path):
     ds1, _ = tiny_ds
     ds2 = sweep(spec_of(TINY), tmp_path / "local", executor="local", workers=2, progress=False)
@@ -251,6 +253,7 @@ def test_random_monte_carlo_seeded(tmp_path):
 
 
 # -- durable store: kill -9 and resume --------------------------------------------------------
+@pytest.mark.slow
 def test_resume_after_kill9(tmp_path):
     desc = write(tmp_path, RESUMABLE)
     n_tasks = len(make_plan(load_spec(desc)).tasks)
@@ -304,6 +307,7 @@ def test_resume_after_kill9(tmp_path):
 
 
 # -- refusals ---------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_store_refusals_change_nothing(tiny_ds, tmp_path):
     _, store = tiny_ds
     before = snapshot(store)
@@ -376,6 +380,7 @@ def test_bad_sweep_file_exit_2_one_line(tmp_path, text, field):
         load_spec(desc) if field not in PLAN_ERRORS else make_plan(load_spec(desc))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["unknown-grid-path", "wrong-units", "model-rejects-grid-value"])
 def test_bad_sweep_file_real_entry_point(tmp_path, name):
     """The real process: exit 2, one line on stderr, no traceback."""
@@ -429,6 +434,7 @@ def test_percentiles_dim(tiny_ds):
     assert list(r["percentile"].values) == [10, 90]
 
 
+@pytest.mark.slow
 def test_unbalance_grid_matches_individual_runs(tmp_path):
     """A grid over rotor.unbalance (004 Fig. 7) batches runs of different unbalance into one
     task; every run must equal its own single simulation."""
@@ -475,6 +481,7 @@ def test_store_from_another_package_version_is_refused(tmp_path):
     assert {p: p.read_bytes() for p in (store / "tasks").iterdir()} == before
 
 
+@pytest.mark.slow
 def test_history_matches_checkpoints_and_profile(tmp_path):
     """[outputs] history_dt: the decimated histories are the states at their own times (the
     checkpoints come first in the request, the histories after, unsorted), so a history sample

@@ -20,6 +20,10 @@ from conftest import SLOW_SWEEP as SLOW  # noqa: E402
 from conftest import TINY_SWEEP as TINY  # noqa: E402
 from conftest import assert_bit_identical, spec_of  # noqa: E402
 
+# Every test here starts a real Dask cluster (LocalCluster or `dask scheduler` / `dask worker`).
+pytestmark = pytest.mark.dask
+
+
 def run_task_counts(cluster):
     """How often the scheduler saw run_task finish (memory) and lose its worker (suspicious)."""
     pre = cluster.scheduler.task_prefixes.get("run_task")

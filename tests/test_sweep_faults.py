@@ -86,6 +86,7 @@ def tiny_ref(tmp_path_factory):
 
 
 # -- 1. batch_size is not part of the results ------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("first, second", [(1, 8), (8, 64), (3, 1)])
 def test_batch_size_change_resumes_exactly_the_missing_runs(tiny_ref, tmp_path, first, second):
     store = tmp_path / "s"
@@ -103,6 +104,7 @@ def test_batch_size_change_resumes_exactly_the_missing_runs(tiny_ref, tmp_path, 
         assert (store / "tasks" / name).read_bytes() == data
 
 
+@pytest.mark.slow
 def test_finished_store_resumed_with_another_batch_size_is_untouched(tiny_ref, tmp_path):
     store = tmp_path / "s"
     sweep(spec_of(TINY.replace("batch_size = 3", "batch_size = 1")), store, executor="serial",
@@ -115,6 +117,7 @@ def test_finished_store_resumed_with_another_batch_size_is_untouched(tiny_ref, t
 
 
 # -- 2. an edited base config is another sweep ------------------------------------------------
+@pytest.mark.slow
 def test_edited_base_config_is_refused(tmp_path):
     base = tmp_path / "base.toml"
     base.write_text(preset_path("vub_jeffcott_004").read_text())
@@ -180,6 +183,7 @@ def test_failed_runs_are_nan_with_status(tmp_path):
 
 
 # -- 4. one process per store ------------------------------------------------------------------
+@pytest.mark.slow
 def test_second_process_is_refused_while_first_runs(slow_ref, tmp_path):
     desc = write(tmp_path, SLOW)
     store = tmp_path / "s"
@@ -199,6 +203,7 @@ def test_second_process_is_refused_while_first_runs(slow_ref, tmp_path):
     assert_bit_identical(open_sweep(store), slow_ref)
 
 
+@pytest.mark.slow
 def test_concurrent_resumes_of_a_finished_store(tiny_ref, tmp_path):
     """Two `--resume` at once on a finished store, repeated: each exits 0 or is refused in one
     line; the dataset stays bit-identical (issue: 9 of 12 trials corrupted result.zarr)."""
@@ -223,6 +228,7 @@ def test_concurrent_resumes_of_a_finished_store(tiny_ref, tmp_path):
     assert counts["ok"] >= 4
 
 
+@pytest.mark.slow
 def test_stale_lock_after_kill9_is_no_obstacle(slow_ref, tmp_path):
     desc = write(tmp_path, SLOW)
     store = tmp_path / "s"
@@ -246,6 +252,7 @@ def test_stale_lock_after_kill9_is_no_obstacle(slow_ref, tmp_path):
 
 
 # -- interruption --------------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_interrupt_stops_promptly_keeps_tasks_no_orphans(slow_ref, tmp_path, sig):
     """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) or SIGTERM to the
@@ -286,6 +293,7 @@ def test_interrupt_stops_promptly_keeps_tasks_no_orphans(slow_ref, tmp_path, sig
 
 
 # -- write errors ----------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_read_only_store_fails_before_computing(tmp_path):
     tmp_path.chmod(0o755)
     desc = write(tmp_path, TINY)
@@ -311,6 +319,7 @@ def test_read_only_store_fails_before_computing(tmp_path):
     assert wall < 30
 
 
+@pytest.mark.slow
 def test_write_error_mid_sweep_stops_at_once(tmp_path):
     """The tasks directory becomes read-only while the sweep runs: the sweep stops at the next
     write with one line instead of computing every remaining task."""
@@ -338,6 +347,7 @@ def test_write_error_mid_sweep_stops_at_once(tmp_path):
 
 
 # -- corrupted task files ----------------------------------------------------------------------------
+@pytest.mark.slow
 def test_corrupted_task_file_named_then_recomputed(tiny_ref, tmp_path):
     desc = write(tmp_path, TINY)
     store = tmp_path / "s"
@@ -360,6 +370,7 @@ def test_corrupted_task_file_named_then_recomputed(tiny_ref, tmp_path):
 
 
 # -- the Python API from a script without a __main__ guard ----------------------------------------
+@pytest.mark.slow
 def test_script_without_main_guard_fails_clearly_and_reruns(tmp_path):
     script = tmp_path / "run.py"
     store = tmp_path / "s"
@@ -379,6 +390,7 @@ def test_script_without_main_guard_fails_clearly_and_reruns(tmp_path):
 
 
 # -- resource guards -------------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("mc, field", [
     ('kind = "random"\nsamples = 1000000000000', "monte_carlo.samples"),
     ('kind = "start_grid"\nn = 100000', "monte_carlo.n"),
@@ -393,6 +405,7 @@ def test_huge_monte_carlo_refused_at_once(tmp_path, mc, field):
     assert not (tmp_path / "s").exists()
 
 
+@pytest.mark.slow
 def test_memory_limit_setting_is_honoured(tmp_path):
     d = {"sweep": {"base": "vub_jeffcott_004"}, "monte_carlo": {"kind": "start_grid", "n": 50}}
     make_plan(spec_from_dict(d))                      # 1275 runs: fine by default
@@ -403,6 +416,7 @@ def test_memory_limit_setting_is_honoured(tmp_path):
     one_line(r.stderr, "monte_carlo.n = 50", "100 KiB")
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_creates_nothing(tmp_path):
     desc = write(tmp_path, TINY)
     store = tmp_path / "s"
@@ -415,6 +429,7 @@ def test_unreachable_scheduler_creates_nothing(tmp_path):
     assert time.monotonic() - t0 < 60
 
 
+@pytest.mark.slow
 def test_store_that_is_a_file(tmp_path):
     desc = write(tmp_path, TINY)
     f = tmp_path / "afile"
@@ -443,6 +458,7 @@ def test_start_grid_with_many_balls(n_balls):
         assert _gaps(a).min() >= delta * (1 - 1e-9)
 
 
+@pytest.mark.slow
 def test_random_starts_with_ten_balls_every_seed():
     for seed in range(20):
         d = {"sweep": {"base": "vub_jeffcott_004", "set": ["balancer.n_balls=10"]},
@@ -460,6 +476,7 @@ def test_separate_at_capacity_and_beyond():
         separate(np.zeros(18), delta)
 
 
+@pytest.mark.slow
 def test_unreadable_result_is_assembled_again(tiny_ref, tmp_path):
     """A finished store whose result.zarr was damaged (e.g. by an older version without the
     lock): --resume rebuilds it from the task files, with a warning."""

@@ -49,6 +49,7 @@ def test_initial_unbalance_is_g20_and_balls_are_g34(cfg):
     assert grade_G(s.balancer.capacity, s.total_mass, w) == pytest.approx(34.0, abs=0.5)
 
 
+@pytest.mark.slow
 def test_exact_stick_agrees_with_tanh_law_radau():
     """100 Hz (just above resonance), balls released near the heavy side: ball 1 slides ~115 deg,
     ball 2 slips and sticks after 0.3 deg. Radau on 004's tanh law (v_sat = 1e-6 rad/s) and our
