@@ -8,31 +8,27 @@ implied edge). The root package ``autobalance/__init__.py`` is the public facade
 are not checked, ``from autobalance import __version__`` is allowed everywhere (the root is
 always initialised first), and a name it re-exports counts as an import of the module defining it.
 
-Layers, lowest first. A module may import modules of its own layer and of lower layers:
+Layers, lowest first (docs/architecture.md). A module may import modules of its own layer and
+of lower layers:
 
     0  core                        numba kernels on plain floats/arrays (no models, no units)
-    1  models                      frozen SI dataclasses
-    2  limits, config              resource guards and their settings; units, presets, overrides
-                                   (config needs only models; sweep and papers parse with it)
-    3  plotting                    data in, matplotlib Figure out; never computes physics
-    4  physics, liquid             closed forms; the liquid balancer package (its model, free
-                                   surface, kinetostatics, config, plots until DESIGN §1 splits it)
-    5  simulate, result            one run / a batch and what it returns
-    6  studies                     machine-agnostic analyses
+    1  limits, validation,         resource settings and guards; the reproduction contract;
+       jsonable                    JSON-safe conversion (none imports the package)
+    2  models                      frozen SI dataclasses
+    3  config                      units, schema, presets, overrides (needs only models)
+    4  physics, liquid             closed forms; the liquid balancer package
+    5  plotting                    data in, matplotlib Figure out
+    6  simulate                    one run / a batch and what it returns, packing, fast paths
     7  sweep                       descriptions, plans, executors, the store
-    8  validation                  the reproduction contract (Target, Outcome, rows)
+    8  studies                     machine-agnostic analyses (they run sweeps)
     9  papers                      the seeds' published numbers and target wiring
     10 report                      runner, HTML, markdown; never imports the CLI
-    11 cli, cli_common, cli_analyze, cli_liquid, cli_reproduce
-
-Differences from DESIGN.md §1 (by reading the code): physics is below simulate (closed forms do
-not run simulations; the two that do are listed below); config and plotting are below papers
-(every paper builds its machine from a preset and draws its figures).
+    11 cli, __main__
 
 The checks fail on (a) a cycle between packages (strongly connected components of the graph of
 top-level units, and of the graph of (sub)packages) and (b) an upward import, unless it is in
-KNOWN_VIOLATIONS; they also fail on a KNOWN_VIOLATIONS entry that no longer occurs, so that list
-only shrinks. A new top-level module or package must be given a layer in LAYERS.
+KNOWN_VIOLATIONS (empty since the refactor of issue 13); they also fail on a KNOWN_VIOLATIONS
+entry that no longer occurs, so that list only shrinks. A new top-level module or package must be given a layer in LAYERS.
 """
 from __future__ import annotations
 
@@ -48,40 +44,22 @@ ROOT = "autobalance"
 
 LAYERS = [
     ("core",),
+    ("limits", "validation", "jsonable"),
     ("models",),
-    ("limits", "config"),
-    ("plotting",),
+    ("config",),
     ("physics", "liquid"),
-    ("simulate", "result"),
-    ("studies",),
+    ("plotting",),
+    ("simulate",),
     ("sweep",),
-    ("validation",),
+    ("studies",),
     ("papers",),
     ("report",),
-    ("cli", "cli_common", "cli_analyze", "cli_liquid", "cli_reproduce"),
+    ("cli", "__main__"),
 ]
 
 # Today's violations (module -> imported module, without the "autobalance." prefix; a cycle as
 # "cycle: <members>"). Remove an entry when the refactor fixes it; never add one silently.
-KNOWN_VIOLATIONS = {
-    # core is meant to run on plain floats/arrays: pack/reference turn models into arrays
-    # (pack_params, initial_vector); that packing belongs to simulate (DESIGN §1 simulate/).
-    "core.pack -> models",
-    "core.reference -> models",
-    # models.balancer reads the AUTOBALANCE_MAX_BALLS setting from limits to validate n_balls,
-    # while limits.check_run takes models (SimOptions): the cycle below.
-    "models.balancer -> limits",
-    "cycle: limits, models",
-    # physics should be closed forms only; these two also run the full simulation to compare
-    # (equilibria: Floquet / stability checks, kinetic_static.compare_with_full).
-    "physics.equilibria -> simulate",
-    "physics.kinetic_static -> simulate",
-    # plotting.washer computes force and deviation curves itself (data should come in computed).
-    "plotting.washer -> physics.error_bounds",
-    "plotting.washer -> physics.vibratory",
-    # the report runner borrows the CLI's JSON cleaner (_clean) for report.json and NetCDF attrs.
-    "report.runner -> cli_common",
-}
+KNOWN_VIOLATIONS: set = set()
 
 
 # -- the graph -----------------------------------------------------------------------------------
@@ -285,11 +263,11 @@ def test_graph_sees_the_imports_it_should():
     """Spot checks on the real tree: a function-level relative import, an absolute-style
     module import, a package-level import and an implied __init__."""
     g = import_graph(implied=True)
-    assert "autobalance.simulate" in g["autobalance.physics.equilibria"]        # inside a function
-    assert "autobalance.papers.p004.tsr" in g["autobalance.report.registry"]
+    assert "autobalance.simulate" in g["autobalance.studies.equilibria"]        # inside a function
+    assert "autobalance.papers.p004.targets" in g["autobalance.report.registry"]
     assert "autobalance.papers.p004" in g["autobalance.report.registry"]        # its __init__ runs
     assert "autobalance.papers.p004" not in import_graph()["autobalance.report.registry"]
-    assert "autobalance.models" in g["autobalance.config"]
+    assert "autobalance.models" in g["autobalance.config.load"]
     assert "autobalance.models._validate" in g["autobalance.physics.iso1940"]
 
 
