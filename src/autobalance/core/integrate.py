@@ -13,6 +13,13 @@ static limit (coupled stuck balls are solved together because lambda comes from 
 constrained system). References: Leine, van Campen, van de Vrande, Nonlinear Dyn. 16 (1998)
 41-54 (switch model); Hairer, Norsett, Wanner, Solving ODEs I, sec. II.5 (DOPRI5) and II.6
 (dense output, event location).
+
+Size (issue 13's rule of at most 100 lines per function has two exceptions, both compiled):
+``_integrate`` is the inner loop, a state machine (step, reject, locate an event, redo, switch
+modes, hold in closed form, write output) over a dozen work arrays that live for the whole run.
+Split into numba functions, the same arrays and flags would be threaded through every call. The
+numbers would not change, but the control flow of one step would be spread across functions.
+Its sections are marked by comments instead.
 """
 from __future__ import annotations
 

@@ -8,6 +8,10 @@ balls) and 004 eq (8)-(10) (Jeffcott rotor, isotropic suspension). Rolling resis
 (000 eq 20, 004 "mu F_n") with exact stick (switch model, Leine et al. 1998) or the 004 tanh law.
 
 Units: SI throughout ([m], [kg], [rad], [s], [N], [N*m]).
+
+Size: ``rhs`` (~290 lines) assembles the mass matrix, the force vector and the constraint rows of
+one evaluation into preallocated work arrays. It is the second compiled exception to the 100-line
+rule; see core/integrate.py.
 """
 from __future__ import annotations
 
