@@ -182,7 +182,7 @@ def force_extreme_ratio_figure(speeds, ratio, natural_frequencies, published=Non
     return fig
 
 
-# -- adapters that evaluate the physics first (for cli_analyze.py; to move out with the CLI
+# -- adapters that evaluate the physics first (for cli/analyze.py; to move out with the CLI
 # -- package, issue 13). New code computes the data and calls the *_figure functions above.
 _ALPHA = np.linspace(0, 2 * math.pi, 361)
 

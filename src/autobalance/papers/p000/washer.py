@@ -66,7 +66,7 @@ def _table(values) -> dict:
 
 
 #: Published numbers, one leaf per number (units in the key); ``source`` and keys starting with
-#: ``_`` describe the case. The report's targets (:mod:`.targets_000`) claim these sections.
+#: ``_`` describe the case. The report's targets (:mod:`.targets`) claim these sections.
 PUBLISHED = {
     "fig13": {"d_alpha1_deg": 25.0, "d_alpha2_deg": 21.0, "impact_time_wt": 35.0,
               "source": "000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3"},
