@@ -37,13 +37,13 @@ import sys
 
 import pytest
 
-#: Packages whose public API is checked. ``autobalance.liquid`` is documented in parallel
-#: (issue 13, another worktree): add it here once its docstrings are in.
+#: Packages whose public API is checked (issue 13: models, physics, studies, simulate, liquid).
 PACKAGES = [
     "autobalance.models",
     "autobalance.physics",
     "autobalance.studies",
     "autobalance.simulate",
+    "autobalance.liquid",
 ]
 
 #: Type words that make a parameter numeric: its entry must state a unit in brackets.
