@@ -342,7 +342,7 @@ def test_cli_plots(tmp_path):
 
 @pytest.mark.slow
 def test_plotting_module_figures():
-    from autobalance.plotting.washer import (plot_eccentricity_deviation, plot_vibratory_force_damping)
+    from autobalance.cli.washer_figures import plot_eccentricity_deviation, plot_vibratory_force_damping
     s = washer_000(Me=0.025, n=1)
     f = plot_vibratory_force_damping(s, [W, 18.0])
     assert len(f.axes) == 2

@@ -70,7 +70,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
                **{f"{k}_n": v for k, v in comp.items()},
                "jacobian_n_per_rad": force_jacobian(cfg.system, w, a)}
         if plot is not None or damping_plot is not None:
-            from ..plotting.washer import plot_vibratory_force, plot_vibratory_force_damping
+            from .washer_figures import plot_vibratory_force, plot_vibratory_force_damping
 
             wx, wy = cfg.system.natural_frequencies
             speeds = [w, 0.5 * (wx + wy)]       # this speed and between the natural frequencies
@@ -187,7 +187,7 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
                               "coefficient f/r [-] (steel balls typically 0.001-0.01)")
         out = _error_bounds(cfg, w, fr)
         if plot is not None:
-            from ..plotting.washer import plot_rolling_deviation
+            from .washer_figures import plot_rolling_deviation
 
             out["plot"] = _save(plot_rolling_deviation(cfg.system, np.linspace(1.0, 2 * w, 400)),
                                 plot)

@@ -1,0 +1,83 @@
+"""Figures of the washer analysis (000) for any machine: evaluate the closed forms of
+:mod:`autobalance.physics` and draw them with :mod:`autobalance.plotting.washer` (which only
+draws). Used by ``autobalance analyze``; the seed-000 targets compute their data in
+:mod:`autobalance.papers.p000` and call the same ``*_figure`` functions."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..plotting.washer import (eccentricity_deviation_figure, force_extreme_ratio_figure, rolling_deviation_figure, vibratory_force_damping_figure, vibratory_force_figure, speed_title)
+
+__all__ = ["plot_vibratory_force", "plot_vibratory_force_damping", "plot_rolling_deviation", "plot_eccentricity_deviation", "plot_force_extreme_ratio"]
+
+_ALPHA = np.linspace(0, 2 * math.pi, 361)
+
+
+def _titles(system, speeds) -> list:
+    from ..physics.vibratory import speed_regime
+
+    return [speed_title(w, speed_regime(system, w)) for w in speeds]
+
+
+
+def plot_vibratory_force(system, speeds, labels=None) -> Figure:
+    """:func:`vibratory_force_figure` of ``system`` at ``speeds`` [rad/s] (one ball, mR = Me);
+    ``labels`` replace the panel titles."""
+    from ..physics.vibratory import single_ball_force
+
+    speeds = list(np.atleast_1d(speeds))
+    return vibratory_force_figure(_ALPHA, [single_ball_force(system, w, _ALPHA) for w in speeds],
+                                  labels or _titles(system, speeds))
+
+
+
+def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0)) -> Figure:
+    """:func:`vibratory_force_damping_figure` of ``system`` at ``speeds`` [rad/s] for the
+    suspension damping factors ``damping_scales`` [-]."""
+    from ..physics.vibratory import single_ball_force
+
+    speeds = list(np.atleast_1d(speeds))
+    return vibratory_force_damping_figure(
+        _ALPHA, [[(c, single_ball_force(system, w, _ALPHA, damping_scale=c)["F_norm"])
+                  for c in damping_scales] for w in speeds],
+        _titles(system, speeds))
+
+
+
+def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
+    """:func:`rolling_deviation_figure` of ``system`` (eq 24) at ``speeds`` [rad/s] for the
+    rolling resistances ``f_r_values`` [-]."""
+    from ..physics.error_bounds import rolling_deadband_single
+
+    w = np.asarray(speeds, float)
+    return rolling_deviation_figure(w, {fr: rolling_deadband_single(system, w, fr)
+                                        for fr in f_r_values}, system.natural_frequencies)
+
+
+
+def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, speed=None) -> Figure:
+    """:func:`eccentricity_deviation_figure` of eq 45 for the eccentricity e [m] and ring
+    eccentricities ``rhos`` [m] over ``betas`` [rad]; with ``system`` and ``speed`` [rad/s] also
+    the exact root of eq 44 on every tenth beta."""
+    from ..physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
+
+    b = np.linspace(0, 2 * math.pi, 181) if betas is None else np.asarray(betas, float)
+    exact = None
+    if system is not None and speed is not None:
+        exact = {rho: (b[::10], eccentricity_deviation_exact(system, speed, rho, b[::10]))
+                 for rho in rhos}
+    return eccentricity_deviation_figure(
+        b, {rho: eccentricity_deviation_single(eccentricity, rho, b) for rho in rhos}, exact)
+
+
+
+def plot_force_extreme_ratio(system, speeds, published=None) -> Figure:
+    """:func:`force_extreme_ratio_figure` of ``system`` at ``speeds`` [rad/s]."""
+    from ..physics.vibratory import force_extreme_ratio
+
+    w = np.asarray(speeds, float)
+    return force_extreme_ratio_figure(w, force_extreme_ratio(system, w), system.natural_frequencies,
+                                      published)
