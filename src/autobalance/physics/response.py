@@ -32,7 +32,7 @@ import numpy as np
 from ..models import ParameterError
 from ..models._validate import array as _array
 
-__all__ = ["steady_orbit_start", "dynamic_stiffness", "synchronous_orbit", 
+__all__ = ["displacement_from_acceleration", "steady_orbit_start", "dynamic_stiffness", "synchronous_orbit", 
     "BallInfluence", "HarmonicResponse", "axis_response", "ball_influence", "damped_peak_speeds",
     "damping_ratios", "harmonic_response", "natural_frequencies", "response_table",
     "steady_displacement",
@@ -443,3 +443,17 @@ def steady_orbit_start(system, w: float, alpha) -> tuple[float, float, float, fl
                                     system.rotor.unbalance_table()[1][0]))
     fx, fy = synchronous_orbit(system, w, ut)
     return fx.real, fy.real, (1j * w * fx).real, (1j * w * fy).real
+
+
+def displacement_from_acceleration(acceleration, n_rpm):
+    """Harmonic displacement amplitude A = a / w^2 [m] (000 p. 3, below Fig. 3: A = a_x / (pi n /
+    30)^2).
+
+    Parameters
+    ----------
+    acceleration : float or array
+        Acceleration amplitude a [m/s^2].
+    n_rpm : float or array
+        Drum speed n [rpm].
+    """
+    return np.asarray(acceleration, float) / (np.asarray(n_rpm, float) * (2.0 * math.pi / 60.0)) ** 2

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from ...physics.response import displacement_from_acceleration
 from ...validation.target import Outcome
 from .data import dataset
 from .published import rows as rows_of
@@ -18,21 +19,6 @@ __all__ = ["SENSITIVITY", "displacement_from_acceleration", "run_fig12_eq32", "r
            "run_fig3", "run_fig6_7", "run_fig9", "run_tolerance"]
 
 RPM = 2 * math.pi / 60
-
-
-def displacement_from_acceleration(acceleration, n_rpm):
-    """Harmonic displacement amplitude A = a / w^2 [m] (000 p. 3, below Fig. 3: A = a_x / (pi n /
-    30)^2).
-
-    Parameters
-    ----------
-    acceleration : float or array
-        Acceleration amplitude a [m/s^2].
-    n_rpm : float or array
-        Drum speed n [rpm].
-    """
-    return np.asarray(acceleration, float) / (np.asarray(n_rpm, float) * RPM) ** 2
-
 
 
 # -- Fig. 3 ------------------------------------------------------------------------------------

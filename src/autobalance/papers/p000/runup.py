@@ -28,6 +28,8 @@ import math
 
 import numpy as np
 
+from ...models import MotorDrive
+from ...physics.runup import runup_fraction_closed_form, runup_time_closed_form
 from ...validation.target import Rows
 from .washer import W1000, washer
 
@@ -40,7 +42,7 @@ T0 = 25.0
 #: Drum inertia B_z [kg*m^2] (the washer_000 preset's calibration on Table 1).
 B_Z = 0.532
 #: Torque laws of 000 Tables 1-2.
-LAWS = ("constant", "linear", "harmonic")
+LAWS = MotorDrive.LAWS
 #: Static unbalance Me [kg*m] of Table 1 and Table 2.
 TABLE_ME = {1: 0.025, 2: 0.05}
 #: Ball damping c_i [1/s] of the two Fig. 5 runs: the preset, and the one that settles in 1.5 s.
@@ -76,60 +78,6 @@ PUBLISHED = {
 
 
 # -- closed forms ------------------------------------------------------------------------------
-def runup_time_closed_form(law: str, fraction, tau):
-    """Time [s] for the unloaded drum to reach ``fraction`` of w_f under a 000 Table 1 torque law.
-
-    000 eq (15) without the unbalance and ball terms, B_z w' = T(w), tau = B_z w_f / T0 [s]:
-    constant T0: t = s tau; linear T0 (1 - w/w_f): t = -tau ln(1 - s); harmonic
-    T0 (1 - sin(pi w / 2 w_f)): t = (2/pi)(tan(pi (1 + s)/4) - 1) tau (the integral of
-    1/(1 - sin(pi s/2))).
-
-    Parameters
-    ----------
-    law : str
-        Torque law, one of :data:`LAWS`.
-    fraction : float or array
-        s = w/w_f [-], 0 <= s < 1.
-    tau : float
-        Time scale B_z w_f / T0 [s].
-    """
-    s = np.asarray(fraction, float)
-    if law == "constant":
-        t = s * tau
-    elif law == "linear":
-        t = -tau * np.log1p(-s)
-    elif law == "harmonic":
-        t = (2 / math.pi) * (np.tan(math.pi * (1 + s) / 4) - 1) * tau
-    else:
-        from ...models import ParameterError
-        raise ParameterError("law", law, f"must be one of {list(LAWS)}")
-    return float(t) if np.ndim(t) == 0 else t
-
-
-def runup_fraction_closed_form(law: str, time, tau):
-    """Fraction of w_f [-] that the unloaded drum reaches at ``time``: the inverse of
-    :func:`runup_time_closed_form` (000 eq 15, Table 1 laws).
-
-    Parameters
-    ----------
-    law : str
-        Torque law, one of :data:`LAWS`.
-    time : float or array
-        Time from standstill [s].
-    tau : float
-        Time scale B_z w_f / T0 [s].
-    """
-    t = np.asarray(time, float) / tau
-    if law == "constant":
-        s = np.minimum(t, 1.0)
-    elif law == "linear":
-        s = -np.expm1(-t)
-    elif law == "harmonic":
-        s = 4 / math.pi * np.arctan(1 + math.pi * t / 2) - 1
-    else:
-        from ...models import ParameterError
-        raise ParameterError("law", law, f"must be one of {list(LAWS)}")
-    return float(s) if np.ndim(s) == 0 else s
 
 
 # -- simulations -------------------------------------------------------------------------------
