@@ -99,6 +99,13 @@ def max_balls() -> int:
 
 
 def fmt_bytes(n: float) -> str:
+    """``n`` bytes [B] as text with a binary unit ("1.5 GiB").
+
+    Parameters
+    ----------
+    n : float
+        Size [B].
+    """
     for unit, f in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
         if n >= f:
             return f"{n / f:.3g} {unit}"
@@ -106,6 +113,13 @@ def fmt_bytes(n: float) -> str:
 
 
 def fmt_seconds(s: float) -> str:
+    """A duration [s] as text in days, hours, minutes or seconds ("2.5 h").
+
+    Parameters
+    ----------
+    s : float
+        Duration [s].
+    """
     if s >= 86400:
         return f"{s / 86400:.3g} days"
     if s >= 3600:

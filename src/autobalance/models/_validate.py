@@ -21,6 +21,15 @@ class ParameterError(ValueError):
 
 
 def finite(field: str, value) -> float:
+    """``value`` as a finite float, or ParameterError naming ``field``.
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, for the message.
+    value : float
+        The value [its field's unit].
+    """
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -31,6 +40,15 @@ def finite(field: str, value) -> float:
 
 
 def positive(field: str, value) -> float:
+    """``value`` as a float > 0, or ParameterError naming ``field``.
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, for the message.
+    value : float
+        The value [its field's unit].
+    """
     v = finite(field, value)
     if v <= 0.0:
         raise ParameterError(field, value, "must be > 0")
@@ -38,6 +56,15 @@ def positive(field: str, value) -> float:
 
 
 def nonneg(field: str, value) -> float:
+    """``value`` as a float >= 0, or ParameterError naming ``field``.
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, for the message.
+    value : float
+        The value [its field's unit].
+    """
     v = finite(field, value)
     if v < 0.0:
         raise ParameterError(field, value, "must be >= 0")
@@ -45,6 +72,17 @@ def nonneg(field: str, value) -> float:
 
 
 def in_range(field: str, value, lo: float, hi: float) -> float:
+    """``value`` as a float within [lo, hi], or ParameterError naming ``field``.
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, for the message.
+    value : float
+        The value [its field's unit].
+    lo, hi : float
+        Bounds [the field's unit], inclusive.
+    """
     v = finite(field, value)
     if not (lo <= v <= hi):
         raise ParameterError(field, value, f"must be within [{lo:g}, {hi:g}]")

@@ -153,6 +153,14 @@ def _target(rec: dict, variant: str) -> str:
 
 
 def render_html(report: dict) -> str:
+    """The self-contained HTML page of a report (the runner's dict): summary, one section per
+    target with its rows, figures and data files.
+
+    Parameters
+    ----------
+    report : dict
+        :func:`autobalance.report.runner.run_targets`' result.
+    """
     recs = report["targets"]
     t = report["summary"]["total"]
     nav, body = [], []

@@ -26,6 +26,13 @@ def _selection(report: dict) -> str:
 
 
 def render_markdown(report: dict) -> str:
+    """VALIDATION.md of a report: the summary table and every row, per paper.
+
+    Parameters
+    ----------
+    report : dict
+        :func:`autobalance.report.runner.run_targets`' result.
+    """
     s = report["summary"]
     v = report["variant"]
     which = _selection(report)

@@ -294,6 +294,15 @@ def scan_tasks(store: Path, plan: Plan, *, on_corrupt=None) -> list:
 
 
 def covered_runs(scan: list, n_runs: int) -> np.ndarray:
+    """Mask of the runs [-] that finished task files cover.
+
+    Parameters
+    ----------
+    scan : list
+        (first, count, path) of each finished task (:func:`scan_tasks`).
+    n_runs : int
+        Runs of the sweep.
+    """
     mask = np.zeros(n_runs, bool)
     for first, count, _ in scan:
         mask[first:first + count] = True

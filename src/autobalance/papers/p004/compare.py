@@ -43,6 +43,13 @@ def _boundaries(r):
 
 
 def compare_single(ds=None) -> list:
+    """Rows of 004 Fig. 4 (the single run) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("single")
     a, p = ds.attrs, PUBLISHED["single"]
     one = (
@@ -107,6 +114,13 @@ def compare_single(ds=None) -> list:
 
 
 def compare_monte_carlo(ds=None) -> list:
+    """Rows of 004 sec. 4.2, Fig. 5-6, Table 2 (start positions) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("monte_carlo")
     a, p = ds.attrs, PUBLISHED["monte_carlo"]
     n = int(a["runs"])
@@ -168,6 +182,13 @@ def compare_monte_carlo(ds=None) -> list:
 
 
 def compare_unbalance(ds=None) -> list:
+    """Rows of 004 Tables 3-4 (valid ranges, efficiencies) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("unbalance")
     pub = PUBLISHED["unbalance"]
     step = float(ds.attrs["grid_step"])
@@ -220,6 +241,13 @@ def compare_unbalance(ds=None) -> list:
 
 
 def compare_profile(ds=None) -> list:
+    """Rows of 004 Fig. 9 (speed profiles) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("profile")
     lo, hi = PUBLISHED["profile"]["slow_worse_range"]
     G = ds["G_ini"].values
@@ -261,6 +289,13 @@ def compare_profile(ds=None) -> list:
 
 
 def compare_immobility(ds=None) -> list:
+    """Rows of 004 Fig. 8/10 (immobility) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("immobility")
     rows = Rows("immobility", PUBLISHED["immobility"])
     fn = ds.attrs["f_n_hz"]
@@ -321,6 +356,13 @@ def compare_immobility(ds=None) -> list:
 
 
 def compare_plateau(ds=None) -> list:
+    """Rows of 004 Fig. 14-15 (ideal plateau) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("plateau")
     rows = Rows("plateau", PUBLISHED["plateau"])
     step = ds.attrs["ratio_step"]
@@ -355,6 +397,13 @@ def compare_plateau(ds=None) -> list:
 
 
 def compare_descent(ds=None) -> list:
+    """Rows of 004 Fig. 13 (gradual descent) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     ds = ds if ds is not None else _compute("descent")
     a, p = ds.attrs, PUBLISHED["descent"]
     hd = a["half_drop_median"]
@@ -389,6 +438,13 @@ def compare_descent(ds=None) -> list:
 
 
 def compare_table1(ds=None) -> list:
+    """Rows of 004 Table 1 (derived numbers) against :data:`PUBLISHED`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The study's result (None: computed now with 004's defaults).
+    """
     a, p = (ds if ds is not None else _compute("table1")).attrs, PUBLISHED["table1"]
     rows = Rows("table1", p)
     rows.add(
