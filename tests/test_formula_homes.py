@@ -129,3 +129,16 @@ def test_kernel_twin_of_the_dynamic_stiffness(w):
     for r in (s1, s2):
         res = s.total_mass * r * r + (s.suspension.cx + 2j * w * s.total_mass) * r + d
         assert abs(res) <= 1e-9 * abs(d)
+
+
+def test_profile_kinds_registry_and_schema_agree():
+    """One registry of profile kinds (models) and the config schema's keys for each kind."""
+    import inspect
+
+    from autobalance.config import PROFILE_KINDS as SCHEMA
+    from autobalance.models import PROFILE_KINDS
+
+    assert set(PROFILE_KINDS) == set(SCHEMA)
+    for kind, ctor in PROFILE_KINDS.items():
+        params = set(inspect.signature(ctor).parameters) - {"self"}
+        assert set(SCHEMA[kind]) <= params, (kind, set(SCHEMA[kind]) - params)

@@ -12,12 +12,11 @@ from .overrides import apply_overrides
 from .presets import _preset_dir, preset_path
 from .schema import (_MODELS, _PROFILE_MODELS, PROFILE_KINDS, REQUIRED_SECTIONS, SECTIONS,
                      TOP_LEVEL, _build, _section)
+from ..models.profile import PROFILE_KINDS as PROFILE_KINDS_REGISTRY
 from .units import ConfigError
 
-#: The constructor of each ``[profile]`` kind, called with the kind's keys in SI.
-PROFILE_BUILDERS = {"constant": SpeedProfile.constant, "ramp": SpeedProfile.ramp,
-                    "table": SpeedProfile, "std": SpeedProfile.standard_runup,
-                    "tsr": SpeedProfile.tsr, "motor": MotorDrive}
+#: The constructor of each ``[profile]`` kind (the models' registry), called with its keys in SI.
+PROFILE_BUILDERS = PROFILE_KINDS_REGISTRY
 
 
 def build_profile(kind: str, params: dict) -> SpeedProfile | MotorDrive:

@@ -329,3 +329,11 @@ class MotorDrive:
         if self.law == "linear":
             return self.torque * (1.0 - w / self.final_speed)
         return self.torque * (1.0 - np.sin(np.pi * w / (2.0 * self.final_speed)))
+
+
+#: The registry of speed-profile kinds: name -> constructor taking the kind's parameters in SI.
+#: A new kind is a constructor here plus its keys in the config schema
+#: (autobalance.config.schema.PROFILE_KINDS); the kernels only see the knots.
+PROFILE_KINDS = {"constant": SpeedProfile.constant, "ramp": SpeedProfile.ramp,
+                 "table": SpeedProfile, "std": SpeedProfile.standard_runup,
+                 "tsr": SpeedProfile.tsr, "motor": MotorDrive}
