@@ -14,19 +14,16 @@ constrained system). References: Leine, van Campen, van de Vrande, Nonlinear Dyn
 41-54 (switch model); Hairer, Norsett, Wanner, Solving ODEs I, sec. II.5 (DOPRI5) and II.6
 (dense output, event location).
 
-Size (issue 13's rule of at most 100 lines per function has two exceptions, both compiled):
-``_integrate`` is the inner loop, a state machine (step, reject, locate an event, redo, switch
-modes, hold in closed form, write output) over a dozen work arrays that live for the whole run.
-Split into numba functions, the same arrays and flags would be threaded through every call. The
-numbers would not change, but the control flow of one step would be spread across functions.
-Its sections are marked by comments instead.
+Size: ``_integrate`` (the inner loop, a state machine over a dozen work arrays that live for the
+whole run) is the compiled exception to the 100-line rule; split into numba calls, the control
+flow of one step would be spread over functions sharing every array. Batches: core/batch.py.
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from .jit import inline_kernel, kernel
 
@@ -596,16 +593,3 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     stats[S_RHS] = nrhs
     stats[S_TFINAL] = t
     stats[S_HOLDS] = nhold
-
-
-@njit(cache=True, parallel=True)
-def integrate_batch(P, B, N, prof_t, prof_w, unb_t, unb_u, unb_n, y0, t_end, rtol, atol,
-                    h_max, max_steps, out_t, out_y, stats):
-    """Many runs in one call, in parallel threads: P (n, N_P), B (n, N, N_B), y0 (n, 2nq),
-    atol (n, 2nq), out_y (n, len(out_t), 2nq), stats (n, N_S); the speed profile is shared;
-    unbalance tables per run: unb_t, unb_u (n, K), of which run r uses the first unb_n[r]."""
-    nrun = P.shape[0]
-    for r in prange(nrun):
-        k = unb_n[r]
-        integrate(P[r], B[r], N, prof_t, prof_w, unb_t[r, :k], unb_u[r, :k], y0[r], t_end,
-                  rtol, atol[r], h_max, max_steps, out_t, out_y[r], stats[r])

@@ -2,7 +2,7 @@
 
 ``kernel`` compiles with the numba runtime (NRT) off. None of these functions allocates: every
 array is a borrowed argument that the caller keeps alive (the allocating entry points,
-integrate.integrate and integrate_batch, keep the NRT). With the NRT on, numba reference-counts
+integrate.integrate and batch.integrate_batch, keep the NRT). With the NRT on, numba reference-counts
 each array argument on entry and exit of a call (an atomic increment and decrement per array)
 unless its reference-count pruning pass removes the pair. In rhs (18 arrays, ~8 calls per step)
 it did not, and that cost ~130 of its ~300 ns per call. Switching the NRT off changes no result.

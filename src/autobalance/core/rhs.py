@@ -11,7 +11,7 @@ Units: SI throughout ([m], [kg], [rad], [s], [N], [N*m]).
 
 Size: ``rhs`` (~290 lines) assembles the mass matrix, the force vector and the constraint rows of
 one evaluation into preallocated work arrays. It is the second compiled exception to the 100-line
-rule; see core/integrate.py.
+rule (the other is core/integrate.py::_integrate; see there).
 """
 from __future__ import annotations
 

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.integrate import integrate, integrate_batch
+from ..core.batch import integrate_batch
+from ..core.integrate import integrate
 from ..core.layout import N_S, S_STATUS, RunStatus
 from .pack import atol_vector, initial_vector, pack_params, spin_arrays
 from ..limits import check_memory, check_run
