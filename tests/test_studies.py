@@ -51,3 +51,14 @@ def test_statistics_limits():
     g = np.array([3.2, 3.7, 3.9, 8.0])
     assert statistics.mode(g)[0] == 3.5
     assert statistics.regions([1.0], [2.0], 3.0)["I.A"] == 1.0
+
+
+def test_cases_scale_each_balls_own_friction():
+    """A (mu_r, c_r) case scales every ball's rolling resistance, not ball 1's for all."""
+    from autobalance.config import replace_values
+
+    assert start_positions.case_sets("vub_jeffcott_004", 0.5, 1.0)[0] == "balancer.rolling_resistance=0.001"
+    two = replace_values(load_config("vub_jeffcott_004"), {"balancer.rolling_resistance": [0.002, 0.004]})
+    sets = start_positions.case_sets(two, 0.5, 2.0)
+    assert sets[0] == "balancer.rolling_resistance=[0.001, 0.002]"
+    assert start_positions.load(two, sets).system.balancer.rolling_resistance == (0.001, 0.002)

@@ -59,7 +59,7 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
     n_conf = 36 if quick else n_conf
     check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
     U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
-    mu0 = float(s0.balancer.rolling_resistance[0])
+    mu0 = np.asarray(s0.balancer.rolling_resistance, float)      # each ball's own
     out = np.empty((len(mu_r), len(c_r), f.size))
     for i, mr in enumerate(mu_r):
         for j, cr in enumerate(c_r):
@@ -67,8 +67,9 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
                 s0, rotor=dataclasses.replace(s0.rotor, unbalance=U),
                 suspension=dataclasses.replace(s0.suspension, cx=s0.suspension.cx * cr,
                                                cy=s0.suspension.cy * cr),
-                balancer=dataclasses.replace(s0.balancer, rolling_resistance=mu0 * mr,
-                                             stiction=None))
+                balancer=dataclasses.replace(
+                    s0.balancer, rolling_resistance=tuple(float(m) for m in mu0 * mr),
+                    stiction=None))
             out[i, j] = immobility(s, 2 * np.pi * f, n_conf)
     fn = s0.natural_frequencies[0] / (2 * np.pi)
     ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,

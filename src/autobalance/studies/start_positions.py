@@ -67,7 +67,9 @@ def case_sets(base, mu_r: float, c_r: float) -> list:
         Three "path=value" overrides (balancer.rolling_resistance, suspension.cx, suspension.cy).
     """
     s = load(base).system
-    return [f"balancer.rolling_resistance={float(s.balancer.rolling_resistance[0]) * mu_r!r}",
+    mu = [float(x) * mu_r for x in s.balancer.rolling_resistance]     # each ball's own, scaled
+    mu_text = repr(mu[0]) if len(set(mu)) <= 1 else "[" + ", ".join(map(repr, mu)) + "]"
+    return [f"balancer.rolling_resistance={mu_text}",
             f"suspension.cx={s.suspension.cx * c_r!r}",
             f"suspension.cy={s.suspension.cy * c_r!r}"]
 
