@@ -62,15 +62,10 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
         Start positions per ball.
     quick : bool
         The coarse :func:`plateau_grid`.
-    store_dir : str or Path or None
-        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
-        same description computes nothing); None = temporary stores.
-    executor : str
-        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
-    workers : int or None
-        Local worker processes (None: the sweep's default).
-    scheduler : str or None
-        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    store_dir, executor, workers, scheduler : str, Path, int or None
+        Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
+        of the same description computes nothing; None = temporary stores); ``executor``,
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
     g_range : float
         Largest G_ini of the mean that picks the ideal plateau [mm/s] (004: G34).
     prefix : str
@@ -96,7 +91,7 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
     p95 = np.full((len(cases), ratios.size, Gv.size), np.nan)
     for ci, case in enumerate(cases):
         mu_r, c_r = cases[case]
-        raw = run_start_grid(base, f"{prefix}-plateau-{case}-n{n}", case_sets(base, mu_r, c_r),
+        raw = run_start_grid(base, f"{prefix}-plateau-{case}-n{n}", case_sets(cfg, mu_r, c_r),
                          {"profile.plateau": [float(r * fn) for r in ratios],
                           "rotor.unbalance": [float(u) for u in U]}, n,
                              store=store_path(store_dir, f"plateau-{case}-n{n}-r{ratios.size}-g{Gv.size}"),
@@ -142,15 +137,10 @@ def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float =
         Length of the descent [s].
     history_dt : float
         Spacing of the grade read-outs [s].
-    store_dir : str or Path or None
-        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
-        same description computes nothing); None = temporary stores.
-    executor : str
-        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
-    workers : int or None
-        Local worker processes (None: the sweep's default).
-    scheduler : str or None
-        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    store_dir, executor, workers, scheduler : str, Path, int or None
+        Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
+        of the same description computes nothing; None = temporary stores); ``executor``,
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
     prefix : str
         Prefix of the sweeps' names.
 

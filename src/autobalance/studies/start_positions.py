@@ -53,11 +53,10 @@ def case_sets(base, mu_r: float, c_r: float) -> list:
 
     Parameters
     ----------
-    base : str or Path
-        The machine: a preset name or a TOML config path (its system, profile, options and
-        balls).
+    base : str, Path or Config
+        The machine: a preset name, a TOML config path or a loaded Config (as for :func:`load`).
     mu_r : float
-        Factor on the rolling-resistance coefficient mu of ball 1 (applied to all balls) [-].
+        Factor on each ball's rolling-resistance coefficient mu [-].
     c_r : float
         Factor on the suspension damping cx, cy [-].
 
@@ -306,15 +305,10 @@ def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None
         Start positions per ball (004: 50).
     plateau_ratio : float or None
         TSR plateau speed as a multiple of Omega_n [-]; None = the preset's plateau.
-    store_dir : str or Path or None
-        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
-        same description computes nothing); None = temporary stores.
-    executor : str
-        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
-    workers : int or None
-        Local worker processes (None: the sweep's default).
-    scheduler : str or None
-        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    store_dir, executor, workers, scheduler : str, Path, int or None
+        Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
+        of the same description computes nothing; None = temporary stores); ``executor``,
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
     limit : float
         Target grade of the shares [mm/s] (004: G16).
     prefix : str

@@ -53,15 +53,10 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
         Start positions per ball (004: 50).
     quick : bool
         The coarse :func:`unbalance_grid`.
-    store_dir : str or Path or None
-        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
-        same description computes nothing); None = temporary stores.
-    executor : str
-        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
-    workers : int or None
-        Local worker processes (None: the sweep's default).
-    scheduler : str or None
-        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    store_dir, executor, workers, scheduler : str, Path, int or None
+        Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
+        of the same description computes nothing; None = temporary stores); ``executor``,
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
     prefix : str
         Prefix of the sweeps' names.
 
@@ -83,7 +78,7 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
     failed = np.zeros(len(cases), int)
     for ci, case in enumerate(cases):
         mu_r, c_r = cases[case]
-        raw = run_start_grid(base, f"{prefix}-unb-{case}-n{n}-g{Gv.size}", case_sets(base, mu_r, c_r),
+        raw = run_start_grid(base, f"{prefix}-unb-{case}-n{n}-g{Gv.size}", case_sets(cfg, mu_r, c_r),
                          {"rotor.unbalance": [float(u) for u in U]}, n,
                              store=store_path(store_dir, f"unbalance-{case}-n{n}-g{Gv.size}"),
                              executor=executor, workers=workers, scheduler=scheduler)
@@ -126,15 +121,10 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
         Start positions per ball.
     quick : bool
         The coarse :func:`unbalance_grid`.
-    store_dir : str or Path or None
-        Directory of the resumable sweep stores (one subdirectory per sweep; rerunning with the
-        same description computes nothing); None = temporary stores.
-    executor : str
-        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
-    workers : int or None
-        Local worker processes (None: the sweep's default).
-    scheduler : str or None
-        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    store_dir, executor, workers, scheduler : str, Path, int or None
+        Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
+        of the same description computes nothing; None = temporary stores); ``executor``,
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
     unbalance_ds : xarray.Dataset or None
         A :func:`compute_unbalance` result to reuse for STD and TSR when it has the same grades,
         ``n`` and a "nominal" case; otherwise it is computed.
