@@ -25,15 +25,8 @@ import cmath
 import math
 
 from .jit import kernel
-from .layout import (B_M, P_CX, P_HOLDS, P_KX, P_MT,
+from .layout import (B_M, P_CX, P_KX, P_MT,
                      P_R)
-
-
-@kernel
-def hold_possible(P, unb_n):
-    """Static part of the conditions (isotropic, no gravity/base/dry friction, exact stick law,
-    prescribed spin, constant unbalance), derived from the model by simulate/pack.fast_paths."""
-    return P[P_HOLDS] == 1.0
 
 
 @kernel
@@ -94,5 +87,5 @@ def hold_margin_ok(lam_ss, lim, N, B, R, bound):
     return True
 
 
-__all__ = ["hold_possible", "hold_roots", "hold_coeffs", "hold_state", "hold_transient_bound",
+__all__ = ["hold_roots", "hold_coeffs", "hold_state", "hold_transient_bound",
            "ball_unbalance", "hold_margin_ok", "math", "P_R"]

@@ -29,8 +29,8 @@ from .jit import inline_kernel, kernel
 
 from .layout import (B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
-                     S_YMAX, P_DELTA, P_SYM)
-from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_possible, hold_roots,
+                     S_YMAX, P_DELTA, P_HOLDS, P_SYM)
+from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_roots,
                    hold_state)
 from .layout import P_BETA, P_R, P_RHO, S_HOLDS
 from .rhs import neighbour_gap, profile_segment, rhs
@@ -263,7 +263,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     nev = 0
     stall = 0
     status = 0
-    can_hold = hold_possible(P, unb_t.shape[0])
+    # static conditions of a closed-form hold, derived from the model by simulate/pack.fast_paths
+    can_hold = P[P_HOLDS] == 1.0
     next_try = 0
     nhold = 0
     while t < t_end:
