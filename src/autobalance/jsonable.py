@@ -10,7 +10,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-__all__ = ["to_jsonable"]
+__all__ = ["netcdf_safe", "to_jsonable"]
 
 
 def to_jsonable(obj: Any) -> Any:
@@ -53,3 +53,35 @@ def to_jsonable(obj: Any) -> Any:
     if hasattr(obj, "item"):
         return to_jsonable(obj.item())
     return str(obj)
+
+
+def netcdf_safe(ds):
+    """A copy of an xarray Dataset that NetCDF accepts: list, tuple, dict and bool attributes
+    become JSON text (:func:`to_jsonable`), None attributes are dropped and object-typed
+    variables and coordinates become strings.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Any result dataset.
+
+    Returns
+    -------
+    xarray.Dataset
+        The copy (``ds`` is not changed).
+    """
+    import json
+
+    def safe(attrs: dict) -> dict:
+        return {k: (json.dumps(to_jsonable(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
+                for k, v in attrs.items() if v is not None}
+
+    clean = ds.copy()
+    clean.attrs = safe(ds.attrs)
+    for name in list(clean.variables):
+        var = clean[name]
+        var.attrs = safe(var.attrs)
+        if var.dtype == object:
+            clean = clean.assign({name: var.astype(str)}) if name in clean.data_vars else \
+                clean.assign_coords({name: var.astype(str)})
+    return clean

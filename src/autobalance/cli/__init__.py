@@ -18,7 +18,7 @@ from typing import Optional
 
 import typer
 
-from . import analyze, liquid, machine, reproduce, response, simulate, sweep
+from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
 from .common import USER_ERRORS, one_line, print_error
 
 __all__ = ["app", "main"]
@@ -37,6 +37,9 @@ app.command()(machine.demo)
 app.add_typer(analyze.app, name="analyze",
               help="Washer analysis (seed 000): response, vibratory forces, equilibria, error "
                    "bounds, tolerance design, kinetic-static model, studies; 004 immobility.")
+app.add_typer(study.app, name="study",
+              help="Design studies of any machine: start positions, unbalance range, TSR "
+                   "plateau, immobility.")
 app.command("reproduce")(reproduce.reproduce)
 app.add_typer(liquid.app, name="liquid",
               help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "

@@ -1,5 +1,6 @@
-"""Figures of the seed-004 TSR studies (autobalance.papers.p004.tsr): read the study datasets,
-compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
+"""Figures of the start-position, unbalance, plateau and immobility studies
+(:mod:`autobalance.studies`; seed 004's figures and the same studies of any machine): read the
+study datasets, compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
 
 * :func:`plot_single` - 004 Fig. 4: amplitude with/without balancer, ball positions, COG (grade);
 * :func:`plot_monte_carlo` - Fig. 5-6: PDFs of G_STD and G_TSR, each run's TSR vs STD grade;
@@ -8,7 +9,8 @@ compute no physics. Each function returns a matplotlib Figure on the Agg canvas.
 * :func:`plot_immobility` - Fig. 8, 10: immobility against speed for the mu_r x c_r sets;
 * :func:`plot_plateau` - Fig. 14-16: 95 % residual grade over lower plateau x G_ini;
 * :func:`plot_descent` - Fig. 13: residual grade percentiles along a gradual speed reduction;
-* :func:`plot_speed_profile` - Fig. 3: the standardised speed profile.
+* :func:`plot_speed_profile` - Fig. 3: the standardised speed profile;
+* :func:`plot_start_positions` - any machine: the grade at each read-out over start positions.
 """
 from __future__ import annotations
 
@@ -98,27 +100,30 @@ def plot_monte_carlo(ds) -> Figure:
     return fig
 
 
-def plot_unbalance(ds) -> Figure:
-    """004 Fig. 7 (and 11-12 per case) from :func:`compute_unbalance`."""
+def plot_unbalance(ds, grade: float = G_LIMIT, title: str | None = None) -> Figure:
+    """004 Fig. 7 (and 11-12 per case) from :func:`compute_unbalance`: the 5 and 95 % isolines of
+    the first and last read-outs (004: STD and TSR) against G_ini, the operating boundaries and
+    the target ``grade`` [mm/s]."""
     cases = list(ds["case"].values)
     fig, axes = _fig(len(cases))
     G = ds["G_ini"].values
     Gb = ds.attrs["G_balls"]
+    procs = list(dict.fromkeys([ds["procedure"].values[0], ds["procedure"].values[-1]]))
     for ax, case in zip(axes, cases):
-        for proc, col in (("STD", "0.5"), ("TSR", "k")):
+        for proc, col in zip(procs, ("0.5", "k")):
             d = ds["grade_G"].sel(case=case, procedure=proc)
             ax.plot(G, d.sel(percentile=95.0), color=col, lw=1.6, label=f"{proc} 95 %")
             ax.plot(G, d.sel(percentile=5.0), color=col, lw=1.0, ls="--", label=f"{proc} 5 %")
         ax.plot(G, G, "k:", lw=0.8, label="G = G_ini")
         ax.plot(G, np.abs(G - Gb), "k-.", lw=0.8, label="balls out/in of phase")
         ax.plot(G, G + Gb, "k-.", lw=0.8)
-        ax.axhline(G_LIMIT, color="r", lw=0.8)
+        ax.axhline(grade, color="r", lw=0.8, label=f"target G{grade:g}")
         ax.set_xlabel("initial unbalance G_ini [mm/s]")
         ax.set_ylabel("residual G [mm/s]")
         mr, cr = float(ds["mu_r"].sel(case=case)), float(ds["c_r"].sel(case=case))
         ax.set_title(f"mu_r = {mr:g}, c_r = {cr:g}")
         ax.legend(fontsize=7)
-    fig.suptitle("004 Fig. 7: residual grade against initial unbalance")
+    fig.suptitle(title or "004 Fig. 7: residual grade against initial unbalance")
     return fig
 
 
@@ -139,32 +144,39 @@ def plot_profile(ds) -> Figure:
     return fig
 
 
-def plot_immobility(ds) -> Figure:
-    """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1."""
+def plot_immobility(ds, title: str | None = None) -> Figure:
+    """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1 (or the
+    first c_r), the profile's speeds dashed, the natural frequency dotted and, on a second axis,
+    the stick threshold G* [mm/s] when the dataset has it."""
     fig, (ax,) = _fig(1, w=6.5)
     f = ds["speed"].values
     im = ds["immobility"]
     for k, mr in enumerate(ds["mu_r"].values):
         d = im.sel(mu_r=mr).values
-        line = None
-        if 1.0 in ds["c_r"].values:
-            line, = ax.plot(f, im.sel(mu_r=mr, c_r=1.0), lw=1.4, label=f"mu_r = {mr:g}")
-        ax.fill_between(f, d.min(axis=0), d.max(axis=0), alpha=0.2,
-                        color=line.get_color() if line is not None else None)
+        c_line = 1.0 if 1.0 in ds["c_r"].values else ds["c_r"].values[0]
+        line, = ax.plot(f, im.sel(mu_r=mr, c_r=c_line), lw=1.4, label=f"mu_r = {mr:g}")
+        ax.fill_between(f, d.min(axis=0), d.max(axis=0), alpha=0.2, color=line.get_color())
     for x in (ds.attrs["plateau_hz"], ds.attrs["nominal_hz"]):
-        ax.axvline(x, color="k", ls="--", lw=0.8)
+        if np.isfinite(x):
+            ax.axvline(x, color="k", ls="--", lw=0.8)
     ax.axvline(ds.attrs["f_n_hz"], color="r", ls=":", lw=0.8)
     ax.set_xlabel("speed [Hz]")
     ax.set_ylabel("immobility [-]")
-    ax.set_title(f"004 Fig. 8/10: immobility, G_ini = G{ds.attrs['G_ini']:g} "
+    ax.set_title(title or f"004 Fig. 8/10: immobility, G_ini = G{ds.attrs['G_ini']:g} "
                  f"(bands: c_r {', '.join(f'{c:g}' for c in ds['c_r'].values)})", fontsize=9)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center right")
+    if "G_stick" in ds and title is not None:
+        bx = ax.twinx()
+        bx.plot(f, ds["G_stick"].values, color="C3", lw=1.0, ls="-.")
+        bx.set_ylabel("stick threshold G* [mm/s] (dash-dot)", color="C3")
+        bx.set_ylim(0.0, 4.0 * max(ds.attrs["G_ini"], 1.0))
     return fig
 
 
-def plot_plateau(ds) -> Figure:
+def plot_plateau(ds, grade: float = G_LIMIT, title: str | None = None) -> Figure:
     """004 Fig. 14-16 from :func:`compute_plateau`: upper row the map (Fig. 14-15), lower row
-    the 95 % residual grade against the plateau for each G_ini (Fig. 16 is such a slice)."""
+    the 95 % residual grade against the plateau for each G_ini (Fig. 16 is such a slice), the
+    target ``grade`` [mm/s] dotted."""
     cases = list(ds["case"].values)
     fig = Figure(figsize=(5.0 * len(cases), 8.0), constrained_layout=True)
     FigureCanvasAgg(fig)
@@ -182,13 +194,13 @@ def plot_plateau(ds) -> Figure:
         bx = fig.add_subplot(2, len(cases), len(cases) + i + 1)
         for g in ds["G_ini"].values:
             bx.plot(ds["plateau_ratio"].values, d.sel(G_ini=g).values, "o-", ms=3, lw=0.8,
-                    label=f"G_ini = {g:g}")
-        bx.axhline(G_LIMIT, color="r", ls=":", lw=0.8)
+                    label=f"G_ini = {g:.3g}")
+        bx.axhline(grade, color="r", ls=":", lw=0.8)
         bx.axvline(ideal, color="r", ls="--", lw=1)
         bx.set_xlabel("lower plateau / Omega_n [-]")
         bx.set_ylabel("95 % residual G_TSR [mm/s]")
         bx.legend(fontsize=7, ncol=2)
-    fig.suptitle("004 Fig. 14-16: lower TSR plateau")
+    fig.suptitle(title or "004 Fig. 14-16: lower TSR plateau")
     return fig
 
 
@@ -236,4 +248,41 @@ def plot_speed_profile(ds) -> Figure:
     ax.set_ylabel("speed [Hz]")
     ax.set_title("004 Fig. 3: standardised speed profile (our reading)")
     ax.legend(fontsize=8, loc="lower right")
+    return fig
+
+
+def plot_start_positions(ds, title: str | None = None) -> Figure:
+    """The start-position study of any machine
+    (:func:`autobalance.studies.start_positions.compute_start_positions`, no grid): the density
+    of the grade at each read-out with its share at or below the target, and each run's last
+    against its first read-out (004 Fig. 5-6 generalised)."""
+    fig, (a1, a2) = _fig(2)
+    ok = ds["status"].values == 0
+    g = ds["grade_G"].values[ok]                    # (run, checkpoint)
+    lim, gi = ds.attrs["grade"], ds.attrs["G_ini"]
+    top = max(float(np.nanmax(g)), gi, lim) * 1.05
+    bins = np.linspace(0.0, top, 60)
+    for j, lab in enumerate(ds["checkpoint_label"].values):
+        share = 100 * float(ds["share_below_grade"].values[j])
+        a1.hist(g[:, j], bins, density=True, histtype="step", lw=1.4,
+                label=f"{lab}: {share:.1f} % <= G{lim:g}")
+    a1.axvline(gi, color="k", ls="--", lw=1, label=f"G_ini = G{gi:.3g}")
+    a1.axvline(lim, color="r", ls=":", lw=1)
+    a1.set_xlabel("grade G [mm/s]")
+    a1.set_ylabel("probability density [s/mm]")
+    a1.legend(fontsize=7)
+    a1.set_title(f"{int(ok.sum())} runs: {ds.attrs['starts']}", fontsize=9)
+    labels = ds["checkpoint_label"].values
+    a2.scatter(g[:, 0], g[:, -1], s=5, alpha=0.5)
+    a2.plot([0, top], [0, top], "k:", lw=1)
+    a2.axhline(lim, color="r", ls=":", lw=1)
+    a2.axvline(lim, color="r", ls=":", lw=1)
+    a2.set_xlim(0, top)
+    a2.set_ylim(0, top)
+    a2.set_xlabel(f"G at {labels[0]} [mm/s]")
+    a2.set_ylabel(f"G at {labels[-1]} [mm/s]")
+    if "region_share" in ds:
+        a2.set_title(", ".join(f"{r} {100 * v:.1f}%" for r, v in
+                               zip(ds["region"].values, ds["region_share"].values)), fontsize=8)
+    fig.suptitle(title or "Start-position Monte Carlo")
     return fig

@@ -14,6 +14,7 @@ import traceback
 from pathlib import Path
 from typing import Callable, Optional
 
+from ..jsonable import netcdf_safe
 from ..validation.target import Context, claims, status
 from .summary import counts as _counts  # noqa: F401  (re-exported for the CLI)
 from .summary import summarize, summary_lines
@@ -21,25 +22,6 @@ from .summary import summarize, summary_lines
 __all__ = ["run_targets", "summary_lines", "summarize", "write_report"]
 
 STATUSES = ("pass", "miss", "not computed")
-
-
-def _netcdf_safe(ds):
-    """Copy of ``ds`` that NetCDF accepts: list/dict/bool attrs as JSON text, object coords as str."""
-    from ..jsonable import to_jsonable as _clean
-
-    def safe(attrs):
-        return {k: (json.dumps(_clean(v)) if isinstance(v, (list, tuple, dict, bool)) else v)
-                for k, v in attrs.items() if v is not None}
-
-    clean = ds.copy()
-    clean.attrs = safe(ds.attrs)
-    for name in list(clean.variables):
-        var = clean[name]
-        var.attrs = safe(var.attrs)
-        if var.dtype == object:
-            clean = clean.assign({name: var.astype(str)}) if name in clean.data_vars else \
-                clean.assign_coords({name: var.astype(str)})
-    return clean
 
 
 def _save_data(data, out: Path, tid: str) -> list:
@@ -50,7 +32,7 @@ def _save_data(data, out: Path, tid: str) -> list:
     for name, ds in items:
         rel = Path("data") / f"{tid}{'-' + name if name else ''}.nc"
         (out / rel).parent.mkdir(parents=True, exist_ok=True)
-        _netcdf_safe(ds).to_netcdf(out / rel)
+        netcdf_safe(ds).to_netcdf(out / rel)
         paths.append(rel.as_posix())
     return paths
 

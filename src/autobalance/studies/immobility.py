@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 
-from ..physics.immobility import check_immobility, immobility
+from ..physics.immobility import check_immobility, immobility, stick_threshold_grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .start_positions import load
 from .statistics import plateau_speed
@@ -34,7 +34,8 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
     c_r : sequence of float
         Factors on the suspension damping [-].
     speeds_hz : array_like or None
-        Spin speeds [Hz]; None = 20-200 Hz in 0.5 Hz steps (2 Hz when ``quick``).
+        Spin speeds [Hz]; None = 361 speeds (91 when ``quick``) from 0.2 x the natural
+        frequency to 1.2 x the nominal speed (004 Fig. 8: 20-200 Hz).
     n_conf : int
         Equispaced positions per ball (36 when ``quick``).
     quick : bool
@@ -45,7 +46,9 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
     Returns
     -------
     xarray.Dataset
-        immobility [-] over (mu_r, c_r, speed [Hz]); attrs f_n_hz, nominal_hz, plateau_hz [Hz].
+        immobility [-] over (mu_r, c_r, speed [Hz]); the stick threshold G_stick [mm/s] of the
+        machine as given over speed; attrs f_n_hz, nominal_hz, plateau_hz [Hz] (plateau_hz
+        NaN for a profile without a reduction).
     """
     import dataclasses
 
@@ -54,8 +57,17 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
     t0 = time.perf_counter()
     cfg = load(base)
     s0 = cfg.system
+    sus = s0.suspension
+    if sus.kx != sus.ky or sus.cx != sus.cy:
+        from ..models import ParameterError
+
+        raise ParameterError("suspension", f"kx={sus.kx:g}, ky={sus.ky:g}, cx={sus.cx:g}, "
+                             f"cy={sus.cy:g}", "the immobility closed form (004 eq 1) needs an "
+                             "isotropic suspension (kx = ky, cx = cy)")
     wn = cfg.spin.nominal_speed
-    f = np.linspace(20.0, 200.0, 91 if quick else 361) if speeds_hz is None else np.asarray(speeds_hz, float)
+    fn = s0.natural_frequencies[0] / (2 * np.pi)
+    f = (np.linspace(0.2 * fn, 1.2 * wn / (2 * np.pi), 91 if quick else 361)
+         if speeds_hz is None else np.asarray(speeds_hz, float))
     n_conf = 36 if quick else n_conf
     check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
     U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
@@ -71,14 +83,20 @@ def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), sp
                     s0.balancer, rolling_resistance=tuple(float(m) for m in mu0 * mr),
                     stiction=None))
             out[i, j] = immobility(s, 2 * np.pi * f, n_conf)
-    fn = s0.natural_frequencies[0] / (2 * np.pi)
     ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,
-                                    {"units": "-", "long_name": "share of immobile configurations"})},
+                                    {"units": "-", "long_name": "share of immobile configurations"}),
+                     "G_stick": ("speed", stick_threshold_grade(s0, 2 * np.pi * f, wn),
+                                 {"units": "mm/s", "long_name": "stick threshold G* (mu_r = c_r = 1)"})},
                     coords={"mu_r": list(mu_r), "c_r": list(c_r),
                             "speed": ("speed", f, {"units": "Hz"})})
     ds.attrs.update({"study": "immobility", "G_ini": float(G_ini), "n_conf": n_conf,
-                     "f_n_hz": fn, "nominal_hz": wn / (2 * np.pi), "plateau_hz": plateau_speed(cfg.spin) / (2 * np.pi),
+                     "f_n_hz": fn, "nominal_hz": wn / (2 * np.pi), "plateau_hz": _plateau_hz(cfg.spin),
                      "method": "closed form |Im(w e^-i alpha)| <= mu R (004 eq 1), checked "
                                "against the kernel's stuck-ball friction",
                      "wall_s": time.perf_counter() - t0})
     return ds
+
+
+def _plateau_hz(spin) -> float:
+    """The plateau [Hz] of a temporary-speed-reduction profile, else NaN."""
+    return plateau_speed(spin) / (2 * np.pi) if getattr(spin, "name", "") == "tsr" else float("nan")

@@ -13,16 +13,21 @@ from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .start_positions import case_sets, load, run_start_grid, store_path
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
-__all__ = ["DESCENT_PCT", "compute_descent", "compute_plateau", "plateau_grid"]
+__all__ = ["DESCENT_PCT", "compute_descent", "compute_plateau", "default_grid", "plateau_summary"]
 
 
-def plateau_grid(quick: bool):
-    """(plateau / Omega_n ratios [-], initial grades [mm/s]) of the map (004 Fig. 14-15).
+def default_grid(G_balls: float, quick: bool):
+    """(plateau / Omega_n ratios [-], initial grades [mm/s]) of the plateau map of a machine whose
+    balls make the grade G_balls [mm/s]: ratios 0.96-1.12 every 0.01 (004 Fig. 14-15's range
+    around the first natural frequency) x G_ini in [0, G_balls] (9 values; 004: [G0, G32] for
+    G34 balls, the under-excited range TSR serves); quick: 4 ratios x 3 grades.
 
     Parameters
     ----------
+    G_balls : float
+        ISO 1940 grade of the balls' capacity at the nominal speed [mm/s].
     quick : bool
-        4 ratios x 3 grades instead of 0.96-1.12 every 0.01 x G0-G32 every 4 mm/s.
+        The coarse map.
 
     Returns
     -------
@@ -32,8 +37,8 @@ def plateau_grid(quick: bool):
         Initial grades G_ini [mm/s].
     """
     if quick:
-        return np.array([0.98, 1.02, 1.06, 1.10]), np.array([5.0, 15.0, 25.0])
-    return np.round(np.arange(0.96, 1.1201, 0.01), 3), np.arange(0.0, 34.1, 4.0)
+        return np.array([0.98, 1.02, 1.06, 1.10]), np.array([0.15, 0.45, 0.75]) * G_balls
+    return np.round(np.arange(0.96, 1.1201, 0.01), 3), np.linspace(0.0, G_balls, 9)
 
 
 DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
@@ -42,7 +47,7 @@ DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick: bool = False,
                     store_dir=None, executor="local", workers=None, scheduler=None,
-                    g_range: float = 34.0, prefix: str = "study"):
+                    g_range: float | None = None, prefix: str = "study", progress: bool = False):
     """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
     95th percentile of G_TSR (90 s); ideal plateau = argmin of its mean over G_ini <= ``g_range``
     [mm/s] (004: G34). ``cases``: name -> (mu_r, c_r) factors (None: {"nominal": (1, 1)}).
@@ -55,21 +60,24 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
     cases : dict of str to (float, float) or None
         Case name -> (mu_r, c_r), factors [-] on the rolling resistance and the damping.
     ratios : array_like or None
-        Plateau speeds as multiples of Omega_n [-]; None = :func:`plateau_grid`.
+        Plateau speeds as multiples of Omega_n [-]; None = :func:`default_grid`.
     G : array_like or None
-        Initial grades [mm/s]; None = :func:`plateau_grid`.
+        Initial grades [mm/s]; None = :func:`default_grid`.
     n : int
         Start positions per ball.
     quick : bool
-        The coarse :func:`plateau_grid`.
+        The coarse :func:`default_grid`.
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
         ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
-    g_range : float
-        Largest G_ini of the mean that picks the ideal plateau [mm/s] (004: G34).
+    g_range : float or None
+        Largest G_ini of the mean that picks the ideal plateau [mm/s] (004: G34); None = the
+        balls' grade G_balls.
     prefix : str
         Prefix of the sweeps' names.
+    progress : bool
+        Show each sweep's progress bar on stderr.
 
     Returns
     -------
@@ -83,8 +91,16 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
     t0 = time.perf_counter()
     cfg = load(base)
     s = cfg.system
+    if getattr(cfg.spin, "name", "") != "tsr":
+        from ..models import ParameterError
+
+        raise ParameterError("profile.kind", getattr(cfg.spin, "name", type(cfg.spin).__name__),
+                             "the plateau study needs a temporary speed reduction: use a tsr "
+                             "profile (e.g. --profile tsr)")
     fn = s.natural_frequencies[0]
-    r0, g0 = plateau_grid(quick)
+    G_b = float(_grade(s.balancer.capacity, s.total_mass, cfg.spin.nominal_speed))
+    g_range = G_b if g_range is None else g_range
+    r0, g0 = default_grid(G_b, quick)
     ratios = r0 if ratios is None else np.asarray(ratios, float)
     Gv = g0 if G is None else np.asarray(G, float)
     U = grade_to_unbalance(Gv, s.total_mass, cfg.spin.nominal_speed)
@@ -95,7 +111,8 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
                          {"profile.plateau": [float(r * fn) for r in ratios],
                           "rotor.unbalance": [float(u) for u in U]}, n,
                              store=store_path(store_dir, f"plateau-{case}-n{n}-r{ratios.size}-g{Gv.size}"),
-                             executor=executor, workers=workers, scheduler=scheduler)
+                             executor=executor, workers=workers, scheduler=scheduler,
+                             progress=progress)
         g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
         p95[ci] = g.quantile(0.95, dim="sample").transpose("profile__plateau", "rotor__unbalance").values
     ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), p95, {"units": "mm/s"})},
@@ -103,7 +120,8 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
                             "G_ini": ("G_ini", Gv, {"units": "mm/s"})})
     mean = np.nanmean(np.where(Gv <= g_range, p95, np.nan), axis=2)
     ds["mean_p95"] = (("case", "plateau_ratio"), mean, {"units": "mm/s"})
-    ds.attrs.update({"study": "plateau", "n": n, "f_n_hz": fn / (2 * np.pi),
+    ds.attrs.update({"study": "plateau", "n": n, "f_n_hz": fn / (2 * np.pi), "G_balls": G_b,
+                     "g_range": float(g_range),
                      "ideal": [float(ratios[np.nanargmin(m)]) for m in mean],
                      "ratio_step": float(np.diff(ratios).min()) if ratios.size > 1 else 0.0,
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
@@ -191,3 +209,43 @@ def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float =
         **rise_after_min(ratio, p95),
         "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
+
+
+def plateau_summary(ds, case: str | None = None, near: float = 1.0) -> dict:
+    """The recommended plateau of a :func:`compute_plateau` map by 004 sec. 4.6's criterion (the
+    ratio with the least mean 95th percentile over G_ini <= g_range) and how sharp that optimum
+    is: the mean 95th percentile at the neighbouring ratios and the band of ratios whose mean is
+    within ``near`` [mm/s] of the best, JSON-ready.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A :func:`compute_plateau` result.
+    case : str or None
+        The case to read (None: the first).
+    near : float
+        Width of the near-optimal band [mm/s].
+
+    Returns
+    -------
+    dict
+        recommended_plateau_ratio [-], recommended_plateau_rad_s, best_mean_p95_grade_G_mm_s,
+        neighbours (ratio -> mean p95 [mm/s]), near_optimal_ratios [lo, hi] [-], at_grid_edge
+        (the best ratio is the first or last studied: the optimum may lie outside), and the map.
+    """
+    case = str(ds["case"].values[0]) if case is None else case
+    m = ds["mean_p95"].sel(case=case).values
+    r = ds["plateau_ratio"].values
+    wn = 2 * np.pi * float(ds.attrs["f_n_hz"])
+    k = int(np.nanargmin(m))
+    nb = {float(r[j]): float(m[j]) for j in (k - 1, k + 1) if 0 <= j < r.size}
+    band = r[np.isfinite(m) & (m <= m[k] + near)]
+    return {"case": case, "recommended_plateau_ratio": float(r[k]),
+            "recommended_plateau_rad_s": float(r[k] * wn), "natural_frequency_rad_s": wn,
+            "best_mean_p95_grade_G_mm_s": float(m[k]),
+            "neighbours_mean_p95_grade_G_mm_s": nb,
+            "near_optimal_ratios": [float(band.min()), float(band.max())],
+            "at_grid_edge": bool(k in (0, r.size - 1)),
+            "near_mm_s": float(near), "plateau_ratios": r,
+            "mean_p95_grade_G_mm_s": m, "G_ini_mm_s": ds["G_ini"].values,
+            "p95_grade_G_mm_s": ds["grade_G_p95"].sel(case=case).values}

@@ -18,10 +18,11 @@ import numpy as np
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .statistics import plateau_speed, profile_text, start_position_stats
+from .statistics import mode, plateau_speed, profile_text, regions, start_position_stats
 
-__all__ = ["case_sets", "compute_machine", "compute_monte_carlo", "compute_single", "load",
-           "run_start_grid", "start_family", "store_path"]
+__all__ = ["case_sets", "checkpoint_labels", "compute_machine", "compute_monte_carlo",
+           "compute_single", "compute_start_positions", "default_starts", "load", "run_start_grid",
+           "start_family", "store_path"]
 
 
 def load(base, sets=()):
@@ -91,7 +92,8 @@ def store_path(store_dir, name):
 
 
 def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", workers=None,
-                   scheduler=None, history_dt: float = 0.0):
+                   scheduler=None, history_dt: float = 0.0, samples: int | None = None,
+                   seed: int = 0, progress: bool = False):
     """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2: n x n equispaced start
     positions of two identical balls, n(n+1)/2 runs) of the machine ``base`` with ``sets``
     overrides over ``grid`` (path -> values) and return its Dataset.
@@ -123,6 +125,13 @@ def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", w
         Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
     history_dt : float
         Spacing of the stored grade history [s]; 0 = checkpoints only.
+    samples : int or None
+        Uniform random start angles instead of the grid: this many per grid cell (``n`` is then
+        ignored); None = the start grid.
+    seed : int
+        Seed of the random start angles.
+    progress : bool
+        Show the sweep's progress bar on stderr.
 
     Returns
     -------
@@ -131,9 +140,15 @@ def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", w
         start_angle [rad], and the history when ``history_dt`` > 0).
     """
     from ..sweep import spec_from_dict, sweep
+    from ..sweep.plan import identical_balls, n_start_grid
 
     n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
-    n_runs = n_cells * n * (n + 1) // 2
+    if samples is None:
+        b = load(base, sets).system.balancer
+        per_cell = n_start_grid(n, b.n_balls, identical_balls(b))   # 2 balls: n(n+1)/2
+    else:
+        per_cell = int(samples)
+    n_runs = n_cells * per_cell
     w = workers or 2
     bs = max(1, min(64, math.ceil(n_runs / (4 * w))))
     from ..config import Config
@@ -143,15 +158,18 @@ def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", w
     if not python_base:
         head["base"] = str(base)
     spec = spec_from_dict({"sweep": head,
-                           "grid": grid, "monte_carlo": {"kind": "start_grid", "n": int(n)},
+                           "grid": grid,
+                           "monte_carlo": ({"kind": "start_grid", "n": int(n)} if samples is None
+                                           else {"kind": "random", "samples": int(samples),
+                                                 "seed": int(seed)}),
                            **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})},
                           base=base if python_base else None)
     if store is None:
         with tempfile.TemporaryDirectory() as d:
             return sweep(spec, Path(d) / name, executor=executor, workers=workers,
-                         scheduler=scheduler, progress=False).load()
+                         scheduler=scheduler, progress=progress).load()
     return sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
-                 resume=True, progress=False).load()
+                 resume=True, progress=progress).load()
 
 
 def start_family(G_start: float, system, nominal_speed: float, n: int = 24) -> np.ndarray:
@@ -286,6 +304,158 @@ def compute_single(base, save_dt: float = 0.01, G_start: float | None = 14.0, n_
     return ds
 
 
+def checkpoint_labels(spin) -> list:
+    """Names of a profile's read-outs: "STD" and "TSR" for 004's temporary speed reduction
+    (Fig. 3), otherwise "t=<time> s".
+
+    Parameters
+    ----------
+    spin : SpeedProfile or MotorDrive
+        The profile (its ``name`` and ``checkpoints`` [s]).
+
+    Returns
+    -------
+    list of str
+        One label per checkpoint.
+    """
+    cps = [float(c) for c in spin.checkpoints]
+    if getattr(spin, "name", "") == "tsr" and len(cps) == 2:
+        return ["STD", "TSR"]
+    return [f"t={c:g} s" for c in cps]
+
+
+def default_starts(n_balls: int, quick: bool) -> int:
+    """Start positions per ball of the default start grid: 004's 50 (1275 runs) for two balls,
+    fewer for more balls so that the grid stays near a thousand runs (20 for three: 1540);
+    quick: 12 for two balls (78 runs), 8 for three (120).
+
+    Parameters
+    ----------
+    n_balls : int
+        Number of balls N >= 1.
+    quick : bool
+        The coarse grid.
+
+    Returns
+    -------
+    int
+        Positions per ball n.
+    """
+    if quick:
+        return {1: 24, 2: 12}.get(n_balls, 8 if n_balls == 3 else 5)
+    return {1: 360, 2: 50}.get(n_balls, 20 if n_balls == 3 else 10)
+
+
+def compute_start_positions(base, *, n: int | None = None, samples: int | None = None,
+                            seed: int = 0, grid: dict | None = None, sets=(),
+                            grade: float = 16.0, quick: bool = False, name: str = "starts",
+                            store=None, executor="local", workers=None, scheduler=None,
+                            progress: bool = False):
+    """The start-position Monte Carlo of any machine (004 sec. 4.2 generalised): the grade at
+    every read-out of the profile from many ball start positions (004's equispaced grid or
+    uniform random angles), per cell of an optional grid, with its percentiles, mode, share
+    at or below ``grade`` and, between the first and last read-outs, 004 Table 2's regions.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine: a preset name, a TOML config path or a Config (its system, profile,
+        options and balls).
+    n : int or None
+        Positions per ball of the start grid; None = :func:`default_starts`.
+    samples : int or None
+        Uniform random start angles per cell instead of the grid (``n`` ignored).
+    seed : int
+        Seed of the random angles.
+    grid : dict of str to list or None
+        Config path -> values (SI, as for :func:`run_start_grid`), e.g. {"rotor.unbalance":
+        [...]}; None = the machine alone.
+    sets : sequence of str
+        "path=value" overrides applied to ``base`` for every run.
+    grade : float
+        Target ISO 1940 grade G [mm/s] of the shares.
+    quick : bool
+        The coarse default grid.
+    name : str
+        Name of the sweep (and of its store under ``store``).
+    store : str, Path or None
+        The sweep store directory (resumed: a rerun computes nothing), or None (temporary).
+    executor, workers, scheduler : str, int or None
+        Where the runs go (:func:`run_start_grid`).
+    progress : bool
+        Show a progress bar on stderr.
+
+    Returns
+    -------
+    xarray.Dataset
+        grade_G [mm/s] over (cell coordinates..., sample, checkpoint), status, start_angle
+        [rad]; per cell and checkpoint: grade_p5/p50/p95 and mode [mm/s], share_below_grade [-];
+        with two read-outs or more, region_share [-] over 004's regions (first vs last
+        read-out); attrs: G_ini and G_balls [mm/s], grade [mm/s], checkpoint labels, counts.
+    """
+    import xarray as xr
+
+    from ..sweep.summary import percentiles, share_below
+
+    t0 = time.perf_counter()
+    cfg = load(base, sets)
+    grid = dict(grid or {})
+    N = cfg.system.balancer.n_balls
+    n = default_starts(N, quick) if (n is None and samples is None) else n
+    raw = run_start_grid(base, name, sets, grid, n or 0, store=store, executor=executor,
+                         workers=workers, scheduler=scheduler, samples=samples, seed=seed,
+                         progress=progress)
+    cell_dims = [d for d in raw["grade_G"].dims if d not in ("sample", "checkpoint")]
+    ds = raw[["grade_G", "status", "start_angle"]].copy()
+    p = percentiles(raw, "grade_G")
+    for q in (5, 50, 95):
+        ds[f"grade_p{q}"] = p.sel(percentile=q, drop=True).assign_attrs(units="mm/s")
+    ds["share_below_grade"] = share_below(raw, grade).assign_attrs(
+        units="-", long_name=f"share of runs with G <= {grade:g} mm/s")
+    g_ok = raw["grade_G"].where(raw["status"] == 0)
+    stacked = g_ok.stack(_cell=cell_dims) if cell_dims else g_ok.expand_dims(_cell=[0])
+    labels = checkpoint_labels(cfg.spin)
+    modes = np.full((stacked.sizes["_cell"], len(labels)), np.nan)
+    regions_ = []
+    g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
+    for k in range(stacked.sizes["_cell"]):
+        gk = stacked.isel(_cell=k).transpose("sample", "checkpoint").values
+        for j in range(len(labels)):
+            col = gk[:, j][np.isfinite(gk[:, j])]
+            modes[k, j] = mode(col)[0] if col.size else np.nan
+        if len(labels) >= 2:
+            okr = np.isfinite(gk[:, 0]) & np.isfinite(gk[:, -1])
+            gi = g_ini
+            if "rotor__unbalance" in cell_dims:
+                u = float(stacked.isel(_cell=k)["rotor__unbalance"])
+                gi = float(_grade(u, cfg.system.total_mass, cfg.spin.nominal_speed))
+            regions_.append(regions(gk[okr, 0], gk[okr, -1], gi) if okr.any()
+                            else dict.fromkeys(("I.A", "I.B", "II", "III", "IV"), np.nan))
+    mode_da = xr.DataArray(modes, dims=("_cell", "checkpoint"),
+                           coords={"_cell": stacked["_cell"], "checkpoint": raw["checkpoint"]})
+    ds["grade_mode"] = (mode_da.unstack("_cell") if cell_dims else mode_da.isel(_cell=0, drop=True)
+                        ).assign_attrs(units="mm/s", long_name="mode (1 mm/s bins)")
+    if regions_:
+        names = list(regions_[0])
+        reg = xr.DataArray([[r[m] for m in names] for r in regions_], dims=("_cell", "region"),
+                           coords={"_cell": stacked["_cell"], "region": names})
+        ds["region_share"] = (reg.unstack("_cell") if cell_dims else reg.isel(_cell=0, drop=True)
+                              ).assign_attrs(units="-", long_name="004 Table 2 regions, first "
+                                             "vs last read-out")
+    ds = ds.assign_coords(checkpoint_label=("checkpoint", labels))
+    ok = raw["status"].values == 0
+    ds.attrs.update({
+        "study": "start_positions", "n_balls": N,
+        "starts": (f"start grid, {n} positions per ball" if samples is None
+                   else f"{samples} uniform random starts (seed {seed})"),
+        "runs": int(ok.size), "failed": int((~ok).sum()), "grade": float(grade),
+        "G_ini": g_ini, "G_balls": float(_grade(cfg.system.balancer.capacity,
+                                                cfg.system.total_mass, cfg.spin.nominal_speed)),
+        "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
+        "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
+    return ds
+
+
 def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None, store_dir=None,
                         executor="local", workers=None, scheduler=None, limit: float = 16.0,
                         prefix: str = "study"):
@@ -330,8 +500,9 @@ def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None
         fn = cfg.system.natural_frequencies[0]
         sets, name = [f"profile.plateau={plateau_ratio * fn!r}"], f"{name}-plateau{plateau_ratio:g}"
         cfg = load(base, sets)
-    raw = run_start_grid(base, f"{prefix}-{name}", sets, {}, n, store=store_path(store_dir, name),
-                         executor=executor, workers=workers, scheduler=scheduler)
+    raw = compute_start_positions(base, n=n, sets=sets, grade=limit, name=f"{prefix}-{name}",
+                                  store=store_path(store_dir, name), executor=executor,
+                                  workers=workers, scheduler=scheduler)
     g = raw["grade_G"].values                      # (sample, checkpoint)
     ok = raw["status"].values == 0
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))

@@ -9,36 +9,41 @@ import numpy as np
 
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .start_positions import case_sets, load, run_start_grid, store_path
-from .statistics import profile_text
+from .start_positions import case_sets, checkpoint_labels, load, run_start_grid, store_path
+from .statistics import profile_text, valid_ranges
 
-__all__ = ["compute_profile", "compute_unbalance", "unbalance_grid"]
+__all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
+           "unbalance_summary"]
 
 
-def unbalance_grid(quick: bool):
-    """Initial grades [mm/s] of the sweep: [G0, G50] every 5 (quick) or 2 mm/s (004 sec. 4.3).
+def default_grades(G_balls: float, quick: bool) -> np.ndarray:
+    """Initial grades [mm/s] of the unbalance study of a machine whose balls make the grade
+    G_balls [mm/s]: [0, 1.5 G_balls] in 25 steps (quick: 10), which covers the balls' whole
+    operating range (under- and over-excited balancer, 004 sec. 4.3: [G0, G50] for G34 balls).
 
     Parameters
     ----------
+    G_balls : float
+        ISO 1940 grade of the balls' capacity sum m R at the nominal speed [mm/s].
     quick : bool
-        Steps of 5 mm/s instead of 2 mm/s.
+        10 steps instead of 25.
 
     Returns
     -------
     ndarray
         G_ini [mm/s].
     """
-    return np.arange(0.0, 50.1, 5.0) if quick else np.arange(0.0, 50.1, 2.0)
+    return np.linspace(0.0, 1.5 * G_balls, 11 if quick else 26)
 
 
 def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = False,
                       store_dir=None, executor="local", workers=None, scheduler=None,
-                      prefix: str = "study"):
+                      prefix: str = "study", progress: bool = False):
     """004 sec. 4.3-4.5: G_ini over [G0, G50] x the start grid for each (mu_r, c_r) case;
     5/50/95 % of G_STD (18 s) and G_TSR (90 s), valid ranges for G16 and efficiencies.
 
     ``cases``: name -> (mu_r, c_r), the factors on the machine's rolling resistance and damping
-    (None: {"nominal": (1, 1)}); ``G``: the initial grades [mm/s] (None: :func:`unbalance_grid`).
+    (None: {"nominal": (1, 1)}); ``G``: the initial grades [mm/s] (None: :func:`default_grades`).
 
     Parameters
     ----------
@@ -48,40 +53,47 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
     cases : dict of str to (float, float) or None
         Case name -> (mu_r, c_r), factors [-] on the rolling resistance and the damping.
     G : array_like or None
-        Initial grades [mm/s]; None = :func:`unbalance_grid`.
+        Initial grades [mm/s]; None = :func:`default_grades`.
     n : int
         Start positions per ball (004: 50).
     quick : bool
-        The coarse :func:`unbalance_grid`.
+        The coarse :func:`default_grades`.
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
         ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
     prefix : str
         Prefix of the sweeps' names.
+    progress : bool
+        Show each sweep's progress bar on stderr.
 
     Returns
     -------
     xarray.Dataset
-        grade_G [mm/s] over (case, G_ini [mm/s], procedure STD/TSR, percentile 5/50/95),
-        failed_runs per case; attrs G_balls [mm/s], grid_step [mm/s].
+        grade_G [mm/s] over (case, G_ini [mm/s], procedure = the profile's read-outs
+        (:func:`~autobalance.studies.start_positions.checkpoint_labels`; 004: STD/TSR),
+        percentile 5/50/95), failed_runs per case, the operating boundaries [mm/s]
+        (:func:`operating_boundaries`); attrs G_balls [mm/s], grid_step [mm/s].
     """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
 
     t0 = time.perf_counter()
     cfg = load(base)
-    Gv = unbalance_grid(quick) if G is None else np.asarray(G, float)
+    G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
+    Gv = default_grades(G_b, quick) if G is None else np.asarray(G, float)
     U = grade_to_unbalance(Gv, cfg.system.total_mass, cfg.spin.nominal_speed)
     q = np.array([5.0, 50.0, 95.0])
-    data = np.full((len(cases), Gv.size, 2, q.size), np.nan)
+    labels = checkpoint_labels(cfg.spin)
+    data = np.full((len(cases), Gv.size, len(labels), q.size), np.nan)
     failed = np.zeros(len(cases), int)
     for ci, case in enumerate(cases):
         mu_r, c_r = cases[case]
         raw = run_start_grid(base, f"{prefix}-unb-{case}-n{n}-g{Gv.size}", case_sets(cfg, mu_r, c_r),
                          {"rotor.unbalance": [float(u) for u in U]}, n,
                              store=store_path(store_dir, f"unbalance-{case}-n{n}-g{Gv.size}"),
-                             executor=executor, workers=workers, scheduler=scheduler)
+                             executor=executor, workers=workers, scheduler=scheduler,
+                             progress=progress)
         g = raw["grade_G"].where(raw["status"] == 0)
         data[ci] = g.quantile(q / 100, dim="sample").transpose("rotor__unbalance", "checkpoint",
                                                                "quantile").values
@@ -90,10 +102,14 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
                                  {"units": "mm/s", "long_name": "residual grade percentile"}),
                      "failed_runs": ("case", failed)},
                     coords={"case": list(cases), "G_ini": ("G_ini", Gv, {"units": "mm/s"}),
-                            "procedure": ["STD", "TSR"], "percentile": q,
+                            "procedure": labels, "percentile": q,
                             "mu_r": ("case", [cases[c][0] for c in cases]),
                             "c_r": ("case", [cases[c][1] for c in cases])})
-    G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
+    lo, hi = operating_boundaries(Gv, G_b)
+    ds["lower_boundary"] = ("G_ini", lo, {"units": "mm/s", "long_name": "every ball opposite "
+                                          "the unbalance: |G_ini - G_balls|"})
+    ds["upper_boundary"] = ("G_ini", hi, {"units": "mm/s", "long_name": "every ball with the "
+                                          "unbalance: G_ini + G_balls"})
     ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "grid_step": float(np.diff(Gv).max()),
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
@@ -116,11 +132,11 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
     other_sets : iterable of str
         "path=value" overrides that make the other profile.
     G : array_like or None
-        Initial grades [mm/s]; None = :func:`unbalance_grid`.
+        Initial grades [mm/s]; None = :func:`default_grades`.
     n : int
         Start positions per ball.
     quick : bool
-        The coarse :func:`unbalance_grid`.
+        The coarse :func:`default_grades`.
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
@@ -142,7 +158,8 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
 
     t0 = time.perf_counter()
     cfg = load(base)
-    Gv = unbalance_grid(quick) if G is None else np.asarray(G, float)
+    G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
+    Gv = default_grades(G_b, quick) if G is None else np.asarray(G, float)
     if unbalance_ds is None or not np.array_equal(unbalance_ds["G_ini"].values, Gv) \
             or "nominal" not in unbalance_ds["case"].values or unbalance_ds.attrs["n"] != n:
         unbalance_ds = compute_unbalance(base, {"nominal": (1.0, 1.0)}, G=Gv, n=n,
@@ -160,8 +177,65 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
     data = np.concatenate([base, slow[:, None, :]], axis=1)
     ds = xr.Dataset({"grade_G": (("G_ini", "procedure", "percentile"), data, {"units": "mm/s"})},
                     coords={"G_ini": ("G_ini", Gv, {"units": "mm/s"}),
-                            "procedure": ["STD", "TSR", "slow"], "percentile": q})
+                            "procedure": [*checkpoint_labels(cfg.spin), "slow"], "percentile": q})
     ds.attrs.update({"study": "profile", "n": n, "wall_s": time.perf_counter() - t0,
                      "profile": profile_text(cfg.spin),
                      "slow_profile": other_text or "; ".join(other_sets)})
     return ds
+
+
+def operating_boundaries(G_ini, G_balls: float):
+    """The residual grades between which a ball balancer operates (004 sec. 4.3, Fig. 7's dashed
+    lines): every ball opposite the unbalance, |G_ini - G_balls|, and every ball with it,
+    G_ini + G_balls [mm/s] (ISO 1940 grades are linear in the unbalance).
+
+    Parameters
+    ----------
+    G_ini : array_like
+        Initial grades of the rotor [mm/s].
+    G_balls : float
+        Grade of the balls' capacity sum m_i R [mm/s].
+
+    Returns
+    -------
+    lower, upper : ndarray
+        [mm/s].
+    """
+    g = np.asarray(G_ini, float)
+    return np.abs(g - G_balls), g + G_balls
+
+
+def unbalance_summary(ds, grade: float = 16.0) -> dict:
+    """The valid initial-unbalance ranges and efficiency of each case and read-out (004 sec. 4.3:
+    where the 95th percentile is <= ``grade``; efficiency = their length over the studied
+    span of G_ini) of a :func:`compute_unbalance` result, JSON-ready.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A :func:`compute_unbalance` result.
+    grade : float
+        Target grade [mm/s].
+
+    Returns
+    -------
+    dict
+        grade_G_mm_s, G_balls_mm_s, G_ini_mm_s and, per case -> read-out:
+        valid_ranges_grade_G_mm_s (list of [lo, hi]), efficiency [-], p5/p50/p95 curves [mm/s].
+    """
+    Gv = ds["G_ini"].values
+    span = float(Gv.max() - Gv.min()) or 1.0
+    out = {"grade_G_mm_s": float(grade), "G_balls_mm_s": float(ds.attrs["G_balls"]),
+           "G_ini_mm_s": Gv, "lower_boundary_grade_G_mm_s": ds["lower_boundary"].values,
+           "upper_boundary_grade_G_mm_s": ds["upper_boundary"].values, "cases": {}}
+    for case in ds["case"].values:
+        per = {}
+        for proc in ds["procedure"].values:
+            g = ds["grade_G"].sel(case=case, procedure=proc)
+            rng, eff = valid_ranges(Gv, g.sel(percentile=95.0).values, grade, span)
+            per[str(proc)] = {"valid_ranges_grade_G_mm_s": [list(r) for r in rng],
+                              "efficiency": eff,
+                              **{f"p{int(q)}_grade_G_mm_s": g.sel(percentile=q).values
+                                 for q in (5.0, 50.0, 95.0)}}
+        out["cases"][str(case)] = per
+    return out

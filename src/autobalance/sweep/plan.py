@@ -142,6 +142,13 @@ def _chunk(groups, todo: np.ndarray, batch_size: int) -> list:
     return tasks
 
 
+def identical_balls(balancer) -> bool:
+    """Whether swapping two balls changes nothing (same mass, damping, rolling resistance and
+    stiction): the start grid then keeps one of each permutation (:func:`start_grid`)."""
+    return all(len(set(map(float, np.atleast_1d(getattr(balancer, f))))) <= 1
+               for f in ("ball_mass", "damping", "rolling_resistance", "stiction"))
+
+
 def n_start_grid(n: int, n_balls: int, identical: bool) -> int:
     """Number of start configurations of :func:`start_grid` (without building them)."""
     return math.comb(n + n_balls - 1, n_balls) if identical else n ** n_balls
@@ -267,8 +274,7 @@ def make_plan(spec: SweepSpec) -> Plan:
         raise SweepError(f"grid: balancer.n_balls must be the same in every cell (got {sorted(nb)})")
     N = nb.pop()
     b0 = cells[0].system.balancer
-    identical = all(len(set(map(float, np.atleast_1d(getattr(b0, f))))) <= 1
-                    for f in ("ball_mass", "damping", "rolling_resistance", "stiction"))
+    identical = identical_balls(b0)
     n_samples = (n_start_grid(spec.mc_n, N, identical) if spec.mc_kind == "start_grid"
                  else spec.mc_samples if spec.mc_kind == "random" else 1)
     n_hist = int(cells[0].spin.duration / spec.history_dt) + 1 if spec.history_dt > 0 else 0

@@ -8,7 +8,7 @@ from ...studies import plateau as _pl
 from ...studies import start_positions as _sp
 from ...studies import unbalance as _unb
 from .published import (C_R, G_LIMIT, G_TSR_RANGE, MU_R, PLATEAU_CASES, PRESET, SLOW_SETS,
-                        UNBALANCE_CASES)
+                        UNBALANCE_CASES, immobility_speeds_hz, plateau_grid, unbalance_grid)
 
 __all__ = ["compute_descent", "compute_immobility", "compute_monte_carlo", "compute_plateau",
            "compute_profile", "compute_single", "compute_table1", "compute_unbalance"]
@@ -44,6 +44,7 @@ def compute_unbalance(cases=("nominal",), *, G=None, n: int = 50, quick: bool = 
                       store_dir=None, executor="local", workers=None, scheduler=None):
     """004 sec. 4.3-4.5, Fig. 7, Tables 3-4 for the named :data:`UNBALANCE_CASES`
     (:func:`autobalance.studies.unbalance.compute_unbalance`); G [mm/s]."""
+    G = unbalance_grid(quick) if G is None else G
     return _unb.compute_unbalance(PRESET, {c: UNBALANCE_CASES[c] for c in cases}, G=G, n=n,
                                   quick=quick, store_dir=store_dir, executor=executor,
                                   workers=workers, scheduler=scheduler, prefix="tsr")
@@ -53,6 +54,7 @@ def compute_profile(*, G=None, n: int = 50, quick: bool = False, store_dir=None,
                     workers=None, scheduler=None, unbalance_ds=None):
     """004 sec. 4.4, Fig. 9 with the 3x slower run-up :data:`SLOW_SETS`
     (:func:`autobalance.studies.unbalance.compute_profile`); G [mm/s]."""
+    G = unbalance_grid(quick) if G is None else G
     return _unb.compute_profile(PRESET, SLOW_SETS, G=G, n=n, quick=quick, store_dir=store_dir,
                                 executor=executor, workers=workers, scheduler=scheduler,
                                 unbalance_ds=unbalance_ds, prefix="tsr", other_text=SLOW_TEXT)
@@ -62,6 +64,7 @@ def compute_immobility(*, G_ini: float = 20.0, mu_r=MU_R, c_r=C_R, speeds_hz=Non
                        n_conf: int = 100, quick: bool = False, field: str = "n_conf"):
     """004 Fig. 8/10 (:func:`autobalance.studies.immobility.compute_immobility`); G_ini [mm/s],
     speeds_hz [Hz]."""
+    speeds_hz = immobility_speeds_hz(quick) if speeds_hz is None else speeds_hz
     return _imm.compute_immobility(PRESET, G_ini=G_ini, mu_r=mu_r, c_r=c_r, speeds_hz=speeds_hz,
                                    n_conf=n_conf, quick=quick, field=field)
 
@@ -70,6 +73,9 @@ def compute_plateau(cases=("nominal",), *, ratios=None, G=None, n: int = 20, qui
                     store_dir=None, executor="local", workers=None, scheduler=None):
     """004 sec. 4.6, Fig. 14-16 for the named :data:`PLATEAU_CASES`
     (:func:`autobalance.studies.plateau.compute_plateau`); ratios [-], G [mm/s]."""
+    r0, g0 = plateau_grid(quick)
+    ratios = r0 if ratios is None else ratios
+    G = g0 if G is None else G
     return _pl.compute_plateau(PRESET, {c: PLATEAU_CASES[c] for c in cases}, ratios=ratios, G=G,
                                n=n, quick=quick, store_dir=store_dir, executor=executor,
                                workers=workers, scheduler=scheduler, g_range=G_TSR_RANGE,

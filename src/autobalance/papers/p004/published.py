@@ -3,7 +3,10 @@ constants and every published number with its source."""
 from __future__ import annotations
 
 __all__ = ["C_R", "G_LIMIT", "G_SPAN", "G_TSR_RANGE", "ITEMS_004", "MU_R", "PLATEAU_CASES", "PRESET",
-           "PUBLISHED", "REGIONS", "SLOW_SETS", "UNBALANCE_CASES"]
+           "PUBLISHED", "REGIONS", "SLOW_SETS", "UNBALANCE_CASES", "immobility_speeds_hz",
+           "plateau_grid", "unbalance_grid"]
+
+import numpy as np
 
 PRESET = "vub_jeffcott_004"
 G_LIMIT = 16.0          # 004 sec. 4: the rotor must qualify G16
@@ -16,6 +19,44 @@ UNBALANCE_CASES = {"nominal": (1.0, 1.0), "mu0.5": (0.5, 1.0), "mu0.25": (0.25, 
                    "c0.6": (1.0, 0.6), "c0.5": (1.0, 0.5)}
 #: (mu_r, c_r) of the plateau maps of 004 Fig. 14 and 15.
 PLATEAU_CASES = {"nominal": (1.0, 1.0), "c0.5": (1.0, 0.5)}
+
+
+
+def unbalance_grid(quick: bool) -> np.ndarray:
+    """004 sec. 4.3's initial grades [mm/s]: [G0, G50] every 2 mm/s (quick: every 5).
+
+    Parameters
+    ----------
+    quick : bool
+        Steps of 5 mm/s instead of 2 mm/s.
+    """
+    return np.arange(0.0, 50.1, 5.0) if quick else np.arange(0.0, 50.1, 2.0)
+
+
+def plateau_grid(quick: bool) -> tuple:
+    """004 Fig. 14-15's map: plateau / Omega_n ratios 0.96-1.12 every 0.01 [-] x G_ini in
+    [G0, G32] every 4 mm/s (quick: 4 ratios x 3 grades).
+
+    Parameters
+    ----------
+    quick : bool
+        The coarse map.
+    """
+    if quick:
+        return np.array([0.98, 1.02, 1.06, 1.10]), np.array([5.0, 15.0, 25.0])
+    return np.round(np.arange(0.96, 1.1201, 0.01), 3), np.arange(0.0, 34.1, 4.0)
+
+
+def immobility_speeds_hz(quick: bool) -> np.ndarray:
+    """004 Fig. 8 and 10's speed axis: 20-200 Hz every 0.5 Hz (quick: every 2 Hz) [Hz].
+
+    Parameters
+    ----------
+    quick : bool
+        The coarse axis.
+    """
+    return np.linspace(20.0, 200.0, 91 if quick else 361)
+
 
 PUBLISHED = {
     "table1": {"f_n_hz": 94.2, "G_ini": 20.0, "G_balls": 34.0,

@@ -1,0 +1,448 @@
+"""``autobalance study ...``: the design studies of :mod:`autobalance.studies` for any preset or
+config file.
+
+Every study takes the machine (``PRESET|CONFIG`` with ``--set`` and ``--profile``), the target
+grade ``--grade G`` [mm/s] (default 16, printed with its ISO 1940 class), ``--json`` (one
+object, SI, unit-suffixed keys), ``--out FILE.nc`` (the study's dataset as NetCDF with units and
+provenance), ``--plot FILE.png`` and ``--quick`` (a coarse version that finishes in under two
+minutes on two cores). The studies that run simulations keep them in a resumable sweep store
+(``--store DIR``: a rerun computes nothing that is already there), show a progress bar on stderr
+and run on a Dask cluster with ``--scheduler``. Input errors print one line ``error: ...`` and
+exit 2.
+"""
+from __future__ import annotations
+
+import math
+import os
+import time
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated, Iterator, Optional
+
+import typer
+
+from ..config import ConfigError
+from .common import (ExecutorOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt, SourceArg,
+                     WorkersOpt, check_executor, check_grade, check_output_file, check_plot,
+                     check_workers, fail, guard, load_machine, print_json, quiet_dask_logs)
+
+app = typer.Typer(name="study", no_args_is_help=True, add_completion=False,
+                  pretty_exceptions_enable=False,
+                  help="Design studies of any machine: start positions, unbalance range, TSR "
+                       "plateau, immobility.")
+
+GradeOpt = Annotated[float, typer.Option(
+    "--grade", help="Target ISO 1940 grade G [mm/s] (e.g. 16 for G16).")]
+QuickOpt = Annotated[bool, typer.Option(
+    "--quick", help="Coarse grids: finishes in under 2 minutes on 2 cores.")]
+OutOpt = Annotated[Optional[Path], typer.Option(
+    "--out", metavar="FILE.nc", help="Write the study's dataset (NetCDF, units and provenance).")]
+StoreOpt = Annotated[Optional[Path], typer.Option(
+    "--store", metavar="DIR", help="Keep the simulations in resumable sweep stores under DIR "
+                                   "(a rerun computes only what is missing).")]
+
+#: Figure formats of ``--plot``.
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def grade_label(G: float) -> str:
+    """``"G16 (ISO 1940 class G16)"``: a grade [mm/s] with the standard class it satisfies.
+
+    Parameters
+    ----------
+    G : float
+        The grade [mm/s].
+    """
+    from ..physics.iso1940 import grade_class
+
+    c = float(grade_class(G))
+    cls = f"G{c:g}" if math.isfinite(c) else "beyond G4000"
+    return f"G{G:.3g} (ISO 1940 class {cls})"
+
+
+def _rpm(w: float) -> str:
+    """A speed [rad/s] as "w rad/s (n rpm)"."""
+    return f"{w:.4g} rad/s ({w * 30 / math.pi:.0f} rpm)"
+
+
+@contextmanager
+def _study_errors() -> Iterator[None]:
+    """Sweep failures inside a study -> one line and the sweep command's exit codes."""
+    from ..sweep import SweepAborted, SweepError, SweepInterrupted
+
+    try:
+        yield
+    except SweepError as e:
+        fail(str(e))
+    except SweepInterrupted as e:
+        fail(f"{e} (rerun the same command with the same --store to continue)", 128 + int(e.signal))
+    except SweepAborted as e:
+        fail(str(e), 1)
+
+
+def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=None,
+             scheduler=None, store=None):
+    """The checks every study makes before any work, and its machine."""
+    check_plot(plot, PLOT_SUFFIXES)
+    check_output_file(out, "--out", "study.nc", (".nc",))
+    G = check_grade(grade)
+    check_workers(workers)
+    check_executor(executor)
+    if store is not None and store.exists() and not store.is_dir():
+        raise ConfigError(f"--store {str(store)!r}: exists and is not a directory")
+    if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
+        quiet_dask_logs()
+    return load_machine(source, set_, profile), G
+
+
+def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
+    """Write the NetCDF (with provenance) and the figure; return their paths and the wall time."""
+    from .. import __version__
+    from ..jsonable import netcdf_safe
+
+    done = {"wall_time_s": time.perf_counter() - t0}
+    if out is not None:
+        ds = ds.copy()
+        ds.attrs.update({"autobalance_version": __version__, "command": command,
+                         "machine": cfg.name, "machine_source": str(cfg.source),
+                         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z")})
+        netcdf_safe(ds).to_netcdf(out)
+        done["out"] = str(out)
+    if plot is not None:
+        fig_fn().savefig(plot, dpi=110)
+        done["plot"] = str(plot)
+    return done
+
+
+def _store(store: Optional[Path], name: str):
+    """The study's store directory under ``--store`` (created), or None."""
+    if store is None:
+        return None
+    store.mkdir(parents=True, exist_ok=True)
+    return store / name
+
+
+@app.command("start-positions")
+def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+                    grade: GradeOpt = 16.0,
+                    n: Annotated[Optional[int], typer.Option(
+                        "--n", help="Start positions per ball of 004's equispaced grid (default "
+                                    "50 for 2 balls, 20 for 3; quick 12 / 8).")] = None,
+                    samples: Annotated[Optional[int], typer.Option(
+                        "--random", help="Uniform random start angles instead of the grid: "
+                                         "this many.")] = None,
+                    seed: Annotated[int, typer.Option("--seed", help="Seed of --random.")] = 0,
+                    quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
+                    plot: PlotOpt = None, scheduler: SchedulerOpt = None,
+                    workers: WorkersOpt = None, executor: ExecutorOpt = None,
+                    json_: JsonOpt = False) -> None:
+    """Monte Carlo over ball start positions: the grade at each read-out of the profile
+    (percentiles, mode, share <= --grade) and 004 Table 2's regions (004 sec. 4.2).\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+        The options of every study (:mod:`autobalance.cli.study`).
+    n : int
+        Start positions per ball of the grid (>= 1).
+    samples : int
+        Random starts instead of the grid (>= 1).
+    seed : int
+        Seed of the random starts.
+    """
+    from ..studies.start_positions import compute_start_positions
+
+    t0 = time.perf_counter()
+    with guard(), _study_errors():
+        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
+                          store)
+        for field, v in (("--n", n), ("--random", samples)):
+            if v is not None and v < 1:
+                raise ConfigError(f"{field} = {v}: must be an integer >= 1")
+        ds = compute_start_positions(cfg, n=n, samples=samples, seed=seed, grade=G, quick=quick,
+                                     name="start-positions", store=_store(store, "start-positions"),
+                                     executor=executor or "local", workers=workers,
+                                     scheduler=scheduler, progress=not json_)
+
+        def fig():
+            from ..plotting.tsr import plot_start_positions
+
+            return plot_start_positions(ds, f"{cfg.name}: grade over ball start positions")
+
+        res = start_positions_summary(ds)
+        res.update(_finish(ds, cfg, out, plot, fig, "study start-positions", t0))
+    if json_:
+        print_json(res)
+        return
+    typer.echo(f"{cfg.name}: {res['runs']} runs ({res['starts']}), {res['failed']} failed; "
+               f"target {grade_label(G)}; initial G{res['G_ini_mm_s']:.3g}, balls "
+               f"G{res['G_balls_mm_s']:.3g}")
+    for c in res["checkpoints"]:
+        typer.echo(f"  {c['label']:>8} (t = {c['time_s']:g} s): G p5/p50/p95 = "
+                   f"{c['p5_grade_G_mm_s']:.2f} / {c['p50_grade_G_mm_s']:.2f} / "
+                   f"{c['p95_grade_G_mm_s']:.2f} mm/s, mode {c['mode_grade_G_mm_s']:.1f}, "
+                   f"share <= G{G:g}: {100 * c['share_below_grade']:.1f} %")
+    if res.get("regions"):
+        typer.echo("  004 Table 2 regions (first vs last read-out): " + ", ".join(
+            f"{k} {100 * v:.1f} %" for k, v in res["regions"].items()))
+
+
+def start_positions_summary(ds) -> dict:
+    """JSON-ready summary of a :func:`~autobalance.studies.start_positions.compute_start_positions`
+    result without a grid: per checkpoint its label, time [s], percentiles, mode [mm/s] and
+    share at or below the target grade; the region shares.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The study's dataset.
+
+    Returns
+    -------
+    dict
+    """
+    a = ds.attrs
+    cps = []
+    for i, t in enumerate(ds["checkpoint"].values):
+        cps.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
+                    **{f"p{q}_grade_G_mm_s": float(ds[f"grade_p{q}"].isel(checkpoint=i))
+                       for q in (5, 50, 95)},
+                    "mode_grade_G_mm_s": float(ds["grade_mode"].isel(checkpoint=i)),
+                    "share_below_grade": float(ds["share_below_grade"].isel(checkpoint=i))})
+    out = {"study": "start-positions", "machine": a.get("base"), "grade_G_mm_s": a["grade"],
+           "runs": a["runs"], "failed": a["failed"], "starts": a["starts"],
+           "G_ini_mm_s": a["G_ini"], "G_balls_mm_s": a["G_balls"], "checkpoints": cps}
+    if "region_share" in ds:
+        out["regions"] = {str(r): float(v) for r, v in
+                          zip(ds["region"].values, ds["region_share"].values)}
+    return out
+
+
+@app.command("unbalance-range")
+def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+                    grade: GradeOpt = 16.0,
+                    g_max: Annotated[Optional[float], typer.Option(
+                        "--g-max", help="Largest initial grade [mm/s] (default 1.5 x the "
+                                        "balls' grade).")] = None,
+                    steps: Annotated[Optional[int], typer.Option(
+                        "--steps", help="Grid intervals of the initial grade (default 25; "
+                                        "quick 10).")] = None,
+                    n: Annotated[Optional[int], typer.Option(
+                        "--n", help="Start positions per ball (default 50 / 20 for 2 / 3 "
+                                    "balls; quick 12 / 8).")] = None,
+                    quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
+                    plot: PlotOpt = None, scheduler: SchedulerOpt = None,
+                    workers: WorkersOpt = None, executor: ExecutorOpt = None,
+                    json_: JsonOpt = False) -> None:
+    """Residual grade against the initial unbalance (5/50/95 % over start positions), the
+    operating boundaries, the valid initial-unbalance ranges for --grade and their efficiency
+    (004 sec. 4.3).\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+        The options of every study (:mod:`autobalance.cli.study`).
+    g_max : float
+        Largest initial grade of the grid [mm/s] (> 0).
+    steps : int
+        Intervals of the initial-grade grid (>= 1).
+    n : int
+        Start positions per ball (>= 1).
+    """
+    import numpy as np
+
+    from ..physics.iso1940 import grade_value
+    from ..studies.start_positions import default_starts
+    from ..studies.unbalance import compute_unbalance, unbalance_summary
+
+    t0 = time.perf_counter()
+    with guard(), _study_errors():
+        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
+                          store)
+        if g_max is not None:
+            check_grade(g_max, "--g-max")
+        for field, v in (("--steps", steps), ("--n", n)):
+            if v is not None and v < 1:
+                raise ConfigError(f"{field} = {v}: must be an integer >= 1")
+        s = cfg.system
+        G_b = float(grade_value(s.balancer.capacity, s.total_mass, cfg.spin.nominal_speed))
+        top = 1.5 * G_b if g_max is None else g_max
+        Gv = np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
+        nn = n or default_starts(s.balancer.n_balls, quick)
+        ds = compute_unbalance(cfg, G=Gv, n=nn, store_dir=store, executor=executor or "local",
+                               workers=workers, scheduler=scheduler, prefix="study",
+                               progress=not json_)
+
+        def fig():
+            from ..plotting.tsr import plot_unbalance
+
+            return plot_unbalance(ds, G, f"{cfg.name}: residual grade against initial unbalance")
+
+        res = {"study": "unbalance-range", "machine": cfg.name, "n": nn,
+               **unbalance_summary(ds, G)}
+        res.update(_finish(ds, cfg, out, plot, fig, "study unbalance-range", t0))
+    if json_:
+        print_json(res)
+        return
+    typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x "
+               f"{nn} starts per ball; balls G{G_b:.3g}; target {grade_label(G)}")
+    for proc, d in res["cases"]["nominal"].items():
+        rng = ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in d["valid_ranges_grade_G_mm_s"]) \
+            or "none"
+        typer.echo(f"  {proc:>8}: valid initial unbalance {rng}; efficiency "
+                   f"{100 * d['efficiency']:.0f} %")
+
+
+@app.command("plateau")
+def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+            grade: GradeOpt = 16.0,
+            n: Annotated[Optional[int], typer.Option(
+                "--n", help="Start positions per ball (default 20; quick 8).")] = None,
+            ratios: Annotated[Optional[str], typer.Option(
+                "--ratios", help="Plateau speeds as multiples of the natural frequency, e.g. "
+                                 "'1.0,1.05,1.1,1.15' (default 0.96-1.12 every 0.01; quick "
+                                 "0.98,1.02,1.06,1.10).")] = None,
+            quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
+            plot: PlotOpt = None, scheduler: SchedulerOpt = None, workers: WorkersOpt = None,
+            executor: ExecutorOpt = None, json_: JsonOpt = False) -> None:
+    """The lower plateau of a temporary speed reduction: plateau x initial-unbalance map of the
+    95th percentile, the recommended plateau (004 sec. 4.6) and how sharp the optimum is.\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+        The options of every study (:mod:`autobalance.cli.study`); the profile must be a tsr.
+    n : int
+        Start positions per ball (>= 1).
+    ratios : str
+        Comma-separated plateau / natural-frequency ratios [-] (> 0).
+    """
+    from ..studies.plateau import compute_plateau, plateau_summary
+
+    t0 = time.perf_counter()
+    with guard(), _study_errors():
+        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
+                          store)
+        if n is not None and n < 1:
+            raise ConfigError(f"--n = {n}: must be an integer >= 1")
+        nn = n or (8 if quick else 20)
+        rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
+        ds = compute_plateau(cfg, n=nn, quick=quick, ratios=rr, store_dir=store,
+                             executor=executor or "local", workers=workers, scheduler=scheduler,
+                             prefix="study", progress=not json_)
+
+        def fig():
+            from ..plotting.tsr import plot_plateau
+
+            return plot_plateau(ds, G, f"{cfg.name}: lower plateau of the speed reduction")
+
+        res = {"study": "plateau", "machine": cfg.name, "n": nn, "grade_G_mm_s": G,
+               **plateau_summary(ds)}
+        p95 = res["p95_grade_G_mm_s"]
+        k = list(res["plateau_ratios"]).index(res["recommended_plateau_ratio"])
+        res["recommended_meets_grade_share"] = float((p95[k] <= G).mean())
+        res.update(_finish(ds, cfg, out, plot, fig, "study plateau", t0))
+    if json_:
+        print_json(res)
+        return
+    lo, hi = res["near_optimal_ratios"]
+    typer.echo(f"{cfg.name}: recommended plateau {_rpm(res['recommended_plateau_rad_s'])} = "
+               f"{res['recommended_plateau_ratio']:.3g} x the natural frequency; mean 95th "
+               f"percentile G{res['best_mean_p95_grade_G_mm_s']:.3g} over G_ini <= "
+               f"{ds.attrs['g_range']:.3g} mm/s")
+    typer.echo(f"  within {res['near_mm_s']:g} mm/s of the best: ratios {lo:.3g}-{hi:.3g}; "
+               "neighbours: " + ", ".join(f"{r:.3g} -> G{v:.3g}" for r, v in
+                                          res["neighbours_mean_p95_grade_G_mm_s"].items()))
+    if res["at_grid_edge"]:
+        typer.echo("  the best plateau is at the edge of the studied ratios: the optimum may lie "
+                   "outside (widen the range)")
+    typer.echo(f"  at the recommended plateau the 95th percentile meets {grade_label(G)} for "
+               f"{100 * res['recommended_meets_grade_share']:.0f} % of the initial grades studied")
+
+
+@app.command("immobility")
+def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+               grade: GradeOpt = 16.0,
+               g_ini: Annotated[Optional[float], typer.Option(
+                   "--g-ini", help="Initial unbalance grade [mm/s] (default: the machine's).")] = None,
+               mu_r: Annotated[str, typer.Option("--mu-r", help="Factors on the rolling "
+                                                 "resistance, e.g. '0.5,1,2'.")] = "1",
+               c_r: Annotated[str, typer.Option("--c-r", help="Factors on the suspension "
+                                                "damping, e.g. '0.5,1'.")] = "1",
+               n_conf: Annotated[int, typer.Option("--n-conf", help="Positions per ball.")] = 100,
+               quick: QuickOpt = False, out: OutOpt = None, plot: PlotOpt = None,
+               json_: JsonOpt = False) -> None:
+    """Immobility of balls at rest against speed and the stick threshold G*(speed) for this
+    machine's balls, friction and suspension (004 sec. 4.4-4.5; closed form, isotropic
+    suspension).\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, quick, out, plot, json_
+        The options of every study (:mod:`autobalance.cli.study`).
+    g_ini : float
+        Initial grade [mm/s] (default: the machine's unbalance at its nominal speed).
+    mu_r, c_r : str
+        Comma-separated factors [-] on the balls' rolling resistance and the suspension damping.
+    n_conf : int
+        Positions per ball (>= 2; n_conf^N configurations).
+    """
+    import numpy as np
+
+    from ..physics.iso1940 import grade_value
+    from ..studies.immobility import compute_immobility
+
+    t0 = time.perf_counter()
+    with guard():
+        cfg, G = _prepare(source, set_, profile, grade, plot, out)
+        s = cfg.system
+        gi = (float(grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed))
+              if g_ini is None else g_ini)
+        if not (math.isfinite(gi) and gi >= 0):
+            raise ConfigError(f"--g-ini = {g_ini}: must be a finite grade >= 0 [mm/s], e.g. 20")
+        if n_conf < 2:
+            raise ConfigError(f"--n-conf = {n_conf}: must be an integer >= 2")
+        mus, cs = _factors(mu_r, "--mu-r"), _factors(c_r, "--c-r")
+        ds = compute_immobility(cfg, G_ini=gi, mu_r=mus, c_r=cs, n_conf=n_conf, quick=quick,
+                                field="--n-conf")
+
+        def fig():
+            from ..plotting.tsr import plot_immobility
+
+            return plot_immobility(ds, f"{cfg.name}: immobility at G_ini = G{gi:.3g}")
+
+        w = 2 * np.pi * ds["speed"].values
+        imm = ds["immobility"].sel(mu_r=mus[0] if 1.0 not in mus else 1.0,
+                                   c_r=cs[0] if 1.0 not in cs else 1.0).values
+        k = int(np.argmin(imm))
+        res = {"study": "immobility", "machine": cfg.name, "G_ini_mm_s": gi, "grade_G_mm_s": G,
+               "speeds_rad_s": w, "immobility": imm,
+               "stick_threshold_grade_G_mm_s": ds["G_stick"].values,
+               "mu_r": mus, "c_r": cs, "immobility_by_case": ds["immobility"].values,
+               "least_immobility": float(imm[k]), "least_immobility_speed_rad_s": float(w[k]),
+               "natural_frequency_rad_s": 2 * np.pi * ds.attrs["f_n_hz"],
+               "nominal_speed_rad_s": cfg.spin.nominal_speed,
+               "stick_threshold_at_nominal_grade_G_mm_s": float(np.interp(
+                   cfg.spin.nominal_speed, w, ds["G_stick"].values))}
+        res.update(_finish(ds, cfg, out, plot, fig, "study immobility", t0))
+    if json_:
+        print_json(res)
+        return
+    typer.echo(f"{cfg.name} at G_ini = G{gi:.3g}: least immobility {100 * res['least_immobility']:.1f} % "
+               f"at {_rpm(res['least_immobility_speed_rad_s'])}; natural frequency "
+               f"{_rpm(res['natural_frequency_rad_s'])}")
+    gs = res["stick_threshold_at_nominal_grade_G_mm_s"]
+    typer.echo(f"  stick threshold at the nominal speed: G*{gs:.3g} mm/s "
+               f"({'below' if gs <= G else 'above'} the target {grade_label(G)}): balls that "
+               "stop at this speed leave about this grade")
+
+
+def _factors(spec: str, name: str) -> tuple:
+    """Comma-separated positive factors, e.g. '0.5,1,2'."""
+    try:
+        vals = tuple(float(x) for x in spec.split(",") if x.strip())
+    except ValueError:
+        raise ConfigError(f"{name} = {spec!r}: expected comma-separated numbers, e.g. '0.5,1,2'") from None
+    if not vals or any(not (math.isfinite(v) and v > 0) for v in vals):
+        raise ConfigError(f"{name} = {spec!r}: expected positive numbers, e.g. '0.5,1,2'")
+    return vals
