@@ -114,12 +114,22 @@ def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
     return done
 
 
-def _store(store: Optional[Path], name: str):
-    """The study's store directory under ``--store`` (created), or None."""
+def _store(store: Optional[Path], cfg, *parts) -> Optional[Path]:
+    """The study's directory under ``--store``: one per machine and study arguments (a short
+    digest of both), so that a rerun resumes its own sweeps and a changed machine starts new
+    ones beside them; None without ``--store``."""
     if store is None:
         return None
-    store.mkdir(parents=True, exist_ok=True)
-    return store / name
+    import hashlib
+    import json
+
+    from ..config import describe
+    from ..jsonable import to_jsonable
+
+    key = json.dumps(to_jsonable([describe(cfg), *parts]), sort_keys=True)
+    d = store / f"{parts[0]}-{hashlib.sha256(key.encode()).hexdigest()[:10]}"
+    d.mkdir(parents=True, exist_ok=True)
+    return d
 
 
 @app.command("start-positions")
@@ -160,7 +170,9 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
             if v is not None and v < 1:
                 raise ConfigError(f"{field} = {v}: must be an integer >= 1")
         ds = compute_start_positions(cfg, n=n, samples=samples, seed=seed, grade=G, quick=quick,
-                                     name="start-positions", store=_store(store, "start-positions"),
+                                     name="start-positions",
+                                     store=_store(store, cfg, "start-positions", n, samples, seed,
+                                                  quick),
                                      executor=executor or "local", workers=workers,
                                      scheduler=scheduler, progress=not json_)
 
@@ -169,7 +181,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
             return plot_start_positions(ds, f"{cfg.name}: grade over ball start positions")
 
-        res = start_positions_summary(ds)
+        res = {**start_positions_summary(ds), "machine": cfg.name}
         res.update(_finish(ds, cfg, out, plot, fig, "study start-positions", t0))
     if json_:
         print_json(res)
@@ -209,7 +221,7 @@ def start_positions_summary(ds) -> dict:
                        for q in (5, 50, 95)},
                     "mode_grade_G_mm_s": float(ds["grade_mode"].isel(checkpoint=i)),
                     "share_below_grade": float(ds["share_below_grade"].isel(checkpoint=i))})
-    out = {"study": "start-positions", "machine": a.get("base"), "grade_G_mm_s": a["grade"],
+    out = {"study": "start-positions", "grade_G_mm_s": a["grade"],
            "runs": a["runs"], "failed": a["failed"], "starts": a["starts"],
            "G_ini_mm_s": a["G_ini"], "G_balls_mm_s": a["G_balls"], "checkpoints": cps}
     if "region_share" in ds:
@@ -269,7 +281,8 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         top = 1.5 * G_b if g_max is None else g_max
         Gv = np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
         nn = n or default_starts(s.balancer.n_balls, quick)
-        ds = compute_unbalance(cfg, G=Gv, n=nn, store_dir=store, executor=executor or "local",
+        ds = compute_unbalance(cfg, G=Gv, n=nn,
+                               store_dir=_store(store, cfg, "unbalance-range", list(Gv)), executor=executor or "local",
                                workers=workers, scheduler=scheduler, prefix="study",
                                progress=not json_)
 
@@ -327,7 +340,8 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
             raise ConfigError(f"--n = {n}: must be an integer >= 1")
         nn = n or (8 if quick else 20)
         rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
-        ds = compute_plateau(cfg, n=nn, quick=quick, ratios=rr, store_dir=store,
+        ds = compute_plateau(cfg, n=nn, quick=quick, ratios=rr,
+                             store_dir=_store(store, cfg, "plateau", rr, quick),
                              executor=executor or "local", workers=workers, scheduler=scheduler,
                              prefix="study", progress=not json_)
 

@@ -242,7 +242,7 @@ def plateau_summary(ds, case: str | None = None, near: float = 1.0) -> dict:
     band = r[np.isfinite(m) & (m <= m[k] + near)]
     return {"case": case, "recommended_plateau_ratio": float(r[k]),
             "recommended_plateau_rad_s": float(r[k] * wn), "natural_frequency_rad_s": wn,
-            "best_mean_p95_grade_G_mm_s": float(m[k]),
+            "best_mean_p95_grade_G_mm_s": float(m[k]), "G_balls_mm_s": float(ds.attrs["G_balls"]),
             "neighbours_mean_p95_grade_G_mm_s": nb,
             "near_optimal_ratios": [float(band.min()), float(band.max())],
             "at_grid_edge": bool(k in (0, r.size - 1)),
