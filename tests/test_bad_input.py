@@ -196,7 +196,7 @@ def test_resource_checks_pass_the_presets():
 
 
 def test_immobility_n_conf_is_refused_before_allocating():
-    r = run("analyze", "immobility", "--n-conf", "1000000")
+    r = run("study", "immobility", "vub_jeffcott_004", "--n-conf", "1000000")
     assert_refused(r, "--n-conf")
     from autobalance.papers.p004.tsr import immobility
 
@@ -283,7 +283,7 @@ def test_analyze_plot_is_checked_first(tmp_path):
     assert_refused(r, "--plot")
     r = run("analyze", "forces", "washer_000", "--damping-plot", tmp_path / "none" / "f.png")
     assert_refused(r, "--damping-plot")
-    r = run("analyze", "immobility", "--plot", tmp_path)
+    r = run("study", "immobility", "vub_jeffcott_004", "--plot", tmp_path)
     assert_refused(r, "--plot")
 
 

@@ -365,11 +365,14 @@ runner = CliRunner()
 @pytest.mark.slow
 def test_cli_immobility_json_and_plot(tmp_path):
     png = tmp_path / "im.png"
-    r = runner.invoke(app, ["analyze", "immobility", "--json", "--plot", str(png), "--mu-r", "0.5,1",
-                            "--c-r", "1,1.4", "--n-conf", "24"])
+    r = runner.invoke(app, ["study", "immobility", "vub_jeffcott_004", "--json", "--plot", str(png),
+                            "--mu-r", "0.5,1", "--c-r", "1,1.4", "--n-conf", "24"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
-    assert len(d["rows"]) == 4 and np.asarray(d["immobility"]).shape[:2] == (2, 2)
+    # the machine's own grade (ISO 1940 with the total mass): 1e3 U / (M + 2 m) Omega_nom
+    assert d["G_ini_mm_s"] == pytest.approx(1e3 * 0.319029e-3 / (16.53 + 2 * 0.0076)
+                                            * 2 * np.pi * 167, rel=1e-9)
+    assert np.asarray(d["immobility_by_case"]).shape[:2] == (2, 2)
     assert png.stat().st_size > 1000 and d["plot"] == str(png)
 
 
@@ -413,8 +416,8 @@ def test_cli_reproduce_monte_carlo_json_resumes(quick_report, report_targets, tm
     (["reproduce", "004", "--workers", "0"], "--workers"),
     (["reproduce", "004", "--executor", "threads"], "--executor"),
     (["reproduce", "004", "--executor", "dask"], "--scheduler"),
-    (["analyze", "immobility", "--c-r", "-1"], "--c-r"),
-    (["analyze", "immobility", "--g-ini", "-3"], "--g-ini"),
+    (["study", "immobility", "vub_jeffcott_004", "--c-r", "-1"], "--c-r"),
+    (["study", "immobility", "vub_jeffcott_004", "--g-ini", "-3"], "--g-ini"),
 ])
 def test_cli_bad_input_one_line_exit_2(args, word, monkeypatch):
     monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)

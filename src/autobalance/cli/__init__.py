@@ -26,7 +26,7 @@ __all__ = ["app", "main"]
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
                   help="Simulate and design passive automatic balancers: presets, show, simulate, "
-                       "response, sweep, analyze, liquid, reproduce, demo.")
+                       "response, sweep, study, analyze, liquid, reproduce, demo.")
 
 app.command()(machine.presets)
 app.command()(machine.show)
@@ -36,7 +36,7 @@ app.command("sweep")(sweep.sweep_cmd)
 app.command()(machine.demo)
 app.add_typer(analyze.app, name="analyze",
               help="Washer analysis (seed 000): response, vibratory forces, equilibria, error "
-                   "bounds, tolerance design, kinetic-static model, studies; 004 immobility.")
+                   "bounds, tolerance design, kinetic-static model, studies.")
 app.add_typer(study.app, name="study",
               help="Design studies of any machine: start positions, unbalance range, TSR "
                    "plateau, immobility.")

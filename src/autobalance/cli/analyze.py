@@ -1,10 +1,9 @@
-"""``autobalance analyze ...``: the seed-000 washer analysis and 004's immobility on the command
-line.
+"""``autobalance analyze ...``: the seed-000 washer analysis on the command line.
 
-Subcommands: response, forces, equilibria, bounds, tolerance, kinetic-static, washer-study,
-immobility (004 Fig. 8, 10). Every one takes ``--json`` (one JSON object, SI, unit-suffixed
-keys) and, where useful, ``--plot FILE.png``. Input errors print one line ``error: ...`` on
-stderr and exit with code 2.
+Subcommands: response, forces, equilibria, bounds, tolerance, kinetic-static, washer-study
+(004's immobility is ``autobalance study immobility``, for any machine). Every one takes
+``--json`` (one JSON object, SI, unit-suffixed keys) and, where useful, ``--plot FILE.png``.
+Input errors print one line ``error: ...`` on stderr and exit with code 2.
 
 The options of every analysis of a machine: ``source`` (``PRESET|CONFIG``) and ``set_``
 (``--set PATH=VALUE``) as in :mod:`autobalance.cli.common`; ``speed`` (``--speed``) the spin
@@ -302,59 +301,3 @@ def washer_study(which: Annotated[str, typer.Argument(help="fig13, fig16, fig18,
         return
     _echo_rows(rows)
     typer.echo(f"{n_ok} of {len(rows)} within tolerance")
-
-
-def _floats(spec: str, name: str) -> tuple:
-    try:
-        vals = tuple(float(x) for x in spec.split(",") if x.strip())
-    except ValueError:
-        raise ConfigError(f"{name} = {spec!r}: expected comma-separated numbers, e.g. '0.5,1,2'") from None
-    if not vals or any(not (v > 0) for v in vals):
-        raise ConfigError(f"{name} = {spec!r}: expected positive numbers, e.g. '0.5,1,2'")
-    return vals
-
-
-@app.command("immobility")
-def immobility_cmd(g_ini: Annotated[float, typer.Option("--g-ini", help="Initial unbalance grade "
-                                                                        "[mm/s] (004: 20).")] = 20.0,
-                   mu_r: Annotated[str, typer.Option("--mu-r", help="Friction factors mu/mu_ref.")] = "0.25,0.5,1,2,5",
-                   c_r: Annotated[str, typer.Option("--c-r", help="Damping factors c/c_ref.")] = "0.5,0.6,1,1.4",
-                   n_conf: Annotated[int, typer.Option("--n-conf", help="Positions per ball.")] = 100,
-                   plot: PlotOpt = None, json_: JsonOpt = False) -> None:
-    """004 Fig. 8/10: share of ball configurations at rest that cannot move, vs speed
-    (closed form, no time integration), with the rows checking 004's statements.\f
-
-    Parameters
-    ----------
-    g_ini : float
-        Initial unbalance grade G [mm/s], finite and >= 0.
-    mu_r, c_r : str
-        Comma-separated friction factors mu/mu_ref and damping factors c/c_ref [-].
-    n_conf : int
-        Positions per ball (>= 2; n_conf^N configurations).
-    plot : str
-        PNG file: the immobility against speed.
-    json_ : bool
-        Print one JSON object instead of the comparison rows.
-    """
-    from ..papers.p004.tsr import compare_immobility, compute_immobility
-
-    with guard():
-        if not (math.isfinite(g_ini) and g_ini >= 0):
-            raise ConfigError(f"--g-ini = {g_ini}: must be a finite grade >= 0 [mm/s], e.g. 20")
-        if n_conf < 2:
-            raise ConfigError(f"--n-conf = {n_conf}: must be an integer >= 2")
-        check_plot(plot)
-        # refuses an n_conf^N grid beyond the memory / run-time limit before allocating it
-        ds = compute_immobility(G_ini=g_ini, mu_r=_floats(mu_r, "--mu-r"), c_r=_floats(c_r, "--c-r"),
-                                n_conf=n_conf, field="--n-conf")
-        rows = compare_immobility(ds)
-        from ..plotting.tsr import plot_immobility
-
-        fig = _save(plot_immobility(ds), plot) if plot else None
-    if json_:
-        print_json({"G_ini_mm_s": g_ini, "speed_hz": ds["speed"].values,
-                    "mu_r": ds["mu_r"].values, "c_r": ds["c_r"].values,
-                    "immobility": ds["immobility"].values, "rows": rows, "plot": fig})
-        return
-    _echo_rows(rows)
