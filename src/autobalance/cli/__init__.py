@@ -26,7 +26,7 @@ __all__ = ["app", "main"]
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
                   help="Simulate and design passive automatic balancers: presets, show, simulate, "
-                       "response, sweep, study, analyze, liquid, reproduce, demo.")
+                       "response, sweep, study, design, analyze, liquid, reproduce, demo.")
 
 app.command()(machine.presets)
 app.command()(machine.show)
@@ -40,6 +40,7 @@ app.add_typer(analyze.app, name="analyze",
 app.add_typer(study.app, name="study",
               help="Design studies of any machine: start positions, unbalance range, TSR "
                    "plateau, immobility.")
+app.command("design")(study.design)
 app.command("reproduce")(reproduce.reproduce)
 app.add_typer(liquid.app, name="liquid",
               help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "

@@ -460,3 +460,136 @@ def _factors(spec: str, name: str) -> tuple:
     if not vals or any(not (math.isfinite(v) and v > 0) for v in vals):
         raise ConfigError(f"{name} = {spec!r}: expected positive numbers, e.g. '0.5,1,2'")
     return vals
+
+
+def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+           grade: GradeOpt = 16.0,
+           confidence: Annotated[float, typer.Option(
+               "--confidence", help="Share of start positions that must meet the grade at "
+                                    "every unbalance of the range.")] = 0.95,
+           unbalance: Annotated[Optional[str], typer.Option(
+               "--unbalance", metavar="LO:HI", help="Expected initial unbalance range, e.g. "
+                                                    "'3 g*cm:9 g*cm' (default 0.5-1.5 x the "
+                                                    "machine's).")] = None,
+           balls: Annotated[Optional[str], typer.Option(
+               "--balls", help="Ball counts to try, e.g. '2,3'.")] = None,
+           capacity: Annotated[Optional[str], typer.Option(
+               "--capacity", help="Ball capacity N m R as multiples of the largest unbalance, "
+                                  "e.g. '1.1,1.4,2'.")] = None,
+           radii: Annotated[Optional[str], typer.Option(
+               "--radii", help="Race radii to try, e.g. '40 mm,50 mm' (default the "
+                               "machine's).")] = None,
+           profiles: Annotated[Optional[str], typer.Option(
+               "--profiles", help="Speed profiles to try: std, slow (3x slower run-up), tsr "
+                                  "(default all three; quick std,tsr).")] = None,
+           starts: Annotated[Optional[int], typer.Option(
+               "--starts", help="Random start positions per unbalance and design (default "
+                                "40; quick 10).")] = None,
+           n_unbalance: Annotated[Optional[int], typer.Option(
+               "--n-unbalance", help="Unbalances across the range (default 4; quick 3).")] = None,
+           seed: Annotated[int, typer.Option("--seed", help="Seed of the start positions.")] = 0,
+           quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
+           plot: PlotOpt = None, scheduler: SchedulerOpt = None, workers: WorkersOpt = None,
+           executor: ExecutorOpt = None, json_: JsonOpt = False) -> None:
+    """Design a ball balancer and speed profile: ball count, ball mass, race radius and
+    profile that meet --grade at --confidence over an initial-unbalance range, cheapest first,
+    with the Pareto front and each design's margin.\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+        The options of every study (:mod:`autobalance.cli.study`).
+    confidence : float
+        Required share of start positions [-] in (0, 1).
+    unbalance : str
+        "LO:HI" with units of an unbalance (bare numbers: kg*m).
+    balls, capacity : str
+        Comma-separated ball counts (integers >= 1) and capacity ratios (> 1).
+    radii : str
+        Comma-separated race radii (lengths; bare numbers: m).
+    profiles : str
+        Comma-separated profile variants (std, slow, tsr).
+    starts, n_unbalance : int
+        Random starts per unbalance and design; unbalances across the range (>= 1).
+    seed : int
+        Seed of the start positions.
+    """
+    from ..config import parse_quantity
+    from ..studies.design import DesignSpace, compute_design, design_summary
+
+    t0 = time.perf_counter()
+    with guard(), _study_errors():
+        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
+                          store)
+        if not (math.isfinite(confidence) and 0 < confidence < 1):
+            raise ConfigError(f"--confidence = {confidence:g}: must be within (0, 1), e.g. 0.95")
+        rng = None
+        if unbalance is not None:
+            parts = unbalance.split(":")
+            if len(parts) != 2:
+                raise ConfigError(f"--unbalance = {unbalance!r}: expected LO:HI, e.g. "
+                                  "'3 g*cm:9 g*cm'")
+            rng = tuple(parse_quantity(p.strip(), "unbalance", "--unbalance") for p in parts)
+            if not (0 <= rng[0] <= rng[1] and rng[1] > 0):
+                raise ConfigError(f"--unbalance = {unbalance!r}: must be 0 <= LO <= HI, HI > 0")
+        space = DesignSpace.quick() if quick else DesignSpace()
+        kw = {}
+        if balls is not None:
+            nb = _factors(balls, "--balls")
+            if any(int(v) != v for v in nb):
+                raise ConfigError(f"--balls = {balls!r}: expected integers >= 1, e.g. '2,3'")
+            kw["n_balls"] = tuple(int(v) for v in nb)
+        if capacity is not None:
+            cr = _factors(capacity, "--capacity")
+            if min(cr) <= 1:
+                raise ConfigError(f"--capacity = {capacity!r}: ratios must exceed 1 (a smaller "
+                                  "capacity cannot balance the largest unbalance)")
+            kw["capacity_ratios"] = cr
+        if radii is not None:
+            kw["radii"] = tuple(parse_quantity(r.strip(), "length", "--radii")
+                                for r in radii.split(",") if r.strip())
+            if not kw["radii"] or min(kw["radii"]) <= 0:
+                raise ConfigError(f"--radii = {radii!r}: expected positive lengths")
+        if profiles is not None:
+            names = tuple(p.strip() for p in profiles.split(",") if p.strip())
+            bad = [p for p in names if p not in ("std", "slow", "tsr")]
+            if bad or not names:
+                raise ConfigError(f"--profiles = {profiles!r}: must be from std, slow, tsr")
+            kw["profiles"] = names
+        for field, v in (("--starts", starts), ("--n-unbalance", n_unbalance)):
+            if v is not None and v < 1:
+                raise ConfigError(f"{field} = {v}: must be an integer >= 1")
+        import dataclasses
+
+        space = dataclasses.replace(space, **kw)
+        ds = compute_design(cfg, grade=G, confidence=confidence, unbalance_range=rng,
+                            n_unbalance=n_unbalance or (3 if quick else 4),
+                            starts=starts or (10 if quick else 40), space=space, seed=seed,
+                            store_dir=_store(store, cfg, "design", rng, space, starts, seed),
+                            executor=executor or "local", workers=workers, scheduler=scheduler,
+                            progress=not json_)
+
+        def fig():
+            from ..plotting.tsr import plot_design
+
+            return plot_design(ds, f"{cfg.name}: designs for {grade_label(G)} at "
+                                   f"{100 * confidence:g} %")
+
+        res = {"study": "design", "machine": cfg.name, **design_summary(ds)}
+        res.update(_finish(ds, cfg, out, plot, fig, "design", t0))
+    if json_:
+        print_json(res)
+        return
+    u = res["unbalance_kg_m"]
+    typer.echo(f"{cfg.name}: {res['n_designs']} designs x {len(u)} unbalances "
+               f"({1e3 * u[0]:.3g}-{1e3 * u[-1]:.3g} g*m, G{res['G_ini_mm_s'][0]:.3g}-"
+               f"G{res['G_ini_mm_s'][-1]:.3g}) x {res['starts']} starts = {res['simulations']} "
+               f"simulations; target {grade_label(G)} for {100 * confidence:g} % of starts")
+    typer.echo(f"  {res['n_meeting']} designs meet the target" + (
+        f"; cheapest: {res['best']['name']} (margin {res['best']['margin_grade_G_mm_s']:.2f} mm/s)"
+        if res["best"] else ""))
+    for r in res["designs"]:
+        typer.echo(f"  {'meets' if r['meets'] else 'fails'} {r['name']:>24}: balls "
+                   f"{1e3 * r['total_ball_mass_kg']:.3g} g, worst {100 * confidence:g} % grade "
+                   f"G{r['worst_quantile_grade_G_mm_s']:.3g}, margin "
+                   f"{r['margin_grade_G_mm_s']:+.2f} mm/s" + ("  (Pareto)" if r["pareto"] else ""))

@@ -286,3 +286,33 @@ def plot_start_positions(ds, title: str | None = None) -> Figure:
                                zip(ds["region"].values, ds["region_share"].values)), fontsize=8)
     fig.suptitle(title or "Start-position Monte Carlo")
     return fig
+
+
+def plot_design(ds, title: str | None = None) -> Figure:
+    """The design search (:func:`autobalance.studies.design.compute_design`): each design's worst
+    quantile of the final grade against its total ball mass, by profile, the Pareto front
+    joined and the target grade dotted; and each design's quantile against the initial grade."""
+    fig, (a1, a2) = _fig(2, w=5.5)
+    mass = 1e3 * ds["total_ball_mass"].values
+    worst = ds["worst_quantile"].values
+    prof = ds["profile"].values
+    for p, mk in zip(dict.fromkeys(prof), "osd^v"):
+        k = prof == p
+        a1.scatter(mass[k], worst[k], marker=mk, label=p)
+    par = np.flatnonzero(ds["pareto"].values)
+    par = par[np.argsort(mass[par])]
+    a1.plot(mass[par], worst[par], "k-", lw=0.8, label="Pareto front")
+    a1.axhline(ds.attrs["grade"], color="r", ls=":", lw=1, label=f"target G{ds.attrs['grade']:g}")
+    a1.set_xlabel("total ball mass [g]")
+    a1.set_ylabel(f"worst {100 * ds.attrs['confidence']:g} % grade [mm/s]")
+    a1.legend(fontsize=7)
+    gi = ds["G_ini"].values
+    for k in np.argsort(ds["rank"].values)[:6]:
+        a2.plot(gi, ds["quantile"].values[k], "o-", ms=3, lw=1, label=str(ds["design"].values[k]))
+    a2.axhline(ds.attrs["grade"], color="r", ls=":", lw=1)
+    a2.set_xlabel("initial unbalance G_ini [mm/s]")
+    a2.set_ylabel(f"{100 * ds.attrs['confidence']:g} % grade [mm/s]")
+    a2.legend(fontsize=6)
+    a2.set_title("the six best ranked designs", fontsize=9)
+    fig.suptitle(title or "Design search")
+    return fig

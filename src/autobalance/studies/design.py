@@ -1,0 +1,313 @@
+"""The inverse problem: which ball balancer and speed profile meet a target grade for a machine
+whose initial unbalance is only known to lie in a range.
+
+For every candidate design - ball count N, ball mass m (from the balls' capacity N m R as a
+multiple of the largest expected unbalance), race radius R and speed profile (the machine's
+standard run-up, a 3x slower run-up, a temporary speed reduction; 004 sec. 4.4-4.6) - the
+machine is simulated from uniform random ball start positions at initial unbalances spread over
+the range (004 sec. 4.2-4.3's statistics, generalised). A design *meets the target* when, at
+every studied unbalance, the ``confidence`` quantile of the final grade over the starts is at or
+below the target grade; its *margin* is the target minus the worst such quantile [mm/s]. The
+designs are ranked cheapest first (least total ball mass, then shortest profile) and the Pareto
+front of (total ball mass, worst quantile) is marked.
+
+Sizing rules (ours, stated): a capacity below the largest unbalance cannot balance it (004 sec.
+4.3: the residual is at least U - N m R); 004 sec. 4.3 also finds that an over-sized balancer
+balances poorly, hence capacity ratios from 1.1 to 2. Steel balls keep their density: the ball
+radius scales with the cube root of the mass. The TSR plateau is 1.06 x the first natural
+frequency (004 sec. 3.2 chooses a plateau just above resonance; :mod:`.plateau` refines it).
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..models import ParameterError
+from ..physics.iso1940 import grade_value
+from .start_positions import load, run_start_grid, store_path
+
+__all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary",
+           "profile_variants"]
+
+#: TSR plateau of the candidate profiles as a multiple of the first natural frequency [-].
+PLATEAU_RATIO = 1.06
+
+
+@dataclass(frozen=True)
+class DesignSpace:
+    """The candidates the design search tries.
+
+    Attributes
+    ----------
+    n_balls : tuple of int
+        Ball counts N (>= 1).
+    capacity_ratios : tuple of float
+        Capacity N m R over the largest expected unbalance [-] (> 1).
+    radii : tuple of float or None
+        Race radii R [m]; None = the machine's.
+    profiles : tuple of str
+        Speed profiles from :func:`profile_variants`: "given", "std", "slow", "tsr".
+    """
+
+    n_balls: tuple = (2, 3)
+    capacity_ratios: tuple = (1.1, 1.4, 2.0)
+    radii: tuple | None = None
+    profiles: tuple = ("std", "slow", "tsr")
+
+    @classmethod
+    def quick(cls) -> "DesignSpace":
+        """A small space for a first look: 2 or 3 balls, capacity 1.2 or 1.8 x, std or tsr."""
+        return cls(n_balls=(2, 3), capacity_ratios=(1.2, 1.8), profiles=("std", "tsr"))
+
+
+def profile_variants(cfg) -> dict:
+    """The speed profiles a design may use, as ``--set`` overrides of the machine's profile
+    (004 sec. 4.4: the standard run-up, a 3x slower run-up; 004 sec. 3.2: a temporary speed
+    reduction to :data:`PLATEAU_RATIO` x the first natural frequency for 10/20/10 s).
+
+    Only a std or tsr profile has variants; any other profile kind gives {"given": []}.
+
+    Parameters
+    ----------
+    cfg : Config
+        The machine (its ``spin``: nominal speed [rad/s], run-up time and read-out [s]).
+
+    Returns
+    -------
+    dict of str to list of str
+        Variant name -> "path=value" overrides (SI numbers).
+    """
+    spin = cfg.spin
+    if getattr(spin, "name", "") not in ("std", "tsr"):
+        return {"given": []}
+    wn = spin.nominal_speed
+    t_ru, t_read, dur = float(spin.times[1]), float(spin.checkpoints[0]), float(spin.duration)
+    std_dur = max(dur if spin.name == "std" else t_read * 1.5, t_read)
+    slow_ru = 3.0 * t_ru
+    slow_dur = max(std_dur, slow_ru + (std_dur - t_read))
+    tsr_dur = max(dur if spin.name == "tsr" else 0.0, t_read + 40.0 + max(10.0, std_dur - t_read))
+    wp = PLATEAU_RATIO * cfg.system.natural_frequencies[0]
+    out = {
+        "std": ["profile.kind=std", f"profile.nominal={wn!r}", f"profile.runup_time={t_ru!r}",
+                f"profile.duration={std_dur!r}", f"profile.runup_fraction={t_read / std_dur!r}"],
+        "slow": ["profile.kind=std", f"profile.nominal={wn!r}", f"profile.runup_time={slow_ru!r}",
+                 f"profile.duration={slow_dur!r}",
+                 f"profile.runup_fraction={slow_ru / slow_dur!r}"],
+    }
+    if wp < wn:
+        out["tsr"] = ["profile.kind=tsr", f"profile.nominal={wn!r}", f"profile.runup_time={t_ru!r}",
+                      f"profile.duration={tsr_dur!r}", f"profile.runup_fraction={t_read / tsr_dur!r}",
+                      f"profile.plateau={wp!r}", "profile.down_time=10.0",
+                      "profile.plateau_time=20.0", "profile.up_time=10.0"]
+    return out
+
+
+def candidate_designs(cfg, space: DesignSpace, U_max: float) -> list:
+    """Every candidate of ``space`` for a largest expected unbalance ``U_max`` [kg*m].
+
+    Parameters
+    ----------
+    cfg : Config
+        The machine; its balancer (if any) gives the ball radius, element, damping and rolling
+        resistance of ball 1, which every candidate keeps (ball radius scaled as m^(1/3)).
+    space : DesignSpace
+        The candidates to try.
+    U_max : float
+        Largest expected initial unbalance [kg*m], > 0.
+
+    Returns
+    -------
+    list of dict
+        name, n_balls, ball_mass [kg], race_radius [m], capacity [kg*m], profile, duration
+        [s] and sets (the "path=value" overrides that make the candidate from the machine).
+    """
+    b = cfg.system.balancer
+    variants = profile_variants(cfg)
+    radii = space.radii or (b.race_radius,)
+    m0, r0 = (float(b.masses[0]), b.ball_radius) if b.n_balls else (None, b.ball_radius)
+    # ball 1's friction and damping (a machine without balls: 004 Table 1's mu_ref, no damping)
+    mu = float(b.rolling_resistance[0]) if b.n_balls else 0.002
+    mu_s = float(np.max(b.stiction)) if b.n_balls else mu
+    damping = float(b.damping[0]) if b.n_balls else 0.0
+    out = []
+    for N in space.n_balls:
+        for ratio in space.capacity_ratios:
+            for R in radii:
+                m = ratio * U_max / (N * R)
+                r_ball = r0 if m0 is None else r0 * (m / m0) ** (1.0 / 3.0)
+                ball = [f"balancer.n_balls={N}", f"balancer.ball_mass={m!r}",
+                        f"balancer.race_radius={R!r}", f"balancer.ball_radius={r_ball!r}",
+                        f"balancer.rolling_resistance={mu!r}", f"balancer.stiction={mu_s!r}",
+                        f"balancer.damping={damping!r}",
+                        "initial.ball_angles=[" + ", ".join(
+                            repr(2 * math.pi * k / N) for k in range(N)) + "]"]
+                for prof in space.profiles:
+                    if prof not in variants:
+                        continue
+                    sets = ball + variants[prof]
+                    dur = float(load(cfg, sets).spin.duration)
+                    out.append({"name": f"{N}x{1e3 * m:.3g}g-R{1e3 * R:.3g}mm-{prof}",
+                                "n_balls": N, "ball_mass": m, "race_radius": R,
+                                "capacity": N * m * R, "capacity_ratio": ratio,
+                                "profile": prof, "duration": dur, "sets": sets})
+    return out
+
+
+def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
+                   unbalance_range: tuple | None = None, n_unbalance: int = 4, starts: int = 20,
+                   space: DesignSpace | None = None, quick: bool = False, seed: int = 0,
+                   store_dir=None, executor="local", workers=None, scheduler=None,
+                   progress: bool = False):
+    """Search ball count, ball mass, race radius and speed profile for designs that meet a target
+    grade over a range of initial unbalances (module docstring).
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine (with or without a balancer).
+    grade : float
+        Target ISO 1940 grade [mm/s] at the nominal speed.
+    confidence : float
+        Share of start positions that must meet the target at every studied unbalance [-], in
+        (0, 1) (default 0.95, as 004's 95th percentile).
+    unbalance_range : (float, float) or None
+        Expected initial unbalance [kg*m] (lo, hi), 0 <= lo <= hi, hi > 0; None = 0.5-1.5 x the
+        machine's.
+    n_unbalance : int
+        Unbalances studied across the range (>= 1; the ends included).
+    starts : int
+        Uniform random ball start positions per unbalance and design (>= 1).
+    space : DesignSpace or None
+        The candidates; None = :class:`DesignSpace` (quick: :meth:`DesignSpace.quick`).
+    quick : bool
+        The small space, 3 unbalances and 10 starts unless given.
+    seed : int
+        Seed of the start positions (the same starts for every design).
+    store_dir, executor, workers, scheduler, progress
+        Where the sweeps run and are kept (one resumable store per design under ``store_dir``),
+        as for :func:`autobalance.studies.start_positions.run_start_grid`.
+
+    Returns
+    -------
+    xarray.Dataset
+        grade_G [mm/s] over (design, unbalance, sample) at the last read-out; per design and
+        unbalance the quantile [mm/s]; per design worst_quantile, margin [mm/s], meets, rank and
+        pareto; attrs with the search's counts (simulations run) and settings.
+    """
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    cfg = load(base)
+    if not (0.0 < confidence < 1.0):
+        raise ParameterError("confidence", confidence, "must be within (0, 1), e.g. 0.95")
+    for name, v in (("n_unbalance", n_unbalance), ("starts", starts)):
+        if isinstance(v, bool) or int(v) != v or v < 1:
+            raise ParameterError(name, v, "must be an integer >= 1")
+    U0 = cfg.system.rotor.unbalance
+    lo, hi = (0.5 * U0, 1.5 * U0) if unbalance_range is None else map(float, unbalance_range)
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo <= hi and hi > 0):
+        raise ParameterError("unbalance_range", (lo, hi), "must be 0 <= lo <= hi with hi > 0 [kg*m]")
+    space = space or (DesignSpace.quick() if quick else DesignSpace())
+    if quick and unbalance_range is not None and n_unbalance == 4:
+        n_unbalance = 3
+    Us = np.linspace(lo, hi, n_unbalance) if n_unbalance > 1 else np.array([hi])
+    cands = candidate_designs(cfg, space, hi)
+    if not cands:
+        raise ParameterError("profiles", space.profiles, f"none applies to this machine's "
+                             f"profile; available: {', '.join(profile_variants(cfg))}")
+    M, wn = cfg.system.total_mass, cfg.spin.nominal_speed
+    g = np.full((len(cands), Us.size, starts), np.nan)
+    for i, c in enumerate(cands):
+        # the candidate as a base of its own: its ball count changes the initial angles, which a
+        # random Monte Carlo may not take as overrides
+        raw = run_start_grid(load(cfg, c["sets"]), f"design-{c['name']}", (),
+                             {"rotor.unbalance": [float(u) for u in Us]}, 0, samples=starts,
+                             seed=seed, store=store_path(store_dir, f"design-{c['name']}"),
+                             executor=executor, workers=workers, scheduler=scheduler,
+                             progress=progress)
+        gi = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
+        g[i] = gi.transpose("rotor__unbalance", "sample").values
+    # grades at the machine's nominal speed and total mass with the candidate's balls
+    quant = np.nanquantile(g, confidence, axis=2)                          # (design, U)
+    worst = quant.max(axis=1)
+    margin = grade - worst
+    meets = margin >= 0
+    ball_mass = np.array([c["n_balls"] * c["ball_mass"] for c in cands])
+    dur = np.array([c["duration"] for c in cands])
+    order = sorted(range(len(cands)), key=lambda k: (not meets[k], ball_mass[k], dur[k], worst[k]))
+    rank = np.empty(len(cands), int)
+    rank[order] = np.arange(len(cands))
+    pareto = np.array([not any((ball_mass[j] <= ball_mass[k]) and (worst[j] <= worst[k])
+                               and ((ball_mass[j] < ball_mass[k]) or (worst[j] < worst[k]))
+                               for j in range(len(cands))) for k in range(len(cands))])
+    G_u = grade_value(Us, M, wn)
+    ds = xr.Dataset(
+        {"grade_G": (("design", "unbalance", "sample"), g, {"units": "mm/s",
+                                                            "long_name": "grade at the last read-out"}),
+         "quantile": (("design", "unbalance"), quant, {"units": "mm/s",
+                                                       "long_name": f"{100 * confidence:g} % quantile over starts"}),
+         "worst_quantile": ("design", worst, {"units": "mm/s"}),
+         "margin": ("design", margin, {"units": "mm/s", "long_name": "target - worst quantile"}),
+         "meets": ("design", meets), "rank": ("design", rank), "pareto": ("design", pareto),
+         "n_balls": ("design", [c["n_balls"] for c in cands]),
+         "ball_mass": ("design", [c["ball_mass"] for c in cands], {"units": "kg"}),
+         "total_ball_mass": ("design", ball_mass, {"units": "kg"}),
+         "race_radius": ("design", [c["race_radius"] for c in cands], {"units": "m"}),
+         "capacity": ("design", [c["capacity"] for c in cands], {"units": "kg*m"}),
+         "profile": ("design", [c["profile"] for c in cands]),
+         "duration": ("design", dur, {"units": "s"})},
+        coords={"design": [c["name"] for c in cands],
+                "unbalance": ("unbalance", Us, {"units": "kg*m"}),
+                "G_ini": ("unbalance", np.atleast_1d(G_u), {"units": "mm/s"})})
+    ds.attrs.update({"study": "design", "grade": float(grade), "confidence": float(confidence),
+                     "starts": int(starts), "seed": int(seed), "n_designs": len(cands),
+                     "simulations": int(g.size), "failed": int(np.isnan(g).sum()),
+                     "profiles": "; ".join(f"{k}: {' '.join(v)}" for k, v in
+                                           profile_variants(cfg).items()),
+                     "wall_s": time.perf_counter() - t0})
+    return ds
+
+
+def design_summary(ds, top: int = 5) -> dict:
+    """JSON-ready summary of a :func:`compute_design` result: the designs in rank order (the
+    first ``top`` in full), the Pareto front and the counts.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A :func:`compute_design` result.
+    top : int
+        Designs listed in full.
+
+    Returns
+    -------
+    dict
+        grade_G_mm_s, confidence, simulations, designs (name, n_balls, ball_mass_kg,
+        total_ball_mass_kg, race_radius_m, capacity_kg_m, profile, duration_s,
+        worst_quantile_grade_G_mm_s, margin_grade_G_mm_s, meets, pareto), pareto (names),
+        best (the first design that meets the target, or None).
+    """
+    order = np.argsort(ds["rank"].values)
+    rows = []
+    for k in order:
+        d = ds.isel(design=int(k))
+        rows.append({"name": str(d["design"].values), "n_balls": int(d["n_balls"]),
+                     "ball_mass_kg": float(d["ball_mass"]),
+                     "total_ball_mass_kg": float(d["total_ball_mass"]),
+                     "race_radius_m": float(d["race_radius"]), "capacity_kg_m": float(d["capacity"]),
+                     "profile": str(d["profile"].values), "duration_s": float(d["duration"]),
+                     "worst_quantile_grade_G_mm_s": float(d["worst_quantile"]),
+                     "margin_grade_G_mm_s": float(d["margin"]), "meets": bool(d["meets"]),
+                     "pareto": bool(d["pareto"]),
+                     "quantile_grade_G_mm_s": d["quantile"].values})
+    best = next((r for r in rows if r["meets"]), None)
+    return {"grade_G_mm_s": ds.attrs["grade"], "confidence": ds.attrs["confidence"],
+            "unbalance_kg_m": ds["unbalance"].values, "G_ini_mm_s": ds["G_ini"].values,
+            "starts": ds.attrs["starts"], "simulations": ds.attrs["simulations"],
+            "failed": ds.attrs["failed"], "n_designs": ds.attrs["n_designs"],
+            "n_meeting": int(ds["meets"].sum()), "best": best,
+            "pareto": [r["name"] for r in rows if r["pareto"]],
+            "designs": rows[:top], "all_designs": [r["name"] for r in rows]}
