@@ -235,7 +235,9 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
     worst = quant.max(axis=1)
     margin = grade - worst
     meets = margin >= 0
+    # total ball mass, rounded to 1e-9 relative so that equal designs (2 x 3m/2 = 3 x m) tie
     ball_mass = np.array([c["n_balls"] * c["ball_mass"] for c in cands])
+    ball_mass = np.array([float(f"{x:.9e}") for x in ball_mass])
     dur = np.array([c["duration"] for c in cands])
     order = sorted(range(len(cands)), key=lambda k: (not meets[k], ball_mass[k], dur[k], worst[k]))
     rank = np.empty(len(cands), int)
