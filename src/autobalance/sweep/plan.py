@@ -277,6 +277,9 @@ def _base_builder(spec: SweepSpec):
 
 
 _PER_BALL = ("ball_mass", "damping", "rolling_resistance", "stiction")
+#: The keys that follow a balancer.n_balls grid axis (:func:`_follow_n_balls`).
+_FOLLOW = tuple(f"balancer.{k}" for k in _PER_BALL) + ("initial.ball_angles",
+                                                        "initial.ball_speeds")
 
 
 def _follow_n_balls(spec: SweepSpec, given: dict, n: int) -> list:
@@ -381,7 +384,10 @@ def make_plan(spec: SweepSpec) -> Plan:
         try:
             cells.append(replace_values(cells[0], pairs) if cells else build(pairs))
         except Exception as e:   # ConfigError / ParameterError / ResourceError
-            raise SweepError(f"{_culprit(spec, str(e), where)}: {e}") from None
+            field = str(e).split(" ", 1)[0].split("[", 1)[0].rstrip(":")
+            culprit = (f"grid point {where}" if n_axis is not None and field in _FOLLOW
+                       else _culprit(spec, str(e), where))
+            raise SweepError(f"{culprit}: {e}") from None
     first = {}                                   # N -> its first cell
     for c in cells:
         first.setdefault(c.system.balancer.n_balls, c)
