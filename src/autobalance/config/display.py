@@ -17,6 +17,7 @@ cycles per second, so ``2 pi`` rad/s show as 1 Hz (pint alone would show 1 rad/s
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass, field
@@ -49,6 +50,14 @@ _NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
 def _is_hertz(unit: str) -> bool:
     """Whether a speed unit counts cycles (Hz, kHz, ...): shown as rad/s / 2 pi."""
     return "hertz" in str(ureg.parse_units(unit))
+
+
+@functools.lru_cache(maxsize=256)
+def _factor(unit: str, kind: str) -> float:
+    """Display value per SI value of ``kind`` in ``unit`` (pint parses slowly: cached)."""
+    if kind == "speed" and _is_hertz(unit):
+        return float(ureg.Quantity(1.0 / TWO_PI, "Hz").to(unit).magnitude)
+    return float(ureg.Quantity(1.0, DISPLAY_KINDS[kind]).to(unit).magnitude)
 
 
 def _check_unit(text: Any, kind: str) -> str | None:
@@ -208,10 +217,7 @@ class DisplayUnits:
         float
             E.g. 60 / (2 pi) for speed in rpm, 1000 for unbalance in g*m.
         """
-        unit = self.unit(kind)
-        if kind == "speed" and _is_hertz(unit):
-            return float(ureg.Quantity(1.0 / TWO_PI, "Hz").to(unit).magnitude)
-        return float(ureg.Quantity(1.0, DISPLAY_KINDS[kind]).to(unit).magnitude)
+        return _factor(self.unit(kind), kind)
 
     def to(self, value_si: float, kind: str) -> float:
         """``value_si`` in the SI unit of ``kind`` (speeds [rad/s], grades [mm/s]) converted to
