@@ -2,6 +2,7 @@
 refusals, one-line errors for bad descriptions, summaries. Real simulations, tiny sweeps."""
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -514,3 +515,161 @@ def test_simulate_batch_any_order_of_out_times():
     order = np.argsort(ts, kind="stable")
     np.testing.assert_array_equal(a.states[:, order], b.states)
     np.testing.assert_array_equal(a.states[:, 2], a.states[:, 4])
+
+
+# -- summary per grid cell (issue 14) -----------------------------------------------------------
+def test_summary_per_grid_cell(tiny_ds):
+    """Each cell's statistics are those of its own samples; the pooled line is unchanged."""
+    ds, _ = tiny_ds
+    s = summary_dict(ds, grade=16.0)
+    assert [a["path"] for a in s["grid"]] == ["balancer.rolling_resistance"]
+    assert len(s["cells"]) == ds.sizes["balancer__rolling_resistance"] == 2
+    ok = ds["status"].values == 0
+    for k, cell in enumerate(s["cells"]):
+        mu = float(ds["balancer__rolling_resistance"].values[k])
+        assert cell["coords"] == {"balancer.rolling_resistance": mu}
+        assert cell["coords_as_given"] == {"balancer.rolling_resistance": [0.001, 0.002][k]}
+        assert cell["ok_runs"] == int(ok[k].sum()) == 10 and cell["failed_runs"] == 0
+        for i, c in enumerate(cell["checkpoints"]):
+            g = ds["grade_G"].values[k, :, i][ok[k]]
+            assert c["grade_G_p5_mm_s"] == pytest.approx(np.percentile(g, 5))
+            assert c["grade_G_p50_mm_s"] == pytest.approx(np.percentile(g, 50))
+            assert c["grade_G_p95_mm_s"] == pytest.approx(np.percentile(g, 95))
+            assert c["share_below_limit"] == pytest.approx(np.mean(g <= 16.0))
+    # the cells differ (otherwise per-cell statistics would prove nothing here)
+    assert s["cells"][0]["checkpoints"][-1] != s["cells"][1]["checkpoints"][-1]
+    g_all = ds["grade_G"].values[..., -1][ok]
+    assert s["checkpoints"][-1]["grade_G_p95_mm_s"] == pytest.approx(np.percentile(g_all, 95))
+
+
+def test_summary_cells_on_the_command_line(tmp_path):
+    desc = write(tmp_path, TINY.replace('[0.001, 0.002]', '["0.001", "0.002"]'))
+    r = CliRunner().invoke(app, ["sweep", str(desc), "--store", str(tmp_path / "st"),
+                                 "--executor", "serial", "--json", "--grade", "6.3"])
+    assert r.exit_code == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["grade_limit_mm_s"] == 6.3 and len(d["cells"]) == 2
+    assert [c["coords"]["balancer.rolling_resistance"] for c in d["cells"]] == [0.001, 0.002]
+    t = CliRunner().invoke(app, ["sweep", str(desc), "--store", str(tmp_path / "st"),
+                                 "--executor", "serial", "--resume", "--grade", "6.3"])
+    assert t.exit_code == 0, t.stderr
+    assert "target grade: G6.3 (ISO 1940 class G6.3" in t.stdout
+    assert "per grid cell (2):" in t.stdout
+    for cell in d["cells"]:
+        mu = cell["coords_as_given"]["balancer.rolling_resistance"]
+        assert f"balancer.rolling_resistance = {mu} (10 runs):" in t.stdout
+        c = cell["checkpoints"][-1]
+        assert (f"G p5/p50/p95 = {c['grade_G_p5_mm_s']:.2f} / {c['grade_G_p50_mm_s']:.2f} / "
+                f"{c['grade_G_p95_mm_s']:.2f} mm/s") in t.stdout
+
+
+# -- balancer.n_balls as a grid axis; a base without balls (issue 14) ---------------------------
+CENTRIFUGE = str(Path(__file__).resolve().parents[1] / "examples" / "centrifuge.toml")
+CENTRIFUGE_SHORT = ["profile.duration=12 s", "profile.runup_fraction=0.5",
+                    "profile.down_time=1 s", "profile.plateau_time=2 s", "profile.up_time=1 s"]
+
+
+def _centrifuge_spec(grid, mc, sets=()):
+    return spec_from_dict({"sweep": {"name": "nb", "base": CENTRIFUGE,
+                                     "set": CENTRIFUGE_SHORT + list(sets)},
+                           "grid": grid, "monte_carlo": mc})
+
+
+def test_n_balls_axis_2_vs_3_equals_single_runs(tmp_path):
+    """2 against 3 balls (random starts per ball count): every run equals its own simulation
+    of that machine; the 2-ball cell's third ball is NaN."""
+    import autobalance as ab
+    from autobalance.config import load_config, replace_values
+
+    spec = _centrifuge_spec({"balancer.n_balls": [2, 3]},
+                            {"kind": "random", "samples": 2, "seed": 5})
+    plan = make_plan(spec)
+    assert sorted(plan.angles) == [2, 3] and plan.n_balls == 3
+    assert plan.angles[2].shape == (2, 2) and plan.angles[3].shape == (2, 3)
+    assert all(plan.cells[r0 // 2].system.balancer.n_balls ==
+               plan.cells[(r0 + n - 1) // 2].system.balancer.n_balls for r0, n in plan.tasks)
+    # the 2-ball cell gets the angles a sweep of 2 balls alone gets
+    alone = make_plan(_centrifuge_spec({}, {"kind": "random", "samples": 2, "seed": 5}))
+    assert np.array_equal(alone.start_angles, plan.angles[2])
+    ds = sweep(spec, tmp_path / "s", executor="serial", progress=False)
+    assert ds["start_angle"].dims == ("balancer__n_balls", "sample", "ball")
+    assert np.isnan(ds["ball_angle"].sel(balancer__n_balls=2).values[..., 2]).all()
+    assert np.isfinite(ds["ball_angle"].sel(balancer__n_balls=3).values).all()
+    base = load_config(CENTRIFUGE, CENTRIFUGE_SHORT)
+    for n in (2, 3):
+        cfg = replace_values(base, {"balancer.n_balls": n, "initial.ball_angles": None})
+        assert cfg.system.balancer.ball_mass == (0.008,) * n      # identical balls broadcast
+        for s in range(2):
+            sim = ab.simulate(cfg.system, cfg.spin, options=cfg.options,
+                              initial=ab.InitialState(ball_angles=tuple(plan.angles[n][s])))
+            got = ds["grade_G"].sel(balancer__n_balls=n).isel(sample=s).values
+            want = [sim.at(t)["grade_G_mm_s"] for t in cfg.spin.checkpoints]
+            assert list(got) == want
+    s = summary_dict(ds)
+    assert [c["coords"] for c in s["cells"]] == [{"balancer.n_balls": 2}, {"balancer.n_balls": 3}]
+
+
+def test_n_balls_axis_start_angles_follow():
+    """Without a Monte-Carlo dimension the cell of the base's ball count keeps the written
+    start angles and the others start equispaced, in any grid order; per-ball lists of equal
+    values broadcast, lists of different values fail in one line naming the grid point."""
+    plan = make_plan(_centrifuge_spec({"balancer.n_balls": [3, 2, 0]}, {"kind": "none"},
+                                      ['balancer.ball_mass=["8 g", "8 g"]']))
+    np.testing.assert_allclose(np.degrees(plan.angles[2]), [[45.0, 135.0]])
+    np.testing.assert_allclose(np.degrees(plan.angles[3]), [[45.0, 165.0, 285.0]])
+    assert plan.angles[0].shape == (1, 0)
+    assert [c.system.balancer.n_balls for c in plan.cells] == [3, 2, 0]
+    assert plan.cells[0].system.balancer.ball_mass == (0.008,) * 3
+    assert len(plan.groups) == 3                         # one task group per ball count
+    with pytest.raises(SweepError, match=r"^grid point balancer\.n_balls=3: balancer\.ball_mass"):
+        make_plan(_centrifuge_spec({"balancer.n_balls": [2, 3]}, {"kind": "none"},
+                                   ['balancer.ball_mass=["8 g", "9 g"]']))
+
+
+def test_n_balls_axis_with_a_start_grid_of_other_sizes_is_refused(tmp_path):
+    desc = write(tmp_path, f'''
+[sweep]
+base = "{CENTRIFUGE}"
+[grid]
+"balancer.n_balls" = [2, 3]
+[monte_carlo]
+kind = "start_grid"
+n = 4
+''')
+    r = CliRunner().invoke(app, ["sweep", str(desc), "--store", str(tmp_path / "st")])
+    assert r.exit_code == 2
+    assert_one_line_error(r.stderr, "monte_carlo.kind = 'start_grid'", "10 for 2 balls",
+                          "20 for 3 balls", "kind = 'random'")
+    assert not (tmp_path / "st").exists()
+
+
+def test_base_without_balls(tmp_path):
+    """A base of 0 balls (start grid or random): runs, one start for the start grid, and the
+    grade stays the rotor's own (closed form G = 1000 U / M Omega) at every checkpoint."""
+    from autobalance.config import load_config
+    from autobalance.physics.iso1940 import grade_value
+
+    desc = write(tmp_path, f'''
+[sweep]
+base = "{CENTRIFUGE}"
+set = {json.dumps(CENTRIFUGE_SHORT + ["balancer.n_balls=0"])}
+[grid]
+"rotor.unbalance" = ["0.3 g*m", "0.6 g*m"]
+[monte_carlo]
+kind = "start_grid"
+n = 4
+''')
+    r = CliRunner().invoke(app, ["sweep", str(desc), "--store", str(tmp_path / "st"),
+                                 "--executor", "serial", "--json"])
+    assert r.exit_code == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["runs"] == 2 and d["failed_runs"] == 0 and d["dims"]["ball"] == 0
+    cfg = load_config(CENTRIFUGE, CENTRIFUGE_SHORT + ["balancer.n_balls=0",
+                                                      "initial.ball_angles=[]"])
+    for cell, u in zip(d["cells"], (3e-4, 6e-4)):
+        want = grade_value(u, cfg.system.total_mass, cfg.spin.nominal_speed)
+        for c in cell["checkpoints"]:
+            assert c["grade_G_p50_mm_s"] == pytest.approx(want, rel=1e-12)
+    plan = make_plan(_centrifuge_spec({}, {"kind": "random", "samples": 3},
+                                      ["balancer.n_balls=0"]))
+    assert plan.start_angles.shape == (3, 0)

@@ -6,7 +6,10 @@ printer and the checks made before any work.
   units), :data:`ProfileOpt` (``profile``: switch the speed profile kind), :data:`JsonOpt`
   (``json_``: print one JSON object instead of text), :data:`PlotOpt` (``plot``: a figure
   file), :data:`WorkersOpt`, :data:`ExecutorOpt`, :data:`SchedulerOpt` (``workers``,
-  ``executor``, ``scheduler``: where sweeps run).
+  ``executor``, ``scheduler``: where sweeps run), :data:`GradeOpt` (``grade``: the target ISO
+  1940 grade G, default 16, checked with :func:`check_grade` and shown with :func:`grade_text`)
+  and :data:`UnitsOpt` (``units``: the units of terminal text and figures,
+  :func:`autobalance.config.display.display_units`; JSON stays SI).
 * Errors: the user's input errors (:data:`USER_ERRORS`) become one line ``error: <message>`` on
   stderr and exit code 2 (:func:`guard`, :func:`fail`); never a traceback.
 * Output: :func:`print_json` prints exactly one strict JSON object (SI units, NaN and inf as
@@ -30,9 +33,10 @@ from ..jsonable import to_jsonable
 from ..limits import ResourceError
 from ..models import ParameterError
 
-__all__ = ["USER_ERRORS", "ExecutorOpt", "JsonOpt", "PlotOpt", "ProfileOpt", "SchedulerOpt",
-           "SetOpt", "SourceArg", "WORKER_BYTES", "WorkersOpt", "check_executor", "check_grade",
-           "check_output_file", "check_plot", "check_workers", "echo_fields", "fail", "guard",
+__all__ = ["DEFAULT_GRADE", "USER_ERRORS", "ExecutorOpt", "GradeOpt", "JsonOpt", "PlotOpt",
+           "ProfileOpt", "SchedulerOpt", "SetOpt", "SourceArg", "UnitsOpt", "WORKER_BYTES",
+           "WorkersOpt", "check_executor", "check_grade", "check_output_file", "check_plot",
+           "check_workers", "class_text", "echo_fields", "fail", "grade_text", "guard",
            "load_machine", "one_line", "print_error", "print_json", "quiet_dask_logs"]
 
 # -- the shared options -------------------------------------------------------------------------
@@ -55,6 +59,18 @@ ExecutorOpt = Annotated[Optional[str], typer.Option(
 SchedulerOpt = Annotated[Optional[str], typer.Option(
     "--scheduler", help="Dask scheduler address (default: $DASK_SCHEDULER_ADDRESS); the sweeps "
                         "run on that cluster.")]
+#: The target ISO 1940 grade of every command that judges a result (004: G16).
+DEFAULT_GRADE = 16.0
+#: ``--grade G``: give it the default :data:`DEFAULT_GRADE` and check it with :func:`check_grade`.
+GradeOpt = Annotated[float, typer.Option(
+    "--grade", metavar="G", help="Target ISO 1940 balance grade G [mm/s] (default 16); shown "
+                                 "with its ISO class.")]
+#: ``--units``: None (the units written in the config), "si", or "speed=rpm,unbalance=g*mm".
+UnitsOpt = Annotated[Optional[str], typer.Option(
+    "--units", metavar="si|KIND=UNIT,...",
+    help="Units of the text and figures (JSON stays SI): default the units written in the "
+         "config; 'si'; or e.g. 'speed=rpm,unbalance=g*mm' (kinds: speed, unbalance, length, "
+         "mass, force, time, grade).")]
 
 # -- errors -------------------------------------------------------------------------------------
 #: Exceptions that are the user's input errors: one line on stderr, exit code 2.
@@ -256,6 +272,52 @@ def check_grade(value: float, field: str = "--grade") -> float:
         raise ConfigError(f"{field} = {shown}: must be a finite ISO 1940 grade G > 0 [mm/s], "
                           "e.g. 16")
     return v
+
+
+def class_text(G: float) -> str:
+    """The ISO 1940 class a grade meets, short: ``"G2.5"``; ``"above G4000"``; ``"-"`` for NaN.
+
+    Parameters
+    ----------
+    G : float
+        A grade [mm/s] (:func:`autobalance.physics.iso1940.grade_class`).
+
+    Returns
+    -------
+    str
+    """
+    from ..physics.iso1940 import GRADES, grade_class
+
+    if G is None or not math.isfinite(G):
+        return "-"
+    cls = float(grade_class(max(float(G), 0.0)))
+    return f"G{cls:g}" if math.isfinite(cls) else f"above G{GRADES[-1]:g}"
+
+
+def grade_text(G: float) -> str:
+    """A target grade with its ISO 1940 class, for text and figure labels.
+
+    Parameters
+    ----------
+    G : float
+        The target grade [mm/s] (checked: :func:`check_grade`).
+
+    Returns
+    -------
+    str
+        ``"G16 (ISO 1940 class G16: e*Omega <= 16 mm/s)"`` for a class of the standard series;
+        ``"G10 (not an ISO 1940 class; meets class G16)"`` between two classes (the smallest
+        class it meets, :func:`autobalance.physics.iso1940.grade_class`); coarser than G4000:
+        ``"G5000 (above the coarsest ISO 1940 class, G4000)"``.
+    """
+    from ..physics.iso1940 import GRADES, grade_class
+
+    cls = float(grade_class(G))
+    if not math.isfinite(cls):
+        return f"G{G:g} (above the coarsest ISO 1940 class, G{GRADES[-1]:g})"
+    if math.isclose(cls, G, rel_tol=1e-9):
+        return f"G{G:g} (ISO 1940 class G{cls:g}: e*Omega <= {cls:g} mm/s)"
+    return f"G{G:g} (not an ISO 1940 class; meets class G{cls:g})"
 
 
 def check_executor(executor: Optional[str]) -> None:

@@ -2,14 +2,16 @@
 :func:`run_config`, :func:`write_outputs`, the text formatting)."""
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
 import typer
 
-from .common import (JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg, check_output_file,
-                     check_plot, guard, load_machine, print_json)
+from .common import (DEFAULT_GRADE, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg,
+                     UnitsOpt, check_grade, check_output_file, check_plot, class_text,
+                     grade_text, guard, load_machine, print_json)
 
 #: Figure formats of ``simulate --plot``.
 PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
@@ -40,7 +42,58 @@ def fmt_value(v: Any, width: int = 6) -> str:
     return str(v)
 
 
-def echo_tree(key: str, value: Any, level: int) -> None:
+#: JSON key suffix -> display kind (:mod:`autobalance.config.display`), longest suffix first.
+SUFFIX_KINDS = (("_rad_s", "speed"), ("_kg_m", "unbalance"), ("_mm_s", "grade"),
+                ("_kg", "mass"), ("_N", "force"), ("_m", "length"), ("_s", "time"))
+
+
+def _number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def shown(key: str, value: Any, units, grade: float | None = None) -> tuple[str, Any]:
+    """A JSON summary entry (SI, unit-suffixed key) as the terminal shows it: the key without
+    its suffix and the value in the display unit of its kind, e.g. ``("nominal_speed_rad_s",
+    418.9)`` -> ``("nominal_speed", "4000 rpm")``; a grade with its ISO 1940 class and, given
+    ``grade``, whether it meets that target. Other entries pass unchanged.
+
+    Parameters
+    ----------
+    key : str
+        JSON key (``_rad_s``, ``_kg_m``, ``_mm_s``, ``_kg``, ``_N``, ``_m``, ``_s`` suffixes
+        are converted).
+    value : Any
+        Its value [SI]: a number or a list of numbers (None or NaN shown as such).
+    units : autobalance.config.display.DisplayUnits
+        The display units.
+    grade : float, optional
+        Target grade G [mm/s] for the grades' "meets" / "above" note.
+
+    Returns
+    -------
+    tuple
+        (shown key, shown value).
+    """
+    for suffix, kind in SUFFIX_KINDS:
+        if not key.endswith(suffix) or len(key) == len(suffix):
+            continue
+        if _number(value):
+            text = units.fmt(value, kind)
+            if kind == "grade":
+                note = class_text(value)
+                if grade is not None and math.isfinite(value):
+                    note += f"; {'meets' if value <= grade else 'above'} G{grade:g}"
+                text += f" (ISO class {note})"
+            return key[:-len(suffix)], text
+        if isinstance(value, (list, tuple)) and value and all(_number(v) for v in value):
+            items = [f"{units.to(v, kind):.4g}" for v in value[:6]]
+            more = ", ..." if len(value) > 6 else ""
+            return key[:-len(suffix)], f"[{', '.join(items)}{more}] {units.unit(kind)}"
+        return key, value
+    return key, value
+
+
+def echo_tree(key: str, value: Any, level: int, units=None, grade: float | None = None) -> None:
     """Print a (nested) summary entry as indented ``key  value`` lines.
 
     Parameters
@@ -51,16 +104,23 @@ def echo_tree(key: str, value: Any, level: int) -> None:
         A value, a dict (printed as a sub-tree) or a list of dicts (one sub-tree each).
     level : int
         Indentation level (two spaces each).
+    units : autobalance.config.display.DisplayUnits, optional
+        Show unit-suffixed entries in these units (:func:`shown`); None: as given.
+    grade : float, optional
+        Target grade G [mm/s] noted beside every grade (with ``units``).
     """
     pad = "  " * level
     if isinstance(value, dict):
         typer.echo(f"{pad}{key}:")
         for k, v in value.items():
-            echo_tree(k, v, level + 1)
+            if units is None or k != "iso_class_G_mm_s":    # the class is shown with the grade
+                echo_tree(k, v, level + 1, units, grade)
     elif isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
         for i, v in enumerate(value):
-            echo_tree(f"{key}[{i}]", v, level)
+            echo_tree(f"{key}[{i}]", v, level, units, grade)
     else:
+        if units is not None:
+            key, value = shown(key, value, units, grade)
         typer.echo(f"{pad}{key:<{max(34 - 2 * level, 1)}} {fmt_value(value)}")
 
 
@@ -86,8 +146,9 @@ def run_config(cfg):
     return sim, time.perf_counter() - t0
 
 
-def write_outputs(sim, out: Optional[Path], plot) -> dict:
-    """Write a run's NetCDF file and its figure.
+def write_outputs(sim, out: Optional[Path], plot, units=None,
+                  grade: float = DEFAULT_GRADE) -> dict:
+    """Write a run's NetCDF file (SI; ball angles unwrapped) and its figure.
 
     Parameters
     ----------
@@ -97,6 +158,10 @@ def write_outputs(sim, out: Optional[Path], plot) -> dict:
         NetCDF file, or None for none.
     plot : str or Path or None
         Figure file (format from its suffix), or None for none.
+    units : autobalance.config.display.DisplayUnits, optional
+        Units of the figure's speed axis (None: rpm).
+    grade : float
+        Target grade G [mm/s], drawn with its ISO 1940 class (:func:`grade_text`).
 
     Returns
     -------
@@ -115,7 +180,9 @@ def write_outputs(sim, out: Optional[Path], plot) -> dict:
 
         from ..plotting import plot_simulation
 
-        fig = plot_simulation(sim)
+        speed = {} if units is None else {"speed_unit": units.unit("speed"),
+                                          "speed_factor": units.factor("speed")}
+        fig = plot_simulation(sim, grade_limit=grade, grade_label=grade_text(grade), **speed)
         fig = fig[0] if isinstance(fig, tuple) else fig
         fig.savefig(plot, dpi=120)
         plt.close(fig)
@@ -126,13 +193,17 @@ def write_outputs(sim, out: Optional[Path], plot) -> dict:
 def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                  out: Annotated[Optional[Path], typer.Option(
                      "--out", help="Write the time history to this NetCDF file.")] = None,
-                 plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+                 plot: PlotOpt = None, json_: JsonOpt = False, grade: GradeOpt = DEFAULT_GRADE,
+                 units: UnitsOpt = None) -> None:
     """Simulate one run of a preset or config file.\f
 
     Parameters
     ----------
-    source, set_, profile, json_
-        The shared options (:mod:`autobalance.cli.common`); the JSON object is the run's summary.
+    source, set_, profile, json_, grade, units
+        The shared options (:mod:`autobalance.cli.common`); the JSON object is the run's summary
+        (SI) with the target grade ``grade_limit_mm_s`` and ``meets_grade_limit`` (the final
+        grade <= the target); the text shows values in ``units`` (default: as written in the
+        config) and each grade with its ISO 1940 class.
     out : Path
         NetCDF file for the time history.
     plot : str
@@ -140,14 +211,21 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
 
     Exits with code 1 if the run's status is not ``"ok"``, 2 on an input error.
     """
+    from ..config.display import display_units
+
     with guard():
+        grade = check_grade(grade)
         cfg = load_machine(source, set_, profile)
+        shown_units = display_units(cfg, units)
         check_output_file(out, "--out", "run.nc")
         check_plot(plot, PLOT_SUFFIXES)
         sim, wall = run_config(cfg)
-        files = write_outputs(sim, out, plot)
+        files = write_outputs(sim, out, plot, shown_units, grade)
     result = dict(sim.summary())
+    final_grade = result.get("final", {}).get("grade_G_mm_s", float("nan"))
     for key, value in (("name", cfg.name), ("config", cfg.source), ("wall_time_s", wall),
+                       ("grade_limit_mm_s", grade),
+                       ("meets_grade_limit", bool(final_grade <= grade)),
                        ("files", files)):
         result.setdefault(key, value)
     ok = sim.status == "ok"
@@ -155,9 +233,11 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
         print_json(result)
     else:
         typer.echo(f"{cfg.name}: status {sim.status} ({wall:.1f} s wall)")
+        typer.echo(f"  {'target grade':<32} {grade_text(grade)}")
         for key, value in result.items():
-            if key not in ("name", "config", "status", "files", "wall_time_s", "message"):
-                echo_tree(key, value, 1)
+            if key not in ("name", "config", "status", "files", "wall_time_s", "message",
+                           "grade_limit_mm_s"):
+                echo_tree(key, value, 1, shown_units, grade)
         for kind, path in files.items():
             typer.echo(f"wrote {kind}: {path}")
         if not ok:

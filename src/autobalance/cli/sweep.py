@@ -14,9 +14,9 @@ from typing import Annotated, Iterator
 
 import typer
 
-from .common import (ExecutorOpt, JsonOpt, PlotOpt, SchedulerOpt, WorkersOpt, check_executor,
-                     check_grade, check_plot, check_workers, fail, guard, print_json,
-                     quiet_dask_logs)
+from .common import (DEFAULT_GRADE, ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, SchedulerOpt,
+                     UnitsOpt, WorkersOpt, check_executor, check_grade, check_plot, check_workers,
+                     class_text, fail, grade_text, guard, print_json, quiet_dask_logs)
 
 #: Figure formats of ``sweep --plot``.
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")
@@ -47,9 +47,8 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
               executor: ExecutorOpt = None,
               resume: Annotated[bool, typer.Option(
                   "--resume", help="Continue an interrupted sweep in STORE.")] = False,
-              grade: Annotated[float, typer.Option(
-                  "--grade", help="Grade limit G [mm/s] for the share in the summary.")] = 16.0,
-              plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+              grade: GradeOpt = DEFAULT_GRADE,
+              plot: PlotOpt = None, json_: JsonOpt = False, units: UnitsOpt = None) -> None:
     """Run a grid / Monte-Carlo sweep into a durable store; print its summary.\f
 
     Parameters
@@ -63,21 +62,25 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
     resume : bool
         Continue an interrupted sweep in ``store``.
     grade : float
-        Grade limit G [mm/s] for the share below it in the summary.
+        Target grade G [mm/s] for the share below it in the summary.
     plot : str
         Summary figure (.png, .svg, .pdf).
     json_ : bool
-        Print the summary as one JSON object instead of text.
+        Print the summary as one JSON object instead of text (SI: per checkpoint over all runs
+        and per grid cell, :func:`autobalance.sweep.summary_dict`).
+    units : str
+        Units of the text (default: as written in the base config and the grid).
     """
     from ..sweep import load_spec, summary_dict, sweep
 
     with guard():
         with _sweep_errors():
             check_plot(plot, PLOT_SUFFIXES, example="summary.png")
-            check_grade(grade)
+            grade = check_grade(grade)
             check_workers(workers)      # >= 1, and their processes fit the memory limit
             check_executor(executor)
             sp = load_spec(spec)
+            shown = _display(sp, units)
             if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
                 quiet_dask_logs()
             t0 = time.perf_counter()
@@ -97,7 +100,66 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
         return
     typer.echo(f"sweep {summary['name']}: {summary['runs']} runs ({summary['failed_runs']} "
                f"failed) in {wall:.1f} s -> {summary['result']}")
+    typer.echo(f"  target grade: {grade_text(grade)}")
+    cells = summary["cells"]
+    if len(cells) > 1:
+        typer.echo("  all runs:")
     for c in summary["checkpoints"]:
-        typer.echo(f"  t = {c['time_s']:g} s: G p5/p50/p95 = {c['grade_G_p5_mm_s']:.2f} / "
-                   f"{c['grade_G_p50_mm_s']:.2f} / {c['grade_G_p95_mm_s']:.2f} mm/s, "
-                   f"share <= G{grade:g}: {100 * c['share_below_limit']:.1f} %")
+        typer.echo(("    " if len(cells) > 1 else "  ") + _checkpoint_line(c, grade, shown))
+    if len(cells) > 1:
+        typer.echo(f"  per grid cell ({len(cells)}):")
+        for cell in cells[:MAX_CELL_LINES]:
+            where = ", ".join(_coord_text(a, cell, shown, units) for a in summary["grid"])
+            failed = f", {cell['failed_runs']} failed" if cell["failed_runs"] else ""
+            runs = f"{cell['ok_runs']} run{'s' if cell['ok_runs'] != 1 else ''}"
+            typer.echo(f"    {where} ({runs}{failed}):")
+            for c in cell["checkpoints"]:
+                typer.echo("      " + _checkpoint_line(c, grade, shown))
+        if len(cells) > MAX_CELL_LINES:
+            typer.echo(f"    ... {len(cells) - MAX_CELL_LINES} more cells (all in --json)")
+
+
+#: Grid cells printed in the text summary (--json has every cell).
+MAX_CELL_LINES = 50
+
+
+def _display(sp, units):
+    """The display units of a sweep: as written in its base config (with sweep.set), or as
+    ``--units`` says; SI for a base that cannot be read (the sweep reports that itself)."""
+    from ..config import ConfigError, _read, apply_overrides
+    from ..config.display import display_units
+
+    raw = None
+    if sp.base_config is not None:
+        raw = sp.base_config.raw
+    else:
+        try:
+            raw = apply_overrides(_read(sp.base)[0], list(sp.overrides))
+        except ConfigError:
+            pass
+    return display_units(raw if isinstance(raw, dict) else None, units)
+
+
+def _checkpoint_line(c: dict, grade: float, shown) -> str:
+    """One checkpoint of a summary: 5/50/95 % grades, class of the 95 %, share <= grade."""
+    return (f"t = {shown.fmt(c['time_s'], 'time')}: G p5/p50/p95 = {c['grade_G_p5_mm_s']:.2f} / "
+            f"{c['grade_G_p50_mm_s']:.2f} / {c['grade_G_p95_mm_s']:.2f} mm/s (p95 "
+            f"{class_text(c['grade_G_p95_mm_s'])}), share <= G{grade:g}: "
+            f"{100 * c['share_below_limit']:.1f} %")
+
+
+#: Config kinds of grid axes that have a display unit (:mod:`autobalance.config.display`).
+_DISPLAY_KINDS = ("speed", "unbalance", "length", "mass", "force", "time")
+
+
+def _coord_text(axis: dict, cell: dict, shown, units) -> str:
+    """``path = value`` of a cell's coordinate: as written in the description, or, with
+    ``--units``, converted to the chosen unit of its kind."""
+    from ..sweep.spec import field_kind
+
+    value = cell["coords"][axis["key"]]
+    given = cell["coords_as_given"][axis["path"]]
+    kind = field_kind(axis["path"]) if "." in axis["path"] else ""
+    if units is not None and kind in _DISPLAY_KINDS and isinstance(value, (int, float)):
+        return f"{axis['path']} = {shown.fmt(value, kind)}"
+    return f"{axis['path']} = {given}"

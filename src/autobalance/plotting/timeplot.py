@@ -81,7 +81,9 @@ def _note(ax, text: str):
 
 # -- simulation figure -------------------------------------------------------------------------
 def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
-                    max_points: int = MAX_POINTS, figsize=(15.0, 10.0)) -> Figure:
+                    max_points: int = MAX_POINTS, figsize=(15.0, 10.0),
+                    speed_factor: float | None = None,
+                    grade_label: str | None = None) -> Figure:
     """Time histories, ball positions and COG location of one run (cf. 004 Fig. 4).
 
     Parameters
@@ -92,22 +94,32 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
         unbalance, ``speed`` [rad/s] (n,), ``grade_G`` [mm/s] (n,), ``residual_unbalance``
         [kg*m] (n,), ``residual_angle`` [rad] (n,) and ``title`` (str). Missing attributes
         leave their panel empty with a note.
-    speed_unit : {"rpm", "Hz", "rad/s"}
-        Unit of the spin-speed twin axis.
+    speed_unit : str
+        Unit of the spin-speed twin axis: "rpm", "Hz" or "rad/s"; any label with
+        ``speed_factor``.
     grade_limit : float
         ISO 1940 grade drawn dashed in the grade and COG panels [mm/s] (004: G16).
     max_points : int
         Longest drawn history; longer ones are decimated (min/max per bin for x, y).
     figsize : tuple of float
         Figure size [inch].
+    speed_factor : float, optional
+        Spin speed in ``speed_unit`` per rad/s [speed_unit / (rad/s)], e.g. from
+        :meth:`autobalance.config.display.DisplayUnits.factor`; None: from ``speed_unit``.
+    grade_label : str, optional
+        Legend text of the grade limit line (default ``"ISO G<grade_limit>"``).
 
     Returns
     -------
     matplotlib.figure.Figure
         Attached to an Agg canvas; ``fig.savefig("run.png")`` works without pyplot.
     """
-    if speed_unit not in _SPEED_UNITS:
+    if speed_factor is None and speed_unit not in _SPEED_UNITS:
         raise ValueError(f"speed_unit = {speed_unit!r}: must be one of {sorted(_SPEED_UNITS)}")
+    if speed_factor is not None and not (math.isfinite(speed_factor) and speed_factor > 0):
+        raise ValueError(f"speed_factor = {speed_factor!r}: must be a finite number > 0")
+    factor = _SPEED_UNITS[speed_unit] if speed_factor is None else float(speed_factor)
+    label = grade_label or f"ISO G{grade_limit:g}"
     t = _get(sim, "t")
     if t is None or t.ndim != 1 or t.size == 0:
         raise ValueError("sim.t: must be a non-empty 1-D array of times [s]")
@@ -121,18 +133,18 @@ def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
         fig.suptitle(str(title), fontsize=13)
     ax_x, ax_y, ax_amp, ax_ang, ax_g, ax_balls, ax_cog = _simulation_axes(fig)
     _draw_displacements(sim, ax_x, ax_y, t, max_points)
-    _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit)
+    _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit, factor)
     alpha, n_balls = _ball_angles(sim, n)
     _draw_ball_angles(ax_ang, alpha, n_balls, ts, idx)
     grade = _get(sim, "grade_G")
-    _draw_grade(ax_g, grade, ts, idx, n, grade_limit)
+    _draw_grade(ax_g, grade, ts, idx, n, grade_limit, label)
     for ax in (ax_x, ax_y, ax_amp, ax_ang):
         ax.tick_params(labelbottom=False)
     for ax in (ax_x, ax_y, ax_amp, ax_ang, ax_g):
         ax.grid(True, alpha=0.3)
     ax_g.set_xlim(float(t[0]), float(t[-1]) if t[-1] > t[0] else float(t[0]) + 1.0)
     _draw_ball_polar(ax_balls, alpha, n_balls, ts, idx, t)
-    _draw_cog(ax_cog, grade, _get(sim, "residual_angle"), idx, n, grade_limit)
+    _draw_cog(ax_cog, grade, _get(sim, "residual_angle"), idx, n, grade_limit, label)
     return fig
 
 
@@ -168,8 +180,9 @@ def _draw_displacements(sim, ax_x, ax_y, t, max_points):
                    fontsize=10, loc="left")
 
 
-def _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit):
-    """Amplitude envelope [mm] and the spin speed [speed_unit] on a twin axis."""
+def _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit, factor):
+    """Amplitude envelope [mm] and the spin speed [speed_unit] (``factor`` per rad/s) on a
+    twin axis."""
     amp = _get(sim, "amplitude")
     if amp is not None and amp.size == n:
         ax_amp.plot(ts, 1e3 * amp[idx], color="k", lw=1.0, label="amplitude")
@@ -181,7 +194,7 @@ def _draw_amplitude(sim, ax_amp, ts, idx, n, speed_unit):
     speed = _get(sim, "speed")
     if speed is not None and speed.size == n:
         ax_sp = ax_amp.twinx()
-        ax_sp.plot(ts, _SPEED_UNITS[speed_unit] * speed[idx], color="tab:green", lw=1.0, ls="--")
+        ax_sp.plot(ts, factor * speed[idx], color="tab:green", lw=1.0, ls="--")
         ax_sp.set_ylabel(f"spin speed [{speed_unit}]", color="tab:green")
         ax_sp.tick_params(axis="y", colors="tab:green")
         ax_sp.set_ylim(bottom=0.0)
@@ -215,15 +228,15 @@ def _draw_ball_angles(ax_ang, alpha, n_balls, ts, idx):
                      fontsize=10, loc="left")
 
 
-def _draw_grade(ax_g, grade, ts, idx, n, grade_limit):
-    """Grade G [mm/s] with the ISO limit [mm/s] dashed."""
+def _draw_grade(ax_g, grade, ts, idx, n, grade_limit, label):
+    """Grade G [mm/s] with the ISO limit [mm/s] dashed (legend ``label``)."""
     if grade is not None and grade.size == n:
         ax_g.plot(ts, grade[idx], color="k", lw=1.0, label="residual unbalance")
         ax_g.set_ylim(0.0, max(1.2 * float(np.nanmax(grade)) if np.any(np.isfinite(grade)) else 0.0,
                                1.5 * grade_limit))
     else:
         _note(ax_g, "no grade history")
-    ax_g.axhline(grade_limit, color="tab:red", ls="--", lw=1.0, label=f"ISO G{grade_limit:g}")
+    ax_g.axhline(grade_limit, color="tab:red", ls="--", lw=1.0, label=label)
     ax_g.legend(loc="upper right", fontsize=8)
     ax_g.set_ylabel("grade G [mm/s]")
     ax_g.set_xlabel("time t [s]")
@@ -245,7 +258,7 @@ def _draw_ball_polar(ax_balls, alpha, n_balls, ts, idx, t):
     ax_balls.set_rlim(0.0, float(t[-1]) if t[-1] > 0 else 1.0)
 
 
-def _draw_cog(ax_cog, grade, ang, idx, n, grade_limit):
+def _draw_cog(ax_cog, grade, ang, idx, n, grade_limit, label):
     """Polar: COG location, angle = residual angle [rad], radius = grade G [mm/s], with the ISO
     limit [mm/s] as a dashed circle."""
     if grade is not None and ang is not None and grade.size == n and ang.size == n:
@@ -261,7 +274,7 @@ def _draw_cog(ax_cog, grade, ang, idx, n, grade_limit):
     ax_cog.plot(circ, np.full_like(circ, grade_limit), color="tab:red", ls="--", lw=1.0)
     ax_cog.set_rlim(0.0, 1.1 * rmax)
     ax_cog.set_title("COG location (angle from unbalance, radius = grade G [mm/s])\n"
-                     f"○ start  ● end  red dashed: ISO G{grade_limit:g}", fontsize=10)
+                     f"○ start  ● end  red dashed: {label}", fontsize=10)
 
 
 # -- response figure ---------------------------------------------------------------------------

@@ -11,7 +11,7 @@ from ..core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_R
                           S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus, alpha_dot_slice,
                           alpha_slice, psi_index, speed_index)
 from ..models import MotorDrive
-from ..physics.iso1940 import grade_value
+from ..physics.iso1940 import grade_class, grade_value
 from ..physics.unbalance import residual_unbalance
 
 
@@ -41,6 +41,23 @@ def residual_unbalance_history(system, alpha, t):
     unb_t, unb_u = system.rotor.unbalance_table()
     U = np.interp(t, unb_t, unb_u) if unb_t.size > 1 else np.full(np.shape(t), unb_u[0])
     return residual_unbalance(system, alpha, U)
+
+
+def wrap_degrees(angles):
+    """Angles [deg] wrapped to (-180, 180] (the unwrapped history stays in ``alpha``).
+
+    Parameters
+    ----------
+    angles : float or array_like
+        Angles [deg], any winding (e.g. -578).
+
+    Returns
+    -------
+    ndarray
+        The same directions in (-180, 180] [deg] (-578 -> 142, -180 -> 180).
+    """
+    a = np.asarray(angles, float)
+    return 180.0 - np.mod(180.0 - a, 360.0)
 
 
 def _asdict(obj):
@@ -139,15 +156,20 @@ class Simulation:
         Returns
         -------
         dict
-            time_s [s], grade_G_mm_s [mm/s], residual_unbalance_kg_m [kg*m],
-            ball_angles_deg [deg], amplitude_m [m], speed_rad_s [rad/s] of that sample.
+            time_s [s], grade_G_mm_s [mm/s], iso_class_G_mm_s (the smallest ISO 1940 class
+            the grade meets, :func:`autobalance.physics.iso1940.grade_class`; inf above
+            G4000) [mm/s], residual_unbalance_kg_m [kg*m], ball_angles_deg (from the
+            unbalance, wrapped to (-180, 180]; ``alpha`` keeps the unwrapped history) [deg],
+            amplitude_m [m], speed_rad_s [rad/s] of that sample.
         """
         k = int(np.argmin(np.abs(self.t - time)))
+        g = float(self.grade_G[k])
         return {
             "time_s": float(self.t[k]),
-            "grade_G_mm_s": float(self.grade_G[k]),
+            "grade_G_mm_s": g,
+            "iso_class_G_mm_s": float(grade_class(g)) if np.isfinite(g) else float("nan"),
             "residual_unbalance_kg_m": float(self.residual_unbalance[k]),
-            "ball_angles_deg": [float(a) for a in np.degrees(self.alpha[k])],
+            "ball_angles_deg": [float(a) for a in wrap_degrees(np.degrees(self.alpha[k]))],
             "amplitude_m": float(self.amplitude[k]),
             "speed_rad_s": float(self.speed[k]),
         }
@@ -210,7 +232,9 @@ class Simulation:
                 "u": var(self.u, "time", "m", "rotor displacement along the unbalance (rotor frame)"),
                 "v": var(self.v, "time", "m", "rotor displacement across the unbalance (rotor frame)"),
                 "amplitude": var(self.amplitude, "time", "m", "whirl amplitude |x + i y|"),
-                "alpha": var(self.alpha, ("time", "ball"), "rad", "ball angle from the unbalance"),
+                "alpha": var(self.alpha, ("time", "ball"), "rad",
+                             "ball angle from the unbalance, unwrapped (continuous: whole turns "
+                             "relative to the rotor kept)"),
                 "alpha_dot": var(self.alpha_dot, ("time", "ball"), "rad/s", "ball speed relative to the rotor"),
                 "psi": var(self.psi, "time", "rad", "spin angle"),
                 "speed": var(self.speed, "time", "rad/s", "spin speed"),

@@ -186,9 +186,12 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
         The small space, 3 unbalances and 10 starts unless given.
     seed : int
         Seed of the start positions (the same starts for every design).
-    store_dir, executor, workers, scheduler, progress
-        Where the sweeps run and are kept (one resumable store per design under ``store_dir``),
-        as for :func:`autobalance.studies.start_positions.run_start_grid`.
+    store_dir, executor, workers, scheduler : str, Path, int or None
+        Where the sweeps run and are kept (one resumable store per design under ``store_dir``;
+        None = temporary stores), as for
+        :func:`autobalance.studies.start_positions.run_start_grid`.
+    progress : bool
+        Show each sweep's progress bar on stderr.
 
     Returns
     -------

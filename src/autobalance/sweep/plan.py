@@ -1,11 +1,18 @@
 """Expand a SweepSpec into grid cells, Monte-Carlo samples and tasks; run one task.
 
 Runs are numbered r = cell * n_samples + sample (C order over the grid axes, sample fastest).
-A task is a range of consecutive runs sharing the spin profile and the numerical options (so one
-``simulate_batch`` call serves it with each run's own cell parameters), at most ``batch_size``
-long: tasks never mix two values of an ``options.*`` or ``profile.*`` grid axis. Everything
-here is deterministic: the same description gives the same tasks and the same results, and a
-run's result does not depend on the task it ran in.
+A task is a range of consecutive runs sharing the spin profile, the numerical options and the
+ball count (so one ``simulate_batch`` call serves it with each run's own cell parameters), at
+most ``batch_size`` long: tasks never mix two values of an ``options.*``, ``profile.*`` or
+``balancer.n_balls`` grid axis. Everything here is deterministic: the same description gives
+the same tasks and the same results, and a run's result does not depend on the task it ran in.
+
+``balancer.n_balls`` may be a grid axis (2 against 3 balls). The values that follow the ball
+count follow it in every cell (:func:`_follow_n_balls`): per-ball values given as one number,
+or as a list of equal values, are broadcast to N balls; start angles and speeds given for
+another N are replaced by the default (N equispaced from pi/4, at rest); a Monte-Carlo
+dimension draws its start angles for each N. The ``ball`` dimension then has max N entries
+(NaN for the balls a cell does not have).
 """
 from __future__ import annotations
 
@@ -16,8 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..config import ConfigError, _read, apply_overrides, from_dict, replace_values
+from ..config import SECTIONS, ConfigError, _read, apply_overrides, from_dict, replace_values
 from ..config.overrides import parse_override
+from ..config.schema import check_value
 from ..core.layout import RunStatus
 from ..models import InitialState, SimOptions
 from .spec import SweepError, SweepSpec
@@ -25,14 +33,17 @@ from .spec import SweepError, SweepSpec
 
 @dataclass
 class Plan:
-    """Grid cells (configs), sample start angles and tasks of a sweep."""
+    """Grid cells (configs), sample start angles and tasks of a sweep.
+
+    ``angles`` maps each ball count N of the cells to the samples' start angles (n_samples, N)
+    [rad]; one entry unless ``balancer.n_balls`` is a grid axis.
+    """
 
     spec: SweepSpec
     cells: list              # Config per grid cell (C order)
-    start_angles: np.ndarray  # (n_samples, N) [rad]
+    angles: dict             # N -> (n_samples, N) start angles [rad]
     tasks: list              # (first_run, n_runs) pairs covering every run
-    n_balls: int
-    groups: tuple = ()       # (start, stop) run ranges of equal spin and options
+    groups: tuple = ()       # (start, stop) run ranges of equal spin, options and N
 
     def tasks_for(self, todo: np.ndarray) -> list:
         """(first, count) tasks covering the runs where ``todo`` is True: contiguous runs of
@@ -40,8 +51,23 @@ class Plan:
         return _chunk(self.groups, todo, self.spec.batch_size)
 
     @property
+    def n_balls(self) -> int:
+        """Size of the ``ball`` dimension: the largest ball count of the cells."""
+        return max(self.angles)
+
+    @property
+    def start_angles(self) -> np.ndarray:
+        """Start angles (n_samples, N) [rad] of the first cell's ball count N (of every cell
+        unless ``balancer.n_balls`` is a grid axis; then see :meth:`cell_angles`)."""
+        return self.angles[self.cells[0].system.balancer.n_balls]
+
+    def cell_angles(self, cell: int) -> np.ndarray:
+        """Start angles (n_samples, N) [rad] of the samples of grid cell ``cell`` (C order)."""
+        return self.angles[self.cells[cell].system.balancer.n_balls]
+
+    @property
     def n_samples(self) -> int:
-        return self.start_angles.shape[0]
+        return next(iter(self.angles.values())).shape[0]
 
     @property
     def n_runs(self) -> int:
@@ -57,6 +83,8 @@ def start_grid(n: int, n_balls: int, identical: bool) -> np.ndarray:
     configurations that differ only by swapping balls are removed (combinations with
     repetition: n (n + 1) / 2 = 1275 for n = 50 and two balls); otherwise the full product."""
     pos = 2 * np.pi * np.arange(n) / n
+    if n_balls == 0:                             # one start: the rotor without balls
+        return np.zeros((1, 0))
     combos = (itertools.combinations_with_replacement(range(n), n_balls) if identical
               else itertools.product(range(n), repeat=n_balls))
     return np.array([[pos[i] for i in c] for c in combos], float).reshape(-1, n_balls)
@@ -143,10 +171,10 @@ def _chunk(groups, todo: np.ndarray, batch_size: int) -> list:
 
 
 def identical_balls(balancer) -> bool:
-    """Whether swapping two balls changes nothing (same mass, damping, rolling resistance and
-    stiction): the start grid then keeps one of each permutation (:func:`start_grid`)."""
-    return all(len(set(map(float, np.atleast_1d(getattr(balancer, f))))) <= 1
-               for f in ("ball_mass", "damping", "rolling_resistance", "stiction"))
+    """Whether swapping two balls changes nothing (equal per-ball values: mass, damping,
+    rolling resistance, stiction): the start grid then keeps one of each permutation
+    (:func:`start_grid`)."""
+    return all(len(set(map(float, np.atleast_1d(getattr(balancer, f))))) <= 1 for f in _PER_BALL)
 
 
 def n_start_grid(n: int, n_balls: int, identical: bool) -> int:
@@ -206,10 +234,26 @@ def _refuse_mc_angles(spec: SweepSpec) -> None:
                          "kind = 'none' to run the given angles")
 
 
+def _without_none(raw: dict, pairs) -> tuple[dict, list]:
+    """(raw without the keys that ``pairs`` set to None, the other pairs): a file base's way of
+    putting a key back to its default."""
+    drop = [p for p, v in pairs if v is None]
+    if not drop:
+        return raw, list(pairs)
+    raw = {k: dict(v) if isinstance(v, dict) else v for k, v in raw.items()}
+    for path in drop:
+        section, key = path.split(".", 1)
+        if isinstance(raw.get(section), dict):
+            raw[section].pop(key, None)
+    return raw, [(p, v) for p, v in pairs if v is not None]
+
+
 def _base_builder(spec: SweepSpec):
-    """A function (path, value) pairs -> Config: the base (preset, config file or a Config
-    built in Python) with sweep.set and the pairs. Without a Monte-Carlo dimension the base's
-    start angles stay; with one they are dropped (they may be for another ball count)."""
+    """(build, given): ``build`` is a function (path, value) pairs -> Config: the base
+    (preset, config file or a Config built in Python) with sweep.set and the pairs (a value
+    None puts the key back to its default). ``given`` is the base's TOML dict with sweep.set,
+    the keys as written. Without a Monte-Carlo dimension the base's start angles stay; with one
+    they are dropped (they may be for another ball count)."""
     if spec.base_config is None:
         try:
             raw, label, _ = _read(spec.base)
@@ -222,7 +266,11 @@ def _base_builder(spec: SweepSpec):
         _refuse_mc_angles(spec)
         if spec.mc_kind != "none" and isinstance(base_raw.get("initial"), dict):
             base_raw["initial"].pop("ball_angles", None)
-        return lambda pairs: from_dict(apply_overrides(base_raw, pairs), source=label)
+
+        def build(pairs):
+            r, rest = _without_none(base_raw, pairs)
+            return from_dict(apply_overrides(r, rest), source=label)
+        return build, base_raw
     try:
         sets = [parse_override(o) for o in spec.overrides]
     except ConfigError as e:
@@ -231,7 +279,70 @@ def _base_builder(spec: SweepSpec):
     base = spec.base_config
     if spec.mc_kind != "none":
         base = replace_values(base, {"initial.ball_angles": None})
-    return lambda pairs: replace_values(base, sets + pairs)
+    given = apply_overrides(base.raw if isinstance(base.raw, dict) else {}, sets)
+    return (lambda pairs: replace_values(base, sets + list(pairs))), given
+
+
+_PER_BALL = ("ball_mass", "damping", "rolling_resistance", "stiction")
+#: The keys that follow a balancer.n_balls grid axis (:func:`_follow_n_balls`).
+_FOLLOW = tuple(f"balancer.{k}" for k in _PER_BALL) + ("initial.ball_angles",
+                                                        "initial.ball_speeds")
+
+
+def _follow_n_balls(spec: SweepSpec, given: dict, n: int) -> list:
+    """The (path, value) pairs that make a cell of ``n`` balls from the base ``given`` (its
+    TOML dict with sweep.set) when ``balancer.n_balls`` is a grid axis.
+
+    * A per-ball value (ball_mass, damping, rolling_resistance, stiction) given as a list of
+      equal values is given as that one value (identical balls: broadcast to any N); a list of
+      N values stays; a list of different values for another N is left to fail (one line
+      naming the grid point and the key).
+    * ``initial.ball_angles`` and ``initial.ball_speeds`` given for N balls are kept in the
+      cells of N balls and put back to their defaults in the others (N equispaced from pi/4,
+      at rest). A Monte-Carlo dimension sets the start angles itself.
+
+    Keys that are grid axes themselves are left to the grid.
+    """
+    axes = {a.path for a in spec.grid}
+    out = []
+    bal = given.get("balancer") if isinstance(given.get("balancer"), dict) else {}
+    for key in _PER_BALL:
+        v = bal.get(key)
+        path = f"balancer.{key}"
+        if path in axes or not isinstance(v, list) or len(v) == n:
+            continue
+        try:
+            si = [check_value(path, SECTIONS["balancer"][key], x) for x in v]
+        except ConfigError:
+            continue                                 # the cell reports it
+        if v and len(set(si)) == 1:
+            out.append((path, v[0]))
+    init = given.get("initial") if isinstance(given.get("initial"), dict) else {}
+    keys = ("ball_speeds",) if spec.mc_kind != "none" else ("ball_angles", "ball_speeds")
+    for key in keys:
+        v = init.get(key)
+        path = f"initial.{key}"
+        if path in axes or not isinstance(v, list):
+            continue
+        out.append((path, v if len(v) == n else None))
+    return out
+
+
+def _sample_angles(spec: SweepSpec, cell, identical: bool) -> np.ndarray:
+    """The samples' start angles (n_samples, N) [rad] for the ball count N of ``cell``: the
+    start grid, uniform random angles (the same generator call for every N: a cell of N balls
+    gets the angles a sweep of N balls alone gets), or the cell's own start angles; balls
+    closer than the contact angle moved apart (:func:`separate`)."""
+    b = cell.system.balancer
+    n = b.n_balls
+    if spec.mc_kind == "start_grid":
+        angles = start_grid(spec.mc_n, n, identical)
+    elif spec.mc_kind == "random":
+        rng = np.random.default_rng(spec.seed)
+        angles = rng.uniform(0.0, 2 * np.pi, size=(spec.mc_samples, n))
+    else:
+        angles = np.asarray(cell.initial.angles_for(b), float).reshape(1, n)
+    return np.array([separate(a, b.contact_angle) for a in angles]).reshape(len(angles), n)
 
 
 def make_plan(spec: SweepSpec) -> Plan:
@@ -241,7 +352,9 @@ def make_plan(spec: SweepSpec) -> Plan:
     config file, or from the Config built in Python); every other cell is that config with its
     grid values set on the models (:func:`autobalance.config.replace_values`). A base that is
     valid only with the grid values (e.g. ``sweep.set`` gives a stiction that the grid's
-    rolling resistances stay below) is therefore accepted, as each cell is.
+    rolling resistances stay below) is therefore accepted, as each cell is. With a
+    ``balancer.n_balls`` axis the values that follow the ball count are set with it
+    (:func:`_follow_n_balls`) and the start angles are drawn per ball count.
 
     Parameters
     ----------
@@ -255,47 +368,57 @@ def make_plan(spec: SweepSpec) -> Plan:
     Raises
     ------
     SweepError
-        A bad base, ``sweep.set`` or grid point, or a sweep over the limits (one line).
+        A bad base, ``sweep.set`` or grid point, a start grid whose size differs between the
+        ball counts of a ``balancer.n_balls`` axis, or a sweep over the limits (one line).
     """
-    build = _base_builder(spec)
+    build, given = _base_builder(spec)
     n_cells = math.prod(len(a.values) for a in spec.grid)
     from ..limits import check_memory
     check_memory("grid", f"{n_cells} cells", _CELL_BYTES * n_cells, "sweep's grid")
+    n_axis = next((k for k, a in enumerate(spec.grid) if a.path == "balancer.n_balls"), None)
     cells = []
     for combo in itertools.product(*[range(len(a.values)) for a in spec.grid]):
         pairs = [(a.path, a.values[i]) for a, i in zip(spec.grid, combo)]
         where = ", ".join(f"{a.path}={a.values[i]!r}" for a, i in zip(spec.grid, combo))
+        if n_axis is not None and isinstance(pairs[n_axis][1], int) \
+                and not isinstance(pairs[n_axis][1], bool):
+            pairs += _follow_n_balls(spec, given, pairs[n_axis][1])
         try:
             cells.append(replace_values(cells[0], pairs) if cells else build(pairs))
         except Exception as e:   # ConfigError / ParameterError / ResourceError
-            raise SweepError(f"{_culprit(spec, str(e), where)}: {e}") from None
-    nb = {c.system.balancer.n_balls for c in cells}
-    if len(nb) != 1:
-        raise SweepError(f"grid: balancer.n_balls must be the same in every cell (got {sorted(nb)})")
-    N = nb.pop()
-    b0 = cells[0].system.balancer
-    identical = identical_balls(b0)
-    n_samples = (n_start_grid(spec.mc_n, N, identical) if spec.mc_kind == "start_grid"
+            field = str(e).split(" ", 1)[0].split("[", 1)[0].rstrip(":")
+            culprit = (f"grid point {where}" if n_axis is not None and field in _FOLLOW
+                       else _culprit(spec, str(e), where))
+            raise SweepError(f"{culprit}: {e}") from None
+    first = {}                                   # N -> its first cell
+    for c in cells:
+        first.setdefault(c.system.balancer.n_balls, c)
+    identical = {n: identical_balls(c.system.balancer) for n, c in first.items()}
+    if spec.mc_kind == "start_grid":
+        counts = {n: n_start_grid(spec.mc_n, n, identical[n]) for n in first}
+        if len(set(counts.values())) > 1:
+            shown = ", ".join(f"{k} for {n} balls" for n, k in sorted(counts.items()))
+            raise SweepError(f"monte_carlo.kind = 'start_grid' with grid balancer.n_balls: "
+                             f"n = {spec.mc_n} gives {shown}, and one sample dimension needs "
+                             "one count; use kind = 'random' (the same number of random starts "
+                             "for every ball count) or one sweep per ball count")
+    N = max(first)
+    n_samples = (n_start_grid(spec.mc_n, N, identical[N]) if spec.mc_kind == "start_grid"
                  else spec.mc_samples if spec.mc_kind == "random" else 1)
     n_hist = int(cells[0].spin.duration / spec.history_dt) + 1 if spec.history_dt > 0 else 0
     _guard_size(spec, len(cells), n_samples, N, len(cells[0].spin.checkpoints), n_hist, cells[0])
-    if spec.mc_kind == "start_grid":
-        angles = start_grid(spec.mc_n, N, identical)
-    elif spec.mc_kind == "random":
-        rng = np.random.default_rng(spec.seed)
-        angles = rng.uniform(0.0, 2 * np.pi, size=(spec.mc_samples, N))
-    else:
-        angles = np.asarray(cells[0].initial.angles_for(b0), float).reshape(1, N)
-    delta = b0.contact_angle
-    angles = np.array([separate(a, delta) for a in angles]).reshape(-1, N)
-    # groups of consecutive runs with the same spin and options; tasks at most batch_size long
-    n_s = angles.shape[0]
-    n_runs = len(cells) * n_s
-    bounds = [0] + [c * n_s for c in range(1, len(cells))
-                    if (cells[c].spin, cells[c].options) != (cells[c - 1].spin, cells[c - 1].options)]
+    angles = {n: _sample_angles(spec, c, identical[n]) for n, c in first.items()}
+    # groups of consecutive runs with the same spin, options and N; tasks at most batch_size
+    n_runs = len(cells) * n_samples
+
+    def key(c):
+        return c.spin, c.options, c.system.balancer.n_balls
+
+    bounds = [0] + [c * n_samples for c in range(1, len(cells))
+                    if key(cells[c]) != key(cells[c - 1])]
     groups = tuple(zip(bounds, bounds[1:] + [n_runs]))
     tasks = _chunk(groups, np.ones(n_runs, bool), spec.batch_size)
-    return Plan(spec, cells, angles, tasks, N, groups)
+    return Plan(spec, cells, angles, tasks, groups)
 
 
 def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> dict:
@@ -305,7 +428,7 @@ def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> 
     runs = range(first, first + count)
     systems = [plan.cells[r // n_s].system for r in runs]
     base_init = [plan.cells[r // n_s].initial for r in runs]
-    inits = [InitialState(ball_angles=tuple(plan.start_angles[r % n_s]),
+    inits = [InitialState(ball_angles=tuple(plan.cell_angles(r // n_s)[r % n_s]),
                           ball_speeds=i.ball_speeds, x=i.x, y=i.y, vx=i.vx, vy=i.vy,
                           steady_state=i.steady_state)
              for r, i in zip(runs, base_init)]
@@ -315,11 +438,22 @@ def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> 
     if plan.spec.history_dt > 0:
         hist = tuple(np.arange(0.0, spin.duration + 1e-12, plan.spec.history_dt))
     return {"first": first, "count": count, "systems": systems, "initials": inits, "spin": spin,
-            "options": opts, "history_times": hist}
+            "options": opts, "history_times": hist, "ball_slots": plan.n_balls}
+
+
+def _pad_balls(a: np.ndarray, slots: int) -> np.ndarray:
+    """(runs, checkpoints, N) -> (runs, checkpoints, slots), NaN for the balls N..slots-1."""
+    if a.shape[2] >= slots:
+        return a
+    out = np.full(a.shape[:2] + (slots,), np.nan)
+    out[:, :, :a.shape[2]] = a
+    return out
 
 
 def run_task(payload: dict) -> dict:
-    """Run one task (in any process): numpy arrays per run, see store.VARIABLES."""
+    """Run one task (in any process): numpy arrays per run, see store.VARIABLES. The runs of a
+    task share their ball count N; ``ball_angle`` has ``payload["ball_slots"]`` (>= N) balls,
+    NaN beyond N."""
     from ..core.layout import S_AMAX, S_EVENTS, S_STEPS, speed_index
     from ..physics.iso1940 import grade_value
     from ..simulate.result import residual_unbalance_history
@@ -334,14 +468,17 @@ def run_task(payload: dict) -> dict:
     n_cp = cps.size
     systems = payload["systems"]
     mt = np.array([s.total_mass for s in systems])
-    a0 = np.array([i.ball_angles for i in payload["initials"]], float).reshape(len(systems), -1)
+    n_balls = systems[0].balancer.n_balls
+    a0 = np.array([i.ball_angles for i in payload["initials"]], float).reshape(len(systems),
+                                                                               n_balls)
     u0 = np.array([abs(residual_unbalance_history(s, a, np.array(0.0))) for s, a in zip(systems, a0)])
     status = np.array([int(RunStatus.from_label(s)) for s in res.status], np.int8)
     out = {
         "first": payload["first"], "count": len(systems),
         "grade_G": res.grade_G[:, :n_cp],
         "residual_unbalance": res.residual_unbalance[:, :n_cp],
-        "ball_angle": np.angle(np.exp(1j * res.alpha[:, :n_cp, :])),
+        "ball_angle": _pad_balls(np.angle(np.exp(1j * res.alpha[:, :n_cp, :])),
+                                 payload.get("ball_slots", n_balls)),
         "initial_grade_G": grade_value(u0, mt, spin.nominal_speed),
         "max_amplitude": res.stats[:, S_AMAX],
         "status": status,

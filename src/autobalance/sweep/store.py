@@ -70,7 +70,12 @@ def identity(plan: Plan) -> str:
     h.update(__version__.encode())
     for c in plan.cells:
         h.update(repr((c.system, c.spin, c.initial, c.options)).encode())
-    h.update(np.ascontiguousarray(plan.start_angles, float).tobytes())
+    if len(plan.angles) == 1:
+        h.update(np.ascontiguousarray(plan.start_angles, float).tobytes())
+    else:                                   # a balancer.n_balls axis: the angles of every N
+        for n in sorted(plan.angles):
+            h.update(f"N={n}".encode())
+            h.update(np.ascontiguousarray(plan.angles[n], float).tobytes())
     plan._identity = h.hexdigest()[:16]
     return plan._identity
 
@@ -328,7 +333,7 @@ VARIABLES = {
     # name: (dims after the run dims, units, long name)
     "grade_G": (("checkpoint",), "mm/s", "ISO 1940-1 balance grade at the checkpoint"),
     "residual_unbalance": (("checkpoint",), "kg*m", "residual unbalance at the checkpoint"),
-    "ball_angle": (("checkpoint", "ball"), "rad", "ball angle from the unbalance, in (-pi, pi]"),
+    "ball_angle": (("checkpoint", "ball"), "rad", "ball angle from the unbalance, in (-pi, pi]; NaN for a ball the cell does not have"),
     "initial_grade_G": ((), "mm/s", "grade of the rotor with the balls at their start positions"),
     "max_amplitude": ((), "m", "largest whirl amplitude during the run"),
     "status": ((), "1", f"solver status ({STATUS_NAMES})"),
@@ -354,6 +359,20 @@ def _expected(plan: Plan) -> tuple[list, dict]:
     names = [n for n, (dims, _, _) in VARIABLES.items()
              if not ("history_time" in dims and not sizes["history_time"])]
     return names, {n: tuple(sizes[d] for d in VARIABLES[n][0]) for n in names}
+
+
+def _start_angle_coord(plan: Plan) -> tuple:
+    """The ``start_angle`` coordinate: (sample, ball) for one ball count; with a
+    ``balancer.n_balls`` grid axis (balancer__n_balls, sample, ball), NaN for the balls a
+    count does not have."""
+    attrs = {"units": "rad", "long_name": "ball start angle from the unbalance"}
+    if len(plan.angles) == 1:
+        return ("sample", "ball"), plan.start_angles, attrs
+    axis = next(a for a in plan.spec.grid if a.path == "balancer.n_balls")
+    out = np.full((len(axis.si), plan.n_samples, plan.n_balls), np.nan)
+    for k, n in enumerate(axis.si):
+        out[k, :, :int(n)] = plan.angles[int(n)]
+    return (axis.dim, "sample", "ball"), out, attrs
 
 
 def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | None = None):
@@ -395,8 +414,7 @@ def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | N
     coords["sample"] = ("sample", np.arange(n_s))
     coords["checkpoint"] = ("checkpoint", cps, {"units": "s", "long_name": "checkpoint time"})
     coords["ball"] = ("ball", np.arange(plan.n_balls))
-    coords["start_angle"] = (("sample", "ball"), plan.start_angles,
-                             {"units": "rad", "long_name": "ball start angle from the unbalance"})
+    coords["start_angle"] = _start_angle_coord(plan)
     if hist_t.size:
         coords["history_time"] = ("history_time", hist_t, {"units": "s"})
     dvars = {}
