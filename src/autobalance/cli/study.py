@@ -2,7 +2,8 @@
 config file.
 
 Every study takes the machine (``PRESET|CONFIG`` with ``--set`` and ``--profile``), the target
-grade ``--grade G`` [mm/s] (default 16, printed with its ISO 1940 class), ``--json`` (one
+grade ``--grade G`` [mm/s] (default 16, printed with its ISO 1940 class), ``--units`` (the
+units of the text: default those written in the config), ``--json`` (one
 object, SI, unit-suffixed keys), ``--out FILE.nc`` (the study's dataset as NetCDF with units and
 provenance), ``--plot FILE.png`` and ``--quick`` (a coarse version that finishes in under two
 minutes on two cores). The studies that run simulations keep them in a resumable sweep store
@@ -22,17 +23,16 @@ from typing import Annotated, Iterator, Optional
 import typer
 
 from ..config import ConfigError
-from .common import (ExecutorOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt, SourceArg,
-                     WorkersOpt, check_executor, check_grade, check_output_file, check_plot,
-                     check_workers, fail, guard, load_machine, print_json, quiet_dask_logs)
+from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt,
+                     SourceArg, UnitsOpt, WorkersOpt, check_executor, check_grade,
+                     check_output_file, check_plot, check_workers, fail, grade_text, guard,
+                     load_machine, print_json, quiet_dask_logs)
 
 app = typer.Typer(name="study", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
                   help="Design studies of any machine: start positions, unbalance range, TSR "
                        "plateau, immobility.")
 
-GradeOpt = Annotated[float, typer.Option(
-    "--grade", help="Target ISO 1940 grade G [mm/s] (e.g. 16 for G16).")]
 QuickOpt = Annotated[bool, typer.Option(
     "--quick", help="Coarse grids: finishes in under 2 minutes on 2 cores.")]
 OutOpt = Annotated[Optional[Path], typer.Option(
@@ -45,24 +45,9 @@ StoreOpt = Annotated[Optional[Path], typer.Option(
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
-def grade_label(G: float) -> str:
-    """``"G16 (ISO 1940 class G16)"``: a grade [mm/s] with the standard class it satisfies.
-
-    Parameters
-    ----------
-    G : float
-        The grade [mm/s].
-    """
-    from ..physics.iso1940 import grade_class
-
-    c = float(grade_class(G))
-    cls = f"G{c:g}" if math.isfinite(c) else "beyond G4000"
-    return f"G{G:.3g} (ISO 1940 class {cls})"
-
-
-def _rpm(w: float) -> str:
-    """A speed [rad/s] as "w rad/s (n rpm)"."""
-    return f"{w:.4g} rad/s ({w * 30 / math.pi:.0f} rpm)"
+def _speed(du, w: float) -> str:
+    """A speed [rad/s] in the display unit (:func:`autobalance.config.display.display_units`)."""
+    return du.fmt(w, "speed")
 
 
 @contextmanager
@@ -81,8 +66,11 @@ def _study_errors() -> Iterator[None]:
 
 
 def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=None,
-             scheduler=None, store=None):
-    """The checks every study makes before any work, and its machine."""
+             scheduler=None, store=None, units=None):
+    """The checks every study makes before any work; the machine, the target grade [mm/s] and
+    the display units of the text and figures."""
+    from ..config.display import display_units
+
     check_plot(plot, PLOT_SUFFIXES)
     check_output_file(out, "--out", "study.nc", (".nc",))
     G = check_grade(grade)
@@ -92,7 +80,8 @@ def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=Non
         raise ConfigError(f"--store {str(store)!r}: exists and is not a directory")
     if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
         quiet_dask_logs()
-    return load_machine(source, set_, profile), G
+    cfg = load_machine(source, set_, profile)
+    return cfg, G, display_units(cfg, units)
 
 
 def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
@@ -134,7 +123,7 @@ def _store(store: Optional[Path], cfg, *parts) -> Optional[Path]:
 
 @app.command("start-positions")
 def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-                    grade: GradeOpt = 16.0,
+                    grade: GradeOpt = 16.0, units: UnitsOpt = None,
                     n: Annotated[Optional[int], typer.Option(
                         "--n", help="Start positions per ball of 004's equispaced grid (default "
                                     "50 for 2 balls, 20 for 3; quick 12 / 8).")] = None,
@@ -151,7 +140,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
     Parameters
     ----------
-    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor, json_
         The options of every study (:mod:`autobalance.cli.study`).
     n : int
         Start positions per ball of the grid (>= 1).
@@ -164,8 +153,8 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
-        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
-                          store)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
+                              scheduler, store, units)
         for field, v in (("--n", n), ("--random", samples)):
             if v is not None and v < 1:
                 raise ConfigError(f"{field} = {v}: must be an integer >= 1")
@@ -187,7 +176,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         print_json(res)
         return
     typer.echo(f"{cfg.name}: {res['runs']} runs ({res['starts']}), {res['failed']} failed; "
-               f"target {grade_label(G)}; initial G{res['G_ini_mm_s']:.3g}, balls "
+               f"target {grade_text(G)}; initial G{res['G_ini_mm_s']:.3g}, balls "
                f"G{res['G_balls_mm_s']:.3g}")
     for c in res["checkpoints"]:
         typer.echo(f"  {c['label']:>8} (t = {c['time_s']:g} s): G p5/p50/p95 = "
@@ -232,7 +221,7 @@ def start_positions_summary(ds) -> dict:
 
 @app.command("unbalance-range")
 def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-                    grade: GradeOpt = 16.0,
+                    grade: GradeOpt = 16.0, units: UnitsOpt = None,
                     g_max: Annotated[Optional[float], typer.Option(
                         "--g-max", help="Largest initial grade [mm/s] (default 1.5 x the "
                                         "balls' grade).")] = None,
@@ -252,7 +241,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
     Parameters
     ----------
-    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor, json_
         The options of every study (:mod:`autobalance.cli.study`).
     g_max : float
         Largest initial grade of the grid [mm/s] (> 0).
@@ -269,8 +258,8 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
-        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
-                          store)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
+                              scheduler, store, units)
         if g_max is not None:
             check_grade(g_max, "--g-max")
         for field, v in (("--steps", steps), ("--n", n)):
@@ -298,7 +287,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         print_json(res)
         return
     typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x "
-               f"{nn} starts per ball; balls G{G_b:.3g}; target {grade_label(G)}")
+               f"{nn} starts per ball; balls G{G_b:.3g}; target {grade_text(G)}")
     for proc, d in res["cases"]["nominal"].items():
         rng = ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in d["valid_ranges_grade_G_mm_s"]) \
             or "none"
@@ -308,7 +297,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
 @app.command("plateau")
 def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-            grade: GradeOpt = 16.0,
+            grade: GradeOpt = 16.0, units: UnitsOpt = None,
             n: Annotated[Optional[int], typer.Option(
                 "--n", help="Start positions per ball (default 20; quick 8).")] = None,
             ratios: Annotated[Optional[str], typer.Option(
@@ -323,7 +312,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
 
     Parameters
     ----------
-    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor, json_
         The options of every study (:mod:`autobalance.cli.study`); the profile must be a tsr.
     n : int
         Start positions per ball (>= 1).
@@ -334,8 +323,8 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
-        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
-                          store)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
+                              scheduler, store, units)
         if n is not None and n < 1:
             raise ConfigError(f"--n = {n}: must be an integer >= 1")
         nn = n or (8 if quick else 20)
@@ -360,7 +349,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         print_json(res)
         return
     lo, hi = res["near_optimal_ratios"]
-    typer.echo(f"{cfg.name}: recommended plateau {_rpm(res['recommended_plateau_rad_s'])} = "
+    typer.echo(f"{cfg.name}: recommended plateau {_speed(du, res['recommended_plateau_rad_s'])} = "
                f"{res['recommended_plateau_ratio']:.3g} x the natural frequency; mean 95th "
                f"percentile G{res['best_mean_p95_grade_G_mm_s']:.3g} over G_ini <= "
                f"{ds.attrs['g_range']:.3g} mm/s")
@@ -370,13 +359,13 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     if res["at_grid_edge"]:
         typer.echo("  the best plateau is at the edge of the studied ratios: the optimum may lie "
                    "outside (widen the range)")
-    typer.echo(f"  at the recommended plateau the 95th percentile meets {grade_label(G)} for "
+    typer.echo(f"  at the recommended plateau the 95th percentile meets {grade_text(G)} for "
                f"{100 * res['recommended_meets_grade_share']:.0f} % of the initial grades studied")
 
 
 @app.command("immobility")
 def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-               grade: GradeOpt = 16.0,
+               grade: GradeOpt = 16.0, units: UnitsOpt = None,
                g_ini: Annotated[Optional[float], typer.Option(
                    "--g-ini", help="Initial unbalance grade [mm/s] (default: the machine's).")] = None,
                mu_r: Annotated[str, typer.Option("--mu-r", help="Factors on the rolling "
@@ -392,7 +381,7 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
 
     Parameters
     ----------
-    source, set_, profile, grade, quick, out, plot, json_
+    source, set_, profile, grade, units, quick, out, plot, json_
         The options of every study (:mod:`autobalance.cli.study`).
     g_ini : float
         Initial grade [mm/s] (default: the machine's unbalance at its nominal speed).
@@ -408,7 +397,7 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
 
     t0 = time.perf_counter()
     with guard():
-        cfg, G = _prepare(source, set_, profile, grade, plot, out)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units)
         s = cfg.system
         gi = (float(grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed))
               if g_ini is None else g_ini)
@@ -443,11 +432,11 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         print_json(res)
         return
     typer.echo(f"{cfg.name} at G_ini = G{gi:.3g}: least immobility {100 * res['least_immobility']:.1f} % "
-               f"at {_rpm(res['least_immobility_speed_rad_s'])}; natural frequency "
-               f"{_rpm(res['natural_frequency_rad_s'])}")
+               f"at {_speed(du, res['least_immobility_speed_rad_s'])}; natural frequency "
+               f"{_speed(du, res['natural_frequency_rad_s'])}")
     gs = res["stick_threshold_at_nominal_grade_G_mm_s"]
     typer.echo(f"  stick threshold at the nominal speed: G*{gs:.3g} mm/s "
-               f"({'below' if gs <= G else 'above'} the target {grade_label(G)}): balls that "
+               f"({'below' if gs <= G else 'above'} the target {grade_text(G)}): balls that "
                "stop at this speed leave about this grade")
 
 
@@ -463,7 +452,7 @@ def _factors(spec: str, name: str) -> tuple:
 
 
 def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-           grade: GradeOpt = 16.0,
+           grade: GradeOpt = 16.0, units: UnitsOpt = None,
            confidence: Annotated[float, typer.Option(
                "--confidence", help="Share of start positions that must meet the grade at "
                                     "every unbalance of the range.")] = 0.95,
@@ -497,7 +486,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
 
     Parameters
     ----------
-    source, set_, profile, grade, quick, store, out, plot, scheduler, workers, executor, json_
+    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor, json_
         The options of every study (:mod:`autobalance.cli.study`).
     confidence : float
         Required share of start positions [-] in (0, 1).
@@ -519,8 +508,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
-        cfg, G = _prepare(source, set_, profile, grade, plot, out, workers, executor, scheduler,
-                          store)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
+                              scheduler, store, units)
         if not (math.isfinite(confidence) and 0 < confidence < 1):
             raise ConfigError(f"--confidence = {confidence:g}: must be within (0, 1), e.g. 0.95")
         rng = None
@@ -572,7 +561,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         def fig():
             from ..plotting.tsr import plot_design
 
-            return plot_design(ds, f"{cfg.name}: designs for {grade_label(G)} at "
+            return plot_design(ds, f"{cfg.name}: designs for {grade_text(G)} at "
                                    f"{100 * confidence:g} %")
 
         res = {"study": "design", "machine": cfg.name, **design_summary(ds)}
@@ -582,9 +571,9 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         return
     u = res["unbalance_kg_m"]
     typer.echo(f"{cfg.name}: {res['n_designs']} designs x {len(u)} unbalances "
-               f"({1e3 * u[0]:.3g}-{1e3 * u[-1]:.3g} g*m, G{res['G_ini_mm_s'][0]:.3g}-"
+               f"({du.fmt(u[0], 'unbalance')} - {du.fmt(u[-1], 'unbalance')}, G{res['G_ini_mm_s'][0]:.3g}-"
                f"G{res['G_ini_mm_s'][-1]:.3g}) x {res['starts']} starts = {res['simulations']} "
-               f"simulations; target {grade_label(G)} for {100 * confidence:g} % of starts")
+               f"simulations; target {grade_text(G)} for {100 * confidence:g} % of starts")
     typer.echo(f"  {res['n_meeting']} designs meet the target" + (
         f"; cheapest: {res['best']['name']} (margin {res['best']['margin_grade_G_mm_s']:.2f} mm/s)"
         if res["best"] else ""))
