@@ -179,7 +179,9 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                f"target {grade_text(G)}; initial G{res['G_ini_mm_s']:.3g}, balls "
                f"G{res['G_balls_mm_s']:.3g}")
     for c in res["checkpoints"]:
-        typer.echo(f"  {c['label']:>8} (t = {c['time_s']:g} s): G p5/p50/p95 = "
+        where = (f"t = {c['time_s']:g} s" if c["label"].startswith("t=")
+                 else f"{c['label']} (t = {c['time_s']:g} s)")
+        typer.echo(f"  {where:>18}: G p5/p50/p95 = "
                    f"{c['p5_grade_G_mm_s']:.2f} / {c['p50_grade_G_mm_s']:.2f} / "
                    f"{c['p95_grade_G_mm_s']:.2f} mm/s, mode {c['mode_grade_G_mm_s']:.1f}, "
                    f"share <= G{G:g}: {100 * c['share_below_grade']:.1f} %")
