@@ -1,6 +1,22 @@
-"""Equilibria of the balls checked on the full model (000 sec. 3 / Fig. 10-11): the Floquet
-multipliers of the linearised full model and a perturbed simulation from an equilibrium. The
-closed-form equilibria and their kinetic-static stability are :mod:`autobalance.physics.equilibria`."""
+"""Equilibria of the balls checked on the full model (000 sec. 3 / Fig. 10-11): the linearised
+full model and a perturbed simulation from an equilibrium. The closed-form equilibria and their
+kinetic-static stability are :mod:`autobalance.physics.equilibria`.
+
+Two routes to the linearised full model, :func:`full_stability` picks the right one:
+
+* :func:`linearised_full` - an isotropic suspension without gravity, base motion or a varying
+  unbalance (``simulate.pack.fast_paths``' ``symmetric`` flag) has a steady rotor frame at
+  constant speed (004 eq 8-10): an equilibrium is a fixed point there and the eigenvalues of
+  the finite-difference Jacobian of the kernel's right-hand side decide (cheap);
+* :func:`floquet_full` - otherwise the state in the inertial frame is periodic with
+  T = 2 pi / w: Newton shooting for the periodic orbit and the eigenvalues of the
+  finite-difference monodromy matrix (Floquet multipliers).
+
+Both report multipliers over one revolution (mu = exp(lambda T) for the first). On a balanced
+family (N >= 3) d = N - 2 of them are 1 with eigenvectors along the family: they are neutral.
+They are removed when they lie within ``NEUTRAL_TOL`` of 1 and their eigenvectors span the
+family's tangent (largest principal-angle sine below ``NEUTRAL_ANGLE_TOL``); the verdict is
+then "stable" when every other multiplier has |mu| < 1 - ``STABLE_MARGIN``."""
 from __future__ import annotations
 
 import dataclasses
@@ -14,7 +30,91 @@ from ..models._validate import finite as _finite
 from ..physics.equilibria import TWO_PI, _wrap
 from ..physics.vibratory import _speed
 
-__all__ = ["floquet_full", "verify_by_simulation"]
+__all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "STABLE_MARGIN", "floquet_full", "full_stability",
+           "linearised_full", "steady_rotor_frame", "verify_by_simulation"]
+
+#: A neutral multiplier lies within this distance of 1 [-] (finite-difference accuracy).
+NEUTRAL_TOL = 1e-6
+#: The neutral eigenvectors span the tangent: largest principal-angle sine below this [-].
+NEUTRAL_ANGLE_TOL = 1e-3
+#: Stable when every counted multiplier has |mu| < 1 - STABLE_MARGIN [-].
+STABLE_MARGIN = 1e-7
+
+
+def _ideal(system):
+    """The machine without rolling resistance and suspension dry friction (smooth, so it can be
+    linearised: the stability of the ideal model)."""
+    bal = dataclasses.replace(system.balancer, rolling_resistance=0.0, stiction=None)
+    sus = dataclasses.replace(system.suspension, dry_friction_force=0.0)
+    return dataclasses.replace(system, balancer=bal, suspension=sus)
+
+
+def steady_rotor_frame(system) -> bool:
+    """Whether the ideal machine has a steady rotor frame at constant speed: isotropic
+    suspension, no base motion, no gravity (``simulate.pack.fast_paths``' ``symmetric``) and a
+    constant unbalance. Then an equilibrium is a fixed point of the rotor-frame equations.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+
+    Returns
+    -------
+    bool
+    """
+    from ..models import SimOptions, SpeedProfile
+    from ..simulate.pack import fast_paths
+
+    sysl = _ideal(system)
+    symmetric = fast_paths(sysl, SpeedProfile.constant(1.0, 1.0), SimOptions())[2]
+    return bool(symmetric and system.rotor.unbalance_table()[0].size == 1)
+
+
+def _scales(system, w: float) -> tuple[float, float]:
+    """Length L [m] of the rotor motion (max(U, capacity) / M_t) and the speed w [rad/s]."""
+    b = system.balancer
+    return max(system.rotor.unbalance, b.capacity) / system.total_mass, w
+
+
+def _neutral_split(mu, V, E, scale) -> dict:
+    """Which d multipliers are the neutral ones of a family with tangent columns E (in the
+    state's coordinates): the d best aligned with span E among those within NEUTRAL_TOL of 1,
+    accepted when together they span E. V: eigenvectors (columns) of the same matrix."""
+    d = E.shape[1]
+    Vs = V / scale[:, None]
+    Es, _ = np.linalg.qr(E / scale[:, None])
+    near = np.nonzero(np.abs(mu - 1.0) < NEUTRAL_TOL)[0]
+    out = {"neutral_index": np.zeros(0, int), "neutral_ok": False,
+           "neutral_distance": float(np.sort(np.abs(mu - 1.0))[d - 1]), "neutral_sin_angle": 1.0}
+    if near.size < d:
+        return out
+    align = np.linalg.norm(Es.T @ Vs[:, near], axis=0) / np.linalg.norm(Vs[:, near], axis=0)
+    pick = near[np.argsort(-align)[:d]]
+    Qv, _ = np.linalg.qr(Vs[:, pick])
+    cosines = np.linalg.svd(Es.T @ Qv, compute_uv=False)
+    sin = float(np.sqrt(max(0.0, 1.0 - float(cosines.min()) ** 2)))
+    out.update(neutral_distance=float(np.abs(mu[pick] - 1.0).max()), neutral_sin_angle=sin)
+    if sin < NEUTRAL_ANGLE_TOL:
+        out.update(neutral_index=pick, neutral_ok=True)
+    return out
+
+
+def _verdict(mu, V, E, scale) -> dict:
+    """Multipliers -> the stability verdict, the family's neutral ones removed (E given)."""
+    info = {"neutral_index": np.zeros(0, int), "neutral_ok": True}
+    if E is not None and E.shape[1]:
+        info = _neutral_split(mu, V, E, scale)
+    keep = np.ones(mu.size, bool)
+    keep[info["neutral_index"]] = False
+    mx = float(np.abs(mu[keep]).max()) if keep.any() else 0.0
+    res = {"multipliers": mu, "neutral_multipliers": mu[~keep], "max_modulus": mx,
+           "max_modulus_all": float(np.abs(mu).max()), "stable": mx < 1.0 - STABLE_MARGIN,
+           "neutral_ok": bool(info["neutral_ok"])}
+    if E is not None and E.shape[1]:
+        res.update(family_dimension=int(E.shape[1]), neutral_distance=info["neutral_distance"],
+                   neutral_sin_angle=info["neutral_sin_angle"])
+    return res
 
 
 # -- linearised full model ---------------------------------------------------------------------
@@ -40,7 +140,7 @@ def _period_map(system, w, z, options):
     return np.concatenate([[x, y, vx, vy], a, sim.alpha_dot[-1]])
 
 
-def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> dict:
+def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, family: bool = False) -> dict:
     """Floquet multipliers of the full model about an equilibrium (linearised full model).
 
     The full model (our ``simulate``: 000 eq 2-4 with ball inertia, gravity, eccentricity) at
@@ -63,12 +163,19 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
         Newton iterations (>= 1).
     rtol : float
         Integrator tolerance of each revolution [-].
+    family : bool
+        alpha lies on a balanced family (N >= 3): its N - 2 neutral multipliers (1, eigenvectors
+        along the family's tangent at the orbit's angles) are removed before the verdict.
 
     Returns
     -------
     dict
-        "multipliers" (complex ndarray), "max_modulus" [-], "stable" (bool: max |mu| < 1 - 1e-7),
-        "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0), "shooting_residual".
+        "multipliers" (complex ndarray), "neutral_multipliers" (the removed ones),
+        "max_modulus" [-] of the counted multipliers, "max_modulus_all" [-], "stable" (bool:
+        max |mu| < 1 - STABLE_MARGIN), "neutral_ok" (the neutral ones were found; True without
+        a family), with a family also "neutral_distance" (max |mu - 1| of the chosen ones) and
+        "neutral_sin_angle", "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0),
+        "shooting_residual", "method" ("floquet").
     """
     from ..physics.response import steady_orbit_start
     from ..models import SimOptions
@@ -76,15 +183,18 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
     w = _speed(speed)
     b = system.balancer
     n = b.n_balls
-    bal = dataclasses.replace(b, rolling_resistance=0.0, stiction=None)
-    sus = dataclasses.replace(system.suspension, dry_friction_force=0.0)
-    sysl = dataclasses.replace(system, balancer=bal, suspension=sus)
+    sysl = _ideal(system)
     opts = SimOptions(save_dt=-1.0, rtol=rtol, atol_scale=1e-9, exact_holds=False)
 
     a0 = np.asarray(alpha, float)
     z = np.concatenate([steady_orbit_start(sysl, w, a0), a0, np.zeros(n)])
     L = max(system.rotor.unbalance, b.capacity) / system.total_mass
     h = np.concatenate([[1e-4 * L] * 2, [1e-4 * L * w] * 2, [1e-5] * n, [1e-5 * w * 1e-2] * n])
+    t0 = None
+    if family:      # shooting steps stay transverse: the orbit stays near the given family point
+        from ..physics.equilibria import family_tangent
+
+        t0 = family_tangent(sysl, a0)
     res = np.inf
     for _ in range(int(iters)):
         P0 = _period_map(sysl, w, z, opts)
@@ -100,13 +210,129 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
             step = np.linalg.lstsq(A, -G, rcond=1e-10)[0]
         except np.linalg.LinAlgError:   # pragma: no cover
             break
+        if t0 is not None:
+            step[4:4 + n] -= t0 @ (t0.T @ step[4:4 + n])
         z = z + step
         if res < 1e-9:
             break
-    mu = np.linalg.eigvals(M)
-    mx = float(np.abs(mu).max())
-    return {"multipliers": mu, "max_modulus": mx, "stable": mx < 1.0 - 1e-7,
-            "orbit_alpha_rad": _wrap(z[4:4 + n]), "shooting_residual": res}
+    mu, V = np.linalg.eig(M)
+    E = None
+    if family:
+        t = family_tangent(sysl, z[4:4 + n])
+        E = np.zeros((z.size, t.shape[1]))
+        E[4:4 + n] = t
+    L = max(system.rotor.unbalance, b.capacity) / system.total_mass
+    scale = np.concatenate([[L] * 2, [L * w] * 2, [1.0] * n, [w] * n])
+    return {**_verdict(mu, V, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
+            "shooting_residual": res, "method": "floquet"}
+
+
+def linearised_full(system, speed, alpha, family: bool = False) -> dict:
+    """Eigenvalues of the full model linearised about an equilibrium in the steady rotor frame.
+
+    Valid when :func:`steady_rotor_frame` holds (isotropic suspension, no gravity: 004 eq 8-10
+    at constant speed have the balls' equilibria as fixed points). The state is z = (u, v,
+    alpha, u', v', alpha'); f(z) is the compiled kernel's right-hand side
+    (:func:`autobalance.simulate.probe.rotor_frame_derivative`) with rolling resistance and dry
+    friction off. The fixed point starts at the kinetic-static equilibrium with the rotor on its
+    steady orbit (``physics.response.steady_orbit_start``) and is refined by Newton (least-norm
+    steps: the family directions are singular); the Jacobian is central finite differences. The
+    eigenvalues lambda give the multipliers over one revolution, mu = exp(lambda 2 pi / w),
+    judged as in :func:`floquet_full`.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (steady rotor frame).
+    speed : float
+        Spin speed w [rad/s], > 0.
+    alpha : array_like (N,)
+        Equilibrium ball angles [rad].
+    family : bool
+        alpha lies on a balanced family: remove its N - 2 neutral directions.
+
+    Returns
+    -------
+    dict
+        The keys of :func:`floquet_full` ("method" = "eigenvalues", "shooting_residual" = the
+        fixed point's scaled residual max |f| / (L w^2, w^2) [-]) and "eigenvalues_1_s" [1/s].
+    """
+    from ..physics.response import steady_orbit_start
+    from ..simulate.probe import rotor_frame_derivative
+
+    w = _speed(speed)
+    if not steady_rotor_frame(system):
+        raise ParameterError("system", system.name or "machine",
+                             "has no steady rotor frame (anisotropic, gravity or base motion): "
+                             "use floquet_full")
+    sysl = _ideal(system)
+    n = sysl.balancer.n_balls
+    a0 = np.asarray(alpha, float)
+    L, _ = _scales(system, w)
+    x, y, _, _ = steady_orbit_start(sysl, w, a0)
+    z = np.concatenate([[x, y], a0, np.zeros(n + 2)])
+    h = np.concatenate([[1e-4 * L] * 2, [1e-5] * n, [1e-4 * L * w] * 2, [1e-7 * w] * n])
+    fscale = np.concatenate([[L * w] * 2, [w] * n, [L * w * w] * 2, [w * w] * n])
+
+    def jac(z):
+        dz = np.diag(h)
+        F = rotor_frame_derivative(sysl, w, np.concatenate([z + dz, z - dz]))
+        return ((F[:z.size] - F[z.size:]) / (2 * h)[:, None]).T
+
+    f = rotor_frame_derivative(sysl, w, z)
+    res = float(np.max(np.abs(f / fscale)))
+    for _ in range(3):
+        if res < 1e-12:
+            break
+        z = z + np.linalg.lstsq(jac(z), -f, rcond=1e-10)[0]
+        f = rotor_frame_derivative(sysl, w, z)
+        res = float(np.max(np.abs(f / fscale)))
+    A = jac(z)
+    lam, V = np.linalg.eig(A)
+    E = None
+    if family:
+        from ..physics.equilibria import family_tangent
+
+        t = family_tangent(sysl, z[2:2 + n])
+        E = np.zeros((z.size, t.shape[1]))
+        E[2:2 + n] = t
+    scale = np.concatenate([[L] * 2, [1.0] * n, [L * w] * 2, [w] * n])
+    mu = np.exp(lam * TWO_PI / w)
+    return {**_verdict(mu, V, E, scale), "eigenvalues_1_s": lam, "orbit_alpha_rad": _wrap(z[2:2 + n]),
+            "shooting_residual": res, "method": "eigenvalues"}
+
+
+def full_stability(system, speed, alpha, family: bool = False, method: str = "auto") -> dict:
+    """Stability of an equilibrium in the linearised full model by the right route.
+
+    ``auto``: :func:`linearised_full` (eigenvalues) when :func:`steady_rotor_frame` holds,
+    :func:`floquet_full` (shooting + monodromy) otherwise.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    speed : float
+        Spin speed w [rad/s], > 0.
+    alpha : array_like (N,)
+        Equilibrium ball angles [rad].
+    family : bool
+        alpha lies on a balanced family (N >= 3): its neutral directions are removed.
+    method : str
+        "auto", "eigenvalues" or "floquet".
+
+    Returns
+    -------
+    dict
+        As :func:`floquet_full`.
+    """
+    if method not in ("auto", "eigenvalues", "floquet"):
+        raise ParameterError("method", method, "must be 'auto', 'eigenvalues' or 'floquet'")
+    if method == "auto":
+        method = "eigenvalues" if steady_rotor_frame(system) else "floquet"
+    if method == "eigenvalues":
+        return linearised_full(system, speed, alpha, family=family)
+    return floquet_full(system, speed, alpha, family=family)
 
 
 def verify_by_simulation(system, speed, alpha, perturbation: float = 0.05, duration: float = 20.0,
