@@ -30,7 +30,7 @@ from ..models._validate import finite as _finite
 from ..physics.equilibria import TWO_PI, _wrap
 from ..physics.vibratory import _speed
 
-__all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "STABLE_MARGIN", "floquet_full", "full_stability",
+__all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "SHOOTING_TOL", "STABLE_MARGIN", "floquet_full", "full_stability",
            "linearised_full", "steady_rotor_frame", "verify_by_simulation"]
 
 #: A neutral multiplier lies within this distance of 1 [-] (finite-difference accuracy).
@@ -39,6 +39,9 @@ NEUTRAL_TOL = 1e-6
 NEUTRAL_ANGLE_TOL = 1e-3
 #: Stable when every counted multiplier has |mu| < 1 - STABLE_MARGIN [-].
 STABLE_MARGIN = 1e-7
+#: Shooting (or fixed-point) residual, scaled by the rotor motion L and 0.1 rad, below which the
+#: periodic orbit counts as found [-]; otherwise no verdict is claimed ("stable" is False).
+SHOOTING_TOL = 1e-6
 
 
 def _ideal(system):
@@ -175,7 +178,9 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
         max |mu| < 1 - STABLE_MARGIN), "neutral_ok" (the neutral ones were found; True without
         a family), with a family also "neutral_distance" (max |mu - 1| of the chosen ones) and
         "neutral_sin_angle", "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0),
-        "shooting_residual", "method" ("floquet").
+        "shooting_residual" [-] (max |P(z) - z| over 1e4 x the difference steps: L for the rotor,
+        0.1 rad for the balls), "converged" (below SHOOTING_TOL; "stable" needs it), "method"
+        ("floquet").
     """
     from ..physics.response import steady_orbit_start
     from ..models import SimOptions
@@ -223,8 +228,10 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
         E[4:4 + n] = t
     L = max(system.rotor.unbalance, b.capacity) / system.total_mass
     scale = np.concatenate([[L] * 2, [L * w] * 2, [1.0] * n, [w] * n])
-    return {**_verdict(mu, V, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
-            "shooting_residual": res, "method": "floquet"}
+    out = {**_verdict(mu, V, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
+           "shooting_residual": res, "converged": res < SHOOTING_TOL, "method": "floquet"}
+    out["stable"] = bool(out["stable"] and out["converged"])
+    return out
 
 
 def linearised_full(system, speed, alpha, family: bool = False) -> dict:
@@ -298,8 +305,10 @@ def linearised_full(system, speed, alpha, family: bool = False) -> dict:
         E[2:2 + n] = t
     scale = np.concatenate([[L] * 2, [1.0] * n, [L * w] * 2, [w] * n])
     mu = np.exp(lam * TWO_PI / w)
-    return {**_verdict(mu, V, E, scale), "eigenvalues_1_s": lam, "orbit_alpha_rad": _wrap(z[2:2 + n]),
-            "shooting_residual": res, "method": "eigenvalues"}
+    out = {**_verdict(mu, V, E, scale), "eigenvalues_1_s": lam, "orbit_alpha_rad": _wrap(z[2:2 + n]),
+           "shooting_residual": res, "converged": res < SHOOTING_TOL, "method": "eigenvalues"}
+    out["stable"] = bool(out["stable"] and out["converged"])
+    return out
 
 
 def full_stability(system, speed, alpha, family: bool = False, method: str = "auto") -> dict:

@@ -19,7 +19,12 @@ than their contact angle):
 * ``balanced_exists``: a reachable balanced state exists; ``balanced_stable``: one of them is
   stable (for a family: at least one judged sample point).
 * *best stable state*: the stable reachable equilibrium of least residual unbalance;
-  ``residual_unbalance`` [kg*m] and ``grade`` [mm/s] (ISO 1940 with the speed itself, M_t),
+  ``residual_unbalance`` [kg*m] and ``grade`` [mm/s] (ISO 1940 with the speed itself, M_t).
+  When no reachable state is stable, the least-residual kinetic-static-stable equilibrium whose
+  balls overlap stands in (``best_kind`` = 3): balls gathered in contact, e.g. all of them
+  opposite an unbalance larger than their capacity (residual U - sum m_i R) or, below
+  resonance, with the unbalance. The kinetic-static model ignores the contact, so its residual
+  is that of coincident balls (touching balls spread by their contact angle: a little more).
   NaN where nothing is stable.
 """
 from __future__ import annotations
@@ -45,6 +50,9 @@ DAMPING_FACTORS_QUICK = (0.5, 1.0, 2.0)
 N_SPEEDS, N_SPEEDS_QUICK = 120, 30
 #: Range boundaries are bisected to this fraction of the speed (full and quick) [-].
 RANGE_RTOL, RANGE_RTOL_QUICK = 1e-4, 1e-3
+#: A full-model orbit farther than this from its kinetic-static equilibrium is another orbit:
+#: no verdict (e.g. gravity stronger than the balls' centripetal acceleration) [rad].
+ORBIT_DRIFT = 0.5
 #: Sample points per family, and how many of them the Floquet route judges [-].
 FAMILY_SAMPLES, FLOQUET_FAMILY_SAMPLES = 12, 4
 
@@ -79,10 +87,15 @@ def _stable(system, w: float, e, family: bool, full: bool, counts: dict) -> bool
     if not full:
         return bool(e.ks_stable)
     try:
-        return bool(full_stability(system, w, e.alpha, family=family)["stable"])
+        f = full_stability(system, w, e.alpha, family=family)
     except (ParameterError, ValueError, np.linalg.LinAlgError):
         counts["failed"] += 1            # e.g. shooting pushed the balls into contact
         return False
+    drift = float(np.abs(np.angle(np.exp(1j * (f["orbit_alpha_rad"] - e.alpha)))).max())
+    if not f["converged"] or drift > ORBIT_DRIFT or (family and not f["neutral_ok"]):
+        counts["failed"] += 1            # no periodic orbit near this equilibrium: no verdict
+        return False
+    return bool(f["stable"])
 
 
 def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
@@ -92,7 +105,10 @@ def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
     exists = stable = False
     n_iso = n_stable = 0
     best = (math.inf, 0)
+    contact = math.inf          # least residual of a kinetic-static-stable state with balls in contact
     for e, bal in zip(es.isolated, es.balanced):
+        if e.overlap and e.ks_stable and not balanced_only:
+            contact = min(contact, e.residual_unbalance)
         if e.overlap or (balanced_only and not bal):
             continue
         n_iso += 1
@@ -116,6 +132,8 @@ def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
             n_stable += 1
             stable = True
             best = min(best, (min(p.residual_unbalance for p in ok), 2))
+    if not best[1] and math.isfinite(contact):
+        best = (contact, 3)
     return {"exists": exists, "stable": stable, "n_isolated": n_iso, "n_families": n_fam,
             "n_stable": n_stable, "residual": best[0] if best[1] else math.nan, "kind": best[1]}
 
@@ -186,7 +204,7 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
     xarray.Dataset
         Over ``speed`` [rad/s]: ``balanced_exists``, ``balanced_stable`` (int8 0/1),
         ``n_isolated``, ``n_families``, ``n_stable`` (int16), ``best_kind`` (0 none, 1 isolated,
-        2 family), ``residual_unbalance`` [kg*m] and ``grade`` [mm/s] of the best stable state;
+        2 family, 3 balls in contact), ``residual_unbalance`` [kg*m] and ``grade`` [mm/s] of the best stable state;
         over (``damping_factor`` [-], ``speed``): ``balanced_exists_damping``,
         ``balanced_stable_damping``; over (``damping_factor``, ``range``, ``edge``):
         ``stable_ranges_damping`` [rad/s] (NaN-padded). Attributes: ``stable_ranges_rad_s``
@@ -267,7 +285,8 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
             "n_stable": ("speed", np.array([r["n_stable"] for r in rows], np.int16),
                          {"units": "1", "long_name": "stable isolated equilibria and families"}),
             "best_kind": ("speed", np.array([r["kind"] for r in rows], np.int8),
-                          {"units": "1", "long_name": "best stable state: 0 none, 1 isolated, 2 family"}),
+                          {"units": "1", "long_name": "best stable state: 0 none, 1 isolated, "
+                                                      "2 family, 3 balls in contact (kinetic-static)"}),
             "residual_unbalance": ("speed", res, {"units": "kg*m",
                                                   "long_name": "residual unbalance of the best stable state"}),
             "grade": ("speed", grade_value(res, mt, w), {"units": "mm/s",
@@ -291,7 +310,7 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
         "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
         "total_mass_kg": float(mt), "capacity_kg_m": float(system.balancer.capacity),
         "range_rtol": float(rtol), "method": method, "full": int(bool(full)), "quick": int(bool(quick)),
-        "evaluations": int(counts["evaluations"]), "failed_evaluations": int(counts["failed"]),
+        "evaluations": int(counts["evaluations"]), "no_verdict": int(counts["failed"]),
         "definitions": "balanced: W = W* (zero residual without race eccentricity); only states "
                        "without ball overlap count; best stable state: least residual among stable ones",
         "wall_s": float(time.perf_counter() - t0),
@@ -346,6 +365,6 @@ def speed_map_summary(ds) -> dict:
         "least_residual_unbalance_kg_m": float(np.nanmin(res)) if np.isfinite(res).any() else None,
         "method": str(a["method"]),
         "evaluations": int(a["evaluations"]),
-        "failed_evaluations": int(a["failed_evaluations"]),
+        "no_verdict": int(a["no_verdict"]),
         "wall_s": float(a["wall_s"]),
     }
