@@ -93,7 +93,8 @@ def _full_verdict(system, w: float, alpha, family: bool) -> dict:
     out = {"full_method": f["method"], "full_max_multiplier": f["max_modulus"],
            "full_stable": f["stable"]}
     if family:
-        out.update(full_neutral_ok=f["neutral_ok"], full_neutral_distance=f["neutral_distance"],
+        out.update(full_neutral_ok=f["neutral_ok"], full_neutral_kind=f["neutral_kind"],
+                   full_neutral_distance=f["neutral_distance"],
                    full_neutral_sin_angle=f["neutral_sin_angle"])
     return out
 
@@ -140,6 +141,7 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
                 d["full_stable"] = [None if x is None else x["full_stable"] for x in v]
                 d["full_max_multiplier"] = [None if x is None else x["full_max_multiplier"] for x in v]
                 d["full_neutral_ok"] = [None if x is None else x["full_neutral_ok"] for x in v]
+                d["full_neutral_kind"] = [None if x is None else x["full_neutral_kind"] for x in v]
                 d["full_method"] = next((x["full_method"] for x in v if x), None)
             fams.append(d)
         out = {"name": cfg.name, "speed_rad_s": w, "regime": speed_regime(cfg.system, w),
@@ -169,7 +171,7 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
             fs = sum(bool(x) for x in d["full_stable"])
             text += f", full_stable at {fs}/{n_r} ({d['full_method']}, neutral directions removed)"
         typer.echo(text)
-        a0 = d["alpha_deg"][0]
+        a0 = next((a for a, o in zip(d["alpha_deg"], d["overlap"]) if not o), d["alpha_deg"][0])
         typer.echo(f"    e.g. alpha = {[round(v, 2) for v in a0]} deg")
 
 

@@ -27,11 +27,13 @@ Three verdicts are computed for every equilibrium alpha* of the kinetic-static m
 * ``kinetic_static`` - the linearised kinetic-static model (000 eq 13, 52) with the ball damping:
   I_eff alpha'' = R J alpha - D alpha', I_eff = m R^2 + I (R/r)^2, D = c_i m R^2. Stable when all
   eigenvalues have negative real parts.
-* ``full`` - the linearised full model (our ``simulate``): the periodic orbit of period 2 pi / w
-  through the equilibrium is found by Newton shooting and its Floquet multipliers are the
-  eigenvalues of the finite-difference monodromy matrix (:func:`floquet_full`).
+* ``full`` - the linearised full model (our ``simulate``), in
+  :mod:`autobalance.studies.equilibria`: eigenvalues at the fixed point of a steady rotor frame,
+  or the Floquet multipliers of the periodic orbit of period 2 pi / w found by Newton shooting
+  (``full_stability`` picks the route; ``floquet_full``); a family's neutral multipliers are
+  removed there too (docs/speed-map.md).
 
-:func:`verify_by_simulation` runs the full nonlinear model from a perturbed equilibrium.
+``verify_by_simulation`` (same module) runs the full nonlinear model from a perturbed equilibrium.
 Angles [rad], speeds [rad/s], forces [N].
 """
 from __future__ import annotations
@@ -242,8 +244,6 @@ def _make(system, w, alpha) -> Equilibrium:
     jscale = max(np.abs(lam).max(), 1e-300)
     escale = max(np.abs(ev).max(), 1e-300)
     W = residual_unbalance(system, alpha)
-    srt = np.sort(np.mod(alpha, TWO_PI))
-    gaps = np.diff(np.concatenate([srt, srt[:1] + TWO_PI])) if b.n_balls > 1 else np.array([TWO_PI])
     return Equilibrium(
         alpha=np.asarray(alpha, float),
         force_residual=float(np.abs(vibratory_forces(system, w, alpha)).max()),
@@ -252,7 +252,7 @@ def _make(system, w, alpha) -> Equilibrium:
         ks_eigenvalues=ev,
         ks_stable=bool(np.all(ev.real < 1e-9 * escale)),
         residual_unbalance=float(abs(W)),
-        overlap=bool(gaps.min() < b.contact_angle * (1 - 1e-9)),
+        overlap=_overlap(b, alpha),
     )
 
 

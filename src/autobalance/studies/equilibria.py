@@ -15,8 +15,12 @@ Two routes to the linearised full model, :func:`full_stability` picks the right 
 Both report multipliers over one revolution (mu = exp(lambda T) for the first). On a balanced
 family (N >= 3) d = N - 2 of them are 1 with eigenvectors along the family: they are neutral.
 They are removed when they lie within ``NEUTRAL_TOL`` of 1 and their eigenvectors span the
-family's tangent (largest principal-angle sine below ``NEUTRAL_ANGLE_TOL``); the verdict is
-then "stable" when every other multiplier has |mu| < 1 - ``STABLE_MARGIN``."""
+family's tangent (largest principal-angle sine below ``NEUTRAL_ANGLE_TOL``). Where the family is
+only nearly preserved (gravity in the plane of an N >= 3 balancer) they are removed as *slow*
+directions when |mu - 1| < ``SLOW_RATIO`` x the others' gap to the unit circle and the span
+matches to ``SLOW_ANGLE_TOL`` (the family attracts; the balls drift slowly along it, keeping
+W ~ W*). The verdict is then "stable" when every other multiplier has
+|mu| < 1 - ``STABLE_MARGIN``, and only for a converged orbit (``SHOOTING_TOL``)."""
 from __future__ import annotations
 
 import dataclasses
@@ -30,13 +34,19 @@ from ..models._validate import finite as _finite
 from ..physics.equilibria import TWO_PI, _wrap
 from ..physics.vibratory import _speed
 
-__all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "SHOOTING_TOL", "STABLE_MARGIN", "floquet_full", "full_stability",
+__all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "SHOOTING_TOL", "SLOW_ANGLE_TOL", "SLOW_RATIO",
+           "STABLE_MARGIN", "floquet_full", "full_stability",
            "linearised_full", "steady_rotor_frame", "verify_by_simulation"]
 
 #: A neutral multiplier lies within this distance of 1 [-] (finite-difference accuracy).
 NEUTRAL_TOL = 1e-6
 #: The neutral eigenvectors span the tangent: largest principal-angle sine below this [-].
 NEUTRAL_ANGLE_TOL = 1e-3
+#: A family only nearly preserved (gravity): its multipliers may differ from 1 by up to this
+#: fraction of the others' gap to the unit circle (slow drift along an attracting family) [-]...
+SLOW_RATIO = 0.01
+#: ... with eigenvectors spanning the tangent to this principal-angle sine [-].
+SLOW_ANGLE_TOL = 0.05
 #: Stable when every counted multiplier has |mu| < 1 - STABLE_MARGIN [-].
 STABLE_MARGIN = 1e-7
 #: Shooting (or fixed-point) residual, scaled by the rotor motion L and 0.1 rad, below which the
@@ -81,25 +91,34 @@ def _scales(system, w: float) -> tuple[float, float]:
 
 
 def _neutral_split(mu, V, E, scale) -> dict:
-    """Which d multipliers are the neutral ones of a family with tangent columns E (in the
-    state's coordinates): the d best aligned with span E among those within NEUTRAL_TOL of 1,
-    accepted when together they span E. V: eigenvectors (columns) of the same matrix."""
+    """Which d multipliers belong to the family with tangent columns E (state coordinates).
+
+    The d multipliers nearest 1 whose eigenvectors (columns of V, scaled by ``scale``) align
+    best with span E are taken. They are *exact* neutral ones when within NEUTRAL_TOL of 1 and
+    spanning E to NEUTRAL_ANGLE_TOL; *slow* ones (a family only nearly preserved, e.g. by
+    gravity: a slow drift along an attracting family) when |mu - 1| is below SLOW_RATIO x the
+    gap 1 - max |mu| of the others and they span E to SLOW_ANGLE_TOL. Otherwise none."""
     d = E.shape[1]
     Vs = V / scale[:, None]
     Es, _ = np.linalg.qr(E / scale[:, None])
-    near = np.nonzero(np.abs(mu - 1.0) < NEUTRAL_TOL)[0]
-    out = {"neutral_index": np.zeros(0, int), "neutral_ok": False,
-           "neutral_distance": float(np.sort(np.abs(mu - 1.0))[d - 1]), "neutral_sin_angle": 1.0}
-    if near.size < d:
-        return out
+    dist = np.abs(mu - 1.0)
+    out = {"neutral_index": np.zeros(0, int), "neutral_ok": False, "neutral_kind": "none",
+           "neutral_distance": float(np.sort(dist)[d - 1]), "neutral_sin_angle": 1.0}
+    near = np.argsort(dist)[:d + 2]                 # a few nearest 1; the best aligned d of them
     align = np.linalg.norm(Es.T @ Vs[:, near], axis=0) / np.linalg.norm(Vs[:, near], axis=0)
     pick = near[np.argsort(-align)[:d]]
     Qv, _ = np.linalg.qr(Vs[:, pick])
     cosines = np.linalg.svd(Es.T @ Qv, compute_uv=False)
     sin = float(np.sqrt(max(0.0, 1.0 - float(cosines.min()) ** 2)))
-    out.update(neutral_distance=float(np.abs(mu[pick] - 1.0).max()), neutral_sin_angle=sin)
-    if sin < NEUTRAL_ANGLE_TOL:
-        out.update(neutral_index=pick, neutral_ok=True)
+    rest = np.ones(mu.size, bool)
+    rest[pick] = False
+    gap = 1.0 - float(np.abs(mu[rest]).max()) if rest.any() else 1.0
+    far = float(dist[pick].max())
+    out.update(neutral_distance=far, neutral_sin_angle=sin)
+    if far < NEUTRAL_TOL and sin < NEUTRAL_ANGLE_TOL:
+        out.update(neutral_index=pick, neutral_ok=True, neutral_kind="exact")
+    elif gap > 0.0 and far < SLOW_RATIO * gap and sin < SLOW_ANGLE_TOL:
+        out.update(neutral_index=pick, neutral_ok=True, neutral_kind="slow")
     return out
 
 
@@ -116,7 +135,7 @@ def _verdict(mu, V, E, scale) -> dict:
            "neutral_ok": bool(info["neutral_ok"])}
     if E is not None and E.shape[1]:
         res.update(family_dimension=int(E.shape[1]), neutral_distance=info["neutral_distance"],
-                   neutral_sin_angle=info["neutral_sin_angle"])
+                   neutral_sin_angle=info["neutral_sin_angle"], neutral_kind=info["neutral_kind"])
     return res
 
 
@@ -163,12 +182,15 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
     alpha : array_like (N,)
         Starting ball angles [rad] (an equilibrium of :func:`find_equilibria`).
     iters : int
-        Newton iterations (>= 1).
+        Newton iterations (>= 1; at least 12 on a family, where the steps are projected).
     rtol : float
         Integrator tolerance of each revolution [-].
     family : bool
-        alpha lies on a balanced family (N >= 3): its N - 2 neutral multipliers (1, eigenvectors
-        along the family's tangent at the orbit's angles) are removed before the verdict.
+        alpha lies on a balanced family (N >= 3): the shooting solves the part of P(z) = z
+        across the family (what is left along it is reported as ``family_drift_rad`` per
+        revolution) and its N - 2 multipliers along the tangent are removed before the verdict:
+        exact ones (1 within NEUTRAL_TOL) or slow ones (a family only nearly preserved, e.g.
+        with gravity; :data:`SLOW_RATIO`).
 
     Returns
     -------
@@ -176,8 +198,9 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
         "multipliers" (complex ndarray), "neutral_multipliers" (the removed ones),
         "max_modulus" [-] of the counted multipliers, "max_modulus_all" [-], "stable" (bool:
         max |mu| < 1 - STABLE_MARGIN), "neutral_ok" (the neutral ones were found; True without
-        a family), with a family also "neutral_distance" (max |mu - 1| of the chosen ones) and
-        "neutral_sin_angle", "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0),
+        a family), with a family also "neutral_kind" ("exact", "slow" or "none"),
+        "neutral_distance" (max |mu - 1| of the chosen ones), "neutral_sin_angle" and
+        "family_drift_rad", "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0),
         "shooting_residual" [-] (max |P(z) - z| over 1e4 x the difference steps: L for the rotor,
         0.1 rad for the balls), "converged" (below SHOOTING_TOL; "stable" needs it), "method"
         ("floquet").
@@ -201,9 +224,14 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
 
         t0 = family_tangent(sysl, a0)
     res = np.inf
-    for _ in range(int(iters)):
+    drift = 0.0
+    for _ in range(max(int(iters), 12) if family else int(iters)):   # projected Newton: slower
         P0 = _period_map(sysl, w, z, opts)
         G = P0 - z
+        if t0 is not None:      # a family: solve the transverse part; what is left is a drift along it
+            along = t0.T @ G[4:4 + n]
+            drift = float(np.abs(along).max())
+            G[4:4 + n] -= t0 @ along
         res = float(np.max(np.abs(G / np.maximum(h * 1e4, 1e-300))))
         M = np.empty((z.size, z.size))
         for k in range(z.size):
@@ -211,6 +239,8 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
             dz[k] = h[k]
             M[:, k] = (_period_map(sysl, w, z + dz, opts) - _period_map(sysl, w, z - dz, opts)) / (2 * h[k])
         A = M - np.eye(z.size)
+        if t0 is not None:
+            A[4:4 + n] -= t0 @ (t0.T @ A[4:4 + n])
         try:
             step = np.linalg.lstsq(A, -G, rcond=1e-10)[0]
         except np.linalg.LinAlgError:   # pragma: no cover
@@ -230,6 +260,8 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
     scale = np.concatenate([[L] * 2, [L * w] * 2, [1.0] * n, [w] * n])
     out = {**_verdict(mu, V, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
            "shooting_residual": res, "converged": res < SHOOTING_TOL, "method": "floquet"}
+    if family:
+        out["family_drift_rad"] = drift
     out["stable"] = bool(out["stable"] and out["converged"])
     return out
 
