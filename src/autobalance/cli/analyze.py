@@ -84,46 +84,94 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
     typer.echo(f"{cfg.name} at {w:.4g} rad/s: F = {list(map(float, comp['F']))} N")
 
 
+def _full_verdict(system, w: float, alpha, family: bool) -> dict:
+    """Linearised full model at one equilibrium (eigenvalues or Floquet), as CLI fields."""
+    from ..studies.equilibria import full_stability
+
+    f = full_stability(system, w, alpha, family=family)
+    out = {"full_method": f["method"], "full_max_multiplier": f["max_modulus"],
+           "full_stable": f["stable"]}
+    if family:
+        out.update(full_neutral_ok=f["neutral_ok"], full_neutral_kind=f["neutral_kind"],
+                   full_neutral_distance=f["neutral_distance"],
+                   full_neutral_sin_angle=f["neutral_sin_angle"])
+    return out
+
+
 @app.command()
 def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
-               full: Annotated[bool, typer.Option("--full", help="Also Floquet multipliers of the "
-                                                  "full model (shooting).")] = False,
+               full: Annotated[bool, typer.Option("--full", help="Also the linearised full model "
+                                                  "(eigenvalues in a steady rotor frame, else "
+                                                  "Floquet multipliers by shooting).")] = False,
                json_: JsonOpt = False) -> None:
-    """All ball equilibria and their stability (000 eq 12, linearised KS and full model).\f
+    """All ball equilibria and their stability (000 eq 12, linearised KS and full model):
+    isolated ones, and for 3 or more balls the continuous balanced families as families.\f
+
+    With N >= 3 balls the balanced positions form a family of dimension N - 2; its neutral
+    directions are not counted as instability (docs/speed-map.md).
 
     Parameters
     ----------
     full : bool
-        Also the Floquet multipliers of the full model (shooting).
+        Also the linearised full model (for a family at each sample without ball overlap).
     source, set_, speed, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     """
     with guard():
         cfg = load_machine(source, set_)
-        from ..physics.equilibria import balancing_onset_speed, find_equilibria
-        from ..studies.equilibria import floquet_full
+        from ..physics.equilibria import balancing_onset_speed, find_equilibrium_set
         from ..physics.vibratory import speed_regime
 
         w = speed_at(cfg, speed)
+        es = find_equilibrium_set(cfg.system, w)
         rows = []
-        for e in find_equilibria(cfg.system, w):
+        for e, bal in zip(es.isolated, es.balanced):
             d = e.as_dict()
+            d["balanced"] = bal
             if full and not e.overlap:
-                f = floquet_full(cfg.system, w, e.alpha)
-                d["full_max_multiplier"] = f["max_modulus"]
-                d["full_stable"] = f["stable"]
+                d.update(_full_verdict(cfg.system, w, e.alpha, False))
             rows.append(d)
+        fams = []
+        for f in es.families:
+            d = f.as_dict()
+            if full:
+                v = [_full_verdict(cfg.system, w, p.alpha, True) if not p.overlap else None
+                     for p in f.points]
+                d["full_stable"] = [None if x is None else x["full_stable"] for x in v]
+                d["full_max_multiplier"] = [None if x is None else x["full_max_multiplier"] for x in v]
+                d["full_neutral_ok"] = [None if x is None else x["full_neutral_ok"] for x in v]
+                d["full_neutral_kind"] = [None if x is None else x["full_neutral_kind"] for x in v]
+                d["full_method"] = next((x["full_method"] for x in v if x), None)
+            fams.append(d)
         out = {"name": cfg.name, "speed_rad_s": w, "regime": speed_regime(cfg.system, w),
-               "balancing_onset_speed_rad_s": balancing_onset_speed(cfg.system), "equilibria": rows}
+               "balancing_onset_speed_rad_s": balancing_onset_speed(cfg.system),
+               "balanced_unbalance_kg_m": abs(es.target_unbalance),
+               "equilibria": rows, "families": fams}
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name} at {w:.4g} rad/s ({out['regime']}): {len(rows)} equilibria")
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s ({out['regime']}): {len(rows)} isolated "
+               f"equilibri{'um' if len(rows) == 1 else 'a'}, {len(fams)} "
+               f"famil{'y' if len(fams) == 1 else 'ies'} of balanced states")
     for d in rows:
         typer.echo(f"  alpha = {[round(v, 2) for v in d['alpha_deg']]} deg  static_stable = "
                    f"{d['static_stable']}  ks_stable = {d['ks_stable']}"
                    + (f"  full_stable = {d['full_stable']}" if "full_stable" in d else "")
+                   + ("  (balanced)" if d["balanced"] else "")
                    + ("  (balls overlap)" if d["overlap"] else ""))
+    for d in fams:
+        reach = [not o for o in d["overlap"]]
+        n_r = sum(reach)
+        ks = sum(k and r for k, r in zip(d["ks_stable"], reach))
+        text = (f"  family of dimension {d['dimension']}: {d['n_samples']} samples ({n_r} without "
+                f"ball overlap), residual {d['residual_unbalance_min_kg_m']:.4g}-"
+                f"{d['residual_unbalance_max_kg_m']:.4g} kg*m; ks_stable at {ks}/{n_r}")
+        if "full_stable" in d:
+            fs = sum(bool(x) for x in d["full_stable"])
+            text += f", full_stable at {fs}/{n_r} ({d['full_method']}, neutral directions removed)"
+        typer.echo(text)
+        a0 = next((a for a, o in zip(d["alpha_deg"], d["overlap"]) if not o), d["alpha_deg"][0])
+        typer.echo(f"    e.g. alpha = {[round(v, 2) for v in a0]} deg")
 
 
 def _error_bounds(cfg, w: float, fr: float) -> dict:

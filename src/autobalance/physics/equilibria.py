@@ -1,5 +1,23 @@
 """Equilibrium configurations of the balls and their stability (000 eq 10-12, 46, 52-55).
 
+Every equilibrium of the kinetic-static model falls in one of two kinds. In complex form
+(:mod:`.vibratory`) the force on ball i is F_i = -m_i w^2 Im(e^{i alpha_i} Q) with one common
+phasor Q = 1/2 conj(W) H + rho e^{-i beta} [m] (:func:`force_phasor`), so F = 0 needs either
+
+* Q = 0: the residual unbalance takes the balanced value W = W* = -2 rho e^{i beta} / conj(H)
+  (:func:`balanced_unbalance`; W* = 0 without eccentricity, 000 eq 22). These are two real
+  conditions on N angles: for N >= 3 balls a continuous family of dimension N - 2
+  (:class:`EquilibriumFamily`), the classical result for multi-ball balancers (Green, Champneys,
+  Friswell & Munoz 2008, Phil. Trans. R. Soc. A 366, 705-728; reference 12 of seed 000), two
+  mirror points for N = 2;
+* Q != 0: every ball lies on the line of Q, alpha_i = phi or phi + pi, with phi fixed by one
+  scalar equation (isolated, found in closed form by :func:`aligned_equilibria`).
+
+:func:`find_equilibrium_set` returns both kinds; :func:`find_equilibria` keeps the list of
+isolated points (for N >= 3 with one representative per family). Along a family the Jacobian
+J = dF/dalpha has N - 2 zero eigenvalues whose eigenvectors span the family's tangent; they are
+neutral, not unstable, and are removed before a verdict (:func:`deflate`).
+
 Three verdicts are computed for every equilibrium alpha* of the kinetic-static model
 (F_i(alpha*) = 0, :mod:`.vibratory`):
 
@@ -9,15 +27,18 @@ Three verdicts are computed for every equilibrium alpha* of the kinetic-static m
 * ``kinetic_static`` - the linearised kinetic-static model (000 eq 13, 52) with the ball damping:
   I_eff alpha'' = R J alpha - D alpha', I_eff = m R^2 + I (R/r)^2, D = c_i m R^2. Stable when all
   eigenvalues have negative real parts.
-* ``full`` - the linearised full model (our ``simulate``): the periodic orbit of period 2 pi / w
-  through the equilibrium is found by Newton shooting and its Floquet multipliers are the
-  eigenvalues of the finite-difference monodromy matrix (:func:`floquet_full`).
+* ``full`` - the linearised full model (our ``simulate``), in
+  :mod:`autobalance.studies.equilibria`: eigenvalues at the fixed point of a steady rotor frame,
+  or the Floquet multipliers of the periodic orbit of period 2 pi / w found by Newton shooting
+  (``full_stability`` picks the route; ``floquet_full``); a family's neutral multipliers are
+  removed there too (docs/speed-map.md).
 
-:func:`verify_by_simulation` runs the full nonlinear model from a perturbed equilibrium.
+``verify_by_simulation`` (same module) runs the full nonlinear model from a perturbed equilibrium.
 Angles [rad], speeds [rad/s], forces [N].
 """
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -26,10 +47,12 @@ import numpy as np
 from ..models import ParameterError
 from ..models._validate import finite as _finite
 from .unbalance import residual_unbalance
-from .vibratory import _speed, force_jacobian, gain_phase, vibratory_forces
+from .vibratory import _H, _angles, _speed, force_jacobian, gain_phase, vibratory_forces
 
 __all__ = [
-    "Equilibrium", "balancing_onset_speed", "find_equilibria", "ks_eigenvalues",
+    "Equilibrium", "EquilibriumFamily", "EquilibriumSet", "aligned_equilibria",
+    "balanced_unbalance", "balancing_onset_speed", "deflate", "family_tangent",
+    "find_equilibria", "find_equilibrium_set", "force_phasor", "ks_eigenvalues",
     "single_ball_stability",
 ]
 
@@ -62,6 +85,10 @@ class Equilibrium:
         |U + sum m_i (R e^{i alpha_i} + rho e^{i beta})| [kg*m].
     overlap : bool
         Two balls closer than their contact angle (not physically reachable).
+    family_dimension : int
+        0 for an isolated equilibrium; d = N - 2 for a point standing for a continuous family
+        (:class:`EquilibriumFamily`): then ``static_stable`` and ``ks_stable`` leave out the d
+        neutral directions along the family (:func:`deflate`).
     """
 
     alpha: np.ndarray
@@ -72,6 +99,7 @@ class Equilibrium:
     ks_stable: bool
     residual_unbalance: float
     overlap: bool
+    family_dimension: int = 0
 
     def as_dict(self) -> dict:
         """JSON-ready dict with unit-suffixed keys (SI): angles [rad] and [deg], force residual
@@ -88,6 +116,7 @@ class Equilibrium:
             "ks_stable": bool(self.ks_stable),
             "residual_unbalance_kg_m": self.residual_unbalance,
             "overlap": bool(self.overlap),
+            **({"family_dimension": int(self.family_dimension)} if self.family_dimension else {}),
         }
 
 
@@ -111,9 +140,15 @@ def ks_eigenvalues(system, speed, alpha) -> np.ndarray:
     ndarray (2N,) complex
         Eigenvalues [1/s].
     """
+    return np.linalg.eigvals(_ks_matrix(system, speed, alpha))
+
+
+def _ks_matrix(system, speed, alpha, J=None) -> np.ndarray:
+    """State matrix (2N, 2N) of the linearised kinetic-static model of :func:`ks_eigenvalues`
+    (J: the force Jacobian at alpha when already known)."""
     b = system.balancer
     n = b.n_balls
-    J = force_jacobian(system, speed, alpha)
+    J = force_jacobian(system, speed, alpha) if J is None else J
     R = b.race_radius
     ieff = b.masses * R * R + b.inertias * (R / b.ball_radius) ** 2
     D = np.asarray(b.damping, float)
@@ -121,7 +156,7 @@ def ks_eigenvalues(system, speed, alpha) -> np.ndarray:
     A[:n, n:] = np.eye(n)
     A[n:, :n] = R * J / ieff[:, None]
     A[n:, n:] = -np.diag(D / ieff)
-    return np.linalg.eigvals(A)
+    return A
 
 
 def _newton(system, w, starts, iters=40):
@@ -138,10 +173,11 @@ def _newton(system, w, starts, iters=40):
 def find_equilibria(system, speed, n_grid: int | None = None, tol: float | None = None) -> list:
     """All equilibrium configurations F_i(alpha) = 0 of the balls (000 eq 10-12, 46).
 
-    Newton's method on the analytic Jacobian from a regular grid of starts over the torus
-    [-pi, pi)^N; converged roots are merged (and, for identical balls, merged over ball
-    permutations). For N >= 3 the balanced states form a continuum; the grid then returns a
-    sample of it (singular Jacobian, a zero eigenvalue).
+    N <= 2: Newton's method on the analytic Jacobian from a regular grid of starts over the
+    torus [-pi, pi)^N; converged roots are merged (and, for identical balls, merged over ball
+    permutations). N >= 3: the closed forms of :func:`find_equilibrium_set`; the balanced
+    states form continuous families there, and each family is represented by one of its
+    points (``family_dimension`` = N - 2; a stable, non-overlapping one when there is one).
 
     Parameters
     ----------
@@ -150,7 +186,8 @@ def find_equilibria(system, speed, n_grid: int | None = None, tol: float | None 
     speed : float
         Spin speed w [rad/s], > 0.
     n_grid : int, optional
-        Starts per ball angle (default 72 for N = 1, 36 for N = 2, 10 for N >= 3).
+        Starts per ball angle for N <= 2 (default 72 for N = 1, 36 for N = 2); checked but
+        unused for N >= 3.
     tol : float, optional
         Convergence threshold on max |F_i| [N]; default 1e-9 m R w^2.
 
@@ -171,6 +208,18 @@ def find_equilibria(system, speed, n_grid: int | None = None, tol: float | None 
     n_grid = int(n_grid)
     scale = float(b.masses.max() * b.race_radius * w * w)
     tol = 1e-9 * scale if tol is None else _finite("tol", tol)
+    if n >= 3:
+        es = find_equilibrium_set(system, w, tol=tol)
+        out = list(es.isolated) + [f.representative() for f in es.families]
+        out.sort(key=lambda e: (e.residual_unbalance, tuple(e.alpha)))
+        return out
+    return _newton_equilibria(system, w, n_grid, tol)
+
+
+def _newton_equilibria(system, w: float, n_grid: int, tol: float) -> list:
+    """The Newton-from-a-grid search of :func:`find_equilibria` (N <= 2; unchanged since issue 4)."""
+    b = system.balancer
+    n = b.n_balls
     g = -math.pi + TWO_PI * (np.arange(n_grid) + 0.5) / n_grid
     starts = np.stack(np.meshgrid(*([g] * n), indexing="ij"), axis=-1).reshape(-1, n)
     roots, res = _newton(system, w, starts)
@@ -195,8 +244,6 @@ def _make(system, w, alpha) -> Equilibrium:
     jscale = max(np.abs(lam).max(), 1e-300)
     escale = max(np.abs(ev).max(), 1e-300)
     W = residual_unbalance(system, alpha)
-    srt = np.sort(np.mod(alpha, TWO_PI))
-    gaps = np.diff(np.concatenate([srt, srt[:1] + TWO_PI])) if b.n_balls > 1 else np.array([TWO_PI])
     return Equilibrium(
         alpha=np.asarray(alpha, float),
         force_residual=float(np.abs(vibratory_forces(system, w, alpha)).max()),
@@ -205,7 +252,7 @@ def _make(system, w, alpha) -> Equilibrium:
         ks_eigenvalues=ev,
         ks_stable=bool(np.all(ev.real < 1e-9 * escale)),
         residual_unbalance=float(abs(W)),
-        overlap=bool(gaps.min() < b.contact_angle * (1 - 1e-9)),
+        overlap=_overlap(b, alpha),
     )
 
 
@@ -276,3 +323,657 @@ def balancing_onset_speed(system) -> float:
     pos = np.nonzero(vals >= 0)[0]
     k = pos[-1]
     return float(brentq(f, grid[k], grid[k + 1], xtol=1e-12))
+
+
+# -- the two kinds of equilibria in closed form ----------------------------------------------
+#: |W - W*| below this fraction of the ball capacity sum(m_i) R: a balanced state [-].
+BALANCED_RTOL = 1e-6
+
+
+def force_phasor(system, speed, alpha) -> np.ndarray:
+    """Common phasor Q of the vibratory forces, F_i = -m_i w^2 Im(e^{i alpha_i} Q) [m].
+
+    Q = 1/2 conj(W) H + rho e^{-i beta}: 000 eq (40)-(43) in the complex form of
+    :func:`.vibratory.vibratory_forces` (W the residual unbalance, H = g_x e^{i phi_x} +
+    g_y e^{i phi_y}). F = 0 needs Q = 0 (balanced) or every ball on the line of Q (aligned).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Drum, suspension and balancer (masses [kg], R [m], rho [m], beta [rad]).
+    speed : float
+        Spin speed w [rad/s], > 0.
+    alpha : array_like (..., N)
+        Ball angles from the unbalance [rad].
+
+    Returns
+    -------
+    complex ndarray (...)
+        Q [m].
+    """
+    w = _speed(speed)
+    a = _angles(system, alpha)
+    b = system.balancer
+    W = residual_unbalance(system, a)
+    return 0.5 * np.conj(W) * _H(system, w) + b.eccentricity * np.exp(-1j * b.eccentricity_angle)
+
+
+def balanced_unbalance(system, speed) -> complex:
+    """Residual unbalance W* on the balanced states, where the force on every ball vanishes [kg*m].
+
+    Q = 0 in :func:`force_phasor` gives W* = -2 rho e^{i beta} / conj(H). Without race
+    eccentricity W* = 0 (full compensation, 000 eq 22 with no deviation). Far above the natural
+    frequencies H -> -2/M_t and W* -> M_t rho e^{i beta}: the mass centre sits on the race
+    centre, the limit of 000 eq (46)-(47).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Suspension (kx, ky [N/m], cx, cy [N*s/m]), M_t [kg], rho [m], beta [rad].
+    speed : float
+        Spin speed w [rad/s], > 0.
+
+    Returns
+    -------
+    complex
+        W* [kg*m] (modulus: the residual unbalance of every balanced state at this speed).
+    """
+    w = _speed(speed)
+    b = system.balancer
+    if b.eccentricity == 0.0:
+        return 0j
+    H = _H(system, w)
+    if H == 0:                                      # pragma: no cover - no finite suspension gives it
+        return complex(math.nan, math.nan)
+    return complex(-2.0 * b.eccentricity * np.exp(1j * b.eccentricity_angle) / np.conj(H))
+
+
+def _ball_target(system, w: float) -> complex:
+    """T = W* - U - sum(m_i) rho e^{i beta}: the sum sum_i m_i R e^{i alpha_i} of a balanced state [kg*m]."""
+    b = system.balancer
+    n = b.n_balls
+    fixed = complex(residual_unbalance(system, np.zeros(n))) - float(np.sum(b.masses * b.race_radius))
+    return balanced_unbalance(system, w) - fixed
+
+
+def _mass_groups(b) -> list:
+    """Indices of balls of equal mass (permuting them leaves the physics unchanged)."""
+    m = b.masses
+    out = []
+    for i in range(b.n_balls):
+        for g in out:
+            if m[i] == m[g[0]]:
+                g.append(i)
+                break
+        else:
+            out.append([i])
+    return out
+
+
+def aligned_equilibria(system, speed, max_patterns: int = 65536) -> np.ndarray:
+    """The isolated equilibria with Q != 0 in closed form: every ball on the line of Q.
+
+    With alpha_i = phi (sigma_i = +1) or phi + pi (sigma_i = -1), s = sum sigma_i m_i R and
+    P = 1/2 conj(U + sum m_i rho e^{i beta}) H + rho e^{-i beta}, the equilibrium condition
+    Im(e^{i phi} Q) = 0 of 000 eq (40)-(43) becomes |P| sin(phi + arg P) = -1/2 s Im(H): zero or two
+    solutions phi per sign pattern. Patterns differing by a permutation of equal balls are
+    enumerated once. Points with Q = 0 (balanced) are left to :func:`find_equilibrium_set`.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Drum, suspension and balancer (N >= 1).
+    speed : float
+        Spin speed w [rad/s], > 0.
+    max_patterns : int
+        Most sign patterns to enumerate, prod over groups of equal balls of (size + 1) [-].
+
+    Returns
+    -------
+    ndarray (K, N)
+        Ball angles [rad], wrapped to (-pi, pi], one row per pattern and root (not deduplicated).
+    """
+    w = _speed(speed)
+    b = system.balancer
+    n = b.n_balls
+    if n < 1:
+        raise ParameterError("balancer.n_balls", n, "needs at least one ball")
+    groups = _mass_groups(b)
+    count = math.prod(len(g) + 1 for g in groups)
+    if count > max_patterns:
+        raise ParameterError("balancer.ball_mass", [float(v) for v in b.masses],
+                             f"{count} sign patterns of distinct masses; at most {max_patterns}")
+    mR = b.masses * b.race_radius
+    H = _H(system, w)
+    W0 = complex(residual_unbalance(system, np.zeros(n))) - float(mR.sum())
+    P = 0.5 * np.conj(W0) * H + b.eccentricity * np.exp(-1j * b.eccentricity_angle)
+    out = []
+    if P == 0:
+        return np.zeros((0, n))
+    for ks in itertools.product(*[range(len(g) + 1) for g in groups]):
+        sig = np.ones(n)
+        for g, k in zip(groups, ks):
+            sig[g[:k]] = -1.0
+        r = -0.5 * float((sig * mR).sum()) * H.imag / abs(P)
+        if abs(r) > 1.0:
+            continue
+        shift = np.where(sig < 0, math.pi, 0.0)
+        for phi in {math.asin(r), math.pi - math.asin(r)}:
+            out.append(_wrap(phi - np.angle(P) + shift))
+    return np.array(out).reshape(-1, n)
+
+
+def _balanced_pair(system, target: complex) -> list:
+    """The two balanced states of two balls, m_1 R e^{i a_1} + m_2 R e^{i a_2} = T (a triangle)."""
+    s1, s2 = system.balancer.masses * system.balancer.race_radius
+    t = abs(target)
+    if t == 0.0:
+        return []
+    c = (s1 * s1 + t * t - s2 * s2) / (2.0 * s1 * t)
+    if abs(c) > 1.0:
+        return []
+    out = []
+    for sgn in (1.0, -1.0):
+        a1 = np.angle(target) + sgn * math.acos(c)
+        a2 = np.angle(target - s1 * np.exp(1j * a1))
+        out.append(_wrap(np.array([a1, a2])))
+    return out
+
+
+# -- the balanced families -----------------------------------------------------------------------
+def _constraint_jacobian(system, alpha) -> np.ndarray:
+    """d(Re W, Im W)/d alpha_j = (-m_j R sin alpha_j, m_j R cos alpha_j) [kg*m/rad], shape (..., 2, N)."""
+    b = system.balancer
+    a = np.asarray(alpha, float)
+    mR = b.masses * b.race_radius
+    return np.stack([-mR * np.sin(a), mR * np.cos(a)], axis=-2)
+
+
+def family_tangent(system, alpha, rtol: float = 1e-8) -> np.ndarray:
+    """Orthonormal basis of the tangent space of the balanced family through alpha [-].
+
+    The family is W(alpha) = W* (two real conditions, :func:`balanced_unbalance`); its tangent
+    is the null space of the 2 x N Jacobian d(Re W, Im W)/d alpha, of dimension N - 2 where
+    the balls are not all on one line (Green et al. 2008; the module docstring).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Balancer masses [kg] and R [m].
+    alpha : array_like (N,)
+        A point of the family [rad].
+    rtol : float
+        Singular values below rtol x the largest count as zero [-].
+
+    Returns
+    -------
+    ndarray (N, d)
+        Columns: unit tangent vectors in angle space [rad/rad]; d = N - rank.
+    """
+    C = _constraint_jacobian(system, alpha)
+    _, sv, vh = np.linalg.svd(C)
+    rank = int(np.sum(sv > rtol * max(sv.max(), 1e-300)))
+    return vh[rank:].T.copy()
+
+
+def _project(system, target: complex, a, iters: int = 30, atol: float = 0.0):
+    """Gauss-Newton projection onto sum m_i R e^{i alpha_i} = T (least-norm steps, vectorised;
+    stops early once every residual is below atol [kg*m])."""
+    b = system.balancer
+    mR = b.masses * b.race_radius
+    a = np.array(a, float)
+    for _ in range(iters):
+        r = (mR * np.exp(1j * a)).sum(axis=-1) - target
+        if np.all(np.abs(r) < atol):
+            break
+        C = _constraint_jacobian(system, a)
+        rv = np.stack([r.real, r.imag], axis=-1)
+        G = C @ np.swapaxes(C, -1, -2)
+        try:
+            y = np.linalg.solve(G, rv[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            y = np.einsum("...ij,...j->...i", np.linalg.pinv(G), rv)
+        step = np.einsum("...ji,...j->...i", C, y)
+        a = a - np.clip(step, -0.5, 0.5)
+    r = (mR * np.exp(1j * a)).sum(axis=-1) - target
+    return a, np.abs(r)
+
+
+def _cross_dist(A, B, same_balls: bool) -> np.ndarray:
+    """max_i |a_i - b_i| (wrapped) [rad] between every row of A (K, N) and of B (L, N), modulo
+    relabelling identical balls (sorted angles compared under every cyclic shift): (K, L)."""
+    A = np.mod(np.atleast_2d(A), TWO_PI)
+    B = np.mod(np.atleast_2d(B), TWO_PI)
+    if not same_balls:
+        d = np.abs(A[:, None, :] - B[None, :, :])
+        return np.minimum(d, TWO_PI - d).max(axis=-1)
+    A = np.sort(A, axis=-1)
+    B = np.sort(B, axis=-1)
+    out = None
+    for k in range(A.shape[1]):
+        d = np.abs(A[:, None, :] - np.roll(B, k, axis=-1)[None, :, :])
+        d = np.minimum(d, TWO_PI - d).max(axis=-1)
+        out = d if out is None else np.minimum(out, d)
+    return out
+
+
+def _trace(system, target: complex, a0, step: float, atol: float, max_steps: int = 20000):
+    """Follow a one-dimensional balanced family from a0 (predictor along the tangent, Gauss-Newton
+    corrector) until it closes on a0 (modulo 2 pi; balls labelled: modulo relabelling the curve
+    folds back where two identical balls coincide, so closure is tested on the labelled curve)."""
+    mR = system.balancer.masses * system.balancer.race_radius
+    n = mR.size
+
+    def rows(a):
+        e = np.exp(1j * a)
+        return e, -mR * e.imag, mR * e.real
+
+    def tangent(c1, c2, t_prev):
+        if n == 3:
+            t = np.array([c1[1] * c2[2] - c1[2] * c2[1], c1[2] * c2[0] - c1[0] * c2[2],
+                          c1[0] * c2[1] - c1[1] * c2[0]])
+            nt = math.sqrt(t @ t)
+            if nt < 1e-8 * (c1 @ c1 + c2 @ c2):
+                return None
+            t = t / nt
+        else:
+            tb = family_tangent(system, a)
+            if tb.shape[1] != 1:
+                return None
+            t = tb[:, 0]
+        return t if t_prev is None or t @ t_prev >= 0 else -t
+
+    a = np.array(a0, float)
+    _, c1, c2 = rows(a)
+    t = tangent(c1, c2, None)
+    pts = [a.copy()]
+    for k in range(max_steps):
+        if t is None:
+            return np.array(pts), False
+        a = a + step * t
+        for _ in range(8):                  # least-norm Gauss-Newton back onto the set
+            e, c1, c2 = rows(a)
+            r = (mR * e).sum() - target
+            if abs(r) < 1e-3 * atol:
+                break
+            g11, g12, g22 = c1 @ c1, c1 @ c2, c2 @ c2
+            det = g11 * g22 - g12 * g12
+            if det <= 0.0:
+                return np.array(pts), False
+            y1 = (g22 * r.real - g12 * r.imag) / det
+            y2 = (g11 * r.imag - g12 * r.real) / det
+            a = a - (c1 * y1 + c2 * y2)
+        e, c1, c2 = rows(a)
+        if not abs((mR * e).sum() - target) < atol:
+            return np.array(pts), False
+        t = tangent(c1, c2, t)
+        if k >= 3 and np.abs(np.mod(a - pts[0] + math.pi, TWO_PI) - math.pi).max() < 0.75 * step:
+            return np.array(pts), True
+        pts.append(a.copy())
+    return np.array(pts), False
+
+
+def _dedupe(rows, same_balls: bool, tol: float = 1e-6) -> list:
+    """The rows in order, each dropped when within tol [rad] of an earlier kept one (modulo 2 pi
+    and relabelling of identical balls)."""
+    P = np.array(rows, float).reshape(len(rows), -1)
+    if len(P) == 0:
+        return []
+    D = _cross_dist(P, P, same_balls)
+    keep = np.zeros(len(P), bool)
+    for i in range(len(P)):
+        keep[i] = not np.any(D[i, :i][keep[:i]] < tol)
+    return [P[i] for i in np.nonzero(keep)[0]]
+
+
+def _starts(n: int, count: int) -> np.ndarray:
+    """Deterministic starts: equal spacing in both senses at 8 rotations, then pseudo-random."""
+    base = TWO_PI * np.arange(n) / n
+    rows = [sg * base + TWO_PI * k / 8 for sg in (1.0, -1.0) for k in range(8)]
+    rng = np.random.default_rng(20140)
+    rows += list(rng.uniform(-math.pi, math.pi, (max(count - len(rows), 0), n)))
+    return np.array(rows)
+
+
+def _family_points(system, w: float, n_samples: int, step: float):
+    """Sample points of every balanced family: list of (points (K, N), dimension, traced, length)."""
+    b = system.balancer
+    n = b.n_balls
+    T = _ball_target(system, w)
+    cap = float(np.sum(b.masses)) * b.race_radius
+    atol = 1e-10 * cap
+    same = bool(np.allclose(b.masses, b.masses[0]))
+    seeds, res = _project(system, T, _starts(n, 24))
+    seeds = seeds[res < atol]
+    if seeds.size == 0:
+        return []
+    dims = [family_tangent(system, a).shape[1] for a in seeds]
+    d = max(dims)
+    if d == 0:
+        return []
+    seeds = seeds[np.array(dims) == d]
+    fams = []
+    if d == 1:
+        covered = np.zeros(len(seeds), bool)
+        for i, s in enumerate(seeds):
+            if covered[i]:
+                continue
+            pts, closed = _trace(system, T, s, step, atol)
+            covered |= _cross_dist(seeds, pts, same).min(axis=1) < 2.0 * step
+            uniq = _dedupe(list(_wrap(pts)), same, 0.5 * step)      # one copy per relabelling
+            idx = np.unique(np.round(np.linspace(0, len(uniq), n_samples, endpoint=False)).astype(int))
+            fams.append((np.array([uniq[i] for i in idx if i < len(uniq)]), 1, closed,
+                         step * len(pts) if closed else math.nan))
+        return fams
+    more, r2 = _project(system, T, _starts(n, 40 + 12 * n_samples))
+    pool = np.concatenate([seeds, more[r2 < atol]])
+    chosen = [pool[0]]                        # farthest-point subsample (modulo relabelling)
+    dmin = _cross_dist(pool[0], pool, same)[0]
+    while len(chosen) < n_samples and dmin.max() > 1e-6:
+        k = int(np.argmax(dmin))
+        chosen.append(pool[k])
+        dmin = np.minimum(dmin, _cross_dist(pool[k], pool, same)[0])
+    return [(_wrap(np.array(chosen)), d, False, math.nan)]
+
+
+def deflate(A, E) -> dict:
+    """Eigenvalues of A with the subspace spanned by E set aside (neutral directions).
+
+    In an orthonormal basis [Q, C] with span Q = span E, A = [[Q'AQ, Q'AC], [C'AQ, C'AC]].
+    When span E is invariant (A E in span E: C'AQ = 0) the matrix is block triangular and
+    its eigenvalues are those of Q'AQ (the neutral ones, 0 for a family of equilibria of
+    dx/dt = A x, 1 for a family of periodic orbits of a monodromy matrix) and of C'AC (the
+    transverse ones, which decide stability).
+
+    Parameters
+    ----------
+    A : array_like (n, n)
+        State matrix [1/s] or monodromy matrix [-] (any consistent units).
+    E : array_like (n, d)
+        Columns spanning the neutral subspace [-] (in the state's units).
+
+    Returns
+    -------
+    dict
+        "neutral" (d,) and "transverse" (n - d,) eigenvalues; "invariance_residual"
+        ||C'AQ|| / ||A|| [-] (0 when span E is exactly invariant).
+    """
+    A = np.asarray(A, float)
+    E = np.asarray(E, float)
+    n, d = E.shape
+    Q, _ = np.linalg.qr(E)
+    _, _, vh = np.linalg.svd(Q.T)
+    C = vh[d:].T
+    nA = max(np.linalg.norm(A, 2), 1e-300)
+    return {"neutral": np.linalg.eigvals(Q.T @ A @ Q), "transverse": np.linalg.eigvals(C.T @ A @ C),
+            "invariance_residual": float(np.linalg.norm(C.T @ A @ Q, 2) / nA)}
+
+
+@dataclass(frozen=True)
+class EquilibriumFamily:
+    """A continuous family of balanced equilibria, W(alpha) = W* (N >= 3; Green et al. 2008).
+
+    Attributes
+    ----------
+    speed : float
+        Spin speed w [rad/s].
+    dimension : int
+        d = N - 2 (the tangent dimension; N - rank of d W / d alpha).
+    points : tuple of Equilibrium
+        Sample points (``family_dimension`` = d; their ``static_stable`` and ``ks_stable`` leave
+        out the d neutral directions); for d = 1 in order along the traced curve.
+    tangent : ndarray (K, N, d)
+        Orthonormal tangent bases at the samples [rad/rad].
+    ks_max_real : ndarray (K,)
+        Largest real part of the transverse kinetic-static eigenvalues [1/s].
+    target_unbalance : complex
+        W* [kg*m] (:func:`balanced_unbalance`).
+    traced : bool
+        d = 1 and the curve was followed until it closed (then ``length`` is its length [rad]).
+    length : float
+        Length of the traced curve with the balls labelled (it visits every relabelling of
+        identical balls) in angle space [rad], step x points; NaN when not traced.
+    """
+
+    speed: float
+    dimension: int
+    points: tuple
+    tangent: np.ndarray
+    ks_max_real: np.ndarray
+    target_unbalance: complex
+    traced: bool
+    length: float
+
+    @property
+    def n_samples(self) -> int:
+        """Number of sample points K [-]."""
+        return len(self.points)
+
+    @property
+    def alpha(self) -> np.ndarray:
+        """Sample angles (K, N) [rad]."""
+        return np.array([p.alpha for p in self.points])
+
+    @property
+    def residual_unbalance(self) -> np.ndarray:
+        """|W| at the samples (K,) [kg*m] (= |W*| up to the projection tolerance)."""
+        return np.array([p.residual_unbalance for p in self.points])
+
+    @property
+    def residual_range(self) -> tuple[float, float]:
+        """(min, max) of the samples' residual unbalance [kg*m]."""
+        r = self.residual_unbalance
+        return float(r.min()), float(r.max())
+
+    @property
+    def overlap(self) -> np.ndarray:
+        """Samples where two balls are closer than their contact angle (K,) [bool]."""
+        return np.array([p.overlap for p in self.points], bool)
+
+    @property
+    def static_stable(self) -> np.ndarray:
+        """000 eq (12) on the transverse part at each sample (K,) [bool]."""
+        return np.array([p.static_stable for p in self.points], bool)
+
+    @property
+    def ks_stable(self) -> np.ndarray:
+        """Transverse kinetic-static verdict at each sample (K,) [bool]."""
+        return np.array([p.ks_stable for p in self.points], bool)
+
+    def representative(self) -> Equilibrium:
+        """One point standing for the family: the first stable non-overlapping sample, else the
+        first non-overlapping one, else the first."""
+        order = np.lexsort((np.arange(self.n_samples), ~self.ks_stable, self.overlap))
+        return self.points[int(order[0])]
+
+    def as_dict(self) -> dict:
+        """JSON-ready dict (SI, unit-suffixed keys): dimension, samples [rad] and [deg], residual
+        range [kg*m], per-sample verdicts and the stable share of the reachable samples."""
+        reach = ~self.overlap
+        ok = self.ks_stable & reach
+        lo, hi = self.residual_range
+        return {
+            "dimension": int(self.dimension), "n_samples": self.n_samples,
+            "traced": bool(self.traced), "length_rad": float(self.length),
+            "alpha_rad": self.alpha.tolist(), "alpha_deg": np.degrees(self.alpha).tolist(),
+            "residual_unbalance_min_kg_m": lo, "residual_unbalance_max_kg_m": hi,
+            "target_unbalance_kg_m": abs(self.target_unbalance),
+            "force_residual_n": max(p.force_residual for p in self.points),
+            "static_stable": [bool(v) for v in self.static_stable],
+            "ks_stable": [bool(v) for v in self.ks_stable],
+            "ks_max_real_1_s": [float(v) for v in self.ks_max_real],
+            "overlap": [bool(v) for v in self.overlap],
+            "ks_stable_share": float(ok.sum() / reach.sum()) if reach.any() else 0.0,
+        }
+
+
+def _overlap(b, alpha) -> bool:
+    """Two balls closer than their contact angle."""
+    srt = np.sort(np.mod(alpha, TWO_PI))
+    gaps = np.diff(np.concatenate([srt, srt[:1] + TWO_PI])) if b.n_balls > 1 else np.array([TWO_PI])
+    return bool(gaps.min() < b.contact_angle * (1 - 1e-9))
+
+
+def _family_member(system, w: float, alpha, tangent, J, F) -> tuple:
+    """A family sample as an Equilibrium with the neutral directions removed from its verdicts,
+    and the largest transverse kinetic-static real part [1/s] (J, F: its Jacobian and forces)."""
+    b = system.balancer
+    n = b.n_balls
+    d = tangent.shape[1]
+    A = _ks_matrix(system, w, alpha, J)
+    ev = np.linalg.eigvals(A)
+    st = deflate(J, tangent)["transverse"]
+    E = np.zeros((2 * n, d))
+    E[:n] = tangent
+    tr = deflate(A, E)["transverse"]
+    jscale = max(np.abs(np.linalg.eigvals(J)).max(), 1e-300)
+    escale = max(np.abs(ev).max(), 1e-300)
+    e = Equilibrium(
+        alpha=np.asarray(alpha, float),
+        force_residual=float(np.abs(F).max()),
+        jacobian=J,
+        static_stable=bool(np.all(st.real < 1e-9 * jscale)),
+        ks_eigenvalues=ev,
+        ks_stable=bool(np.all(tr.real < 1e-9 * escale)),
+        residual_unbalance=float(abs(residual_unbalance(system, alpha))),
+        overlap=_overlap(b, alpha),
+        family_dimension=d,
+    )
+    return e, float(tr.real.max())
+
+
+def _family(system, w: float, pts, d: int, traced: bool, length: float) -> EquilibriumFamily:
+    members, tangents, kmax = [], [], []
+    Js = force_jacobian(system, w, pts)
+    Fs = vibratory_forces(system, w, pts)
+    for a, J, F in zip(pts, Js, Fs):
+        t = family_tangent(system, a)
+        e, km = _family_member(system, w, a, t, J, F)
+        members.append(e)
+        tangents.append(t)
+        kmax.append(km)
+    return EquilibriumFamily(speed=w, dimension=d, points=tuple(members), tangent=np.array(tangents),
+                             ks_max_real=np.array(kmax), target_unbalance=balanced_unbalance(system, w),
+                             traced=traced, length=length)
+
+
+@dataclass(frozen=True)
+class EquilibriumSet:
+    """Every equilibrium of the balls at one speed: isolated points and continuous families.
+
+    Attributes
+    ----------
+    speed : float
+        Spin speed w [rad/s].
+    isolated : tuple of Equilibrium
+        Isolated equilibria, sorted by residual unbalance.
+    balanced : tuple of bool
+        For each isolated one: a balanced state, |W - W*| <= BALANCED_RTOL sum(m_i) R (the two
+        mirror points of N = 2 balls).
+    families : tuple of EquilibriumFamily
+        Balanced families (N >= 3), one per connected piece found (d = 1) or one in all (d >= 2).
+    target_unbalance : complex
+        W* [kg*m] (:func:`balanced_unbalance`).
+    method : str
+        "newton" (grid search, N <= 2) or "closed_form".
+    """
+
+    speed: float
+    isolated: tuple
+    balanced: tuple
+    families: tuple
+    target_unbalance: complex
+    method: str
+
+    def as_dict(self) -> dict:
+        """JSON-ready dict (SI, unit-suffixed keys)."""
+        return {"speed_rad_s": self.speed, "method": self.method,
+                "balanced_unbalance_kg_m": abs(self.target_unbalance),
+                "balanced_unbalance_angle_rad": float(np.angle(self.target_unbalance)),
+                "isolated": [dict(e.as_dict(), balanced=bool(b))
+                             for e, b in zip(self.isolated, self.balanced)],
+                "families": [f.as_dict() for f in self.families]}
+
+
+
+
+def find_equilibrium_set(system, speed, *, method: str = "auto", n_grid: int | None = None,
+                         tol: float | None = None, n_samples: int = 36,
+                         step: float = 0.1) -> EquilibriumSet:
+    """Every equilibrium of the balls at one speed: isolated ones and balanced families.
+
+    ``closed_form``: the aligned equilibria of :func:`aligned_equilibria`, the two balanced
+    points of N = 2 balls (a triangle of sides m_1 R, m_2 R, |T|) and, for N >= 3, the balanced
+    set W(alpha) = W*, found by Gauss-Newton projection from fixed starts. A one-dimensional
+    family (N = 3) is traced (predictor along the tangent, corrector back onto the set, step
+    ``step``) until it closes, and ``n_samples`` points are kept; every start not on a traced
+    curve starts another family. For d >= 2 the projected starts are subsampled (farthest
+    point first) into one family. ``newton``: :func:`find_equilibria`'s grid search (N <= 2
+    only). ``auto``: ``newton`` for N <= 2 (unchanged results), ``closed_form`` otherwise.
+    Equilibria are merged modulo 2 pi and, for identical balls, modulo relabelling.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Drum, suspension and balancer (N >= 1).
+    speed : float
+        Spin speed w [rad/s], > 0.
+    method : str
+        "auto", "closed_form" or "newton".
+    n_grid : int, optional
+        Starts per ball angle of the Newton search [-].
+    tol : float, optional
+        Largest accepted max |F_i| [N]; default 1e-9 m R w^2.
+    n_samples : int
+        Sample points kept per family [-], >= 2.
+    step : float
+        Tracing step along a one-dimensional family [rad], in (0, 0.5].
+
+    Returns
+    -------
+    EquilibriumSet
+    """
+    w = _speed(speed)
+    b = system.balancer
+    n = b.n_balls
+    if method not in ("auto", "closed_form", "newton"):
+        raise ParameterError("method", method, "must be 'auto', 'closed_form' or 'newton'")
+    if int(n_samples) != n_samples or n_samples < 2:
+        raise ParameterError("n_samples", n_samples, "must be an integer >= 2")
+    stp = _finite("step", step)
+    if not 0.0 < stp <= 0.5:
+        raise ParameterError("step", step, "must be in (0, 0.5] [rad]")
+    if n < 1:
+        raise ParameterError("balancer.n_balls", n, "needs at least one ball")
+    if method == "auto":
+        method = "newton" if n <= 2 else "closed_form"
+    if method == "newton" and n >= 3:
+        raise ParameterError("method", method, "the grid search is for N <= 2 balls (families for N >= 3)")
+    scale = float(b.masses.max() * b.race_radius * w * w)
+    tol = 1e-9 * scale if tol is None else _finite("tol", tol)
+    Wt = balanced_unbalance(system, w)
+    cap = float(np.sum(b.masses)) * b.race_radius
+    same = bool(np.allclose(b.masses, b.masses[0]))
+    families = []
+    if method == "newton":
+        isolated = find_equilibria(system, w, n_grid=n_grid, tol=tol)
+    else:
+        rows = list(aligned_equilibria(system, w))
+        Q = np.abs(force_phasor(system, w, np.array(rows).reshape(-1, n))) if rows else np.zeros(0)
+        qscale = 0.5 * abs(_H(system, w)) * max(cap, system.rotor.unbalance) + b.eccentricity
+        rows = [r for r, q in zip(rows, Q) if q > 1e-9 * qscale]
+        if n == 2:
+            rows += _balanced_pair(system, _ball_target(system, w))
+        if rows:
+            F = np.abs(vibratory_forces(system, w, np.array(rows))).max(axis=-1)
+            rows = [r for r, f in zip(rows, F) if f < tol]
+        isolated = [_make(system, w, r) for r in _dedupe(rows, same)]
+        isolated.sort(key=lambda e: (e.residual_unbalance, tuple(e.alpha)))
+        if n >= 3 or (n == 2 and abs(_ball_target(system, w)) < BALANCED_RTOL * cap):
+            for pts, d, traced, length in _family_points(system, w, int(n_samples), stp):
+                pts = pts[np.abs(vibratory_forces(system, w, pts)).max(axis=-1) < tol]
+                if len(pts):
+                    families.append(_family(system, w, pts, d, traced, length))
+    bal = tuple(bool(abs(residual_unbalance(system, e.alpha) - Wt) <= BALANCED_RTOL * cap) for e in isolated)
+    return EquilibriumSet(speed=w, isolated=tuple(isolated), balanced=bal, families=tuple(families),
+                          target_unbalance=Wt, method=method)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["kernel_required_friction"]
+__all__ = ["kernel_required_friction", "rotor_frame_derivative"]
 
 
 def kernel_required_friction(system, speed, alpha):
@@ -60,3 +60,67 @@ def kernel_required_friction(system, speed, alpha):
         np.ones(N, dtype=np.int64), np.ones(N), np.array([0.0, 0.0]), dy, lam, Mm, fv, A, bb, idx)
     inv = np.argsort(order)
     return lam[:N][inv], lam[N:2 * N][inv], dy[nq:nq + 2]
+
+
+def rotor_frame_derivative(system, speed, states) -> np.ndarray:
+    """Time derivative of rotor-frame states at constant spin speed, from the compiled kernel
+    (core/rhs.py, every ball free to roll): the right-hand side whose Jacobian is the linearised
+    full model about a steady state (autobalance.studies.equilibria).
+
+    A state is z = (u, v, alpha_1..N, u', v', alpha_1'..N') with psi = 0 and psi' = speed held
+    (the kernel's held-speed mode). The balls are passed to the kernel in angular order and the
+    derivatives returned in the caller's order. Friction enters as the kernel computes it for
+    sliding balls (sign +1 of sliding); pass a system without rolling resistance for a smooth
+    right-hand side.
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    speed : float
+        Constant spin speed [rad/s].
+    states : array_like (K, 2N + 4) or (2N + 4,)
+        Rotor displacement [m], ball angles [rad], their rates [m/s], [rad/s].
+
+    Returns
+    -------
+    ndarray, the shape of ``states``
+        dz/dt [m/s, rad/s, m/s^2, rad/s^2].
+    """
+    from ..core.layout import n_q, psi_index, speed_index
+    from ..core.rhs import profile_segment, rhs
+    from ..models import SimOptions, SpeedProfile
+    from .pack import pack_params, spin_arrays
+
+    w = float(speed)
+    spin = SpeedProfile.constant(w, 1.0)
+    P, B = pack_params(system, spin, SimOptions(friction_law="stick"))
+    N = system.balancer.n_balls
+    nq = n_q(N)
+    Z = np.atleast_2d(np.asarray(states, float))
+    prof_t, prof_w, _ = spin_arrays(spin)
+    unb_t, unb_u = system.rotor.unbalance_table()
+    seg = profile_segment(0.0, prof_t)
+    dy, lam = np.zeros(2 * nq), np.zeros(3 * N + 1)
+    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
+    fv, bb, idx = np.zeros(nq), np.zeros(nq), np.zeros(nq, dtype=np.int64)
+    held = np.array([2.0, w])
+    out = np.empty_like(Z)
+    for k, z in enumerate(Z):
+        a = np.mod(z[2:2 + N], 2 * np.pi)
+        order = np.argsort(a)
+        y = np.zeros(2 * nq)
+        y[0], y[1] = z[0], z[1]
+        y[2:2 + N] = a[order]
+        y[nq], y[nq + 1] = z[N + 2], z[N + 3]
+        y[nq + 2:nq + 2 + N] = z[N + 4:][order]
+        y[psi_index(N)] = 0.0
+        y[speed_index(N)] = w
+        rhs(0.0, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, np.zeros(N, dtype=np.int64),
+            np.ones(N), held, dy, lam, Mm, fv, A, bb, idx)
+        inv = np.argsort(order)
+        out[k, :2] = dy[:2]
+        out[k, 2:2 + N] = dy[2:2 + N][inv]
+        out[k, N + 2:N + 4] = dy[nq:nq + 2]
+        out[k, N + 4:] = dy[nq + 2:nq + 2 + N][inv]
+    return out.reshape(np.shape(states))

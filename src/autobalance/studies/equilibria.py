@@ -1,6 +1,26 @@
-"""Equilibria of the balls checked on the full model (000 sec. 3 / Fig. 10-11): the Floquet
-multipliers of the linearised full model and a perturbed simulation from an equilibrium. The
-closed-form equilibria and their kinetic-static stability are :mod:`autobalance.physics.equilibria`."""
+"""Equilibria of the balls checked on the full model (000 sec. 3 / Fig. 10-11): the linearised
+full model and a perturbed simulation from an equilibrium. The closed-form equilibria and their
+kinetic-static stability are :mod:`autobalance.physics.equilibria`.
+
+Two routes to the linearised full model, :func:`full_stability` picks the right one:
+
+* :func:`linearised_full` - an isotropic suspension without gravity, base motion or a varying
+  unbalance (``simulate.pack.fast_paths``' ``symmetric`` flag) has a steady rotor frame at
+  constant speed (004 eq 8-10): an equilibrium is a fixed point there and the eigenvalues of
+  the finite-difference Jacobian of the kernel's right-hand side decide (cheap);
+* :func:`floquet_full` - otherwise the state in the inertial frame is periodic with
+  T = 2 pi / w: Newton shooting for the periodic orbit and the eigenvalues of the
+  finite-difference monodromy matrix (Floquet multipliers).
+
+Both report multipliers over one revolution (mu = exp(lambda T) for the first). On a balanced
+family (N >= 3) d = N - 2 of them are 1 with eigenvectors along the family: they are neutral.
+They are removed when they lie within ``NEUTRAL_TOL`` of 1 and their eigenvectors span the
+family's tangent (largest principal-angle sine below ``NEUTRAL_ANGLE_TOL``). Where the family is
+only nearly preserved (gravity in the plane of an N >= 3 balancer) they are removed as *slow*
+directions when |mu - 1| < ``SLOW_RATIO`` x the others' gap to the unit circle and the span
+matches to ``SLOW_ANGLE_TOL`` (the family attracts; the balls drift slowly along it, keeping
+W ~ W*). The verdict is then "stable" when every other multiplier has
+|mu| < 1 - ``STABLE_MARGIN``, and only for a converged orbit (``SHOOTING_TOL``)."""
 from __future__ import annotations
 
 import dataclasses
@@ -14,7 +34,109 @@ from ..models._validate import finite as _finite
 from ..physics.equilibria import TWO_PI, _wrap
 from ..physics.vibratory import _speed
 
-__all__ = ["floquet_full", "verify_by_simulation"]
+__all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "SHOOTING_TOL", "SLOW_ANGLE_TOL", "SLOW_RATIO",
+           "STABLE_MARGIN", "floquet_full", "full_stability",
+           "linearised_full", "steady_rotor_frame", "verify_by_simulation"]
+
+#: A neutral multiplier lies within this distance of 1 [-] (finite-difference accuracy).
+NEUTRAL_TOL = 1e-6
+#: The neutral eigenvectors span the tangent: largest principal-angle sine below this [-].
+NEUTRAL_ANGLE_TOL = 1e-3
+#: A family only nearly preserved (gravity): its multipliers may differ from 1 by up to this
+#: fraction of the others' gap to the unit circle (slow drift along an attracting family) [-]...
+SLOW_RATIO = 0.01
+#: ... with eigenvectors spanning the tangent to this principal-angle sine [-].
+SLOW_ANGLE_TOL = 0.05
+#: Stable when every counted multiplier has |mu| < 1 - STABLE_MARGIN [-].
+STABLE_MARGIN = 1e-7
+#: Shooting (or fixed-point) residual, scaled by the rotor motion L and 0.1 rad, below which the
+#: periodic orbit counts as found [-]; otherwise no verdict is claimed ("stable" is False).
+SHOOTING_TOL = 1e-6
+
+
+def _ideal(system):
+    """The machine without rolling resistance and suspension dry friction (smooth, so it can be
+    linearised: the stability of the ideal model)."""
+    bal = dataclasses.replace(system.balancer, rolling_resistance=0.0, stiction=None)
+    sus = dataclasses.replace(system.suspension, dry_friction_force=0.0)
+    return dataclasses.replace(system, balancer=bal, suspension=sus)
+
+
+def steady_rotor_frame(system) -> bool:
+    """Whether the ideal machine has a steady rotor frame at constant speed: isotropic
+    suspension, no base motion, no gravity (``simulate.pack.fast_paths``' ``symmetric``) and a
+    constant unbalance. Then an equilibrium is a fixed point of the rotor-frame equations.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+
+    Returns
+    -------
+    bool
+    """
+    from ..models import SimOptions, SpeedProfile
+    from ..simulate.pack import fast_paths
+
+    sysl = _ideal(system)
+    symmetric = fast_paths(sysl, SpeedProfile.constant(1.0, 1.0), SimOptions())[2]
+    return bool(symmetric and system.rotor.unbalance_table()[0].size == 1)
+
+
+def _scales(system, w: float) -> tuple[float, float]:
+    """Length L [m] of the rotor motion (max(U, capacity) / M_t) and the speed w [rad/s]."""
+    b = system.balancer
+    return max(system.rotor.unbalance, b.capacity) / system.total_mass, w
+
+
+def _neutral_split(mu, V, E, scale) -> dict:
+    """Which d multipliers belong to the family with tangent columns E (state coordinates).
+
+    The d multipliers nearest 1 whose eigenvectors (columns of V, scaled by ``scale``) align
+    best with span E are taken. They are *exact* neutral ones when within NEUTRAL_TOL of 1 and
+    spanning E to NEUTRAL_ANGLE_TOL; *slow* ones (a family only nearly preserved, e.g. by
+    gravity: a slow drift along an attracting family) when |mu - 1| is below SLOW_RATIO x the
+    gap 1 - max |mu| of the others and they span E to SLOW_ANGLE_TOL. Otherwise none."""
+    d = E.shape[1]
+    Vs = V / scale[:, None]
+    Es, _ = np.linalg.qr(E / scale[:, None])
+    dist = np.abs(mu - 1.0)
+    out = {"neutral_index": np.zeros(0, int), "neutral_ok": False, "neutral_kind": "none",
+           "neutral_distance": float(np.sort(dist)[d - 1]), "neutral_sin_angle": 1.0}
+    near = np.argsort(dist)[:d + 2]                 # a few nearest 1; the best aligned d of them
+    align = np.linalg.norm(Es.T @ Vs[:, near], axis=0) / np.linalg.norm(Vs[:, near], axis=0)
+    pick = near[np.argsort(-align)[:d]]
+    Qv, _ = np.linalg.qr(Vs[:, pick])
+    cosines = np.linalg.svd(Es.T @ Qv, compute_uv=False)
+    sin = float(np.sqrt(max(0.0, 1.0 - float(cosines.min()) ** 2)))
+    rest = np.ones(mu.size, bool)
+    rest[pick] = False
+    gap = 1.0 - float(np.abs(mu[rest]).max()) if rest.any() else 1.0
+    far = float(dist[pick].max())
+    out.update(neutral_distance=far, neutral_sin_angle=sin)
+    if far < NEUTRAL_TOL and sin < NEUTRAL_ANGLE_TOL:
+        out.update(neutral_index=pick, neutral_ok=True, neutral_kind="exact")
+    elif gap > 0.0 and far < SLOW_RATIO * gap and sin < SLOW_ANGLE_TOL:
+        out.update(neutral_index=pick, neutral_ok=True, neutral_kind="slow")
+    return out
+
+
+def _verdict(mu, V, E, scale) -> dict:
+    """Multipliers -> the stability verdict, the family's neutral ones removed (E given)."""
+    info = {"neutral_index": np.zeros(0, int), "neutral_ok": True}
+    if E is not None and E.shape[1]:
+        info = _neutral_split(mu, V, E, scale)
+    keep = np.ones(mu.size, bool)
+    keep[info["neutral_index"]] = False
+    mx = float(np.abs(mu[keep]).max()) if keep.any() else 0.0
+    res = {"multipliers": mu, "neutral_multipliers": mu[~keep], "max_modulus": mx,
+           "max_modulus_all": float(np.abs(mu).max()), "stable": mx < 1.0 - STABLE_MARGIN,
+           "neutral_ok": bool(info["neutral_ok"])}
+    if E is not None and E.shape[1]:
+        res.update(family_dimension=int(E.shape[1]), neutral_distance=info["neutral_distance"],
+                   neutral_sin_angle=info["neutral_sin_angle"], neutral_kind=info["neutral_kind"])
+    return res
 
 
 # -- linearised full model ---------------------------------------------------------------------
@@ -40,7 +162,7 @@ def _period_map(system, w, z, options):
     return np.concatenate([[x, y, vx, vy], a, sim.alpha_dot[-1]])
 
 
-def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> dict:
+def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, family: bool = False) -> dict:
     """Floquet multipliers of the full model about an equilibrium (linearised full model).
 
     The full model (our ``simulate``: 000 eq 2-4 with ball inertia, gravity, eccentricity) at
@@ -60,15 +182,28 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
     alpha : array_like (N,)
         Starting ball angles [rad] (an equilibrium of :func:`find_equilibria`).
     iters : int
-        Newton iterations (>= 1).
+        Newton iterations (>= 1; at least 12 on a family, where the steps are projected).
     rtol : float
         Integrator tolerance of each revolution [-].
+    family : bool
+        alpha lies on a balanced family (N >= 3): the shooting solves the part of P(z) = z
+        across the family (what is left along it is reported as ``family_drift_rad`` per
+        revolution) and its N - 2 multipliers along the tangent are removed before the verdict:
+        exact ones (1 within NEUTRAL_TOL) or slow ones (a family only nearly preserved, e.g.
+        with gravity; :data:`SLOW_RATIO`).
 
     Returns
     -------
     dict
-        "multipliers" (complex ndarray), "max_modulus" [-], "stable" (bool: max |mu| < 1 - 1e-7),
-        "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0), "shooting_residual".
+        "multipliers" (complex ndarray), "neutral_multipliers" (the removed ones),
+        "max_modulus" [-] of the counted multipliers, "max_modulus_all" [-], "stable" (bool:
+        max |mu| < 1 - STABLE_MARGIN), "neutral_ok" (the neutral ones were found; True without
+        a family), with a family also "neutral_kind" ("exact", "slow" or "none"),
+        "neutral_distance" (max |mu - 1| of the chosen ones), "neutral_sin_angle" and
+        "family_drift_rad", "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0),
+        "shooting_residual" [-] (max |P(z) - z| over 1e4 x the difference steps: L for the rotor,
+        0.1 rad for the balls), "converged" (below SHOOTING_TOL; "stable" needs it), "method"
+        ("floquet").
     """
     from ..physics.response import steady_orbit_start
     from ..models import SimOptions
@@ -76,19 +211,27 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
     w = _speed(speed)
     b = system.balancer
     n = b.n_balls
-    bal = dataclasses.replace(b, rolling_resistance=0.0, stiction=None)
-    sus = dataclasses.replace(system.suspension, dry_friction_force=0.0)
-    sysl = dataclasses.replace(system, balancer=bal, suspension=sus)
+    sysl = _ideal(system)
     opts = SimOptions(save_dt=-1.0, rtol=rtol, atol_scale=1e-9, exact_holds=False)
 
     a0 = np.asarray(alpha, float)
     z = np.concatenate([steady_orbit_start(sysl, w, a0), a0, np.zeros(n)])
     L = max(system.rotor.unbalance, b.capacity) / system.total_mass
     h = np.concatenate([[1e-4 * L] * 2, [1e-4 * L * w] * 2, [1e-5] * n, [1e-5 * w * 1e-2] * n])
+    t0 = None
+    if family:      # shooting steps stay transverse: the orbit stays near the given family point
+        from ..physics.equilibria import family_tangent
+
+        t0 = family_tangent(sysl, a0)
     res = np.inf
-    for _ in range(int(iters)):
+    drift = 0.0
+    for _ in range(max(int(iters), 12) if family else int(iters)):   # projected Newton: slower
         P0 = _period_map(sysl, w, z, opts)
         G = P0 - z
+        if t0 is not None:      # a family: solve the transverse part; what is left is a drift along it
+            along = t0.T @ G[4:4 + n]
+            drift = float(np.abs(along).max())
+            G[4:4 + n] -= t0 @ along
         res = float(np.max(np.abs(G / np.maximum(h * 1e4, 1e-300))))
         M = np.empty((z.size, z.size))
         for k in range(z.size):
@@ -96,17 +239,141 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11) -> d
             dz[k] = h[k]
             M[:, k] = (_period_map(sysl, w, z + dz, opts) - _period_map(sysl, w, z - dz, opts)) / (2 * h[k])
         A = M - np.eye(z.size)
+        if t0 is not None:
+            A[4:4 + n] -= t0 @ (t0.T @ A[4:4 + n])
         try:
             step = np.linalg.lstsq(A, -G, rcond=1e-10)[0]
         except np.linalg.LinAlgError:   # pragma: no cover
             break
+        if t0 is not None:
+            step[4:4 + n] -= t0 @ (t0.T @ step[4:4 + n])
         z = z + step
         if res < 1e-9:
             break
-    mu = np.linalg.eigvals(M)
-    mx = float(np.abs(mu).max())
-    return {"multipliers": mu, "max_modulus": mx, "stable": mx < 1.0 - 1e-7,
-            "orbit_alpha_rad": _wrap(z[4:4 + n]), "shooting_residual": res}
+    mu, V = np.linalg.eig(M)
+    E = None
+    if family:
+        t = family_tangent(sysl, z[4:4 + n])
+        E = np.zeros((z.size, t.shape[1]))
+        E[4:4 + n] = t
+    L = max(system.rotor.unbalance, b.capacity) / system.total_mass
+    scale = np.concatenate([[L] * 2, [L * w] * 2, [1.0] * n, [w] * n])
+    out = {**_verdict(mu, V, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
+           "shooting_residual": res, "converged": res < SHOOTING_TOL, "method": "floquet"}
+    if family:
+        out["family_drift_rad"] = drift
+    out["stable"] = bool(out["stable"] and out["converged"])
+    return out
+
+
+def linearised_full(system, speed, alpha, family: bool = False) -> dict:
+    """Eigenvalues of the full model linearised about an equilibrium in the steady rotor frame.
+
+    Valid when :func:`steady_rotor_frame` holds (isotropic suspension, no gravity: 004 eq 8-10
+    at constant speed have the balls' equilibria as fixed points). The state is z = (u, v,
+    alpha, u', v', alpha'); f(z) is the compiled kernel's right-hand side
+    (:func:`autobalance.simulate.probe.rotor_frame_derivative`) with rolling resistance and dry
+    friction off. The fixed point starts at the kinetic-static equilibrium with the rotor on its
+    steady orbit (``physics.response.steady_orbit_start``) and is refined by Newton (least-norm
+    steps: the family directions are singular); the Jacobian is central finite differences. The
+    eigenvalues lambda give the multipliers over one revolution, mu = exp(lambda 2 pi / w),
+    judged as in :func:`floquet_full`.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (steady rotor frame).
+    speed : float
+        Spin speed w [rad/s], > 0.
+    alpha : array_like (N,)
+        Equilibrium ball angles [rad].
+    family : bool
+        alpha lies on a balanced family: remove its N - 2 neutral directions.
+
+    Returns
+    -------
+    dict
+        The keys of :func:`floquet_full` ("method" = "eigenvalues", "shooting_residual" = the
+        fixed point's scaled residual max |f| / (L w^2, w^2) [-]) and "eigenvalues_1_s" [1/s].
+    """
+    from ..physics.response import steady_orbit_start
+    from ..simulate.probe import rotor_frame_derivative
+
+    w = _speed(speed)
+    if not steady_rotor_frame(system):
+        raise ParameterError("system", system.name or "machine",
+                             "has no steady rotor frame (anisotropic, gravity or base motion): "
+                             "use floquet_full")
+    sysl = _ideal(system)
+    n = sysl.balancer.n_balls
+    a0 = np.asarray(alpha, float)
+    L, _ = _scales(system, w)
+    x, y, _, _ = steady_orbit_start(sysl, w, a0)
+    z = np.concatenate([[x, y], a0, np.zeros(n + 2)])
+    h = np.concatenate([[1e-4 * L] * 2, [1e-5] * n, [1e-4 * L * w] * 2, [1e-7 * w] * n])
+    fscale = np.concatenate([[L * w] * 2, [w] * n, [L * w * w] * 2, [w * w] * n])
+
+    def jac(z):
+        dz = np.diag(h)
+        F = rotor_frame_derivative(sysl, w, np.concatenate([z + dz, z - dz]))
+        return ((F[:z.size] - F[z.size:]) / (2 * h)[:, None]).T
+
+    f = rotor_frame_derivative(sysl, w, z)
+    res = float(np.max(np.abs(f / fscale)))
+    for _ in range(3):
+        if res < 1e-12:
+            break
+        z = z + np.linalg.lstsq(jac(z), -f, rcond=1e-10)[0]
+        f = rotor_frame_derivative(sysl, w, z)
+        res = float(np.max(np.abs(f / fscale)))
+    A = jac(z)
+    lam, V = np.linalg.eig(A)
+    E = None
+    if family:
+        from ..physics.equilibria import family_tangent
+
+        t = family_tangent(sysl, z[2:2 + n])
+        E = np.zeros((z.size, t.shape[1]))
+        E[2:2 + n] = t
+    scale = np.concatenate([[L] * 2, [1.0] * n, [L * w] * 2, [w] * n])
+    mu = np.exp(lam * TWO_PI / w)
+    out = {**_verdict(mu, V, E, scale), "eigenvalues_1_s": lam, "orbit_alpha_rad": _wrap(z[2:2 + n]),
+           "shooting_residual": res, "converged": res < SHOOTING_TOL, "method": "eigenvalues"}
+    out["stable"] = bool(out["stable"] and out["converged"])
+    return out
+
+
+def full_stability(system, speed, alpha, family: bool = False, method: str = "auto") -> dict:
+    """Stability of an equilibrium in the linearised full model by the right route.
+
+    ``auto``: :func:`linearised_full` (eigenvalues) when :func:`steady_rotor_frame` holds,
+    :func:`floquet_full` (shooting + monodromy) otherwise.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    speed : float
+        Spin speed w [rad/s], > 0.
+    alpha : array_like (N,)
+        Equilibrium ball angles [rad].
+    family : bool
+        alpha lies on a balanced family (N >= 3): its neutral directions are removed.
+    method : str
+        "auto", "eigenvalues" or "floquet".
+
+    Returns
+    -------
+    dict
+        As :func:`floquet_full`.
+    """
+    if method not in ("auto", "eigenvalues", "floquet"):
+        raise ParameterError("method", method, "must be 'auto', 'eigenvalues' or 'floquet'")
+    if method == "auto":
+        method = "eigenvalues" if steady_rotor_frame(system) else "floquet"
+    if method == "eigenvalues":
+        return linearised_full(system, speed, alpha, family=family)
+    return floquet_full(system, speed, alpha, family=family)
 
 
 def verify_by_simulation(system, speed, alpha, perturbation: float = 0.05, duration: float = 20.0,

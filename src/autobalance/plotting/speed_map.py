@@ -1,0 +1,88 @@
+"""Figure of a speed map (:func:`autobalance.studies.speed_map.compute_speed_map`): reads the
+dataset and draws; no physics here.
+
+Top panel: ISO 1940 grade of the best stable state against speed, the speed ranges where the
+balanced state is stable shaded, the natural frequencies marked. Bottom panel: the balanced
+state's stability over suspension-damping factor x speed.
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.colors import ListedColormap
+from matplotlib.figure import Figure
+
+from ..config.units import parse_quantity
+
+__all__ = ["plot_speed_map"]
+
+
+def _per_unit(speed_unit: str) -> float:
+    """[rad/s] in one ``speed_unit`` (pint registry; Hz and rpm are revolutions, as in config)."""
+    return parse_quantity(f"1 {speed_unit}", "speed", field="speed_unit")
+
+
+def plot_speed_map(ds, speed_unit: str = "rad/s") -> Figure:
+    """The speed map's two panels (module docstring).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A speed map (coordinate ``speed`` [rad/s]; attrs ``stable_ranges_rad_s``,
+        ``natural_frequencies_rad_s``).
+    speed_unit : str
+        Unit of the speed axis, any rotational speed pint knows: "rad/s", "rpm", "Hz", ...
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    k = _per_unit(speed_unit)
+    w = ds["speed"].values / k
+    fig = Figure(figsize=(7.5, 6.5), constrained_layout=True)
+    FigureCanvasAgg(fig)
+    a1, a2 = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2)
+    flat = np.asarray(ds.attrs.get("stable_ranges_rad_s", []), float).ravel()
+    for i in range(0, flat.size - 1, 2):
+        a1.axvspan(flat[i] / k, flat[i + 1] / k, color="tab:green", alpha=0.15,
+                   label="balanced state stable" if i == 0 else None)
+    g = ds["grade"].values
+    kind = ds["best_kind"].values if "best_kind" in ds else np.zeros(w.size)
+    a1.plot(w, g, "-", color="0.4", lw=0.8)
+    for code, mk, lab in ((1, "o", "isolated equilibrium"), (2, "s", "balanced family"),
+                          (3, "x", "balls in contact (kinetic-static)")):
+        sel = kind == code
+        if sel.any():
+            a1.plot(w[sel], g[sel], mk, ms=3, label=f"best stable: {lab}")
+    pos = g[np.isfinite(g) & (g > 0)]
+    if pos.size:
+        a1.set_yscale("log")
+    a1.set_ylabel("grade of the best stable state [mm/s]")
+    for ax in (a1, a2):
+        for j, wn in enumerate(np.unique(np.atleast_1d(ds.attrs.get("natural_frequencies_rad_s", [])))):
+            ax.axvline(wn / k, color="k", ls="--", lw=0.8, label="natural frequency" if j == 0 and ax is a1 else None)
+        if w.size > 1:
+            ax.set_xlim(w[0], w[-1])
+    a1.legend(fontsize=7, loc="best")
+    a1.set_title(f"{ds.attrs.get('machine', '')}: equilibria and stability ({ds.attrs.get('method', '')})",
+                 fontsize=9)
+    f = ds["damping_factor"].values
+    z = ds["balanced_stable_damping"].values.astype(float)
+    z = np.where(ds["balanced_exists_damping"].values > 0, z, -1.0) if "balanced_exists_damping" in ds else z
+    cmap = ListedColormap(["0.85", "tab:red", "tab:green"])
+    yy = np.arange(f.size + 1) - 0.5
+    a2.pcolormesh(_edges(w), yy, z, cmap=cmap, vmin=-1.5, vmax=1.5, shading="flat")
+    a2.set_yticks(np.arange(f.size), [f"{v:g}" for v in f])
+    a2.set_ylabel("suspension damping factor [-]")
+    a2.set_xlabel(f"speed [{speed_unit}]")
+    a2.set_title("balanced state: green stable, red unstable, grey none", fontsize=9)
+    return fig
+
+
+def _edges(x: np.ndarray) -> np.ndarray:
+    """Cell edges around the points x (geometric midpoints; half a step beyond the ends)."""
+    x = np.asarray(x, float)
+    if x.size == 1:
+        return np.array([0.9 * x[0], 1.1 * x[0]])
+    mid = np.sqrt(x[1:] * x[:-1])
+    return np.concatenate([[x[0] ** 2 / mid[0]], mid, [x[-1] ** 2 / mid[-1]]])

@@ -1,0 +1,370 @@
+"""Will it balance: every equilibrium of the balls over a speed range, its stability, and the
+speed ranges where the balanced state exists and is stable (issue 14, item 1); the same against
+the suspension damping. Method and cost: docs/speed-map.md.
+
+At each speed the equilibria come in closed form (:func:`autobalance.physics.equilibria.
+find_equilibrium_set`: isolated points and, for N >= 3 balls, continuous balanced families) and
+each is judged in the linearised full model with the neutral directions of a family removed
+(:func:`autobalance.studies.equilibria.full_stability`), or in the kinetic-static model
+(000 eq 13, 52) when ``full`` is off.
+
+Definitions (every flag over ``speed`` counts reachable states only, i.e. no two balls closer
+than their contact angle):
+
+* *balanced state*: an equilibrium with W = W*, the residual unbalance at which the force on
+  every ball vanishes (:func:`autobalance.physics.equilibria.balanced_unbalance`; W* = 0 without
+  race eccentricity). It exists when the balls' capacity closes the polygon
+  sum m_i R e^{i alpha_i} = W* - U - sum m_i rho e^{i beta}; when the capacity is short there is
+  none, and the map's residual is that of the least-residual stable state instead.
+* ``balanced_exists``: a reachable balanced state exists; ``balanced_stable``: one of them is
+  stable (for a family: at least one judged sample point).
+* *best stable state*: the stable reachable equilibrium of least residual unbalance;
+  ``residual_unbalance`` [kg*m] and ``grade`` [mm/s] (ISO 1940 with the speed itself, M_t).
+  When no reachable state is stable, the least-residual kinetic-static-stable equilibrium whose
+  balls overlap stands in (``best_kind`` = 3): balls gathered in contact, e.g. all of them
+  opposite an unbalance larger than their capacity (residual U - sum m_i R) or, below
+  resonance, with the unbalance. The kinetic-static model ignores the contact, so its residual
+  is that of coincident balls (touching balls spread by their contact angle: a little more).
+  NaN where nothing is stable.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable, Optional
+
+import numpy as np
+
+from ..models import ParameterError
+from ..physics.equilibria import find_equilibrium_set
+from ..physics.iso1940 import grade_value
+from .equilibria import full_stability, steady_rotor_frame
+from .start_positions import load
+
+__all__ = ["compute_speed_map", "speed_map_summary"]
+
+#: Default suspension-damping factors (full and quick) [-].
+DAMPING_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
+DAMPING_FACTORS_QUICK = (0.5, 1.0, 2.0)
+#: Speed grid points (full and quick) [-].
+N_SPEEDS, N_SPEEDS_QUICK = 120, 30
+#: Range boundaries are bisected to this fraction of the speed (full and quick) [-].
+RANGE_RTOL, RANGE_RTOL_QUICK = 1e-4, 1e-3
+#: A full-model orbit farther than this from its kinetic-static equilibrium is another orbit:
+#: no verdict (e.g. gravity stronger than the balls' centripetal acceleration) [rad].
+ORBIT_DRIFT = 0.5
+#: Sample points per family, and how many of them the Floquet route judges [-].
+FAMILY_SAMPLES, FLOQUET_FAMILY_SAMPLES = 12, 4
+
+
+def _validate(speeds, damping_factors):
+    try:
+        w = np.asarray(speeds, float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError("speeds", speeds, "must be numbers [rad/s]") from None
+    if w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0):
+        raise ParameterError("speeds", w.tolist(), "must be a non-empty list of finite speeds > 0 [rad/s]")
+    try:
+        f = np.asarray(damping_factors, float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError("damping_factors", damping_factors, "must be numbers [-]") from None
+    if f.size == 0 or not np.all(np.isfinite(f)) or np.any(f <= 0):
+        raise ParameterError("damping_factors", f.tolist(),
+                             "must be a non-empty list of finite factors > 0 [-]")
+    return np.unique(w), [float(v) for v in dict.fromkeys(f.tolist())]
+
+
+def _scaled(system, factor: float):
+    """The machine with its suspension damping cx, cy multiplied by ``factor``."""
+    import dataclasses
+
+    s = system.suspension
+    return dataclasses.replace(system, suspension=dataclasses.replace(s, cx=s.cx * factor, cy=s.cy * factor))
+
+
+def _stable(system, w: float, e, family: bool, full: bool, counts: dict) -> bool:
+    """Verdict for equilibrium e: linearised full model, or kinetic-static when not ``full``."""
+    if not full:
+        return bool(e.ks_stable)
+    try:
+        f = full_stability(system, w, e.alpha, family=family)
+    except (ParameterError, ValueError, np.linalg.LinAlgError):
+        counts["failed"] += 1            # e.g. shooting pushed the balls into contact
+        return False
+    drift = float(np.abs(np.angle(np.exp(1j * (f["orbit_alpha_rad"] - e.alpha)))).max())
+    if not f["converged"] or drift > ORBIT_DRIFT or (family and not f["neutral_ok"]):
+        counts["failed"] += 1            # no periodic orbit near this equilibrium: no verdict
+        return False
+    return bool(f["stable"])
+
+
+def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
+              balanced_only: bool = False) -> dict:
+    """Every equilibrium at speed w and its verdict (balanced states only if asked)."""
+    es = find_equilibrium_set(system, w, method="closed_form", n_samples=FAMILY_SAMPLES)
+    exists = stable = False
+    n_iso = n_stable = 0
+    best = (math.inf, 0)
+    contact = math.inf          # least residual of a kinetic-static-stable state with balls in contact
+    for e, bal in zip(es.isolated, es.balanced):
+        if e.overlap and e.ks_stable and not balanced_only:
+            contact = min(contact, e.residual_unbalance)
+        if e.overlap or (balanced_only and not bal):
+            continue
+        n_iso += 1
+        exists |= bal
+        if _stable(system, w, e, False, full, counts):
+            n_stable += 1
+            stable |= bal
+            best = min(best, (e.residual_unbalance, 1))
+    n_fam = 0
+    for f in es.families:
+        reach = [p for p in f.points if not p.overlap]
+        if not reach:
+            continue
+        n_fam += 1
+        exists = True
+        if floquet and full and len(reach) > FLOQUET_FAMILY_SAMPLES:
+            idx = np.round(np.linspace(0, len(reach) - 1, FLOQUET_FAMILY_SAMPLES)).astype(int)
+            reach = [reach[i] for i in idx]
+        ok = [p for p in reach if _stable(system, w, p, True, full, counts)]
+        if ok:
+            n_stable += 1
+            stable = True
+            best = min(best, (min(p.residual_unbalance for p in ok), 2))
+    if not best[1] and math.isfinite(contact):
+        best = (contact, 3)
+    return {"exists": exists, "stable": stable, "n_isolated": n_iso, "n_families": n_fam,
+            "n_stable": n_stable, "residual": best[0] if best[1] else math.nan, "kind": best[1]}
+
+
+def _refine(pred: Callable[[float], bool], speeds: np.ndarray, flags: np.ndarray, rtol: float) -> list:
+    """Speed ranges where pred holds: runs of True on the grid, each interior edge bisected
+    until the bracket is below rtol x speed (edge = bracket midpoint); ends of the grid are kept."""
+    out = []
+    n = speeds.size
+    k = 0
+    while k < n:
+        if not flags[k]:
+            k += 1
+            continue
+        j = k
+        while j + 1 < n and flags[j + 1]:
+            j += 1
+        lo = speeds[0] if k == 0 else _bisect(pred, speeds[k - 1], speeds[k], rtol)
+        hi = speeds[-1] if j == n - 1 else _bisect(pred, speeds[j + 1], speeds[j], rtol)
+        out.append([float(lo), float(hi)])
+        k = j + 1
+    return out
+
+
+def _bisect(pred: Callable[[float], bool], bad: float, good: float, rtol: float) -> float:
+    """Bisect the bracket (pred(bad) False, pred(good) True) to |good - bad| <= rtol x speed."""
+    while abs(good - bad) > rtol * max(good, bad):
+        mid = 0.5 * (bad + good)
+        if pred(mid):
+            good = mid
+        else:
+            bad = mid
+    return 0.5 * (bad + good)
+
+
+def _default_speeds(cfg, quick: bool) -> np.ndarray:
+    lo = 0.3 * min(cfg.system.natural_frequencies)
+    hi = max(1.3 * cfg.spin.nominal_speed, 3.0 * lo)
+    return np.geomspace(lo, hi, N_SPEEDS_QUICK if quick else N_SPEEDS)
+
+
+def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = False,
+                      full: bool = True, progress: Optional[Callable[[int, int], None]] = None):
+    """Equilibria of the balls and their stability over speed and suspension damping.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine: a preset name, a TOML config path or a Config
+        (:func:`autobalance.studies.start_positions.load`).
+    speeds : array_like, optional
+        Spin speeds [rad/s], > 0 (sorted, duplicates merged). Default: 120 (quick: 30)
+        geometrically spaced points from 0.3 x the lowest natural frequency to 1.3 x the
+        profile's nominal speed.
+    damping_factors : sequence of float, optional
+        Factors on the suspension damping cx, cy [-], > 0; default (0.25, 0.5, 1, 2, 4), quick
+        (0.5, 1, 2).
+    quick : bool
+        Coarser defaults and range tolerance (RANGE_RTOL_QUICK).
+    full : bool
+        Judge stability in the linearised full model (eigenvalues in a steady rotor frame,
+        Floquet multipliers otherwise); False: the kinetic-static model (000 eq 13, 52).
+    progress : callable(done: int, total: int), optional
+        Called after each (damping factor, speed) evaluation of the grid.
+
+    Returns
+    -------
+    xarray.Dataset
+        Over ``speed`` [rad/s]: ``balanced_exists``, ``balanced_stable`` (int8 0/1),
+        ``n_isolated``, ``n_families``, ``n_stable`` (int16), ``best_kind`` (0 none, 1 isolated,
+        2 family, 3 balls in contact), ``residual_unbalance`` [kg*m] and ``grade`` [mm/s] of the best stable state;
+        over (``damping_factor`` [-], ``speed``): ``balanced_exists_damping``,
+        ``balanced_stable_damping``; over (``damping_factor``, ``range``, ``edge``):
+        ``stable_ranges_damping`` [rad/s] (NaN-padded). Attributes: ``stable_ranges_rad_s``
+        (flattened [lo1, hi1, lo2, hi2, ...]), ``natural_frequencies_rad_s``,
+        ``nominal_speed_rad_s``, ``range_rtol``, ``method``, the evaluation counts and
+        ``wall_s``. Every value is NetCDF-writable (no booleans, no nested lists).
+    """
+    import xarray as xr
+
+    t0 = time.perf_counter()
+    cfg = load(base)
+    system = cfg.system
+    w, factors = _validate(_default_speeds(cfg, quick) if speeds is None else speeds,
+                           (DAMPING_FACTORS_QUICK if quick else DAMPING_FACTORS)
+                           if damping_factors is None else damping_factors)
+    if system.balancer.n_balls < 1:
+        raise ParameterError("balancer.n_balls", system.balancer.n_balls, "needs at least one ball")
+    rtol = RANGE_RTOL_QUICK if quick else RANGE_RTOL
+    floquet = not steady_rotor_frame(system)
+    method = ("floquet" if floquet else "eigenvalues") if full else "kinetic_static"
+    counts = {"failed": 0, "evaluations": 0}
+    passes = [1.0] + [f for f in factors if f != 1.0]
+    total = len(passes) * w.size
+    done = 0
+
+    def tick():
+        nonlocal done
+        done += 1
+        counts["evaluations"] += 1
+        if progress is not None:
+            progress(done, total)
+
+    rows = []
+    for wk in w:
+        rows.append(_evaluate(system, float(wk), full, floquet, counts))
+        tick()
+    main_stable = np.array([r["stable"] for r in rows])
+
+    def predicate(sys_f):
+        def pred(x: float) -> bool:
+            counts["evaluations"] += 1
+            return _evaluate(sys_f, x, full, floquet, counts, balanced_only=True)["stable"]
+        return pred
+
+    ranges = _refine(predicate(system), w, main_stable, rtol)
+    dmp_exists = np.zeros((len(factors), w.size), np.int8)
+    dmp_stable = np.zeros((len(factors), w.size), np.int8)
+    dmp_ranges = []
+    for i, f in enumerate(factors):
+        if f == 1.0:
+            dmp_exists[i] = [r["exists"] for r in rows]
+            dmp_stable[i] = main_stable
+            dmp_ranges.append(ranges)
+            continue
+        sys_f = _scaled(system, f)
+        for k, wk in enumerate(w):
+            r = _evaluate(sys_f, float(wk), full, floquet, counts, balanced_only=True)
+            dmp_exists[i, k], dmp_stable[i, k] = r["exists"], r["stable"]
+            tick()
+        dmp_ranges.append(_refine(predicate(sys_f), w, dmp_stable[i].astype(bool), rtol))
+    nr = max([1] + [len(r) for r in dmp_ranges])
+    rng = np.full((len(factors), nr, 2), np.nan)
+    for i, r in enumerate(dmp_ranges):
+        if r:
+            rng[i, :len(r)] = r
+    res = np.array([r["residual"] for r in rows])
+    mt = system.total_mass
+    ds = xr.Dataset(
+        {
+            "balanced_exists": ("speed", np.array([r["exists"] for r in rows], np.int8),
+                                {"units": "1", "long_name": "a reachable balanced state exists (W = W*)"}),
+            "balanced_stable": ("speed", main_stable.astype(np.int8),
+                                {"units": "1", "long_name": "a reachable balanced state is stable"}),
+            "n_isolated": ("speed", np.array([r["n_isolated"] for r in rows], np.int16),
+                           {"units": "1", "long_name": "reachable isolated equilibria"}),
+            "n_families": ("speed", np.array([r["n_families"] for r in rows], np.int16),
+                           {"units": "1", "long_name": "reachable balanced families"}),
+            "n_stable": ("speed", np.array([r["n_stable"] for r in rows], np.int16),
+                         {"units": "1", "long_name": "stable isolated equilibria and families"}),
+            "best_kind": ("speed", np.array([r["kind"] for r in rows], np.int8),
+                          {"units": "1", "long_name": "best stable state: 0 none, 1 isolated, "
+                                                      "2 family, 3 balls in contact (kinetic-static)"}),
+            "residual_unbalance": ("speed", res, {"units": "kg*m",
+                                                  "long_name": "residual unbalance of the best stable state"}),
+            "grade": ("speed", grade_value(res, mt, w), {"units": "mm/s",
+                                                        "long_name": "ISO 1940 grade of the best stable state at this speed"}),
+            "balanced_exists_damping": (("damping_factor", "speed"), dmp_exists,
+                                        {"units": "1", "long_name": "balanced state exists"}),
+            "balanced_stable_damping": (("damping_factor", "speed"), dmp_stable,
+                                        {"units": "1", "long_name": "balanced state stable"}),
+            "stable_ranges_damping": (("damping_factor", "range", "edge"), rng,
+                                      {"units": "rad/s", "long_name": "speed ranges of a stable balanced state (NaN: none)"}),
+        },
+        coords={"speed": ("speed", w, {"units": "rad/s", "long_name": "spin speed"}),
+                "damping_factor": ("damping_factor", np.array(factors),
+                                   {"units": "1", "long_name": "factor on the suspension damping cx, cy"}),
+                "edge": ("edge", np.array([0, 1], np.int8), {"long_name": "0 lower, 1 upper"})},
+    )
+    ds.attrs.update({
+        "study": "speed_map", "machine": cfg.name or str(base), "n_balls": int(system.balancer.n_balls),
+        "stable_ranges_rad_s": np.array(ranges, float).ravel(),
+        "natural_frequencies_rad_s": np.array(system.natural_frequencies, float),
+        "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
+        "total_mass_kg": float(mt), "capacity_kg_m": float(system.balancer.capacity),
+        "range_rtol": float(rtol), "method": method, "full": int(bool(full)), "quick": int(bool(quick)),
+        "evaluations": int(counts["evaluations"]), "no_verdict": int(counts["failed"]),
+        "definitions": "balanced: W = W* (zero residual without race eccentricity); only states "
+                       "without ball overlap count; best stable state: least residual among stable ones",
+        "wall_s": float(time.perf_counter() - t0),
+    })
+    return ds
+
+
+def _pairs(flat) -> list:
+    a = np.asarray(flat, float).ravel()
+    return [[float(a[i]), float(a[i + 1])] for i in range(0, a.size - 1, 2)]
+
+
+def speed_map_summary(ds) -> dict:
+    """JSON-ready summary of a :func:`compute_speed_map` dataset (SI, unit-suffixed keys).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A speed map (also after a NetCDF round trip).
+
+    Returns
+    -------
+    dict
+        ``stable_ranges_rad_s`` (list of [lo, hi]; interior edges bisected to ``range_rtol`` x
+        speed, edges at the grid's ends are the grid's ends), ``natural_frequencies_rad_s``,
+        ``nominal_speed_rad_s``, ``speed_grid_rad_s`` ([first, last]), ``damping`` (per factor:
+        ``damping_factor`` and its ``stable_ranges_rad_s``), ``counts`` (speeds, speeds with a
+        balanced state, with a stable one, most isolated equilibria and families at one speed)
+        and the method, range tolerance, evaluations and wall time.
+    """
+    a = ds.attrs
+    damping = []
+    for i, f in enumerate(ds["damping_factor"].values):
+        r = ds["stable_ranges_damping"].values[i]
+        damping.append({"damping_factor": float(f),
+                        "stable_ranges_rad_s": [[float(lo), float(hi)] for lo, hi in r if np.isfinite(lo)]})
+    w = ds["speed"].values
+    res = ds["residual_unbalance"].values
+    return {
+        "machine": str(a.get("machine", "")),
+        "stable_ranges_rad_s": _pairs(a["stable_ranges_rad_s"]),
+        "range_rtol": float(a["range_rtol"]),
+        "natural_frequencies_rad_s": [float(v) for v in np.atleast_1d(a["natural_frequencies_rad_s"])],
+        "nominal_speed_rad_s": float(a["nominal_speed_rad_s"]),
+        "speed_grid_rad_s": [float(w[0]), float(w[-1])],
+        "damping": damping,
+        "counts": {"speeds": int(w.size),
+                   "balanced_exists": int(ds["balanced_exists"].values.sum()),
+                   "balanced_stable": int(ds["balanced_stable"].values.sum()),
+                   "max_isolated": int(ds["n_isolated"].values.max()),
+                   "max_families": int(ds["n_families"].values.max())},
+        "least_residual_unbalance_kg_m": float(np.nanmin(res)) if np.isfinite(res).any() else None,
+        "method": str(a["method"]),
+        "evaluations": int(a["evaluations"]),
+        "no_verdict": int(a["no_verdict"]),
+        "wall_s": float(a["wall_s"]),
+    }
