@@ -145,6 +145,19 @@ def test_immobility_json_and_the_stick_threshold_closed_form(tmp_path):
     assert xr.load_dataset(tmp_path / "i.nc")["G_stick"].attrs["units"] == "mm/s"
 
 
+# -- speed map ----------------------------------------------------------------------------------
+def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
+    d = run_json("speed-map", TOPLOADER, "--quick", "--damping", "1", "--out", tmp_path / "m.nc")
+    assert d["counts"]["max_families"] == 1 and d["counts"]["max_isolated"] <= 4
+    (lo, hi), = d["stable_ranges_rad_s"]
+    wn = d["natural_frequencies_rad_s"][0]
+    assert wn < lo < 1.5 * wn and hi == pytest.approx(d["speed_grid_rad_s"][1])
+    assert np.allclose(d["damping"][0]["stable_ranges_rad_s"], d["stable_ranges_rad_s"], rtol=1e-3)
+    assert xr.load_dataset(tmp_path / "m.nc").attrs["command"] == "study speed-map"
+    r = run("speed-map", CENTRIFUGE, "--speeds", "300 rpm:5000 rpm:12", "--units", "speed=rpm")
+    assert r.exit_code == 0 and "rpm" in r.stdout
+
+
 # -- bad input ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("args, field", [
     (("start-positions", CENTRIFUGE, "--grade", "0"), "--grade"),
@@ -157,6 +170,9 @@ def test_immobility_json_and_the_stick_threshold_closed_form(tmp_path):
     (("immobility", "washer_000", "--quick"), "suspension"),
     (("immobility", CENTRIFUGE, "--mu-r", "0"), "--mu-r"),
     (("immobility", CENTRIFUGE, "--n-conf", "1"), "--n-conf"),
+    (("speed-map", CENTRIFUGE, "--speeds", "5000 rpm:300 rpm:10"), "--speeds"),
+    (("speed-map", CENTRIFUGE, "--speeds", "1:2"), "--speeds"),
+    (("speed-map", CENTRIFUGE, "--damping", "-1"), "--damping"),
     (("design", CENTRIFUGE, "--confidence", "1.5"), "--confidence"),
     (("design", CENTRIFUGE, "--unbalance", "5"), "--unbalance"),
     (("design", CENTRIFUGE, "--unbalance", "2 g*m:1 g*m"), "--unbalance"),

@@ -38,8 +38,8 @@ app.add_typer(analyze.app, name="analyze",
               help="Washer analysis (seed 000): response, vibratory forces, equilibria, error "
                    "bounds, tolerance design, kinetic-static model, studies.")
 app.add_typer(study.app, name="study",
-              help="Design studies of any machine: start positions, unbalance range, TSR "
-                   "plateau, immobility.")
+              help="Design studies of any machine: speed map, start positions, unbalance "
+                   "range, TSR plateau, immobility.")
 app.command("design")(study.design)
 app.command("reproduce")(reproduce.reproduce)
 app.add_typer(liquid.app, name="liquid",

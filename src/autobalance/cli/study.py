@@ -30,8 +30,8 @@ from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, Schedu
 
 app = typer.Typer(name="study", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
-                  help="Design studies of any machine: start positions, unbalance range, TSR "
-                       "plateau, immobility.")
+                  help="Design studies of any machine: speed map, start positions, unbalance "
+                       "range, TSR plateau, immobility.")
 
 QuickOpt = Annotated[bool, typer.Option(
     "--quick", help="Coarse grids: finishes in under 2 minutes on 2 cores.")]
@@ -98,6 +98,10 @@ def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
         netcdf_safe(ds).to_netcdf(out)
         done["out"] = str(out)
     if plot is not None:
+        import logging
+
+        # matplotlib logs a fallback line per missing TeX font when a log axis is drawn
+        logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
         fig_fn().savefig(plot, dpi=110)
         done["plot"] = str(plot)
     return done
@@ -584,3 +588,83 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    f"{1e3 * r['total_ball_mass_kg']:.3g} g, worst {100 * confidence:g} % grade "
                    f"G{r['worst_quantile_grade_G_mm_s']:.3g}, margin "
                    f"{r['margin_grade_G_mm_s']:+.2f} mm/s" + ("  (Pareto)" if r["pareto"] else ""))
+
+
+@app.command("speed-map")
+def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+              grade: GradeOpt = 16.0, units: UnitsOpt = None,
+              speeds: Annotated[Optional[str], typer.Option(
+                  "--speeds", metavar="LO:HI:N", help="Speed grid, e.g. '200 rpm:5000 rpm:120' "
+                                                       "(default 0.3 x the first natural "
+                                                       "frequency to 1.3 x nominal).")] = None,
+              damping: Annotated[Optional[str], typer.Option(
+                  "--damping", help="Factors on the suspension damping for the second map, "
+                                    "e.g. '0.5,1,2'.")] = None,
+              ks_only: Annotated[bool, typer.Option(
+                  "--ks-only", help="Judge stability in the kinetic-static model (000 eq 13) "
+                                    "instead of the linearised full model.")] = False,
+              quick: QuickOpt = False, out: OutOpt = None, plot: PlotOpt = None,
+              json_: JsonOpt = False) -> None:
+    """Will it balance: every equilibrium of the balls over speed (isolated ones and the
+    balanced families of N >= 3 balls), its stability in the linearised full model, and the
+    speed ranges where the balanced state exists and is stable; the same against damping.\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, units, quick, out, plot, json_
+        The options of every study (:mod:`autobalance.cli.study`).
+    speeds : str
+        "LO:HI:N" speeds (with units; bare numbers rad/s), N >= 2 points.
+    damping : str
+        Comma-separated positive factors [-] on cx, cy.
+    ks_only : bool
+        Kinetic-static verdicts only (faster, not the full model).
+    """
+    import numpy as np
+
+    from ..config import parse_quantity
+    from ..studies.speed_map import compute_speed_map, speed_map_summary
+
+    t0 = time.perf_counter()
+    with guard():
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units)
+        grid = None
+        if speeds is not None:
+            parts = speeds.split(":")
+            try:
+                if len(parts) != 3:
+                    raise ValueError
+                n = int(parts[2])
+            except ValueError:
+                raise ConfigError(f"--speeds = {speeds!r}: expected LO:HI:N, e.g. "
+                                  "'200 rpm:5000 rpm:120'") from None
+            lo, hi = (parse_quantity(p.strip(), "speed", "--speeds") for p in parts[:2])
+            if not (0 < lo < hi and math.isfinite(hi) and 2 <= n <= 2000):
+                raise ConfigError(f"--speeds = {speeds!r}: must be 0 < LO < HI and 2 <= N <= 2000")
+            grid = np.linspace(lo, hi, n)
+        facs = None if damping is None else _factors(damping, "--damping")
+        ds = compute_speed_map(cfg, speeds=grid, damping_factors=facs, quick=quick,
+                               full=not ks_only)
+
+        def fig():
+            from ..plotting.speed_map import plot_speed_map
+
+            return plot_speed_map(ds, speed_unit=du.unit("speed"))
+
+        res = {"study": "speed-map", **speed_map_summary(ds), "machine": cfg.name}
+        res.update(_finish(ds, cfg, out, plot, fig, "study speed-map", t0))
+    if json_:
+        print_json(res)
+        return
+    rng = ", ".join(f"{_speed(du, lo)} - {_speed(du, hi)}" for lo, hi in res["stable_ranges_rad_s"])
+    typer.echo(f"{cfg.name}: balanced and stable at {rng or 'no speed of the grid'} "
+               f"({res['method']}); natural frequencies "
+               + ", ".join(_speed(du, w) for w in res["natural_frequencies_rad_s"])
+               + f"; nominal {_speed(du, res['nominal_speed_rad_s'])}")
+    c = res["counts"]
+    typer.echo(f"  {c['speeds']} speeds: a balanced state at {c['balanced_exists']}, stable at "
+               f"{c['balanced_stable']}; at most {c['max_isolated']} isolated equilibria and "
+               f"{c['max_families']} families at one speed")
+    for d in res["damping"]:
+        r = ", ".join(f"{_speed(du, lo)} - {_speed(du, hi)}" for lo, hi in d["stable_ranges_rad_s"])
+        typer.echo(f"  damping x{d['damping_factor']:g}: stable at {r or 'no speed'}")

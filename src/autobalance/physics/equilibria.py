@@ -616,9 +616,9 @@ def _trace(system, target: complex, a0, step: float, atol: float, max_steps: int
 def _dedupe(rows, same_balls: bool, tol: float = 1e-6) -> list:
     """The rows in order, each dropped when within tol [rad] of an earlier kept one (modulo 2 pi
     and relabelling of identical balls)."""
-    P = np.array(rows, float).reshape(len(rows), -1)
-    if len(P) == 0:
+    if len(rows) == 0:
         return []
+    P = np.array(rows, float).reshape(len(rows), -1)
     D = _cross_dist(P, P, same_balls)
     keep = np.zeros(len(P), bool)
     for i in range(len(P)):
