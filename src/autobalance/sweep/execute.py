@@ -124,6 +124,12 @@ def _stop_pool(ex) -> None:
             p.join(timeout=5)
         except (OSError, AttributeError, ValueError, AssertionError):
             pass
+    # let the pool's manager thread finish closing its wake-up pipe: on Python 3.11 the exit
+    # hook of concurrent.futures otherwise may write to that pipe while it closes and print
+    # "Exception ignored ... OSError: [Errno 9] Bad file descriptor" after our one-line error
+    manager = getattr(ex, "_executor_manager_thread", None)
+    if manager is not None:
+        manager.join(timeout=5)
 
 
 _GUARD_HINT = ("a script that calls autobalance.sweep() must do so under "
