@@ -426,7 +426,13 @@ def attained_residual(system, speed, *, rolling_resistance=None, eccentricity=No
     beta0 = b.eccentricity_angle if isinstance(eccentricity_angle, str) or free_beta \
         else float(eccentricity_angle)
     scale = float(np.sum(c))
-    zs = max(zmax, float(a.max()) if a.size else 0.0, 1e-300)
+    if not np.any(a > 0) and bnd["separated"]:
+        # no rolling resistance: z = 0 is the only rest state near balance, and W = (eps_f -
+        # rho e^{i beta})/h reaches the bound with eps_f opposite rho e^{i beta}
+        return {"attained_residual_kg_m": bnd["worst_residual_kg_m"],
+                "alpha_rad": np.full(n, math.nan),
+                "eccentricity_angle_rad": beta0, "friction_shift_m": e_f}
+    zs = max(zmax, float(a.max()), 1e-12 * b.race_radius)
 
     def unpack(x):
         al = x[:n]
