@@ -131,14 +131,14 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
 def _error_bounds(cfg, w: float, fr: float) -> dict:
     """The position-error bounds of :func:`bounds` (000 eq 32, 45, 49, 54-55) at ``w`` [rad/s]
     for a rolling resistance ``fr`` = f/r [-] of every ball, and the true worst case of the
-    residual unbalance of the balls at rest (:func:`autobalance.physics.residual_bound.residual_bound`).
+    residual unbalance of the balls at rest (:func:`autobalance.physics.worst_case.residual_bound`).
     On a family of balanced states (N >= 3) the deviations are those across the family and
     its neutral directions have frequency 0."""
     import dataclasses
 
     from ..physics import error_bounds as eb
     from ..physics.iso1940 import grade_class, grade_value
-    from ..physics.residual_bound import residual_bound
+    from ..physics.worst_case import residual_bound
 
     s = cfg.system
     b = s.balancer

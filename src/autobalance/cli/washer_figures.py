@@ -62,10 +62,10 @@ def plot_ball_forces(system, speeds, angles) -> Figure:
 
 def plot_residual_bound(system, speeds, f_r=None) -> Figure:
     """:func:`residual_bound_figure` of the machine's own balancer: the true worst-case residual
-    of its balls at rest (:func:`autobalance.physics.residual_bound.residual_bound`, with its
+    of its balls at rest (:func:`autobalance.physics.worst_case.residual_bound`, with its
     f/r or ``f_r`` [-], its rho, beta and damper friction) against ``speeds`` [rad/s], and each
     cause alone; blank below the balancing onset."""
-    from ..physics.residual_bound import residual_bound
+    from ..physics.worst_case import residual_bound
 
     w = np.asarray(speeds, float)
     mu = system.balancer.stiction if f_r is None else f_r

@@ -17,7 +17,7 @@ from .error_bounds import (ball_natural_frequencies, ball_natural_frequency_sing
                            rolling_deadband_single, suspension_friction_deviation,
                            symmetric_rolling_deviation)
 from .tolerance import design_tolerances, predict_residual, tolerances_for_grade, worst_case_prediction
-from .residual_bound import attained_residual, residual_bound
+from .worst_case import attained_residual, residual_bound
 from .immobility import immobile_mask, immobility, steady_deflection, stick_threshold_grade, tangential_force
 
 __all__ = [

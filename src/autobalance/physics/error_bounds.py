@@ -124,7 +124,7 @@ def rolling_deadband(system, speed, f_r, alpha_eq=None) -> dict:
     family, where neither the forces nor the residual change: the deviations are then those
     across the family (linear programs, d orthogonal to the null space of J). This is the
     linearised band about one equilibrium; the true worst case over every rest state is
-    :func:`autobalance.physics.residual_bound.residual_bound`.
+    :func:`autobalance.physics.worst_case.residual_bound`.
 
     Parameters
     ----------

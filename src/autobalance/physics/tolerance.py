@@ -15,7 +15,7 @@ the 000 method, kept as published for the seed-000 reproduction.
 For any machine (N balls, its own masses, R, f/r, rho, F, gamma):
 :func:`tolerances_for_grade` splits the residual unbalance of a target ISO 1940 grade between
 the causes (000 eq 56-57) and solves the true worst-case bound of
-:func:`autobalance.physics.residual_bound.residual_bound` for each tolerance alone, so that
+:func:`autobalance.physics.worst_case.residual_bound` for each tolerance alone, so that
 :func:`worst_case_prediction` at those tolerances gives back each cause's budget.
 """
 from __future__ import annotations
@@ -31,7 +31,7 @@ from ..models._validate import nonneg as _nonneg
 from ..models._validate import positive as _positive
 from .error_bounds import (eccentricity_equilibrium, rolling_deadband, suspension_friction_deviation)
 from .iso1940 import grade_value, unbalance_value
-from .residual_bound import ASSUMPTIONS, residual_bound
+from .worst_case import ASSUMPTIONS, residual_bound
 from .vibratory import gain_phase
 
 __all__ = ["DEFAULT_SPLIT", "TOLERANCE_CAUSES", "design_tolerances", "predict_residual",
@@ -228,7 +228,7 @@ def tolerances_for_grade(system, speed, grade: float = 16.0, *, nominal_speed: f
     The residual of the grade, U_G = M_t G / (1000 Omega) (:func:`.iso1940.unbalance_value`),
     is split between the causes with the weights p_j (000 eq 56-57; the rest, e.g. "other",
     is kept in reserve). For each cause alone the true bound of
-    :func:`~.residual_bound.residual_bound` is solved for its tolerance so that it equals
+    :func:`~.worst_case.residual_bound` is solved for its tolerance so that it equals
     p_j U_G: eccentricity rho (exactly rho/|h|, 000 eq 46-47), one rolling-resistance
     coefficient for every ball (by false position on the bound) and the damper friction F
     (exactly e_f/|h|, 000 eq 48). The causes do not add (000: "the resultant effect is not a
@@ -331,7 +331,7 @@ def worst_case_prediction(system, speed, *, nominal_speed: float | None = None,
     """Worst-case and expected residual unbalance of a machine with its own tolerances
     (the reverse of :func:`tolerances_for_grade`; 000 Tables 3-4's RMe for any balancer).
 
-    The worst case is the true bound of :func:`~.residual_bound.residual_bound` (all causes
+    The worst case is the true bound of :func:`~.worst_case.residual_bound` (all causes
     together). Each cause alone is given too. "Expected" is a heuristic, not a bound: the
     eccentricity part rho/|h| is certain (000: "always give the deviation", eq 46-47), the
     dead-band part (rolling, friction) is divided by the credits (000 eq 62: "a small

@@ -3,7 +3,7 @@ to N balls and any balancer), the true worst case of the machine's own tolerance
 Carlo of real simulations of the machine built with the tolerances at their limits.
 
 :func:`compute_tolerances` is closed form (:mod:`autobalance.physics.tolerance`,
-:mod:`autobalance.physics.residual_bound`); :func:`check_tolerances_by_simulation` integrates
+:mod:`autobalance.physics.worst_case`); :func:`check_tolerances_by_simulation` integrates
 the full model (:func:`autobalance.simulate.simulate_batch`) from random start angles with the
 eccentricity at a random angle. Both return JSON-ready dicts (SI, unit-suffixed keys).
 """
@@ -17,7 +17,7 @@ import numpy as np
 
 from ..models import InitialState, ParameterError
 from ..physics.iso1940 import grade_class, grade_value
-from ..physics.residual_bound import attained_residual, residual_bound
+from ..physics.worst_case import attained_residual, residual_bound
 from ..physics.tolerance import tolerances_for_grade, worst_case_prediction
 from .start_positions import load
 from .statistics import plateau_speed

@@ -27,7 +27,8 @@ i.e. while |Im(e^{-i alpha_i} z)| <= a_i = mu_i (R + g/w^2) [m] (mu_i the static
 **The bound.** For z = zeta e^{i theta} every ball at rest lies within s_i = asin(a_i/zeta) of
 the line through 0 along theta, so the balls' moment sum_j m_j R e^{i alpha_j}, rotated by
 -theta, lies in a union of boxes (one per side of the line each ball is on; exact X and Y ranges
-of each arc). The balls' sum is also fixed by z: it is W - U - M_b rho e^{i beta} with
+of each arc; for one or two balls the exact set of their moments). The balls' sum is also
+fixed by z: it is W - U - M_b rho e^{i beta} with
 W = (z - rho e^{i beta} - eps_f)/h. A circle |z| = zeta1 on which no point can be a rest state
 (checked on K angles with the Lipschitz margin of the angle step, eps_f anywhere in its disc and,
 when the angle is unknown, beta anywhere) separates the balanced state z = 0 from every other
@@ -224,12 +225,79 @@ class _Circle:
         """Per row: min distance of the balls' required moment to their reachable set on the
         circle |z| = zeta [m], minus the margin [kg*m]; > 0: no rest state on that circle."""
         s = np.arcsin(np.minimum(1.0, self.a / zeta)) if zeta > 0 else np.zeros(self.a.shape)
-        iv = _x_intervals(self.c, s)
-        yh = float(np.sum(self.c * np.sin(s)))
         T = self.t0 + zeta / self.h
-        dx = _x_distance(T.real.ravel(), iv).reshape(T.shape)
-        dy = np.maximum(np.abs(T.imag) - yh, 0.0)
-        return np.min(np.hypot(dx, dy), axis=1) - self.margin
+        if len(self.c) <= 2:
+            d = _arcs_distance(T.ravel(), self.c, s).reshape(T.shape)
+        else:
+            iv = _x_intervals(self.c, s)
+            yh = float(np.sum(self.c * np.sin(s)))
+            dx = _x_distance(T.real.ravel(), iv).reshape(T.shape)
+            d = np.hypot(dx, np.maximum(np.abs(T.imag) - yh, 0.0))
+        return np.min(d, axis=1) - self.margin
+
+
+def _in_arc(phi, centre: float, half: float):
+    """phi within half of centre (mod 2 pi)."""
+    return np.abs(np.angle(np.exp(1j * (phi - centre)))) <= half * (1 + 1e-12) + 1e-15
+
+
+def _arc_distance(P, C, r: float, centre: float, half: float):
+    """Distance of the points P to the arc C + r e^{i phi}, |phi - centre| <= half."""
+    v = P - C
+    inside = _in_arc(np.angle(v), centre, half)
+    ends = np.minimum(np.abs(P - (C + r * np.exp(1j * (centre - half)))),
+                      np.abs(P - (C + r * np.exp(1j * (centre + half)))))
+    return np.where(inside, np.abs(np.abs(v) - r), ends)
+
+
+def _arcs_distance(T, c, s):
+    """Exact distance of T to the moments of one or two balls, ball j on the arcs within s_j of
+    the angles 0 and pi (the rotated frame of :class:`_Circle`): for one ball the distance to
+    its arcs; for two, 0 inside (the two solutions of the triangle law) and otherwise the
+    distance to the image of the boundary of the angle rectangle and of the fold
+    (collinear balls), which holds the boundary of the set."""
+    if len(c) == 1:
+        return np.minimum(_arc_distance(T, 0.0, c[0], 0.0, s[0]),
+                          _arc_distance(T, 0.0, c[0], math.pi, s[0]))
+    c1, c2 = float(c[0]), float(c[1])
+    s1, s2 = float(s[0]), float(s[1])
+    r = np.abs(T)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        g = np.arccos(np.clip((c1 * c1 + r * r - c2 * c2) / (2 * c1 * np.maximum(r, 1e-300)), -1, 1))
+    reach = (r <= c1 + c2) & (r >= abs(c1 - c2))
+    best = np.full(T.shape, np.inf)
+    for a1 in (0.0, math.pi):
+        for a2 in (0.0, math.pi):
+            inside = np.zeros(T.shape, bool)
+            for sg in (1.0, -1.0):
+                al1 = np.angle(T) + sg * g
+                al2 = np.angle(T - c1 * np.exp(1j * al1))
+                inside |= reach & _in_arc(al1, a1, s1) & _in_arc(al2, a2, s2)
+            d = np.minimum.reduce([
+                _arc_distance(T, c1 * np.exp(1j * (a1 - s1)), c2, a2, s2),
+                _arc_distance(T, c1 * np.exp(1j * (a1 + s1)), c2, a2, s2),
+                _arc_distance(T, c2 * np.exp(1j * (a2 - s2)), c1, a1, s1),
+                _arc_distance(T, c2 * np.exp(1j * (a2 + s2)), c1, a1, s1),
+                _fold_distance(T, c1, c2, a1, s1, a2, s2)])
+            best = np.minimum(best, np.where(inside, 0.0, d))
+    return best
+
+
+def _fold_distance(T, c1, c2, a1, s1, a2, s2):
+    """Distance of T to the collinear configurations of the two arcs: alpha_1 = alpha_2 (radius
+    c1 + c2) and alpha_1 = alpha_2 + pi (radius |c1 - c2|), over the overlap of the arcs."""
+    out = np.full(T.shape, np.inf)
+    for shift, rad in ((0.0, c1 + c2), (math.pi, c1 - c2)):
+        # alpha_1 in arc 1 and alpha_1 - shift in arc 2: the overlap of two intervals
+        d = float(np.angle(np.exp(1j * (a2 + shift - a1))))
+        lo, hi = max(-s1, d - s2), min(s1, d + s2)
+        if lo > hi:
+            continue
+        centre, half = a1 + 0.5 * (lo + hi), 0.5 * (hi - lo)
+        if rad < 0:
+            rad, centre = -rad, centre + math.pi
+        out = np.minimum(out, _arc_distance(T, 0.0, rad, centre, half))
+    return out
 
 
 def _balanced_exists(c, V: complex, tol: float) -> bool:
@@ -381,7 +449,9 @@ def attained_residual(system, speed, *, rolling_resistance=None, eccentricity=No
     Maximises |W(alpha)| over the ball angles, the friction shift eps_f (|eps_f| <= e_f) and,
     when unknown, beta, subject to the rest test |Im(e^{-i alpha_i} z)| <= a_i of every ball
     with z = h W + rho e^{i beta} - eps_f (module docstring) and |z| <= ``zeta_max`` (the
-    separating circle), by SLSQP from ``n_starts`` balanced states.
+    separating circle), by SLSQP from ``n_starts`` balanced states, continued over |z| <=
+    zeta_max/4, /2, 3/4, 1 (a narrow region of rest states is followed outwards); for two
+    balls also the exact rest state on the outermost circle that holds one (triangle law).
 
     Parameters
     ----------
@@ -466,18 +536,52 @@ def attained_residual(system, speed, *, rolling_resistance=None, eccentricity=No
             return np.array([d.real, d.imag]) / scale
 
         al0 = least_squares(resid, rng.uniform(-math.pi, math.pi, n)).x
-        x0 = np.concatenate([al0 + rng.normal(0, 1e-3, n), [0.0, 0.0], [be] if free_beta else []])
-        r = minimize(lambda x: -abs(W_of(x) / scale) ** 2, x0, method="SLSQP",
-                     constraints=[{"type": "ineq", "fun": cons}],
-                     options={"maxiter": 400, "ftol": 1e-14})
-        x = r.x
-        if np.all(cons(x) >= -1e-9):
-            v = abs(W_of(x))
-            if v > best:
-                best, best_x = v, x
+        x = np.concatenate([al0 + rng.normal(0, 1e-3, n), [0.0, 0.0], [be] if free_beta else []])
+        for frac in np.linspace(0.25, 1.0, 4):     # continuation: |z| <= frac zeta_max
+            lim = frac * zmax
+            r = minimize(lambda x: -abs(W_of(x) / scale) ** 2, x, method="SLSQP",
+                         constraints=[{"type": "ineq", "fun": lambda x, lim=lim: np.concatenate(
+                             [cons(x)[:-1], [(lim / zs) ** 2 - abs(z_of(x) / zs) ** 2]])}],
+                         options={"maxiter": 300, "ftol": 1e-14})
+            if np.all(cons(r.x) >= -1e-9):
+                x = r.x
+                v = abs(W_of(x))
+                if v > best:
+                    best, best_x = v, x
+    if n == 2:                         # exact: the outermost rest state on the circles
+        for be in ([beta0] if not free_beta else 2 * math.pi * np.arange(12) / 12):
+            x = _outermost_two_balls(c, a, U, h, rho, be, mb, zmax)
+            if x is not None:
+                x = np.concatenate([x, [0.0, 0.0], [be] if free_beta else []])
+                if np.all(cons(x) >= -1e-9) and abs(W_of(x)) > best:
+                    best, best_x = abs(W_of(x)), x
     if best_x is None:
         return {"attained_residual_kg_m": math.nan, "alpha_rad": [math.nan] * n,
                 "eccentricity_angle_rad": math.nan, "friction_shift_m": math.nan}
     al, ef, be = unpack(best_x)
     return {"attained_residual_kg_m": float(best), "alpha_rad": np.mod(al, 2 * math.pi),
             "eccentricity_angle_rad": float(be), "friction_shift_m": float(abs(ef))}
+
+
+def _outermost_two_balls(c, a, U, h, rho, beta, m_balls, zeta_max, n_theta: int = 4096):
+    """Ball angles of a rest state of two balls (no friction shift) on the largest circle
+    |z| <= zeta_max that holds one (circles 0.2 % apart, angles n_theta apart), or None."""
+    theta = 2.0 * math.pi * np.arange(n_theta) / n_theta
+    eb = np.exp(1j * beta)
+    t0 = -(rho * eb / h + U + m_balls * rho * eb) * np.exp(-1j * theta)
+    c1, c2 = float(c[0]), float(c[1])
+    for frac in np.arange(1.0, 0.0, -0.002):
+        zeta = frac * zeta_max
+        s = np.arcsin(np.minimum(1.0, a / zeta))
+        T = t0 + zeta / h
+        r = np.abs(T)
+        reach = (r <= c1 + c2) & (r >= abs(c1 - c2))
+        g = np.arccos(np.clip((c1 * c1 + r * r - c2 * c2) / (2 * c1 * np.maximum(r, 1e-300)), -1, 1))
+        for sg in (1.0, -1.0):
+            al1 = np.angle(T) + sg * g
+            al2 = np.angle(T - c1 * np.exp(1j * al1))
+            ok = reach & (np.abs(np.sin(al1)) <= np.sin(s[0])) & (np.abs(np.sin(al2)) <= np.sin(s[1]))
+            if np.any(ok):
+                k = int(np.argmax(ok))
+                return np.array([al1[k] + theta[k], al2[k] + theta[k]])
+    return None
