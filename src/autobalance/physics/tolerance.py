@@ -187,7 +187,7 @@ def predict_residual(system, speed, f_r=None, friction_force=None, friction_angl
 # -- any machine: tolerances from a target grade, and the true worst case ----------------------
 def _solve_increasing(fun, target: float, x0: float, x_max: float):
     """Largest x in [0, x_max] found with fun(x) <= target, for a nondecreasing fun with
-    fun(0) = 0 (bracket by doubling from x0, then Brent's method to 1e-12 of x; a jump of fun,
+    fun(0) = 0 (bracket by doubling from x0, then Brent's method to 1e-10 of x; a jump of fun,
     e.g. where the balls lose their balanced state, is located like a root). Returns
     (x, fun(x))."""
     from scipy.optimize import brentq
@@ -208,8 +208,24 @@ def _solve_increasing(fun, target: float, x0: float, x_max: float):
         lo, hi = hi, min(2.0 * hi, x_max)
         fhi = f(hi)
     if fhi > 0 and abs(fhi) > 1e-12 * target:
-        brentq(f, lo, hi, xtol=1e-300, rtol=1e-12, maxiter=200)
+        brentq(f, lo, hi, xtol=1e-300, rtol=1e-10, maxiter=200)
     return best[0], best[1]
+
+
+def _rho_capacity(system, w: float) -> float:
+    """Largest race eccentricity [m] for which the balls can cancel the unbalance for every
+    eccentricity angle: |U + rho e^{i beta}(1/h + M_b)| within the capacity annulus."""
+    from .worst_case import synchronous_gain
+
+    b = system.balancer
+    c = b.masses * b.race_radius
+    k = abs(1.0 / synchronous_gain(system, w) + b.total_mass)
+    U = system.rotor.unbalance
+    total, inner = float(np.sum(c)), max(0.0, 2.0 * float(np.max(c)) - float(np.sum(c)))
+    lim = (total - U) / k
+    if inner > 0:
+        lim = min(lim, (U - inner) / k)
+    return max(lim, 0.0)
 
 
 def _check_grade(grade) -> float:
@@ -297,7 +313,9 @@ def tolerances_for_grade(system, speed, grade: float = 16.0, *, nominal_speed: f
     guess = {"eccentricity": budgets["eccentricity"] * gain,
              "rolling": budgets["rolling"] * gain / (b.race_radius + system.gravity.g / (w * w)),
              "friction": budgets["friction"] * gain / max(per_n, 1e-300)}
-    x_max = {"eccentricity": 0.999 * b.race_radius, "rolling": 1.0, "friction": 1e12}
+    # beyond rho_cap the balls cannot cancel U + rho e^{i beta}(1/h + M_b) for every beta
+    x_max = {"eccentricity": min(0.999 * b.race_radius, _rho_capacity(system, w)),
+             "rolling": 1.0, "friction": 1e12}
     alone = {}
     for cause in TOLERANCE_CAUSES:
         alone[cause] = (0.0 if budgets[cause] <= 0 else

@@ -36,7 +36,7 @@ rest state: every rest state connected to the balanced one has |z| < zeta1, henc
 
     |W| <= (zeta1 + rho + e_f) / |h|                                                  [kg*m]
 
-The smallest such circle is found by a scan in zeta (steps of 5 %) and bisection. No Jacobian is inverted, so
+The smallest such circle is found by a scan in zeta (steps of 10 %) and bisection. No Jacobian is inverted, so
 a continuous family of balanced states (N >= 3) needs no special case. With mu = 0 the bound is
 exact: rho/|h| is the exact residual of 000 eq (46)-(47) for N >= 2 (F_i = 0 for every ball
 that spans the plane means z = 0), and for one ball with m R = Me at w >> w_n the rolling part
@@ -236,18 +236,19 @@ class _Circle:
         return np.min(d, axis=1) - self.margin
 
 
-def _in_arc(phi, centre: float, half: float):
-    """phi within half of centre (mod 2 pi)."""
-    return np.abs(np.angle(np.exp(1j * (phi - centre)))) <= half * (1 + 1e-12) + 1e-15
+def _within(v, centre: float, half: float):
+    """The direction of v lies within half (<= pi) of the angle centre: Re(v e^{-i centre}) >=
+    |v| cos(half)."""
+    return (v * complex(math.cos(centre), -math.sin(centre))).real >= np.abs(v) * math.cos(half) - 1e-15 * np.abs(v)
 
 
 def _arc_distance(P, C, r: float, centre: float, half: float):
     """Distance of the points P to the arc C + r e^{i phi}, |phi - centre| <= half."""
     v = P - C
-    inside = _in_arc(np.angle(v), centre, half)
-    ends = np.minimum(np.abs(P - (C + r * np.exp(1j * (centre - half)))),
-                      np.abs(P - (C + r * np.exp(1j * (centre + half)))))
-    return np.where(inside, np.abs(np.abs(v) - r), ends)
+    e0 = C + r * complex(math.cos(centre - half), math.sin(centre - half))
+    e1 = C + r * complex(math.cos(centre + half), math.sin(centre + half))
+    return np.where(_within(v, centre, half), np.abs(np.abs(v) - r),
+                    np.minimum(np.abs(P - e0), np.abs(P - e1)))
 
 
 def _arcs_distance(T, c, s):
@@ -262,22 +263,25 @@ def _arcs_distance(T, c, s):
     c1, c2 = float(c[0]), float(c[1])
     s1, s2 = float(s[0]), float(s[1])
     r = np.abs(T)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        g = np.arccos(np.clip((c1 * c1 + r * r - c2 * c2) / (2 * c1 * np.maximum(r, 1e-300)), -1, 1))
+    cg = np.clip((c1 * c1 + r * r - c2 * c2) / (2 * c1 * np.maximum(r, 1e-300)), -1, 1)
+    sgn = np.sqrt(1.0 - cg * cg)
+    unit = T / np.maximum(r, 1e-300)
     reach = (r <= c1 + c2) & (r >= abs(c1 - c2))
+    sols = []
+    for sg in (1.0, -1.0):
+        u1 = unit * (cg + 1j * sg * sgn)          # direction of ball 1
+        sols.append((u1, T - c1 * u1))            # ball 2's moment
     best = np.full(T.shape, np.inf)
     for a1 in (0.0, math.pi):
         for a2 in (0.0, math.pi):
             inside = np.zeros(T.shape, bool)
-            for sg in (1.0, -1.0):
-                al1 = np.angle(T) + sg * g
-                al2 = np.angle(T - c1 * np.exp(1j * al1))
-                inside |= reach & _in_arc(al1, a1, s1) & _in_arc(al2, a2, s2)
+            for u1, v2 in sols:
+                inside |= reach & _within(u1, a1, s1) & _within(v2, a2, s2)
             d = np.minimum.reduce([
-                _arc_distance(T, c1 * np.exp(1j * (a1 - s1)), c2, a2, s2),
-                _arc_distance(T, c1 * np.exp(1j * (a1 + s1)), c2, a2, s2),
-                _arc_distance(T, c2 * np.exp(1j * (a2 - s2)), c1, a1, s1),
-                _arc_distance(T, c2 * np.exp(1j * (a2 + s2)), c1, a1, s1),
+                _arc_distance(T, c1 * complex(math.cos(a1 - s1), math.sin(a1 - s1)), c2, a2, s2),
+                _arc_distance(T, c1 * complex(math.cos(a1 + s1), math.sin(a1 + s1)), c2, a2, s2),
+                _arc_distance(T, c2 * complex(math.cos(a2 - s2), math.sin(a2 - s2)), c1, a1, s1),
+                _arc_distance(T, c2 * complex(math.cos(a2 + s2), math.sin(a2 + s2)), c1, a1, s1),
                 _fold_distance(T, c1, c2, a1, s1, a2, s2)])
             best = np.minimum(best, np.where(inside, 0.0, d))
     return best
@@ -400,16 +404,16 @@ def residual_bound(system, speed, *, rolling_resistance=None, eccentricity=None,
 
 
 def _separating_radius(circle: _Circle, a: np.ndarray, zeta_max: float):
-    """Largest over the rows of the smallest zeta (scan x1.05 (x2 without rolling resistance),
-    then bisection) whose circle
+    """Largest over the rows of the smallest zeta (scan x1.1 (x2 without rolling resistance),
+    then bisection to 1e-10) whose circle
     holds no rest state; None if a row has none below zeta_max. (A scan step that jumps over
     a thin empty window only returns a larger circle: still a bound.)"""
-    step = 1.05
+    step = 1.1
     if np.all(a == 0):                 # the balls' sets do not depend on zeta: coarser steps
         tiny = 1e-12 * max(zeta_max, 1e-300)
         if np.all(circle.gap(tiny) > 0):
             return 0.0
-        start, step = tiny, 2.0
+        start, step = 1e-6 * zeta_max, 2.0
     else:
         pos = a[a > 0]
         start = float(pos.min()) if np.all(a > 0) else 1e-6 * float(pos.max())
@@ -428,7 +432,7 @@ def _separating_radius(circle: _Circle, a: np.ndarray, zeta_max: float):
         lo = hi
     rows = ~found                      # these rows' first empty circle lies in (lo, hi]
     for _ in range(60):
-        if hi - lo <= 1e-11 * hi:
+        if hi - lo <= 1e-10 * hi:
             break
         mid = 0.5 * (lo + hi)
         empty = circle.gap(mid) > 0
