@@ -226,7 +226,7 @@ def _tolerance_text(out: dict) -> list:
     if not out["feasible"]:
         lines.append(f"  not possible: {out['reason']}")
     else:
-        lines += [f"  allowed (true worst case, each cause within its share, "
+        lines += [f"  allowed (true worst case of the balanced region, each cause within its share, "
                   f"together within {100 * (1 - out['split'].get('other', 0.0)):.0f} %):",
                   f"    ring eccentricity      <= {out['max_eccentricity_m'] * 1e6:.4g} um",
                   f"    rolling resistance f/r <= {out['max_rolling_resistance']:.4g}",
@@ -239,7 +239,7 @@ def _tolerance_text(out: dict) -> list:
                f"{-100 * rme:.0f} % more than the rotor's own unbalance: balls at rest can add to it")
     lines += [f"  this machine (f/r = {fr}, rho = {out['own_eccentricity_m'] * 1e6:.4g} um, "
               f"F = {out['own_suspension_friction_N']:.4g} N):",
-              f"    worst case (true bound) {worst:.4g} kg*m = G{Gw:.3g} (class "
+              f"    worst case (true bound, balanced region) {worst:.4g} kg*m = G{Gw:.3g} (class "
               f"G{out['worst_grade_class_G_mm_s']:g}); {rme_txt}",
               f"    expected (000 credits)  {out['expected_residual_kg_m']:.4g} kg*m = "
               f"G{out['expected_grade_G_mm_s']:.3g}",
@@ -247,6 +247,10 @@ def _tolerance_text(out: dict) -> list:
     if "plateau_worst_residual_kg_m" in out:
         lines.append(f"    at the TSR plateau {out['plateau_speed_rad_s']:.4g} rad/s: worst "
                      f"{out['plateau_worst_residual_kg_m']:.4g} kg*m = G{out['plateau_worst_grade_G_mm_s']:.3g}")
+    col = [v for v in out.get("collinear_residuals_kg_m", []) if v > worst]
+    if col:
+        lines.append("    balls stopped at a collinear equilibrium instead (outside the balanced region) "
+                     "leave " + ", ".join(f"{v:.3g}" for v in col) + " kg*m")
     lines += [f"  note: {w}" for w in out["warnings"] if w != out.get("reason")]
     return lines
 

@@ -24,6 +24,22 @@ def _fig(size=(7.0, 4.5)) -> Figure:
     return fig
 
 
+def _natural_lines(ax, natural_frequencies) -> None:
+    """Vertical lines at w_x, w_y [rad/s] and the speed axis label."""
+    for wn, name in zip(natural_frequencies, ("w_x", "w_y")):
+        ax.axvline(wn, color="0.6", ls="--", lw=0.8)
+        ax.text(wn, 0.95, name, transform=ax.get_xaxis_transform(), fontsize=8)
+    ax.set_xlabel("spin speed w [rad/s]")
+
+
+def _angle_panel(ax, title: str, xlabel: str) -> None:
+    """Zero line, title, x label and 90-degree ticks of a force-vs-angle panel."""
+    ax.axhline(0, color="0.6", lw=0.8)
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(xlabel)
+    ax.set_xticks(range(0, 361, 90))
+
+
 def vibratory_force_figure(alpha, forces, titles) -> Figure:
     """000 Fig. 6: F_x, F_y and F = F_x + F_y over m R w^2 versus the ball angle, one panel per
     speed.
@@ -45,10 +61,7 @@ def vibratory_force_figure(alpha, forces, titles) -> Figure:
         ax.plot(a, c["Fx_norm"], "--", label="F_x")
         ax.plot(a, c["Fy_norm"], ":", label="F_y")
         ax.plot(a, c["F_norm"], "k-", label="F = F_x + F_y")
-        ax.axhline(0, color="0.6", lw=0.8)
-        ax.set_title(f"{chr(97 + k)}) {title}", fontsize=9)
-        ax.set_xlabel("ball angle alpha [deg]")
-        ax.set_xticks(range(0, 361, 90))
+        _angle_panel(ax, f"{chr(97 + k)}) {title}", "ball angle alpha [deg]")
     axes[0].set_ylabel("F / (m R w^2) [-]")
     axes[0].legend(fontsize=8)
     fig.suptitle("Vibratory force on one ball, mR = Me (000 eq 11, Fig. 6)", fontsize=10)
@@ -82,10 +95,7 @@ def ball_forces_figure(alpha, panels, titles, name: str = "") -> Figure:
             ax.axvline(np.degrees(np.mod(c["at"], 2 * math.pi)), color=col, ls=":", lw=0.8)
             if c["f_r"] > 0:
                 ax.axhspan(-c["f_r"], c["f_r"], color=col, alpha=0.12)
-        ax.axhline(0, color="0.6", lw=0.8)
-        ax.set_title(f"{chr(97 + k)}) {title}", fontsize=9)
-        ax.set_xlabel("ball angle alpha_i [deg]")
-        ax.set_xticks(range(0, 361, 90))
+        _angle_panel(ax, f"{chr(97 + k)}) {title}", "ball angle alpha_i [deg]")
     axes[0].set_ylabel("F_i / (m_i R w^2) [-]")
     axes[0].legend(fontsize=8)
     fig.suptitle(f"Vibratory force on each ball of {name or 'the balancer'}, others fixed; "
@@ -119,10 +129,7 @@ def residual_bound_figure(speeds, curves, natural_frequencies, levels=None, titl
     for label, v in (levels or {}).items():
         ax.axhline(v, color="0.4", ls="--", lw=0.8)
         ax.text(w[0], v, f" {label}", fontsize=8, va="bottom")
-    for wn, nm in zip(natural_frequencies, ("w_x", "w_y")):
-        ax.axvline(wn, color="0.6", ls="--", lw=0.8)
-        ax.text(wn, 0.95, nm, transform=ax.get_xaxis_transform(), fontsize=8)
-    ax.set_xlabel("spin speed w [rad/s]")
+    _natural_lines(ax, natural_frequencies)
     ax.set_ylabel("residual unbalance [kg m]")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -176,10 +183,7 @@ def rolling_deviation_figure(speeds, deviations, natural_frequencies) -> Figure:
     ax = fig.subplots()
     for fr, d in deviations.items():
         ax.plot(w, np.degrees(np.where(np.isfinite(d), d, np.nan)), label=f"f/r = {fr:g}")
-    for wn, name in zip(natural_frequencies, ("w_x", "w_y")):
-        ax.axvline(wn, color="0.6", ls="--", lw=0.8)
-        ax.text(wn, 0.95, name, transform=ax.get_xaxis_transform(), fontsize=8)
-    ax.set_xlabel("spin speed w [rad/s]")
+    _natural_lines(ax, natural_frequencies)
     ax.set_ylabel("max deviation [deg]")
     ax.set_yscale("log")
     ax.legend()

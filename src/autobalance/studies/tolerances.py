@@ -22,7 +22,8 @@ from ..physics.tolerance import tolerances_for_grade, worst_case_prediction
 from .start_positions import load
 from .statistics import plateau_speed
 
-__all__ = ["check_tolerances_by_simulation", "compute_tolerances", "machine_with_tolerances"]
+__all__ = ["check_tolerances_by_simulation", "collinear_residuals", "compute_tolerances",
+           "machine_with_tolerances"]
 
 #: Keys of a tolerance dict (as :func:`compute_tolerances` returns them).
 TOLERANCE_KEYS = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")
@@ -69,7 +70,9 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
         "max_suspension_friction_N", "budget_kg_m" (per cause), "target_grade_G_mm_s",
         "target_unbalance_kg_m", "worst_residual_kg_m" (the bound for the machine's own
         tolerances), "worst_grade_G_mm_s", "expected_residual_kg_m", "attained_residual_kg_m",
-        "meets_target", "capacity_kg_m", "feasible", "reason", "warnings", ... (docs/tolerances.md).
+        "meets_target", "capacity_kg_m", "collinear_residuals_kg_m" (where balls trapped
+        outside the balanced region end), "feasible", "reason", "warnings", ...
+        (docs/tolerances.md).
     """
     t0 = time.perf_counter()
     cfg = load(base)
@@ -121,6 +124,7 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
         "separated": p["separated"], "balancing": p["balancing"],
         "assumptions": p["assumptions"], "warnings": warnings,
     }
+    out["collinear_residuals_kg_m"] = collinear_residuals(s)
     if getattr(cfg, "profile_kind", "") == "tsr":
         wp = plateau_speed(cfg.spin)
         pp = residual_bound(s, wp, eccentricity_angle=None)
@@ -129,6 +133,36 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
                     "plateau_worst_grade_G_mm_s": float(grade_value(pp["worst_residual_kg_m"], mt, Om))})
     out["elapsed_s"] = time.perf_counter() - t0
     return out
+
+
+def collinear_residuals(system, max_balls: int = 12) -> list:
+    """Residual unbalances |U + sum_j s_j m_j R| [kg*m], s_j = +-1, of the collinear
+    equilibria (every ball on the unbalance's line, with it or against it; no eccentricity),
+    sorted: where balls that stop outside the balanced region end (friction and ball contact
+    hold these equilibria). Empty beyond ``max_balls`` balls.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        U [kg*m] of the rotor, m_j [kg] and R [m] of the balancer.
+    max_balls : int
+        Largest ball count enumerated (2^N sign patterns).
+
+    Returns
+    -------
+    list of float
+        Distinct residuals [kg*m], ascending (rounded to 1e-12 of the capacity).
+    """
+    import itertools
+
+    b = system.balancer
+    if b.n_balls > max_balls or b.n_balls < 1:
+        return []
+    c = b.masses * b.race_radius
+    tol = 1e-12 * float(np.sum(c))
+    vals = sorted({round(abs(system.rotor.unbalance + float(np.dot(sg, c))) / tol) * tol
+                   for sg in itertools.product((-1.0, 1.0), repeat=b.n_balls)})
+    return [float(v) for v in vals]
 
 
 def machine_with_tolerances(system, tolerances: dict, eccentricity_angle: float = 0.0):
@@ -183,6 +217,11 @@ def check_tolerances_by_simulation(base, tolerances: dict, *, n: int = 20, seed:
     (eccentricity at a random angle, every ball's f/r, the damper friction), from random ball
     start angles through the machine's own speed profile, against the worst-case bound.
 
+    The bound covers the rest states of the balanced region. A run can also stop at a
+    collinear equilibrium (all balls on one line through the centre, e.g. two touching
+    opposite the unbalance and one with it): an equilibrium that friction and the balls'
+    contact hold, outside that region. Such runs are counted as trapped, not as violations.
+
     Parameters
     ----------
     base : str, Path or Config
@@ -202,8 +241,12 @@ def check_tolerances_by_simulation(base, tolerances: dict, *, n: int = 20, seed:
     -------
     dict
         JSON-ready: "residuals_kg_m" (at the last read-out), "grades_G_mm_s", "statuses",
-        "max_residual_kg_m", "mean_residual_kg_m", "bound_kg_m", "expected_kg_m",
-        "max_over_bound" [-], "bound_over_max" [-], "holds", "start_angles_rad",
+        "final_angles_rad", "trapped" (per run: above the bound with every ball within a
+        contact angle of one line, i.e. stopped at a collinear equilibrium outside the balanced
+        region the bound covers), "n_trapped", "n_violations" (above the bound and not
+        trapped), "max_residual_kg_m" and "mean_residual_kg_m" (runs not trapped),
+        "max_residual_all_kg_m", "bound_kg_m", "expected_kg_m", "max_over_bound" [-],
+        "bound_over_max" [-], "holds" (no violation), "start_angles_rad",
         "eccentricity_angles_rad", "speed_rad_s", "n_runs", "n_failed", "elapsed_s".
     """
     from ..simulate import simulate_batch
@@ -232,18 +275,36 @@ def check_tolerances_by_simulation(base, tolerances: dict, *, n: int = 20, seed:
     pred = worst_case_prediction(systems[0], w, nominal_speed=cfg.spin.nominal_speed,
                                  eccentricity_angle=None)
     bound = pred["worst_residual_kg_m"]
-    good = final[ok]
+    collinear = np.array([_collinear(a, s0.balancer.contact_angle) for a in res.alpha[:, -1]])
+    above = ok & (final > bound)
+    trapped = above & collinear
+    inside = ok & ~trapped
+    good = final[inside]
     mx = float(good.max()) if good.size else math.nan
     return {
         "name": cfg.name, "speed_rad_s": w, "read_out_s": float(t_read),
         "duration_s": float(cfg.spin.duration), "n_runs": n, "n_failed": int((~ok).sum()),
         "statuses": list(res.status), "tolerances": {k: float(tolerances[k]) for k in TOLERANCE_KEYS},
         "eccentricity_angles_rad": betas, "start_angles_rad": np.array(starts),
-        "residuals_kg_m": final, "grades_G_mm_s": res.grade_G[:, -1],
-        "max_residual_kg_m": mx, "mean_residual_kg_m": float(good.mean()) if good.size else math.nan,
+        "final_angles_rad": res.alpha[:, -1], "residuals_kg_m": final,
+        "grades_G_mm_s": res.grade_G[:, -1], "trapped": trapped,
+        "n_trapped": int(trapped.sum()), "n_violations": int((above & ~collinear).sum()),
+        "max_residual_kg_m": mx, "max_residual_all_kg_m": float(final[ok].max()) if ok.any() else math.nan,
+        "mean_residual_kg_m": float(good.mean()) if good.size else math.nan,
         "bound_kg_m": bound, "expected_kg_m": pred["expected_residual_kg_m"],
         "max_over_bound": mx / bound if bound > 0 else math.nan,
         "bound_over_max": bound / mx if mx > 0 else math.inf,
-        "holds": bool(good.size and mx <= bound), "separated": pred["separated"],
-        "elapsed_s": time.perf_counter() - t0,
+        "holds": bool(good.size and not (above & ~collinear).any()),
+        "separated": pred["separated"], "elapsed_s": time.perf_counter() - t0,
     }
+
+
+def _collinear(alpha, contact_angle: float) -> bool:
+    """All balls within a contact angle of one line through the centre (a collinear
+    equilibrium, e.g. one ball with the unbalance and two touching opposite it)."""
+    a = np.mod(np.asarray(alpha, float), math.pi)          # a line: angles mod pi
+    for ref in a:
+        d = np.abs(np.angle(np.exp(2j * (a - ref)))) / 2   # distance mod pi
+        if d.max() <= contact_angle:
+            return True
+    return False
