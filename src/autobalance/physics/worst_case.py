@@ -36,8 +36,8 @@ rest state: every rest state connected to the balanced one has |z| < zeta1, henc
 
     |W| <= (zeta1 + rho + e_f) / |h|                                                  [kg*m]
 
-The smallest such circle is found by a scan in zeta (steps of 10 %) and bisection. No Jacobian is inverted, so
-a continuous family of balanced states (N >= 3) needs no special case. With mu = 0 the bound is
+The smallest such circle is found by a scan in zeta (steps of 10 %) and bisection. No
+Jacobian is inverted, so a continuous family of balanced states (N >= 3) needs no special case. With mu = 0 the bound is
 exact: rho/|h| is the exact residual of 000 eq (46)-(47) for N >= 2 (F_i = 0 for every ball
 that spans the plane means z = 0), and for one ball with m R = Me at w >> w_n the rolling part
 tends to 000 eq (61)'s m R Delta alpha = M_t R f/r.
@@ -452,7 +452,7 @@ def attained_residual(system, speed, *, rolling_resistance=None, eccentricity=No
 
     Maximises |W(alpha)| over the ball angles, the friction shift eps_f (|eps_f| <= e_f) and,
     when unknown, beta, subject to the rest test |Im(e^{-i alpha_i} z)| <= a_i of every ball
-    with z = h W + rho e^{i beta} - eps_f (module docstring) and |z| <= ``zeta_max`` (the
+    with z = h W + rho e^{i beta} + eps_f (module docstring) and |z| <= ``zeta_max`` (the
     separating circle), by SLSQP from ``n_starts`` balanced states, continued over |z| <=
     zeta_max/4, /2, 3/4, 1 (a narrow region of rest states is followed outwards); for two
     balls also the exact rest state on the outermost circle that holds one (triangle law).
@@ -520,7 +520,7 @@ def attained_residual(system, speed, *, rolling_resistance=None, eccentricity=No
 
     def z_of(x):
         al, ef, be = unpack(x)
-        return h * W_of(x) + rho * np.exp(1j * be) - ef
+        return h * W_of(x) + rho * np.exp(1j * be) + ef
 
     def cons(x):
         al, _, _ = unpack(x)
