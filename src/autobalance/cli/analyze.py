@@ -46,15 +46,16 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
                help="Write 000 Fig. 7: the one-ball force for suspension damping x0.5/1/2, above "
                     "both and between the natural frequencies.")] = None,
            json_: JsonOpt = False) -> None:
-    """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: Fig. 6;
-    --damping-plot: Fig. 7.\f
+    """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: each ball's
+    force against its angle with its rest band (this balancer); --damping-plot: Fig. 7.\f
 
     Parameters
     ----------
     source, set_, speed, angles, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`); forces in [N], the Jacobian in [N/rad].
     plot, damping_plot : str
-        PNG files for 000 Fig. 6 and Fig. 7.
+        PNG files: the force on each of this balancer's balls against its own angle, the others
+        at ``angles``, with the rest band +-f/r (000 eq 8, 21; Fig. 6 generalised); 000 Fig. 7.
     """
     with guard():
         check_plot(plot)
@@ -69,12 +70,12 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
                **{f"{k}_n": v for k, v in comp.items()},
                "jacobian_n_per_rad": force_jacobian(cfg.system, w, a)}
         if plot is not None or damping_plot is not None:
-            from .washer_figures import plot_vibratory_force, plot_vibratory_force_damping
+            from .washer_figures import plot_ball_forces, plot_vibratory_force_damping
 
             wx, wy = cfg.system.natural_frequencies
             speeds = [w, 0.5 * (wx + wy)]       # this speed and between the natural frequencies
             if plot is not None:
-                out["plot"] = _save(plot_vibratory_force(cfg.system, speeds), plot)
+                out["plot"] = _save(plot_ball_forces(cfg.system, speeds, a), plot)
             if damping_plot is not None:
                 out["damping_plot"] = _save(plot_vibratory_force_damping(cfg.system, speeds),
                                             damping_plot)
@@ -176,10 +177,15 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
 
 def _error_bounds(cfg, w: float, fr: float) -> dict:
     """The position-error bounds of :func:`bounds` (000 eq 32, 45, 49, 54-55) at ``w`` [rad/s]
-    for a rolling resistance ``fr`` = f/r [-]."""
+    for a rolling resistance ``fr`` = f/r [-] of every ball, and the true worst case of the
+    residual unbalance of the balls at rest (:func:`autobalance.physics.worst_case.residual_bound`).
+    On a family of balanced states (N >= 3) the deviations are those across the family and
+    its neutral directions have frequency 0."""
     import dataclasses
 
     from ..physics import error_bounds as eb
+    from ..physics.iso1940 import grade_class, grade_value
+    from ..physics.worst_case import residual_bound
 
     s = cfg.system
     b = s.balancer
@@ -188,12 +194,15 @@ def _error_bounds(cfg, w: float, fr: float) -> dict:
     db = eb.rolling_deadband(ideal, w, fr)
     ecc = eb.eccentricity_equilibrium(s, w)
     sus = s.suspension
+    wb = residual_bound(s, w, rolling_resistance=fr)
+    g = float(grade_value(wb["worst_residual_kg_m"], s.total_mass, cfg.spin.nominal_speed))
     return {
-        "name": cfg.name, "speed_rad_s": w, "f_r": fr,
+        "name": cfg.name, "speed_rad_s": w, "f_r": fr, "n_balls": b.n_balls,
         "rolling_single_ball_rad": eb.rolling_deadband_single(s, w, fr),
         "rolling_eq32_rad": eb.symmetric_rolling_deviation(b.race_radius, e, fr),
         "rolling_max_deviation_rad": db["max_deviation_rad"],
         "rolling_max_residual_unbalance_kg_m": db["max_residual_unbalance_kg_m"],
+        "neutral_directions": db["neutral_directions"],
         "eccentricity_deviation_rad": ecc["deviation_rad"],
         "eccentricity_residual_unbalance_kg_m": ecc["residual_unbalance_kg_m"],
         "eccentricity_eq45_single_rad": eb.eccentricity_deviation_single(
@@ -203,24 +212,30 @@ def _error_bounds(cfg, w: float, fr: float) -> dict:
         "ball_frequency_eq54_rad_s": eb.ball_natural_frequency_single(s, w),
         "ball_frequency_eq55_rad_s": eb.ball_natural_frequency_approx(w, e, b.race_radius),
         "ball_frequencies_rad_s": eb.ball_natural_frequencies(ideal, w, db["alpha_eq_rad"]),
+        "worst_residual_kg_m": wb["worst_residual_kg_m"], "worst_grade_G_mm_s": g,
+        "worst_grade_class_G_mm_s": float(grade_class(g)),
+        "worst_rolling_kg_m": wb["rolling_kg_m"], "worst_eccentricity_kg_m": wb["eccentricity_kg_m"],
+        "worst_friction_kg_m": wb["friction_kg_m"], "worst_separated": wb["separated"],
+        "capacity_kg_m": wb["capacity_kg_m"],
     }
 
 
 @app.command()
 def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
-           f_r: Annotated[Optional[float], typer.Option("--f-r", help="f/r (default: the preset's "
-                                                        "rolling_resistance).")] = None,
+           f_r: Annotated[Optional[float], typer.Option("--f-r", help="f/r of every ball "
+                                                        "(default: the machine's own).")] = None,
            plot: PlotOpt = None, json_: JsonOpt = False) -> None:
-    """Position-error bounds: rolling resistance, eccentricity, dry friction, ball frequency.\f
+    """Position-error bounds (rolling resistance, eccentricity, dry friction, ball frequencies)
+    and the true worst-case residual of the balls at rest, for any number of balls.\f
 
     Parameters
     ----------
     source, set_, speed, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     f_r : float
-        Rolling-resistance coefficient f/r [-] in [0, 1]; default the preset's.
+        Rolling-resistance coefficient f/r [-] in [0, 1] of every ball; default the machine's.
     plot : str
-        PNG file: the rolling deviation against speed.
+        PNG file: the worst-case residual of the machine's balancer against speed, by cause.
     """
     with guard():
         check_plot(plot)
@@ -228,53 +243,115 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         import numpy as np
 
         w = speed_at(cfg, speed)
-        fr = cfg.system.balancer.rolling_resistance[0] if f_r is None else f_r
+        fr = float(cfg.system.balancer.stiction[0]) if f_r is None else f_r
         if not (math.isfinite(fr) and 0 <= fr <= 1):
             raise ConfigError(f"--f-r = {f_r!r}: must be within [0, 1]: the rolling-resistance "
                               "coefficient f/r [-] (steel balls typically 0.001-0.01)")
         out = _error_bounds(cfg, w, fr)
         if plot is not None:
-            from .washer_figures import plot_rolling_deviation
+            from ..physics.equilibria import balancing_onset_speed
+            from .washer_figures import plot_residual_bound
 
-            out["plot"] = _save(plot_rolling_deviation(cfg.system, np.linspace(1.0, 2 * w, 400)),
-                                plot)
+            lo = 1.01 * balancing_onset_speed(cfg.system)
+            speeds = np.geomspace(lo, max(2 * w, 1.5 * lo), 60)
+            out["plot"] = _save(plot_residual_bound(cfg.system, speeds, fr), plot)
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name} at {w:.4g} rad/s, f/r = {fr:g}")
-    echo_fields(out, skip=("name",))
+    typer.echo(f"{cfg.name} at {w:.4g} rad/s, f/r = {fr:g}, {out['n_balls']} balls")
+    echo_fields(out, skip=("name", "speed_rad_s", "f_r", "n_balls"))
+
+
+def _tolerance_text(out: dict) -> list:
+    """Lines of the text output of :func:`tolerance`."""
+    from ..physics.iso1940 import grade_class
+
+    G = out["target_grade_G_mm_s"]
+    lines = [f"{out['name']} at {out['speed_rad_s']:.4g} rad/s ({out['speed_basis']}); target "
+             f"G{G:g} (ISO class G{grade_class(G):g}): residual <= "
+             f"{out['target_unbalance_kg_m']:.4g} kg*m"]
+    if not out["feasible"]:
+        lines.append(f"  not possible: {out['reason']}")
+    else:
+        lines += [f"  allowed (true worst case of the balanced region, each cause within its share, "
+                  f"together within {100 * (1 - out['split'].get('other', 0.0)):.0f} %):",
+                  f"    ring eccentricity      <= {out['max_eccentricity_m'] * 1e6:.4g} um",
+                  f"    rolling resistance f/r <= {out['max_rolling_resistance']:.4g}",
+                  f"    suspension friction F  <= {out['max_suspension_friction_N']:.4g} N per damper"]
+    own = out["own_rolling_resistance"]
+    fr = ", ".join(f"{v:g}" for v in sorted(set(own)))
+    worst, Gw = out["worst_residual_kg_m"], out["worst_grade_G_mm_s"]
+    rme = out["rme_worst"]
+    rme_txt = (f"RMe {100 * rme:.1f} %" if rme >= 0 else
+               f"{-100 * rme:.0f} % more than the rotor's own unbalance: balls at rest can add to it")
+    lines += [f"  this machine (f/r = {fr}, rho = {out['own_eccentricity_m'] * 1e6:.4g} um, "
+              f"F = {out['own_suspension_friction_N']:.4g} N):",
+              f"    worst case (true bound, balanced region) {worst:.4g} kg*m = G{Gw:.3g} (class "
+              f"G{out['worst_grade_class_G_mm_s']:g}); {rme_txt}",
+              f"    expected (000 credits)  {out['expected_residual_kg_m']:.4g} kg*m = "
+              f"G{out['expected_grade_G_mm_s']:.3g}",
+              f"    meets G{G:g}: {'yes' if out['meets_target'] else 'no'}"]
+    if "plateau_worst_residual_kg_m" in out:
+        lines.append(f"    at the TSR plateau {out['plateau_speed_rad_s']:.4g} rad/s: worst "
+                     f"{out['plateau_worst_residual_kg_m']:.4g} kg*m = G{out['plateau_worst_grade_G_mm_s']:.3g}")
+    col = [v for v in out.get("collinear_residuals_kg_m", []) if v > worst]
+    if col:
+        lines.append("    balls stopped at a collinear equilibrium instead (outside the balanced region) "
+                     "leave " + ", ".join(f"{v:.3g}" for v in col) + " kg*m")
+    lines += [f"  note: {w}" for w in out["warnings"] if w != out.get("reason")]
+    return lines
 
 
 @app.command()
 def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
-              fraction: Annotated[float, typer.Option("--fraction", help="Required residual "
-                                                      "unbalance / Me (000: 0.1).")] = 0.1,
+              grade: Annotated[float, typer.Option("--grade", help="Target ISO 1940 grade G "
+                                                   "[mm/s] (default 16).")] = 16.0,
+              fraction: Annotated[Optional[float], typer.Option(
+                  "--fraction", help="Also the 000 paper's method (one ball, mR = Me): required "
+                                     "residual / Me, e.g. 0.1.")] = None,
               json_: JsonOpt = False) -> None:
-    """Tolerance design (000 eq 56-66) and the residual predicted for the preset's tolerances.\f
+    """Tolerances for a target grade (000 eq 56-66 for any balancer, on the true worst-case
+    bound) and the worst case of the machine's own tolerances; --fraction: the 000 method.\f
 
     Parameters
     ----------
     source, set_, speed, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`).
+    grade : float
+        Target grade G [mm/s], > 0.
     fraction : float
-        Required residual unbalance as a fraction of M e [-].
+        Required residual unbalance as a fraction of M e [-] for the 000 paper's one-ball
+        method (:func:`autobalance.physics.tolerance.design_tolerances`), in (0, 1].
     """
     with guard():
         cfg = load_machine(source, set_)
-        from ..physics.tolerance import design_tolerances, predict_residual
+        from ..physics.tolerance import design_tolerances
+        from ..studies.tolerances import compute_tolerances
 
-        s, w = cfg.system, speed_at(cfg, speed)
-        d = design_tolerances(s.rotor.unbalance, s.rotor.mass, s.balancer.race_radius, w,
-                              residual_fraction=fraction,
-                              friction_angle=s.suspension.dry_friction_angle)
-        p = predict_residual(s, w)
-        out = {"name": cfg.name, "speed_rad_s": w, "design": d, "predicted": p}
+        if not (math.isfinite(grade) and grade > 0):
+            raise ConfigError(f"--grade = {grade!r}: must be a grade G > 0 [mm/s], e.g. 16 (ISO 1940 G16)")
+        if fraction is not None and not (math.isfinite(fraction) and 0 < fraction <= 1):
+            raise ConfigError(f"--fraction = {fraction!r}: must be within (0, 1]: the required "
+                              "residual / Me of the 000 method, e.g. 0.1")
+        s = cfg.system
+        w = speed_at(cfg, speed) if speed is not None else None
+        out = compute_tolerances(cfg, grade=grade, speed=w)
+        out["design"] = {k: out[k] for k in ("max_eccentricity_m", "max_rolling_resistance",
+                                             "max_suspension_friction_N", "budget_kg_m")}
+        if fraction is not None:
+            out["paper_000"] = design_tolerances(s.rotor.unbalance, s.rotor.mass, s.balancer.race_radius,
+                                                 out["speed_rad_s"], residual_fraction=fraction,
+                                                 friction_angle=s.suspension.dry_friction_angle)
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name}: rho_max = {d['rho_max_m'] * 1e6:.3g} um, f/r max = {d['f_r_max']:.3g}, "
-               f"F max = {d['friction_force_max_n']:.3g} N; predicted RMe (worst) = "
-               f"{p['rme_worst'] * 100:.1f} %")
+    for line in _tolerance_text(out):
+        typer.echo(line)
+    if fraction is not None:
+        d = out["paper_000"]
+        typer.echo(f"  000 method (one ball, mR = Me, residual <= {fraction:g} Me): rho_max = "
+                   f"{d['rho_max_m'] * 1e6:.3g} um, f/r max = {d['f_r_max']:.3g}, "
+                   f"F max = {d['friction_force_max_n']:.3g} N")
 
 
 @app.command("kinetic-static")

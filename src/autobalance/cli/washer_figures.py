@@ -9,9 +9,13 @@ import math
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..plotting.washer import (eccentricity_deviation_figure, force_extreme_ratio_figure, rolling_deviation_figure, vibratory_force_damping_figure, vibratory_force_figure, speed_title)
+from ..plotting.washer import (ball_forces_figure, eccentricity_deviation_figure, force_extreme_ratio_figure,
+                               residual_bound_figure, rolling_deviation_figure, speed_title,
+                               vibratory_force_damping_figure, vibratory_force_figure)
 
-__all__ = ["plot_vibratory_force", "plot_vibratory_force_damping", "plot_rolling_deviation", "plot_eccentricity_deviation", "plot_force_extreme_ratio"]
+__all__ = ["plot_ball_forces", "plot_residual_bound", "plot_vibratory_force",
+           "plot_vibratory_force_damping", "plot_rolling_deviation", "plot_eccentricity_deviation",
+           "plot_force_extreme_ratio"]
 
 _ALPHA = np.linspace(0, 2 * math.pi, 361)
 
@@ -32,6 +36,56 @@ def plot_vibratory_force(system, speeds, labels=None) -> Figure:
     return vibratory_force_figure(_ALPHA, [single_ball_force(system, w, _ALPHA) for w in speeds],
                                   labels or _titles(system, speeds))
 
+
+
+def plot_ball_forces(system, speeds, angles) -> Figure:
+    """:func:`ball_forces_figure` of the machine's own balancer at ``speeds`` [rad/s]: each
+    ball's vibratory force (000 eq 8, 39-42: its masses, R, rho, beta) against its own angle
+    with the others at ``angles`` [rad], and its rest band +-f/r (its stiction)."""
+    from ..physics.vibratory import vibratory_forces
+
+    b = system.balancer
+    a0 = np.asarray(angles, float)
+    speeds = list(np.atleast_1d(speeds))
+    panels = []
+    for w in speeds:
+        balls = []
+        for i in range(b.n_balls):
+            grid = np.repeat(a0[None, :], _ALPHA.size, axis=0)
+            grid[:, i] = _ALPHA
+            F = vibratory_forces(system, w, grid)[:, i]
+            balls.append({"F_norm": F / (b.masses[i] * b.race_radius * w * w),
+                          "f_r": float(b.stiction[i]), "at": float(a0[i])})
+        panels.append(balls)
+    return ball_forces_figure(_ALPHA, panels, _titles(system, speeds), system.name)
+
+
+def plot_residual_bound(system, speeds, f_r=None) -> Figure:
+    """:func:`residual_bound_figure` of the machine's own balancer: the true worst-case residual
+    of its balls at rest (:func:`autobalance.physics.worst_case.residual_bound`, with its
+    f/r or ``f_r`` [-], its rho, beta and damper friction) against ``speeds`` [rad/s], and each
+    cause alone; blank below the balancing onset."""
+    from ..physics.worst_case import residual_bound
+
+    w = np.asarray(speeds, float)
+    mu = system.balancer.stiction if f_r is None else f_r
+    keys = {"all causes (true bound)": {},
+            "rolling resistance alone": {"eccentricity": 0.0, "friction_force": 0.0},
+            "eccentricity alone": {"rolling_resistance": 0.0, "friction_force": 0.0},
+            "suspension friction alone": {"rolling_resistance": 0.0, "eccentricity": 0.0}}
+    curves = {k: np.full(w.shape, np.nan) for k in keys}
+    for j, wj in enumerate(w):
+        for label, kw in keys.items():
+            r = residual_bound(system, wj, **{"rolling_resistance": mu, **kw})
+            if r["balancing"]:
+                curves[label][j] = r["worst_residual_kg_m"]
+    b = system.balancer
+    levels = {"rotor unbalance U": system.rotor.unbalance,
+              "capacity sum m_i R": float(np.sum(b.masses) * b.race_radius)}
+    mu_txt = ", ".join(f"{v:g}" for v in sorted(set(np.atleast_1d(mu).tolist())))
+    return residual_bound_figure(w, curves, system.natural_frequencies, levels,
+                                 f"{system.name or 'machine'}: worst-case residual at rest, "
+                                 f"{b.n_balls} balls, f/r = {mu_txt}")
 
 
 def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0)) -> Figure:

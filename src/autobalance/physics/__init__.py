@@ -16,7 +16,8 @@ from .error_bounds import (ball_natural_frequencies, ball_natural_frequency_sing
                            eccentricity_deviation_single, eccentricity_equilibrium, rolling_deadband,
                            rolling_deadband_single, suspension_friction_deviation,
                            symmetric_rolling_deviation)
-from .tolerance import design_tolerances, predict_residual
+from .tolerance import design_tolerances, predict_residual, tolerances_for_grade, worst_case_prediction
+from .worst_case import attained_residual, residual_bound
 from .immobility import immobile_mask, immobility, steady_deflection, stick_threshold_grade, tangential_force
 
 __all__ = [
@@ -29,7 +30,8 @@ __all__ = [
     "DrumResponse", "Equilibrium", "balancing_onset_speed", "ball_natural_frequencies",
     "ball_natural_frequency_single", "design_tolerances", "drum_response",
     "eccentricity_deviation_single", "eccentricity_equilibrium", "find_equilibria",
-    "force_jacobian", "predict_residual", "rolling_deadband", "rolling_deadband_single",
+    "force_jacobian", "predict_residual", "residual_bound", "attained_residual",
+    "tolerances_for_grade", "worst_case_prediction", "rolling_deadband", "rolling_deadband_single",
     "single_ball_force", "single_ball_stability", "speed_regime",
     "suspension_friction_deviation", "symmetric_rolling_deviation",
     "vibratory_components", "vibratory_forces",

@@ -119,7 +119,12 @@ def rolling_deadband(system, speed, f_r, alpha_eq=None) -> dict:
     Linearising F_i about the equilibrium, |sum_j J_ij d_j| <= m_i R w^2 f/r for every ball
     (eq 27-29 with the exact Jacobian instead of a = e, phi = pi). The dead band is the
     parallelotope d = J^-1 (F_r * s), |s_i| <= 1; its vertices s in {-1, 1}^N give the largest
-    deviations. The residual unbalance at each vertex is eq (22), evaluated exactly.
+    deviations. The residual unbalance at each vertex is eq (22), evaluated exactly. On a
+    continuous family of balanced states (N >= 3, J singular) the band is unbounded along the
+    family, where neither the forces nor the residual change: the deviations are then those
+    across the family (linear programs, d orthogonal to the null space of J). This is the
+    linearised band about one equilibrium; the true worst case over every rest state is
+    :func:`autobalance.physics.worst_case.residual_bound`.
 
     Parameters
     ----------
@@ -150,14 +155,47 @@ def rolling_deadband(system, speed, f_r, alpha_eq=None) -> dict:
     a = np.asarray(alpha_eq, float)
     J = force_jacobian(system, w, a)
     Fr = b.masses * b.race_radius * w * w * fr
-    S = np.array(list(itertools.product((-1.0, 1.0), repeat=b.n_balls)))
-    V = np.linalg.solve(J, (Fr * S).T).T
+    sv = np.linalg.svd(J, compute_uv=False)
+    neutral = int(np.sum(sv <= 1e-9 * sv.max())) if sv.max() > 0 else b.n_balls
+    if neutral == 0:
+        S = np.array(list(itertools.product((-1.0, 1.0), repeat=b.n_balls)))
+        V = np.linalg.solve(J, (Fr * S).T).T
+    else:
+        V = _transverse_deadband(system, J, Fr, a, neutral)
     res = np.abs(residual_unbalance(system, a + V))
     gx, _, gy, _ = gain_phase(system, w)
     rmax = float(res.max())
     return {"alpha_eq_rad": a, "vertices_rad": V, "max_deviation_rad": np.abs(V).max(axis=0),
             "residual_unbalance_kg_m": res, "max_residual_unbalance_kg_m": rmax,
-            "max_amplitude_x_m": rmax * gx, "max_amplitude_y_m": rmax * gy}
+            "max_amplitude_x_m": rmax * gx, "max_amplitude_y_m": rmax * gy,
+            "neutral_directions": neutral}
+
+
+def _transverse_deadband(system, J, Fr, alpha, neutral: int, n_dir: int = 72) -> np.ndarray:
+    """Extreme points of the dead band |J d| <= Fr across a family of equilibria (N >= 3: J
+    singular; moving along the family's neutral directions changes no force and no residual).
+
+    Linear programs over d orthogonal to the null space of J: max and min of each d_k, and the
+    extremes of the linearised residual change sum_j m_j R i e^{i alpha_j} d_j in ``n_dir``
+    directions. Returns the optimal vertices (rows) [rad]."""
+    from scipy.optimize import linprog
+
+    n = J.shape[0]
+    _, _, vt = np.linalg.svd(J)
+    null = vt[n - neutral:]
+    A_ub = np.vstack([J, -J])
+    b_ub = np.concatenate([Fr, Fr])
+    b = system.balancer
+    dW = b.masses * b.race_radius * 1j * np.exp(1j * np.asarray(alpha, float))
+    objectives = [np.eye(n)[k] * sgn for k in range(n) for sgn in (1.0, -1.0)]
+    objectives += [np.real(np.exp(-1j * phi) * dW) for phi in 2 * np.pi * np.arange(n_dir) / n_dir]
+    rows = []
+    for obj in objectives:
+        r = linprog(-obj, A_ub=A_ub, b_ub=b_ub, A_eq=null, b_eq=np.zeros(neutral),
+                    bounds=[(None, None)] * n, method="highs")
+        if r.status == 0:
+            rows.append(r.x)
+    return np.array(rows) if rows else np.zeros((1, n))
 
 
 # -- eccentricity ------------------------------------------------------------------------------
@@ -399,8 +437,11 @@ def ball_natural_frequency_approx(speed, eccentricity, race_radius) -> float:
 def ball_natural_frequencies(system, speed, alpha) -> np.ndarray:
     """Natural frequencies of N balls about an equilibrium, 000 eq (52) with m_z [rad/s].
 
-    Undamped: I_eff d'' = R J d with I_eff = m R^2 + I (R/r)^2; w_k = sqrt(-eig(R J / I_eff))
-    (NaN for a non-negative or complex eigenvalue; 0 for the neutral direction of N >= 3).
+    Undamped: I_eff d'' = R J d with I_eff = m R^2 + I (R/r)^2; for each eigenvalue lambda of
+    R J / I_eff the oscillation frequency |Im sqrt(lambda)| (sqrt(-lambda) for a real negative
+    one; a damped suspension makes J non-symmetric and lambda slightly complex). 0 for a neutral
+    direction (|lambda| <= 1e-9 max |lambda|: along the family of balanced states of N >= 3),
+    NaN for a diverging one (Re lambda >= 0).
 
     Parameters
     ----------
@@ -415,6 +456,8 @@ def ball_natural_frequencies(system, speed, alpha) -> np.ndarray:
     R = b.race_radius
     ieff = b.masses * R * R + b.inertias * (R / b.ball_radius) ** 2
     lam = np.linalg.eigvals(R * force_jacobian(system, speed, alpha) / ieff[:, None])
-    out = np.where((np.abs(lam.imag) < 1e-9 * np.abs(lam).max()) & (lam.real <= 0),
-                   np.sqrt(np.abs(np.minimum(lam.real, 0.0))), np.nan)
+    scale = np.abs(lam).max()
+    neutral = np.abs(lam) <= 1e-9 * scale if scale > 0 else np.ones(lam.shape, bool)
+    freq = np.abs(np.sqrt(lam.astype(complex)).imag)
+    out = np.where(neutral, 0.0, np.where(lam.real < 0, freq, np.nan))
     return np.sort(out)

@@ -9,7 +9,14 @@ Reverse (:func:`predict_residual`): given the tolerances, the residual unbalance
 their sum (eq 57) and the efficiency RMe = (Me - dMe)/Me (000 Tables 3-4).
 
 Both follow the paper's one-ball estimates with mR = Me and w >> w_x, w_y (e = Me/M) unless a
-System is given, in which case the exact kinetic-static solutions are used as well.
+System is given, in which case the exact kinetic-static solutions are used as well: this is
+the 000 method, kept as published for the seed-000 reproduction.
+
+For any machine (N balls, its own masses, R, f/r, rho, F, gamma):
+:func:`tolerances_for_grade` splits the residual unbalance of a target ISO 1940 grade between
+the causes (000 eq 56-57) and solves the true worst-case bound of
+:func:`autobalance.physics.worst_case.residual_bound` for each tolerance alone, so that
+:func:`worst_case_prediction` at those tolerances gives back each cause's budget.
 """
 from __future__ import annotations
 
@@ -23,9 +30,16 @@ from ..models._validate import finite as _finite
 from ..models._validate import nonneg as _nonneg
 from ..models._validate import positive as _positive
 from .error_bounds import (eccentricity_equilibrium, rolling_deadband, suspension_friction_deviation)
+from .iso1940 import grade_value, unbalance_value
+from .worst_case import ASSUMPTIONS, residual_bound
 from .vibratory import gain_phase
 
-__all__ = ["DEFAULT_SPLIT", "design_tolerances", "predict_residual"]
+__all__ = ["DEFAULT_SPLIT", "TOLERANCE_CAUSES", "design_tolerances", "predict_residual",
+           "tolerances_for_grade", "worst_case_prediction"]
+
+#: The causes a tolerance is designed for, with the keyword of :func:`residual_bound` each sets.
+TOLERANCE_CAUSES = {"eccentricity": "eccentricity", "rolling": "rolling_resistance",
+                    "friction": "friction_force"}
 
 #: 000's example split of the residual unbalance (text after eq 56).
 DEFAULT_SPLIT = {"eccentricity": 0.50, "rolling": 0.35, "friction": 0.10, "other": 0.05}
@@ -168,3 +182,235 @@ def predict_residual(system, speed, f_r=None, friction_force=None, friction_angl
             "total_worst_kg_m": worst, "total_expected_kg_m": expected,
             "rme_worst": (U - worst) / U, "rme_expected": (U - expected) / U,
             "amplitude_worst_m": worst * max(gx, gy)}
+
+
+# -- any machine: tolerances from a target grade, and the true worst case ----------------------
+def _solve_increasing(fun, target: float, x0: float, x_max: float):
+    """Largest x in [0, x_max] found with fun(x) <= target, for a nondecreasing fun with
+    fun(0) = 0 (bracket by doubling from x0, then Brent's method to 1e-10 of x; a jump of fun,
+    e.g. where the balls lose their balanced state, is located like a root). Returns
+    (x, fun(x))."""
+    from scipy.optimize import brentq
+
+    best = [0.0, 0.0]
+
+    def f(x):
+        v = fun(x)
+        if v <= target and x >= best[0]:
+            best[:] = [x, v]
+        return v - target
+
+    lo, hi = 0.0, min(max(x0, 1e-300), x_max)
+    fhi = f(hi)
+    if abs(fhi) <= 1e-12 * target:     # the guess solves it (a bound linear in x)
+        return hi, fhi + target
+    while fhi < 0 and hi < x_max:
+        lo, hi = hi, min(2.0 * hi, x_max)
+        fhi = f(hi)
+    if fhi > 0 and abs(fhi) > 1e-12 * target:
+        brentq(f, lo, hi, xtol=1e-300, rtol=1e-10, maxiter=200)
+    return best[0], best[1]
+
+
+def _rho_capacity(system, w: float) -> float:
+    """Largest race eccentricity [m] for which the balls can cancel the unbalance for every
+    eccentricity angle: |U + rho e^{i beta}(1/h + M_b)| within the capacity annulus."""
+    from .worst_case import synchronous_gain
+
+    b = system.balancer
+    c = b.masses * b.race_radius
+    k = abs(1.0 / synchronous_gain(system, w) + b.total_mass)
+    U = system.rotor.unbalance
+    total, inner = float(np.sum(c)), max(0.0, 2.0 * float(np.max(c)) - float(np.sum(c)))
+    lim = (total - U) / k
+    if inner > 0:
+        lim = min(lim, (U - inner) / k)
+    return max(lim, 0.0)
+
+
+def _check_grade(grade) -> float:
+    G = _finite("grade", grade)
+    if G <= 0:
+        raise ParameterError("grade", grade, "must be a grade G > 0 [mm/s], e.g. 16 (ISO 1940 G16)")
+    return G
+
+
+def tolerances_for_grade(system, speed, grade: float = 16.0, *, nominal_speed: float | None = None,
+                         split: dict | None = None, eccentricity_angle=None) -> dict:
+    """Largest race eccentricity, rolling resistance and suspension friction of a machine that
+    keep its worst-case residual unbalance within a target ISO 1940 grade (000 eq 56-66 for any
+    balancer).
+
+    The residual of the grade, U_G = M_t G / (1000 Omega) (:func:`.iso1940.unbalance_value`),
+    is split between the causes with the weights p_j (000 eq 56-57; the rest, e.g. "other",
+    is kept in reserve). For each cause alone the true bound of
+    :func:`~.worst_case.residual_bound` is solved for its tolerance so that it equals
+    p_j U_G: eccentricity rho (exactly rho/|h|, 000 eq 46-47), one rolling-resistance
+    coefficient for every ball (by false position on the bound) and the damper friction F
+    (exactly e_f/|h|, 000 eq 48). The causes do not add (000: "the resultant effect is not a
+    simple sum"; an eccentricity moves the balanced state and so the rolling dead band): when
+    the bound with all three together exceeds the sum of their budgets, the three are scaled
+    by one factor lambda < 1 solved so that it equals that sum. Each cause alone then stays
+    within its budget, and the machine built with all three meets the sum exactly.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (rotor, suspension with its damper angle gamma, balancer).
+    speed : float
+        Speed w at which the balls settle [rad/s], > 0 (the bound's speed).
+    grade : float
+        Target grade G [mm/s], > 0 (default 16).
+    nominal_speed : float, optional
+        Omega of the grade [rad/s] (default ``speed``).
+    split : dict of str to float, optional
+        Weights p_j [-] per cause ("eccentricity", "rolling", "friction", others), summing to
+        1 (000 eq 56); default :data:`DEFAULT_SPLIT` (000: 0.5, 0.35, 0.1, 0.05).
+    eccentricity_angle : float or None
+        beta [rad] of the eccentricity; None = any (the bound holds for every angle).
+
+    Returns
+    -------
+    dict
+        "feasible" (bool) and "reason" (None or why not), "target_grade_G_mm_s",
+        "target_unbalance_kg_m", "split", "budget_kg_m" (per cause), "max_eccentricity_m",
+        "max_rolling_resistance", "max_suspension_friction_N" (None when not feasible),
+        "joint_scale" (lambda [-]), "bound_at_max_kg_m" (each cause's bound at its maximum),
+        "design_worst_residual_kg_m" (the bound with all three at their maxima) and
+        "design_meets_target".
+    """
+    w = _positive("speed", speed)
+    G = _check_grade(grade)
+    Om = w if nominal_speed is None else _positive("nominal_speed", nominal_speed)
+    p = _split(DEFAULT_SPLIT if split is None else split)
+    mt = system.total_mass
+    u_g = float(unbalance_value(G, mt, Om))
+    budgets = {k: v * u_g for k, v in p.items()}
+    out = {"speed_rad_s": w, "nominal_speed_rad_s": Om, "target_grade_G_mm_s": G,
+           "target_unbalance_kg_m": u_g, "split": p, "budget_kg_m": budgets,
+           "max_eccentricity_m": None, "max_rolling_resistance": None,
+           "max_suspension_friction_N": None, "joint_scale": None, "bound_at_max_kg_m": None,
+           "design_worst_residual_kg_m": None, "design_meets_target": False}
+    zero = dict(rolling_resistance=0.0, eccentricity=0.0, friction_force=0.0,
+                eccentricity_angle=eccentricity_angle)
+    base = residual_bound(system, w, **zero)
+    b = system.balancer
+    if not base["balancing"]:
+        return {**out, "feasible": False,
+                "reason": f"speed {w:.4g} rad/s is below the balancing onset (000 eq 12: "
+                          "g_x cos phi_x + g_y cos phi_y >= 0): the balls do not balance here"}
+    if not base["balanced_exists"]:
+        return {**out, "feasible": False,
+                "reason": f"capacity short: the balls (sum m_i R = {base['capacity_kg_m']:.4g} "
+                          f"kg*m) cannot cancel the unbalance {system.rotor.unbalance:.4g} kg*m"}
+    gain = base["gain_m_per_kg_m"]
+    per_n = residual_bound(system, w, **{**zero, "friction_force": 1.0})["friction_displacement_m"]
+
+    def bound_of(cause):
+        key = TOLERANCE_CAUSES[cause]
+        return lambda x: residual_bound(system, w, **{**zero, key: x})["worst_residual_kg_m"]
+
+    guess = {"eccentricity": budgets["eccentricity"] * gain,
+             "rolling": budgets["rolling"] * gain / (b.race_radius + system.gravity.g / (w * w)),
+             "friction": budgets["friction"] * gain / max(per_n, 1e-300)}
+    # beyond rho_cap the balls cannot cancel U + rho e^{i beta}(1/h + M_b) for every beta
+    x_max = {"eccentricity": min(0.999 * b.race_radius, _rho_capacity(system, w)),
+             "rolling": 1.0, "friction": 1e12}
+    alone = {}
+    for cause in TOLERANCE_CAUSES:
+        alone[cause] = (0.0 if budgets[cause] <= 0 else
+                        _solve_increasing(bound_of(cause), budgets[cause], guess[cause],
+                                          x_max[cause])[0])
+
+    def joint(lam):
+        return residual_bound(system, w, rolling_resistance=lam * alone["rolling"],
+                              eccentricity=lam * alone["eccentricity"],
+                              friction_force=lam * alone["friction"],
+                              eccentricity_angle=eccentricity_angle)["worst_residual_kg_m"]
+
+    total = sum(budgets[k] for k in TOLERANCE_CAUSES)
+    lam = 1.0 if joint(1.0) <= total else _solve_increasing(joint, total, 0.5, 1.0)[0]
+    tol = {k: lam * v for k, v in alone.items()}
+    at_max = {k: bound_of(k)(tol[k]) for k in TOLERANCE_CAUSES}
+    both = residual_bound(system, w, rolling_resistance=tol["rolling"],
+                          eccentricity=tol["eccentricity"], friction_force=tol["friction"],
+                          eccentricity_angle=eccentricity_angle)
+    return {**out, "feasible": True, "reason": None,
+            "max_eccentricity_m": tol["eccentricity"], "max_rolling_resistance": tol["rolling"],
+            "max_suspension_friction_N": tol["friction"], "joint_scale": lam,
+            "bound_at_max_kg_m": at_max,
+            "design_worst_residual_kg_m": both["worst_residual_kg_m"],
+            "design_meets_target": bool(both["separated"] and both["worst_residual_kg_m"] <= u_g)}
+
+
+def worst_case_prediction(system, speed, *, nominal_speed: float | None = None,
+                          eccentricity_angle=None, rolling_credit: float = 2.0,
+                          friction_credit: float = 2.0) -> dict:
+    """Worst-case and expected residual unbalance of a machine with its own tolerances
+    (the reverse of :func:`tolerances_for_grade`; 000 Tables 3-4's RMe for any balancer).
+
+    The worst case is the true bound of :func:`~.worst_case.residual_bound` (all causes
+    together). Each cause alone is given too. "Expected" is a heuristic, not a bound: the
+    eccentricity part rho/|h| is certain (000: "always give the deviation", eq 46-47), the
+    dead-band part (rolling, friction) is divided by the credits (000 eq 62: "a small
+    probability that the ball is at one of the maximums", factor 2; eq 65: friction "can be
+    reduced by half").
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine with its tolerances (balancer stiction, eccentricity; suspension friction).
+    speed : float
+        Speed w at which the balls settle [rad/s], > 0.
+    nominal_speed : float, optional
+        Omega of the grades [rad/s] (default ``speed``).
+    eccentricity_angle : float or None or str
+        beta [rad]; None = any angle (default), "system" = the balancer's own.
+    rolling_credit, friction_credit : float
+        Divisors of the rolling and friction parts for the expected value [-], >= 1.
+
+    Returns
+    -------
+    dict
+        "worst_residual_kg_m", "worst_grade_G_mm_s", "expected_residual_kg_m",
+        "expected_grade_G_mm_s", "eccentricity_kg_m", "rolling_kg_m", "friction_kg_m"
+        (each cause alone), "rme_worst", "rme_expected" ([-], RMe = (U - dU)/U of 000
+        Tables 3-4; negative when the balls can leave more than U), "separated",
+        "balancing", "capacity_kg_m", "trivial_bound_kg_m", "assumptions".
+    """
+    w = _positive("speed", speed)
+    Om = w if nominal_speed is None else _positive("nominal_speed", nominal_speed)
+    cr = _positive("rolling_credit", rolling_credit)
+    cf = _positive("friction_credit", friction_credit)
+    if cr < 1 or cf < 1:
+        raise ParameterError("rolling_credit" if cr < 1 else "friction_credit",
+                             cr if cr < 1 else cf, "must be >= 1 [-]")
+    r = residual_bound(system, w, eccentricity_angle=eccentricity_angle)
+    b = system.balancer
+    alone = {"rolling": dict(eccentricity=0.0, friction_force=0.0),
+             "friction": dict(eccentricity=0.0, rolling_resistance=0.0),
+             "eccentricity": dict(rolling_resistance=0.0, friction_force=0.0)}
+    parts = {k: residual_bound(system, w, eccentricity_angle=eccentricity_angle,
+                               **kw)["worst_residual_kg_m"] for k, kw in alone.items()}
+    worst = r["worst_residual_kg_m"]
+    ecc = r["eccentricity_kg_m"]
+    fric = r["friction_kg_m"]
+    roll = max(worst - ecc - fric, 0.0)
+    expected = ecc + roll / cr + fric / cf
+    U = system.rotor.unbalance
+    mt = system.total_mass
+    return {"speed_rad_s": w, "nominal_speed_rad_s": Om, "worst_residual_kg_m": worst,
+            "worst_grade_G_mm_s": float(grade_value(worst, mt, Om)),
+            "expected_residual_kg_m": expected,
+            "expected_grade_G_mm_s": float(grade_value(expected, mt, Om)),
+            "eccentricity_kg_m": parts["eccentricity"], "rolling_kg_m": parts["rolling"],
+            "friction_kg_m": parts["friction"],
+            "rme_worst": (U - worst) / U if U > 0 else math.nan,
+            "rme_expected": (U - expected) / U if U > 0 else math.nan,
+            "separated": r["separated"], "balancing": r["balancing"],
+            "balanced_exists": r["balanced_exists"], "capacity_kg_m": r["capacity_kg_m"],
+            "trivial_bound_kg_m": r["trivial_bound_kg_m"],
+            "rolling_resistance": [float(v) for v in b.stiction],
+            "eccentricity_m": b.eccentricity,
+            "suspension_friction_N": system.suspension.dry_friction_force,
+            "assumptions": list(ASSUMPTIONS)}

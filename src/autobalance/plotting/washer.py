@@ -15,13 +15,29 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["eccentricity_deviation_figure", "force_extreme_ratio_figure", "plot_ks_comparison", "plot_measured_vibration", "plot_published_vs_computed", "plot_runups", "plot_time_histories", "rolling_deviation_figure", "speed_title", "vibratory_force_damping_figure", "vibratory_force_figure"]
+__all__ = ["ball_forces_figure", "residual_bound_figure", "eccentricity_deviation_figure", "force_extreme_ratio_figure", "plot_ks_comparison", "plot_measured_vibration", "plot_published_vs_computed", "plot_runups", "plot_time_histories", "rolling_deviation_figure", "speed_title", "vibratory_force_damping_figure", "vibratory_force_figure"]
 
 
 def _fig(size=(7.0, 4.5)) -> Figure:
     fig = Figure(figsize=size, layout="constrained")
     FigureCanvasAgg(fig)
     return fig
+
+
+def _natural_lines(ax, natural_frequencies) -> None:
+    """Vertical lines at w_x, w_y [rad/s] and the speed axis label."""
+    for wn, name in zip(natural_frequencies, ("w_x", "w_y")):
+        ax.axvline(wn, color="0.6", ls="--", lw=0.8)
+        ax.text(wn, 0.95, name, transform=ax.get_xaxis_transform(), fontsize=8)
+    ax.set_xlabel("spin speed w [rad/s]")
+
+
+def _angle_panel(ax, title: str, xlabel: str) -> None:
+    """Zero line, title, x label and 90-degree ticks of a force-vs-angle panel."""
+    ax.axhline(0, color="0.6", lw=0.8)
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(xlabel)
+    ax.set_xticks(range(0, 361, 90))
 
 
 def vibratory_force_figure(alpha, forces, titles) -> Figure:
@@ -45,13 +61,80 @@ def vibratory_force_figure(alpha, forces, titles) -> Figure:
         ax.plot(a, c["Fx_norm"], "--", label="F_x")
         ax.plot(a, c["Fy_norm"], ":", label="F_y")
         ax.plot(a, c["F_norm"], "k-", label="F = F_x + F_y")
-        ax.axhline(0, color="0.6", lw=0.8)
-        ax.set_title(f"{chr(97 + k)}) {title}", fontsize=9)
-        ax.set_xlabel("ball angle alpha [deg]")
-        ax.set_xticks(range(0, 361, 90))
+        _angle_panel(ax, f"{chr(97 + k)}) {title}", "ball angle alpha [deg]")
     axes[0].set_ylabel("F / (m R w^2) [-]")
     axes[0].legend(fontsize=8)
     fig.suptitle("Vibratory force on one ball, mR = Me (000 eq 11, Fig. 6)", fontsize=10)
+    return fig
+
+
+def ball_forces_figure(alpha, panels, titles, name: str = "") -> Figure:
+    """Vibratory force on each ball of a balancer versus its own angle, the other balls held at
+    theirs, over m_i R w^2, with each ball's rest band +-f/r (000 eq 8, 20-21), one panel per
+    speed.
+
+    Parameters
+    ----------
+    alpha : array
+        Ball angles [rad] (drawn in degrees).
+    panels : list of list of dict
+        One list per panel, one dict per ball: ``F_norm`` [-] on ``alpha``, ``f_r`` [-] (the
+        band), ``at`` [rad] (the ball's own angle, marked).
+    titles : list of str
+        Panel titles (e.g. the speed and its regime); prefixed a), b), ...
+    name : str
+        The machine's name for the figure title.
+    """
+    fig = _fig((4.2 * len(panels), 4.0))
+    axes = fig.subplots(1, len(panels), squeeze=False)[0]
+    a = np.degrees(alpha)
+    for k, (ax, balls, title) in enumerate(zip(axes, panels, titles)):
+        for i, c in enumerate(balls):
+            line, = ax.plot(a, c["F_norm"], label=f"ball {i + 1}")
+            col = line.get_color()
+            ax.axvline(np.degrees(np.mod(c["at"], 2 * math.pi)), color=col, ls=":", lw=0.8)
+            if c["f_r"] > 0:
+                ax.axhspan(-c["f_r"], c["f_r"], color=col, alpha=0.12)
+        _angle_panel(ax, f"{chr(97 + k)}) {title}", "ball angle alpha_i [deg]")
+    axes[0].set_ylabel("F_i / (m_i R w^2) [-]")
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"Vibratory force on each ball of {name or 'the balancer'}, others fixed; "
+                 "shaded: rest band +-f/r (000 eq 8, 21)", fontsize=10)
+    return fig
+
+
+def residual_bound_figure(speeds, curves, natural_frequencies, levels=None, title="") -> Figure:
+    """Worst-case residual unbalance of balls at rest versus spin speed, by cause, with
+    horizontal reference levels (e.g. the rotor's unbalance and the balls' capacity).
+
+    Parameters
+    ----------
+    speeds : array
+        Spin speeds w [rad/s].
+    curves : dict
+        label -> residual unbalance [kg*m] on ``speeds`` (NaN where not defined).
+    natural_frequencies : (float, float)
+        w_x, w_y [rad/s], drawn as vertical lines.
+    levels : dict or None
+        label -> unbalance [kg*m], drawn as horizontal dashed lines.
+    title : str
+        Figure title.
+    """
+    w = np.asarray(speeds, float)
+    fig = _fig()
+    ax = fig.subplots()
+    for label, y in curves.items():
+        y = np.asarray(y, float)
+        ax.plot(w, np.where(y > 0, y, np.nan), label=label)
+    for label, v in (levels or {}).items():
+        ax.axhline(v, color="0.4", ls="--", lw=0.8)
+        ax.text(w[0], v, f" {label}", fontsize=8, va="bottom")
+    _natural_lines(ax, natural_frequencies)
+    ax.set_ylabel("residual unbalance [kg m]")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.legend(fontsize=8)
+    ax.set_title(title or "Worst-case residual unbalance of balls at rest", fontsize=10)
     return fig
 
 
@@ -100,10 +183,7 @@ def rolling_deviation_figure(speeds, deviations, natural_frequencies) -> Figure:
     ax = fig.subplots()
     for fr, d in deviations.items():
         ax.plot(w, np.degrees(np.where(np.isfinite(d), d, np.nan)), label=f"f/r = {fr:g}")
-    for wn, name in zip(natural_frequencies, ("w_x", "w_y")):
-        ax.axvline(wn, color="0.6", ls="--", lw=0.8)
-        ax.text(wn, 0.95, name, transform=ax.get_xaxis_transform(), fontsize=8)
-    ax.set_xlabel("spin speed w [rad/s]")
+    _natural_lines(ax, natural_frequencies)
     ax.set_ylabel("max deviation [deg]")
     ax.set_yscale("log")
     ax.legend()

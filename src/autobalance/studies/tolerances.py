@@ -1,0 +1,310 @@
+"""Tolerances of any machine's balancer from a target ISO 1940 grade (000 eq 56-66 generalised
+to N balls and any balancer), the true worst case of the machine's own tolerances, and a Monte
+Carlo of real simulations of the machine built with the tolerances at their limits.
+
+:func:`compute_tolerances` is closed form (:mod:`autobalance.physics.tolerance`,
+:mod:`autobalance.physics.worst_case`); :func:`check_tolerances_by_simulation` integrates
+the full model (:func:`autobalance.simulate.simulate_batch`) from random start angles with the
+eccentricity at a random angle. Both return JSON-ready dicts (SI, unit-suffixed keys).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+
+from ..models import InitialState, ParameterError
+from ..physics.iso1940 import grade_class, grade_value
+from ..physics.worst_case import attained_residual, residual_bound
+from ..physics.tolerance import tolerances_for_grade, worst_case_prediction
+from .start_positions import load
+from .statistics import plateau_speed
+
+__all__ = ["check_tolerances_by_simulation", "collinear_residuals", "compute_tolerances",
+           "machine_with_tolerances"]
+
+#: Keys of a tolerance dict (as :func:`compute_tolerances` returns them).
+TOLERANCE_KEYS = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")
+
+
+def _settle_speed(cfg, speed):
+    """The bound's speed [rad/s] and how it was chosen."""
+    nominal = cfg.spin.nominal_speed
+    if speed is None:
+        return nominal, "nominal speed of the profile"
+    w = float(speed)
+    if not (math.isfinite(w) and w > 0):
+        raise ParameterError("speed", speed, "must be a finite speed > 0 [rad/s]")
+    return w, "given"
+
+
+def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
+                       split: dict | None = None) -> dict:
+    """Allowed race eccentricity, rolling resistance and suspension friction of a machine for a
+    target grade, and the true worst case of its own tolerances (000 eq 56-66 generalised).
+
+    The target residual is U_G = M_t G / (1000 Omega) at the profile's nominal speed Omega
+    (:func:`autobalance.physics.iso1940.unbalance_value`); the bound is taken at ``speed``
+    (default Omega), where the balls last move. A TSR profile also gets the bound at its
+    plateau (the balls settle there and stay at rest on the way up when they cannot move at
+    Omega). The eccentricity angle is unknown: every bound holds for all angles.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine: a preset name, a TOML config path or a Config.
+    grade : float
+        Target grade G [mm/s], > 0 (default 16).
+    speed : float or None
+        Speed of the bound w [rad/s] (None: the nominal speed).
+    split : dict of str to float or None
+        Shares of the target residual per cause [-] (000 eq 56; default 000's 0.5
+        eccentricity, 0.35 rolling, 0.1 friction, 0.05 other).
+
+    Returns
+    -------
+    dict
+        JSON-ready: "max_eccentricity_m", "max_rolling_resistance",
+        "max_suspension_friction_N", "budget_kg_m" (per cause), "target_grade_G_mm_s",
+        "target_unbalance_kg_m", "worst_residual_kg_m" (the bound for the machine's own
+        tolerances), "worst_grade_G_mm_s", "expected_residual_kg_m", "attained_residual_kg_m",
+        "meets_target", "capacity_kg_m", "collinear_residuals_kg_m" (where balls trapped
+        outside the balanced region end), "feasible", "reason", "warnings", ...
+        (docs/tolerances.md).
+    """
+    t0 = time.perf_counter()
+    cfg = load(base)
+    s = cfg.system
+    if s.balancer.n_balls < 1:
+        raise ParameterError("balancer.n_balls", 0, "needs at least one ball for a tolerance study")
+    w, basis = _settle_speed(cfg, speed)
+    Om = cfg.spin.nominal_speed
+    d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split)
+    p = worst_case_prediction(s, w, nominal_speed=Om)
+    att = attained_residual(s, w, eccentricity_angle=None, n_starts=8)
+    U = s.rotor.unbalance
+    mt = s.total_mass
+    u_g = d["target_unbalance_kg_m"]
+    warnings = []
+    if not d["feasible"]:
+        warnings.append(d["reason"])
+    if p["balancing"] and not p["separated"]:
+        warnings.append(f"at {w:.4g} rad/s the balls can rest almost anywhere with the machine's "
+                        "own tolerances (no dead-band gap): the worst case is the trivial bound "
+                        "U + M_b rho + sum m_i R; it depends on where they last moved")
+    if p["rme_worst"] < 0:
+        warnings.append("in the worst case the balls at rest leave more than the rotor's own "
+                        "unbalance (e.g. clustered on the heavy side)")
+    out = {
+        "name": cfg.name, "speed_rad_s": w, "speed_basis": basis, "nominal_speed_rad_s": Om,
+        "unbalance_kg_m": U, "total_mass_kg": mt, "capacity_kg_m": p["capacity_kg_m"],
+        "target_grade_G_mm_s": d["target_grade_G_mm_s"],
+        "target_grade_class_G_mm_s": float(grade_class(d["target_grade_G_mm_s"])),
+        "target_unbalance_kg_m": u_g, "split": d["split"], "budget_kg_m": d["budget_kg_m"],
+        "feasible": d["feasible"], "reason": d["reason"],
+        "max_eccentricity_m": d["max_eccentricity_m"],
+        "max_rolling_resistance": d["max_rolling_resistance"],
+        "max_suspension_friction_N": d["max_suspension_friction_N"],
+        "joint_scale": d["joint_scale"], "bound_at_max_kg_m": d["bound_at_max_kg_m"],
+        "design_worst_residual_kg_m": d["design_worst_residual_kg_m"],
+        "own_rolling_resistance": p["rolling_resistance"], "own_eccentricity_m": p["eccentricity_m"],
+        "own_suspension_friction_N": p["suspension_friction_N"],
+        "worst_residual_kg_m": p["worst_residual_kg_m"],
+        "worst_grade_G_mm_s": p["worst_grade_G_mm_s"],
+        "worst_grade_class_G_mm_s": float(grade_class(p["worst_grade_G_mm_s"])),
+        "expected_residual_kg_m": p["expected_residual_kg_m"],
+        "expected_grade_G_mm_s": p["expected_grade_G_mm_s"],
+        "attained_residual_kg_m": att["attained_residual_kg_m"],
+        "cause_residual_kg_m": {"eccentricity": p["eccentricity_kg_m"],
+                                "rolling": p["rolling_kg_m"], "friction": p["friction_kg_m"]},
+        "rme_worst": p["rme_worst"], "rme_expected": p["rme_expected"],
+        "meets_target": bool(p["separated"] and p["worst_residual_kg_m"] <= u_g),
+        "separated": p["separated"], "balancing": p["balancing"],
+        "assumptions": p["assumptions"], "warnings": warnings,
+    }
+    out["collinear_residuals_kg_m"] = collinear_residuals(s)
+    if getattr(cfg, "profile_kind", "") == "tsr":
+        wp = plateau_speed(cfg.spin)
+        pp = residual_bound(s, wp, eccentricity_angle=None)
+        out.update({"plateau_speed_rad_s": wp,
+                    "plateau_worst_residual_kg_m": pp["worst_residual_kg_m"],
+                    "plateau_worst_grade_G_mm_s": float(grade_value(pp["worst_residual_kg_m"], mt, Om))})
+    out["elapsed_s"] = time.perf_counter() - t0
+    return out
+
+
+def collinear_residuals(system, max_balls: int = 12) -> list:
+    """Residual unbalances |U + sum_j s_j m_j R| [kg*m], s_j = +-1, of the collinear
+    equilibria (every ball on the unbalance's line, with it or against it; no eccentricity),
+    sorted: where balls that stop outside the balanced region end (friction and ball contact
+    hold these equilibria). Empty beyond ``max_balls`` balls.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        U [kg*m] of the rotor, m_j [kg] and R [m] of the balancer.
+    max_balls : int
+        Largest ball count enumerated (2^N sign patterns).
+
+    Returns
+    -------
+    list of float
+        Distinct residuals [kg*m], ascending (rounded to 1e-12 of the capacity).
+    """
+    import itertools
+
+    b = system.balancer
+    if b.n_balls > max_balls or b.n_balls < 1:
+        return []
+    c = b.masses * b.race_radius
+    tol = 1e-12 * float(np.sum(c))
+    vals = sorted({round(abs(system.rotor.unbalance + float(np.dot(sg, c))) / tol) * tol
+                   for sg in itertools.product((-1.0, 1.0), repeat=b.n_balls)})
+    return [float(v) for v in vals]
+
+
+def machine_with_tolerances(system, tolerances: dict, eccentricity_angle: float = 0.0):
+    """The machine with its balancer and suspension at the tolerances' limits.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    tolerances : dict
+        "max_eccentricity_m" [m], "max_rolling_resistance" [-] (every ball; stiction equal)
+        and "max_suspension_friction_N" [N] per damper, e.g. from :func:`compute_tolerances`.
+    eccentricity_angle : float
+        beta of the eccentricity [rad].
+
+    Returns
+    -------
+    System
+    """
+    vals = {}
+    for k in TOLERANCE_KEYS:
+        v = tolerances.get(k) if isinstance(tolerances, dict) else None
+        if v is None or not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
+            raise ParameterError(f"tolerances.{k}", v, "must be a finite number >= 0 "
+                                 "(a result of compute_tolerances with feasible = true)")
+        vals[k] = float(v)
+    b = dataclasses.replace(system.balancer, eccentricity=vals["max_eccentricity_m"],
+                            eccentricity_angle=float(eccentricity_angle),
+                            rolling_resistance=vals["max_rolling_resistance"], stiction=None)
+    sus = dataclasses.replace(system.suspension, dry_friction_force=vals["max_suspension_friction_N"])
+    return dataclasses.replace(system, balancer=b, suspension=sus)
+
+
+def _random_starts(rng, balancer, n: int) -> list:
+    """n start configurations, angles uniform and sorted, neighbours >= 1.05 contact angles."""
+    out = []
+    gap_min = 1.05 * balancer.contact_angle
+    nb = balancer.n_balls
+    if nb * gap_min >= 2 * math.pi:
+        raise ParameterError("balancer.n_balls", nb, "too many balls to place without contact")
+    while len(out) < n:
+        a = np.sort(rng.uniform(0.0, 2 * math.pi, nb))
+        gaps = np.diff(np.concatenate([a, a[:1] + 2 * math.pi])) if nb > 1 else np.array([math.inf])
+        if gaps.min() >= gap_min:
+            out.append(a)
+    return out
+
+
+def check_tolerances_by_simulation(base, tolerances: dict, *, n: int = 20, seed: int = 0,
+                                   duration=None) -> dict:
+    """Monte Carlo of full simulations of the machine built with the tolerances at their limits
+    (eccentricity at a random angle, every ball's f/r, the damper friction), from random ball
+    start angles through the machine's own speed profile, against the worst-case bound.
+
+    The bound covers the rest states of the balanced region. A run can also stop at a
+    collinear equilibrium (all balls on one line through the centre, e.g. two touching
+    opposite the unbalance and one with it): an equilibrium that friction and the balls'
+    contact hold, outside that region. Such runs are counted as trapped, not as violations.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine (its profile, options, gravity).
+    tolerances : dict
+        "max_eccentricity_m" [m], "max_rolling_resistance" [-], "max_suspension_friction_N"
+        [N], and optionally "speed_rad_s" (the bound's speed [rad/s], default the nominal).
+    n : int
+        Runs (>= 1).
+    seed : int
+        Seed of the random start angles and eccentricity angles.
+    duration : float or str or None
+        Profile duration [s] or with units (an override of ``profile.duration``; None: the
+        machine's own).
+
+    Returns
+    -------
+    dict
+        JSON-ready: "residuals_kg_m" (at the last read-out), "grades_G_mm_s", "statuses",
+        "final_angles_rad", "trapped" (per run: above the bound with every ball within a
+        contact angle of one line, i.e. stopped at a collinear equilibrium outside the balanced
+        region the bound covers), "n_trapped", "n_violations" (above the bound and not
+        trapped), "max_residual_kg_m" and "mean_residual_kg_m" (runs not trapped),
+        "max_residual_all_kg_m", "bound_kg_m", "expected_kg_m", "max_over_bound" [-],
+        "bound_over_max" [-], "holds" (no violation), "start_angles_rad",
+        "eccentricity_angles_rad", "speed_rad_s", "n_runs", "n_failed", "elapsed_s".
+    """
+    from ..simulate import simulate_batch
+
+    t0 = time.perf_counter()
+    if isinstance(n, bool) or int(n) != n or n < 1:
+        raise ParameterError("n", n, "must be an integer >= 1 (runs)")
+    n = int(n)
+    sets = []
+    if duration is not None:
+        sets.append(f"profile.duration={duration if isinstance(duration, str) else repr(float(duration))}")
+    cfg = load(base, sets)
+    s0 = cfg.system
+    tol_speed = tolerances.get("speed_rad_s") if isinstance(tolerances, dict) else None
+    w, _ = _settle_speed(cfg, tol_speed)
+    machine_with_tolerances(s0, tolerances)          # validates before any work
+    rng = np.random.default_rng(int(seed))
+    betas = rng.uniform(0.0, 2 * math.pi, n)
+    starts = _random_starts(rng, s0.balancer, n)
+    systems = [machine_with_tolerances(s0, tolerances, b) for b in betas]
+    inits = [InitialState(ball_angles=tuple(float(v) for v in a)) for a in starts]
+    t_read = cfg.spin.checkpoints[-1] if cfg.spin.checkpoints else cfg.spin.duration
+    res = simulate_batch(systems, cfg.spin, inits, options=cfg.options, out_times=[t_read])
+    final = res.residual_unbalance[:, -1]
+    ok = np.array([st == "ok" for st in res.status])
+    pred = worst_case_prediction(systems[0], w, nominal_speed=cfg.spin.nominal_speed,
+                                 eccentricity_angle=None)
+    bound = pred["worst_residual_kg_m"]
+    collinear = np.array([_collinear(a, s0.balancer.contact_angle) for a in res.alpha[:, -1]])
+    above = ok & (final > bound)
+    trapped = above & collinear
+    inside = ok & ~trapped
+    good = final[inside]
+    mx = float(good.max()) if good.size else math.nan
+    return {
+        "name": cfg.name, "speed_rad_s": w, "read_out_s": float(t_read),
+        "duration_s": float(cfg.spin.duration), "n_runs": n, "n_failed": int((~ok).sum()),
+        "statuses": list(res.status), "tolerances": {k: float(tolerances[k]) for k in TOLERANCE_KEYS},
+        "eccentricity_angles_rad": betas, "start_angles_rad": np.array(starts),
+        "final_angles_rad": res.alpha[:, -1], "residuals_kg_m": final,
+        "grades_G_mm_s": res.grade_G[:, -1], "trapped": trapped,
+        "n_trapped": int(trapped.sum()), "n_violations": int((above & ~collinear).sum()),
+        "max_residual_kg_m": mx, "max_residual_all_kg_m": float(final[ok].max()) if ok.any() else math.nan,
+        "mean_residual_kg_m": float(good.mean()) if good.size else math.nan,
+        "bound_kg_m": bound, "expected_kg_m": pred["expected_residual_kg_m"],
+        "max_over_bound": mx / bound if bound > 0 else math.nan,
+        "bound_over_max": bound / mx if mx > 0 else math.inf,
+        "holds": bool(good.size and not (above & ~collinear).any()),
+        "separated": pred["separated"], "elapsed_s": time.perf_counter() - t0,
+    }
+
+
+def _collinear(alpha, contact_angle: float) -> bool:
+    """All balls within a contact angle of one line through the centre (a collinear
+    equilibrium, e.g. one ball with the unbalance and two touching opposite it)."""
+    a = np.mod(np.asarray(alpha, float), math.pi)          # a line: angles mod pi
+    for ref in a:
+        d = np.abs(np.angle(np.exp(2j * (a - ref)))) / 2   # distance mod pi
+        if d.max() <= contact_angle:
+            return True
+    return False
