@@ -158,6 +158,18 @@ def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
     assert r.exit_code == 0 and "rpm" in r.stdout
 
 
+# -- tolerances ---------------------------------------------------------------------------------
+def test_tolerances_cli_and_its_simulation_check():
+    d = run_json("tolerances", CENTRIFUGE, "--check", 3)
+    assert d["feasible"] and d["max_eccentricity_m"] > 0 and d["max_rolling_resistance"] > 0
+    assert d["max_suspension_friction_N"] > 0
+    c = d["simulation_check"]
+    assert c["n_violations"] == 0 and c["max_residual_kg_m"] <= c["bound_kg_m"]   # untrapped runs
+    t = run_json("tolerances", TOPLOADER)
+    assert t["worst_residual_kg_m"] < t["unbalance_kg_m"] + t["capacity_kg_m"]
+    assert t["meets_target"] == (t["worst_grade_G_mm_s"] <= 16.0)
+
+
 # -- bad input ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("args, field", [
     (("start-positions", CENTRIFUGE, "--grade", "0"), "--grade"),
@@ -173,6 +185,8 @@ def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
     (("speed-map", CENTRIFUGE, "--speeds", "5000 rpm:300 rpm:10"), "--speeds"),
     (("speed-map", CENTRIFUGE, "--speeds", "1:2"), "--speeds"),
     (("speed-map", CENTRIFUGE, "--damping", "-1"), "--damping"),
+    (("tolerances", CENTRIFUGE, "--split", "rolling=x"), "--split"),
+    (("tolerances", CENTRIFUGE, "--speed", "-3 rpm"), "--speed"),
     (("design", CENTRIFUGE, "--confidence", "1.5"), "--confidence"),
     (("design", CENTRIFUGE, "--unbalance", "5"), "--unbalance"),
     (("design", CENTRIFUGE, "--unbalance", "2 g*m:1 g*m"), "--unbalance"),

@@ -39,7 +39,7 @@ app.add_typer(analyze.app, name="analyze",
                    "bounds, tolerance design, kinetic-static model, studies.")
 app.add_typer(study.app, name="study",
               help="Design studies of any machine: speed map, start positions, unbalance "
-                   "range, TSR plateau, immobility.")
+                   "range, TSR plateau, immobility, tolerances.")
 app.command("design")(study.design)
 app.command("reproduce")(reproduce.reproduce)
 app.add_typer(liquid.app, name="liquid",

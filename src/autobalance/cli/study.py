@@ -31,7 +31,7 @@ from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, Schedu
 app = typer.Typer(name="study", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
                   help="Design studies of any machine: speed map, start positions, unbalance "
-                       "range, TSR plateau, immobility.")
+                       "range, TSR plateau, immobility, tolerances.")
 
 QuickOpt = Annotated[bool, typer.Option(
     "--quick", help="Coarse grids: finishes in under 2 minutes on 2 cores.")]
@@ -668,3 +668,83 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
     for d in res["damping"]:
         r = ", ".join(f"{_speed(du, lo)} - {_speed(du, hi)}" for lo, hi in d["stable_ranges_rad_s"])
         typer.echo(f"  damping x{d['damping_factor']:g}: stable at {r or 'no speed'}")
+
+
+@app.command("tolerances")
+def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
+               grade: GradeOpt = 16.0, units: UnitsOpt = None,
+               speed: Annotated[Optional[str], typer.Option(
+                   "--speed", help="Speed of the bound, e.g. '800 rpm' (default the nominal "
+                                   "speed).")] = None,
+               split: Annotated[Optional[str], typer.Option(
+                   "--split", help="Budget shares per cause, e.g. "
+                                   "'eccentricity=0.5,rolling=0.35,friction=0.1,other=0.05' "
+                                   "(000 eq 56's example; must sum to 1).")] = None,
+               check: Annotated[int, typer.Option(
+                   "--check", help="Also simulate this many random starts of the machine built "
+                                   "with the designed tolerances (0: none).")] = 0,
+               json_: JsonOpt = False) -> None:
+    """Tolerances for a target grade: the largest ring eccentricity, rolling resistance and
+    suspension friction whose worst-case residual stays within its share of the grade (000 eq
+    56-66 generalised to N balls, with a true bound), and the worst case of the machine's own
+    tolerances.\f
+
+    Parameters
+    ----------
+    source, set_, profile, grade, units, json_
+        The options of every study (:mod:`autobalance.cli.study`).
+    speed : str
+        The speed of the bound (with units; bare numbers rad/s).
+    split : str
+        "cause=share,..." over eccentricity, rolling, friction, other, summing to 1.
+    check : int
+        Random starts simulated with the designed tolerances (>= 0).
+    """
+    from ..config import parse_quantity
+    from ..studies.tolerances import check_tolerances_by_simulation, compute_tolerances
+
+    with guard():
+        cfg, G, du = _prepare(source, set_, profile, grade, None, None, units=units)
+        w = None if speed is None else parse_quantity(speed, "speed", "--speed")
+        if w is not None and not (math.isfinite(w) and w > 0):
+            raise ConfigError(f"--speed = {speed!r}: must be a speed > 0, e.g. '800 rpm'")
+        sp = None
+        if split is not None:
+            sp = {}
+            for item in split.split(","):
+                key, _, val = item.partition("=")
+                try:
+                    sp[key.strip()] = float(val)
+                except ValueError:
+                    raise ConfigError(f"--split = {split!r}: expected cause=share pairs, e.g. "
+                                      "'eccentricity=0.5,rolling=0.35,friction=0.1,other=0.05'") from None
+        if check < 0:
+            raise ConfigError(f"--check = {check}: must be an integer >= 0")
+        res = {"study": "tolerances", **compute_tolerances(cfg, grade=G, speed=w, split=sp)}
+        if check and res.get("feasible"):
+            sim = check_tolerances_by_simulation(cfg, res, n=check)
+            res["simulation_check"] = sim
+    if json_:
+        print_json(res)
+        return
+    typer.echo(f"{cfg.name} at {_speed(du, res['speed_rad_s'])}: target {grade_text(G)} = "
+               f"{du.fmt(res['target_unbalance_kg_m'], 'unbalance')} residual")
+    if not res.get("feasible"):
+        typer.echo(f"  not feasible: {res.get('reason')}")
+    else:
+        typer.echo(f"  allowed (all three at once): ring eccentricity "
+                   f"{du.fmt(res['max_eccentricity_m'], 'length')}, rolling resistance f/r "
+                   f"{res['max_rolling_resistance']:.3g}, suspension friction "
+                   f"{res['max_suspension_friction_N']:.3g} N (joint scale {res['joint_scale']:.3g})")
+    typer.echo(f"  this machine's own tolerances: worst case "
+               f"{du.fmt(res['worst_residual_kg_m'], 'unbalance')} = G{res['worst_grade_G_mm_s']:.3g} "
+               f"({'meets' if res['meets_target'] else 'misses'} the target); expected "
+               f"G{res['expected_grade_G_mm_s']:.3g}")
+    for wmsg in res.get("warnings", []):
+        typer.echo(f"  note: {wmsg}")
+    if "simulation_check" in res:
+        c = res["simulation_check"]
+        typer.echo(f"  simulated with the designed tolerances: {len(c['residuals_kg_m'])} runs, "
+                   f"largest residual {du.fmt(c['max_residual_kg_m'], 'unbalance')} against the "
+                   f"bound {du.fmt(c['bound_kg_m'], 'unbalance')} ({c['n_violations']} above it, "
+                   f"{c['n_trapped']} trapped in a collinear state)")
