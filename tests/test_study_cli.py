@@ -184,6 +184,7 @@ def test_tolerances_cli_and_its_simulation_check():
     (("immobility", CENTRIFUGE, "--n-conf", "1"), "--n-conf"),
     (("speed-map", CENTRIFUGE, "--speeds", "5000 rpm:300 rpm:10"), "--speeds"),
     (("speed-map", CENTRIFUGE, "--speeds", "1:2"), "--speeds"),
+    (("speed-map", CENTRIFUGE, "--speeds", "0:5000 rpm:10"), "--speeds"),
     (("speed-map", CENTRIFUGE, "--damping", "-1"), "--damping"),
     (("tolerances", CENTRIFUGE, "--split", "rolling=x"), "--split"),
     (("tolerances", CENTRIFUGE, "--speed", "-3 rpm"), "--speed"),

@@ -41,13 +41,17 @@ StoreOpt = Annotated[Optional[Path], typer.Option(
     "--store", metavar="DIR", help="Keep the simulations in resumable sweep stores under DIR "
                                    "(a rerun computes only what is missing).")]
 
+#: Most speeds of a ``study speed-map --speeds`` grid.
+MAX_MAP_SPEEDS = 2000
 #: Figure formats of ``--plot``.
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
-def _speed(du, w: float) -> str:
-    """A speed [rad/s] in the display unit (:func:`autobalance.config.display.display_units`)."""
-    return du.fmt(w, "speed")
+def _counts(**values) -> None:
+    """Refuse a count option below 1 (``--n``, ``--steps``, ...); None (not given) passes."""
+    for name, v in values.items():
+        if v is not None and v < 1:
+            raise ConfigError(f"--{name.replace('_', '-')} = {v}: must be an integer >= 1")
 
 
 @contextmanager
@@ -159,9 +163,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units)
-        for field, v in (("--n", n), ("--random", samples)):
-            if v is not None and v < 1:
-                raise ConfigError(f"{field} = {v}: must be an integer >= 1")
+        _counts(n=n, random=samples)
         ds = compute_start_positions(cfg, n=n, samples=samples, seed=seed, grade=G, quick=quick,
                                      name="start-positions",
                                      store=_store(store, cfg, "start-positions", n, samples, seed,
@@ -268,16 +270,15 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                               scheduler, store, units)
         if g_max is not None:
             check_grade(g_max, "--g-max")
-        for field, v in (("--steps", steps), ("--n", n)):
-            if v is not None and v < 1:
-                raise ConfigError(f"{field} = {v}: must be an integer >= 1")
+        _counts(steps=steps, n=n)
         s = cfg.system
         G_b = float(grade_value(s.balancer.capacity, s.total_mass, cfg.spin.nominal_speed))
         top = 1.5 * G_b if g_max is None else g_max
         Gv = np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
         nn = n or default_starts(s.balancer.n_balls, quick)
         ds = compute_unbalance(cfg, G=Gv, n=nn,
-                               store_dir=_store(store, cfg, "unbalance-range", list(Gv)), executor=executor or "local",
+                               store_dir=_store(store, cfg, "unbalance-range", list(Gv)),
+                               executor=executor or "local",
                                workers=workers, scheduler=scheduler, prefix="study",
                                progress=not json_)
 
@@ -331,8 +332,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units)
-        if n is not None and n < 1:
-            raise ConfigError(f"--n = {n}: must be an integer >= 1")
+        _counts(n=n)
         nn = n or (8 if quick else 20)
         rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
         ds = compute_plateau(cfg, n=nn, quick=quick, ratios=rr,
@@ -355,7 +355,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         print_json(res)
         return
     lo, hi = res["near_optimal_ratios"]
-    typer.echo(f"{cfg.name}: recommended plateau {_speed(du, res['recommended_plateau_rad_s'])} = "
+    typer.echo(f"{cfg.name}: recommended plateau {du.fmt(res['recommended_plateau_rad_s'], 'speed')} = "
                f"{res['recommended_plateau_ratio']:.3g} x the natural frequency; mean 95th "
                f"percentile G{res['best_mean_p95_grade_G_mm_s']:.3g} over G_ini <= "
                f"{ds.attrs['g_range']:.3g} mm/s")
@@ -418,7 +418,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         def fig():
             from ..plotting.tsr import plot_immobility
 
-            return plot_immobility(ds, f"{cfg.name}: immobility at G_ini = G{gi:.3g}")
+            return plot_immobility(ds, f"{cfg.name}: immobility at G_ini = G{gi:.3g}",
+                                   stick=True)
 
         w = 2 * np.pi * ds["speed"].values
         imm = ds["immobility"].sel(mu_r=mus[0] if 1.0 not in mus else 1.0,
@@ -438,8 +439,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         print_json(res)
         return
     typer.echo(f"{cfg.name} at G_ini = G{gi:.3g}: least immobility {100 * res['least_immobility']:.1f} % "
-               f"at {_speed(du, res['least_immobility_speed_rad_s'])}; natural frequency "
-               f"{_speed(du, res['natural_frequency_rad_s'])}")
+               f"at {du.fmt(res['least_immobility_speed_rad_s'], 'speed')}; natural frequency "
+               f"{du.fmt(res['natural_frequency_rad_s'], 'speed')}")
     gs = res["stick_threshold_at_nominal_grade_G_mm_s"]
     typer.echo(f"  stick threshold at the nominal speed: G*{gs:.3g} mm/s "
                f"({'below' if gs <= G else 'above'} the target {grade_text(G)}): balls that "
@@ -551,9 +552,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
             if bad or not names:
                 raise ConfigError(f"--profiles = {profiles!r}: must be from std, slow, tsr")
             kw["profiles"] = names
-        for field, v in (("--starts", starts), ("--n-unbalance", n_unbalance)):
-            if v is not None and v < 1:
-                raise ConfigError(f"{field} = {v}: must be an integer >= 1")
+        _counts(starts=starts, n_unbalance=n_unbalance)
         import dataclasses
 
         space = dataclasses.replace(space, **kw)
@@ -620,9 +619,6 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
     ks_only : bool
         Kinetic-static verdicts only (faster, not the full model).
     """
-    import numpy as np
-
-    from ..config import parse_quantity
     from ..studies.speed_map import compute_speed_map, speed_map_summary
 
     t0 = time.perf_counter()
@@ -630,18 +626,14 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units)
         grid = None
         if speeds is not None:
-            parts = speeds.split(":")
-            try:
-                if len(parts) != 3:
-                    raise ValueError
-                n = int(parts[2])
-            except ValueError:
-                raise ConfigError(f"--speeds = {speeds!r}: expected LO:HI:N, e.g. "
-                                  "'200 rpm:5000 rpm:120'") from None
-            lo, hi = (parse_quantity(p.strip(), "speed", "--speeds") for p in parts[:2])
-            if not (0 < lo < hi and math.isfinite(hi) and 2 <= n <= 2000):
-                raise ConfigError(f"--speeds = {speeds!r}: must be 0 < LO < HI and 2 <= N <= 2000")
-            grid = np.linspace(lo, hi, n)
+            from .response import speed_grid
+
+            grid = speed_grid(speeds, cfg.spin.nominal_speed)
+            if grid.size > MAX_MAP_SPEEDS:      # each speed costs 0.1-0.5 s (docs/speed-map.md)
+                raise ConfigError(f"--speeds = {speeds!r}: at most {MAX_MAP_SPEEDS} speeds")
+            if grid[0] <= 0:
+                raise ConfigError(f"--speeds = {speeds!r}: LO must be > 0 (the balls have no "
+                                  "equilibrium on a rotor at rest)")
         facs = None if damping is None else _factors(damping, "--damping")
         ds = compute_speed_map(cfg, speeds=grid, damping_factors=facs, quick=quick,
                                full=not ks_only)
@@ -656,17 +648,17 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
     if json_:
         print_json(res)
         return
-    rng = ", ".join(f"{_speed(du, lo)} - {_speed(du, hi)}" for lo, hi in res["stable_ranges_rad_s"])
+    rng = ", ".join(f"{du.fmt(lo, 'speed')} - {du.fmt(hi, 'speed')}" for lo, hi in res["stable_ranges_rad_s"])
     typer.echo(f"{cfg.name}: balanced and stable at {rng or 'no speed of the grid'} "
                f"({res['method']}); natural frequencies "
-               + ", ".join(_speed(du, w) for w in res["natural_frequencies_rad_s"])
-               + f"; nominal {_speed(du, res['nominal_speed_rad_s'])}")
+               + ", ".join(du.fmt(w, "speed") for w in res["natural_frequencies_rad_s"])
+               + f"; nominal {du.fmt(res['nominal_speed_rad_s'], 'speed')}")
     c = res["counts"]
     typer.echo(f"  {c['speeds']} speeds: a balanced state at {c['balanced_exists']}, stable at "
                f"{c['balanced_stable']}; at most {c['max_isolated']} isolated equilibria and "
                f"{c['max_families']} families at one speed")
     for d in res["damping"]:
-        r = ", ".join(f"{_speed(du, lo)} - {_speed(du, hi)}" for lo, hi in d["stable_ranges_rad_s"])
+        r = ", ".join(f"{du.fmt(lo, 'speed')} - {du.fmt(hi, 'speed')}" for lo, hi in d["stable_ranges_rad_s"])
         typer.echo(f"  damping x{d['damping_factor']:g}: stable at {r or 'no speed'}")
 
 
@@ -727,7 +719,7 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
     if json_:
         print_json(res)
         return
-    typer.echo(f"{cfg.name} at {_speed(du, res['speed_rad_s'])}: target {grade_text(G)} = "
+    typer.echo(f"{cfg.name} at {du.fmt(res['speed_rad_s'], 'speed')}: target {grade_text(G)} = "
                f"{du.fmt(res['target_unbalance_kg_m'], 'unbalance')} residual")
     if not res.get("feasible"):
         typer.echo(f"  not feasible: {res.get('reason')}")

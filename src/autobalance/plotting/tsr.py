@@ -144,10 +144,10 @@ def plot_profile(ds) -> Figure:
     return fig
 
 
-def plot_immobility(ds, title: str | None = None) -> Figure:
+def plot_immobility(ds, title: str | None = None, stick: bool = False) -> Figure:
     """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1 (or the
-    first c_r), the profile's speeds dashed, the natural frequency dotted and, on a second axis,
-    the stick threshold G* [mm/s] when the dataset has it."""
+    first c_r), the profile's speeds dashed, the natural frequency dotted and, with ``stick``,
+    the stick threshold G* [mm/s] on a second axis (004's figures have none)."""
     fig, (ax,) = _fig(1, w=6.5)
     f = ds["speed"].values
     im = ds["immobility"]
@@ -165,7 +165,7 @@ def plot_immobility(ds, title: str | None = None) -> Figure:
     ax.set_title(title or f"004 Fig. 8/10: immobility, G_ini = G{ds.attrs['G_ini']:g} "
                  f"(bands: c_r {', '.join(f'{c:g}' for c in ds['c_r'].values)})", fontsize=9)
     ax.legend(fontsize=8, loc="center right")
-    if "G_stick" in ds and title is not None:
+    if stick:
         bx = ax.twinx()
         bx.plot(f, ds["G_stick"].values, color="C3", lw=1.0, ls="-.")
         bx.set_ylabel("stick threshold G* [mm/s] (dash-dot)", color="C3")

@@ -105,7 +105,7 @@ def profile_variants(cfg) -> dict:
     return out
 
 
-def candidate_designs(cfg, space: DesignSpace, U_max: float) -> list:
+def candidate_designs(cfg, space: DesignSpace, U_max: float, variants: dict | None = None) -> list:
     """Every candidate of ``space`` for a largest expected unbalance ``U_max`` [kg*m].
 
     Parameters
@@ -117,15 +117,18 @@ def candidate_designs(cfg, space: DesignSpace, U_max: float) -> list:
         The candidates to try.
     U_max : float
         Largest expected initial unbalance [kg*m], > 0.
+    variants : dict or None
+        The machine's :func:`profile_variants` (None: computed here).
 
     Returns
     -------
     list of dict
         name, n_balls, ball_mass [kg], race_radius [m], capacity [kg*m], profile, duration
-        [s] and sets (the "path=value" overrides that make the candidate from the machine).
+        [s], sets (the "path=value" overrides that make the candidate from the machine) and
+        config (the candidate's Config).
     """
     b = cfg.system.balancer
-    variants = profile_variants(cfg)
+    variants = profile_variants(cfg) if variants is None else variants
     radii = space.radii or (b.race_radius,)
     m0, r0 = (float(b.masses[0]), b.ball_radius) if b.n_balls else (None, b.ball_radius)
     # ball 1's friction and damping (a machine without balls: 004 Table 1's mu_ref, no damping)
@@ -148,11 +151,12 @@ def candidate_designs(cfg, space: DesignSpace, U_max: float) -> list:
                     if prof not in variants:
                         continue
                     sets = ball + variants[prof]
-                    dur = float(load(cfg, sets).spin.duration)
+                    cand = load(cfg, sets)
                     out.append({"name": f"{N}x{1e3 * m:.3g}g-R{1e3 * R:.3g}mm-{prof}",
                                 "n_balls": N, "ball_mass": m, "race_radius": R,
                                 "capacity": N * m * R, "capacity_ratio": ratio,
-                                "profile": prof, "duration": dur, "sets": sets})
+                                "profile": prof, "duration": float(cand.spin.duration),
+                                "sets": sets, "config": cand})
     return out
 
 
@@ -217,16 +221,17 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
     if quick and unbalance_range is not None and n_unbalance == 4:
         n_unbalance = 3
     Us = np.linspace(lo, hi, n_unbalance) if n_unbalance > 1 else np.array([hi])
-    cands = candidate_designs(cfg, space, hi)
+    variants = profile_variants(cfg)
+    cands = candidate_designs(cfg, space, hi, variants)
     if not cands:
         raise ParameterError("profiles", space.profiles, f"none applies to this machine's "
-                             f"profile; available: {', '.join(profile_variants(cfg))}")
+                             f"profile; available: {', '.join(variants)}")
     M, wn = cfg.system.total_mass, cfg.spin.nominal_speed
     g = np.full((len(cands), Us.size, starts), np.nan)
     for i, c in enumerate(cands):
         # the candidate as a base of its own: its ball count changes the initial angles, which a
         # random Monte Carlo may not take as overrides
-        raw = run_start_grid(load(cfg, c["sets"]), f"design-{c['name']}", (),
+        raw = run_start_grid(c["config"], f"design-{c['name']}", (),
                              {"rotor.unbalance": [float(u) for u in Us]}, 0, samples=starts,
                              seed=seed, store=store_path(store_dir, f"design-{c['name']}"),
                              executor=executor, workers=workers, scheduler=scheduler,
@@ -270,8 +275,7 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
     ds.attrs.update({"study": "design", "grade": float(grade), "confidence": float(confidence),
                      "starts": int(starts), "seed": int(seed), "n_designs": len(cands),
                      "simulations": int(g.size), "failed": int(np.isnan(g).sum()),
-                     "profiles": "; ".join(f"{k}: {' '.join(v)}" for k, v in
-                                           profile_variants(cfg).items()),
+                     "profiles": "; ".join(f"{k}: {' '.join(v)}" for k, v in variants.items()),
                      "wall_s": time.perf_counter() - t0})
     return ds
 
