@@ -74,6 +74,39 @@ def test_start_positions_store_resumes_and_a_changed_machine_gets_its_own(tmp_pa
     assert len(list(store.iterdir())) == 2 and c["runs"] == a["runs"]
 
 
+def test_start_positions_grid_reports_each_cell_as_its_own_run(tmp_path):
+    """--grid repeats the Monte Carlo per cell: each cell's percentiles equal a run of the
+    machine with that value set, and the pooled line pools the cells' runs."""
+    d = run_json("start-positions", CENTRIFUGE, "--random", 5, "--seed", 2, "--executor",
+                 "serial", "--grid", "rotor.unbalance=2 g*cm,60 g*mm", "--out", tmp_path / "g.nc")
+    assert d["runs"] == 10 and d["pooled_over_cells"] is True
+    assert [c["coords"]["rotor.unbalance_kg_m"] for c in d["cells"]] == pytest.approx([2e-5, 6e-5])
+    g = xr.load_dataset(tmp_path / "g.nc")["grade_G"]            # (rotor__unbalance, sample, cp)
+    for k, c in enumerate(d["cells"]):
+        one = run_json("start-positions", CENTRIFUGE, "--random", 5, "--seed", 2, "--executor",
+                       "serial", "--set", f"rotor.unbalance={2e-5 if k == 0 else 6e-5!r}")
+        for a, b in zip(c["checkpoints"], one["checkpoints"]):
+            assert a["p95_grade_G_mm_s"] == pytest.approx(b["p95_grade_G_mm_s"], rel=1e-12)
+            assert a["share_below_grade"] == b["share_below_grade"]
+    last = g.isel(checkpoint=-1).values.ravel()
+    assert d["checkpoints"][-1]["p95_grade_G_mm_s"] == pytest.approx(np.percentile(last, 95))
+    r = run("start-positions", CENTRIFUGE, "--random", 3, "--executor", "serial",
+            "--grid", "balancer.rolling_resistance=0.001:0.003:2", "--units", "unbalance=g*cm")
+    assert r.exit_code == 0 and r.stdout.count("balancer.rolling_resistance = ") == 2, r.output
+
+
+def test_plateau_default_starts_keep_the_runs_per_cell_for_any_ball_count():
+    from autobalance.sweep.plan import n_start_grid
+    from autobalance.studies.start_positions import starts_for_runs
+
+    assert starts_for_runs(2, 210) == 20 and starts_for_runs(2, 36) == 8    # 004 Fig. 14-15: n = 20
+    assert starts_for_runs(3, 210) == 9 and starts_for_runs(3, 36) == 5
+    assert starts_for_runs(2, 1) == 1 and starts_for_runs(3, 210, identical=False) == 5
+    for N in range(1, 6):
+        n = starts_for_runs(N, 210)
+        assert n_start_grid(n, N, True) <= 210 < n_start_grid(n + 1, N, True)
+
+
 # -- unbalance range ----------------------------------------------------------------------------
 def test_unbalance_range_stays_between_the_operating_boundaries(tmp_path):
     d = run_json("unbalance-range", CENTRIFUGE, "--steps", 2, "--n", 3, "--plot",
@@ -145,6 +178,19 @@ def test_immobility_json_and_the_stick_threshold_closed_form(tmp_path):
     assert xr.load_dataset(tmp_path / "i.nc")["G_stick"].attrs["units"] == "mm/s"
 
 
+def test_immobility_figure_speaks_the_configs_speed_unit(tmp_path):
+    from autobalance.plotting.tsr import plot_immobility
+    from autobalance.studies.immobility import compute_immobility
+
+    ds = compute_immobility(CENTRIFUGE, G_ini=20.0, mu_r=(1.0,), c_r=(1.0,), n_conf=20, quick=True)
+    ax = plot_immobility(ds, stick=True, speed_unit="rpm").axes[0]
+    assert ax.get_xlabel() == "speed [rpm]"
+    x = ax.get_lines()[0].get_xdata()
+    assert x == pytest.approx(60.0 * ds["speed"].values)              # Hz -> rpm
+    r = run("immobility", CENTRIFUGE, "--quick", "--plot", tmp_path / "i.png")
+    assert r.exit_code == 0 and (tmp_path / "i.png").stat().st_size > 10_000
+
+
 # -- speed map ----------------------------------------------------------------------------------
 def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
     d = run_json("speed-map", TOPLOADER, "--quick", "--damping", "1", "--out", tmp_path / "m.nc")
@@ -175,6 +221,10 @@ def test_tolerances_cli_and_its_simulation_check():
     (("start-positions", CENTRIFUGE, "--grade", "0"), "--grade"),
     (("start-positions", CENTRIFUGE, "--n", "0"), "--n"),
     (("start-positions", CENTRIFUGE, "--plot", "x.txt"), "--plot"),
+    (("start-positions", CENTRIFUGE, "--grid", "rotor.unbalance"), "--grid"),
+    (("start-positions", CENTRIFUGE, "--grid", "rotor.nothing=1,2"), "--grid"),
+    (("start-positions", CENTRIFUGE, "--grid", "rotor.unbalance=2 kg,3 kg"), "--grid"),
+    (("start-positions", CENTRIFUGE, "--grid", "rotor.unbalance=1:2"), "--grid"),
     (("unbalance-range", CENTRIFUGE, "--steps", "0"), "--steps"),
     (("unbalance-range", CENTRIFUGE, "--g-max", "-3"), "--g-max"),
     (("plateau", TOPLOADER, "--quick"), "profile.kind"),

@@ -139,6 +139,11 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                         "--random", help="Uniform random start angles instead of the grid: "
                                          "this many.")] = None,
                     seed: Annotated[int, typer.Option("--seed", help="Seed of --random.")] = 0,
+                    grid: Annotated[Optional[list[str]], typer.Option(
+                        "--grid", metavar="PATH=V1,V2|PATH=LO:HI:N",
+                        help="Repeat the Monte Carlo per cell of a grid, e.g. "
+                             "'rotor.unbalance=4 g*cm,8 g*cm' or "
+                             "'balancer.rolling_resistance=0.001:0.004:4' (repeatable).")] = None,
                     quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
                     plot: PlotOpt = None, scheduler: SchedulerOpt = None,
                     workers: WorkersOpt = None, executor: ExecutorOpt = None,
@@ -156,18 +161,22 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         Random starts instead of the grid (>= 1).
     seed : int
         Seed of the random starts.
+    grid : list of str
+        Grid axes "path=v1,v2,..." or "path=lo:hi:n" (values with units; bare numbers SI).
     """
-    from ..studies.start_positions import compute_start_positions
+    from ..studies.start_positions import compute_start_positions, start_positions_summary
+    from .sweep import _coord_text
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units)
         _counts(n=n, random=samples)
+        axes = _grid(grid)
         ds = compute_start_positions(cfg, n=n, samples=samples, seed=seed, grade=G, quick=quick,
-                                     name="start-positions",
+                                     name="start-positions", grid=axes,
                                      store=_store(store, cfg, "start-positions", n, samples, seed,
-                                                  quick),
+                                                  quick, axes),
                                      executor=executor or "local", workers=workers,
                                      scheduler=scheduler, progress=not json_)
 
@@ -191,40 +200,66 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                    f"{c['p5_grade_G_mm_s']:.2f} / {c['p50_grade_G_mm_s']:.2f} / "
                    f"{c['p95_grade_G_mm_s']:.2f} mm/s, mode {c['mode_grade_G_mm_s']:.1f}, "
                    f"share <= G{G:g}: {100 * c['share_below_grade']:.1f} %")
+    if res.get("cells"):
+        typer.echo(f"  (pooled over {len(res['cells'])} grid cells; per cell at the last read-out:)")
+        for c in res["cells"]:
+            cell = {"coords": c["coords"], "coords_as_given": {
+                ax["path"]: c["coords"][ax["key"]] for ax in res["grid"]}}
+            where = ", ".join(_coord_text(ax, cell, du, "display") for ax in res["grid"])
+            last = c["checkpoints"][-1]
+            typer.echo(f"    {where}: G p50/p95 = {last['p50_grade_G_mm_s']:.2f} / "
+                       f"{last['p95_grade_G_mm_s']:.2f} mm/s, share <= G{G:g}: "
+                       f"{100 * last['share_below_grade']:.1f} %")
     if res.get("regions"):
         typer.echo("  004 Table 2 regions (first vs last read-out): " + ", ".join(
             f"{k} {100 * v:.1f} %" for k, v in res["regions"].items()))
 
 
-def start_positions_summary(ds) -> dict:
-    """JSON-ready summary of a :func:`~autobalance.studies.start_positions.compute_start_positions`
-    result without a grid: per checkpoint its label, time [s], percentiles, mode [mm/s] and
-    share at or below the target grade; the region shares.
+def _grid(specs) -> dict | None:
+    """``--grid`` options "path=v1,v2,..." or "path=lo:hi:n" -> {path: SI values} (the sweep
+    description's own axis parser: units, kinds and one-line errors)."""
+    from ..sweep.spec import SweepError, grid_axis
 
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        The study's dataset.
-
-    Returns
-    -------
-    dict
-    """
-    a = ds.attrs
-    cps = []
-    for i, t in enumerate(ds["checkpoint"].values):
-        cps.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
-                    **{f"p{q}_grade_G_mm_s": float(ds[f"grade_p{q}"].isel(checkpoint=i))
-                       for q in (5, 50, 95)},
-                    "mode_grade_G_mm_s": float(ds["grade_mode"].isel(checkpoint=i)),
-                    "share_below_grade": float(ds["share_below_grade"].isel(checkpoint=i))})
-    out = {"study": "start-positions", "grade_G_mm_s": a["grade"],
-           "runs": a["runs"], "failed": a["failed"], "starts": a["starts"],
-           "G_ini_mm_s": a["G_ini"], "G_balls_mm_s": a["G_balls"], "checkpoints": cps}
-    if "region_share" in ds:
-        out["regions"] = {str(r): float(v) for r, v in
-                          zip(ds["region"].values, ds["region_share"].values)}
+    if not specs:
+        return None
+    out = {}
+    for spec in specs:
+        path, eq, rhs = spec.partition("=")
+        path = path.strip()
+        if not eq or not path or not rhs.strip():
+            raise ConfigError(f"--grid = {spec!r}: expected PATH=V1,V2,... or PATH=LO:HI:N, e.g. "
+                              "'rotor.unbalance=4 g*cm,8 g*cm'")
+        if path in out:
+            raise ConfigError(f"--grid = {spec!r}: {path} is given twice")
+        parts = rhs.split(":")
+        if len(parts) not in (1, 3):
+            raise ConfigError(f"--grid = {spec!r}: a range is LO:HI:N, e.g. "
+                              "'balancer.rolling_resistance=0.001:0.004:4'")
+        if len(parts) == 3:
+            try:
+                num = int(parts[2])
+            except ValueError:
+                raise ConfigError(f"--grid = {spec!r}: N of LO:HI:N must be an integer >= 1") from None
+            axis = {"start": _value(parts[0]), "stop": _value(parts[1]), "num": num}
+        else:
+            axis = [_value(v) for v in rhs.split(",")]
+        try:
+            axis = grid_axis(path, axis)
+        except SweepError as e:
+            raise ConfigError(f"--grid: {e}") from None
+        out[path] = list(axis.si)
     return out
+
+
+def _value(text: str):
+    """One value of ``--grid``: an int, a float or a quantity with units (as in a config)."""
+    t = text.strip()
+    for kind in (int, float):
+        try:
+            return kind(t)
+        except ValueError:
+            pass
+    return t
 
 
 @app.command("unbalance-range")
@@ -306,7 +341,8 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
             grade: GradeOpt = 16.0, units: UnitsOpt = None,
             n: Annotated[Optional[int], typer.Option(
-                "--n", help="Start positions per ball (default 20; quick 8).")] = None,
+                "--n", help="Start positions per ball (default: at most 210 runs per cell, "
+                            "20 for 2 balls, 9 for 3; quick 36 runs: 8 / 5).")] = None,
             ratios: Annotated[Optional[str], typer.Option(
                 "--ratios", help="Plateau speeds as multiples of the natural frequency, e.g. "
                                  "'1.0,1.05,1.1,1.15' (default 0.96-1.12 every 0.01; quick "
@@ -333,9 +369,8 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units)
         _counts(n=n)
-        nn = n or (8 if quick else 20)
         rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
-        ds = compute_plateau(cfg, n=nn, quick=quick, ratios=rr,
+        ds = compute_plateau(cfg, n=n, quick=quick, ratios=rr,
                              store_dir=_store(store, cfg, "plateau", rr, quick),
                              executor=executor or "local", workers=workers, scheduler=scheduler,
                              prefix="study", progress=not json_)
@@ -345,7 +380,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
 
             return plot_plateau(ds, G, f"{cfg.name}: lower plateau of the speed reduction")
 
-        res = {"study": "plateau", "machine": cfg.name, "n": nn, "grade_G_mm_s": G,
+        res = {"study": "plateau", "machine": cfg.name, "n": int(ds.attrs["n"]), "grade_G_mm_s": G,
                **plateau_summary(ds)}
         p95 = res["p95_grade_G_mm_s"]
         k = list(res["plateau_ratios"]).index(res["recommended_plateau_ratio"])
@@ -419,7 +454,7 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
             from ..plotting.tsr import plot_immobility
 
             return plot_immobility(ds, f"{cfg.name}: immobility at G_ini = G{gi:.3g}",
-                                   stick=True)
+                                   stick=True, speed_unit=du.unit("speed"))
 
         w = 2 * np.pi * ds["speed"].values
         imm = ds["immobility"].sel(mu_r=mus[0] if 1.0 not in mus else 1.0,

@@ -144,12 +144,17 @@ def plot_profile(ds) -> Figure:
     return fig
 
 
-def plot_immobility(ds, title: str | None = None, stick: bool = False) -> Figure:
+def plot_immobility(ds, title: str | None = None, stick: bool = False,
+                    speed_unit: str = "Hz") -> Figure:
     """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1 (or the
     first c_r), the profile's speeds dashed, the natural frequency dotted and, with ``stick``,
-    the stick threshold G* [mm/s] on a second axis (004's figures have none)."""
+    the stick threshold G* [mm/s] on a second axis (004's figures have none); speeds in
+    ``speed_unit`` (a pint speed unit, e.g. "rpm"; 004 uses Hz)."""
+    from .speed_map import _per_unit
+
     fig, (ax,) = _fig(1, w=6.5)
-    f = ds["speed"].values
+    k_hz = 2 * np.pi / _per_unit(speed_unit)          # [speed_unit] per Hz
+    f = k_hz * ds["speed"].values
     im = ds["immobility"]
     for k, mr in enumerate(ds["mu_r"].values):
         d = im.sel(mu_r=mr).values
@@ -158,9 +163,9 @@ def plot_immobility(ds, title: str | None = None, stick: bool = False) -> Figure
         ax.fill_between(f, d.min(axis=0), d.max(axis=0), alpha=0.2, color=line.get_color())
     for x in (ds.attrs["plateau_hz"], ds.attrs["nominal_hz"]):
         if np.isfinite(x):
-            ax.axvline(x, color="k", ls="--", lw=0.8)
-    ax.axvline(ds.attrs["f_n_hz"], color="r", ls=":", lw=0.8)
-    ax.set_xlabel("speed [Hz]")
+            ax.axvline(k_hz * x, color="k", ls="--", lw=0.8)
+    ax.axvline(k_hz * ds.attrs["f_n_hz"], color="r", ls=":", lw=0.8)
+    ax.set_xlabel(f"speed [{speed_unit}]")
     ax.set_ylabel("immobility [-]")
     ax.set_title(title or f"004 Fig. 8/10: immobility, G_ini = G{ds.attrs['G_ini']:g} "
                  f"(bands: c_r {', '.join(f'{c:g}' for c in ds['c_r'].values)})", fontsize=9)

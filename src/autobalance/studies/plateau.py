@@ -10,10 +10,38 @@ import numpy as np
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .start_positions import case_sets, load, run_start_grid, store_path
+from .start_positions import case_sets, load, run_start_grid, starts_for_runs, store_path
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
-__all__ = ["DESCENT_PCT", "compute_descent", "compute_plateau", "default_grid", "plateau_summary"]
+__all__ = ["DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", "default_grid",
+           "default_plateau_starts", "plateau_summary"]
+
+#: Most start configurations per cell of the plateau map (full, quick): 004 Fig. 14-15's
+#: n = 20 positions for two balls (210 runs), 36 (n = 8) for a first look.
+PLATEAU_RUNS = (210, 36)
+
+
+def default_plateau_starts(balancer, quick: bool) -> int:
+    """Start positions per ball of the plateau map: the most whose grid stays within
+    :data:`PLATEAU_RUNS` per cell (n = 20 / 8 for two balls, 9 / 5 for three), so that a map of
+    153 cells costs about the same for any ball count.
+
+    Parameters
+    ----------
+    balancer : autobalance.models.Balancer
+        The balls (their number, and whether they are identical).
+    quick : bool
+        The coarse map.
+
+    Returns
+    -------
+    int
+        Positions per ball n (>= 1).
+    """
+    from ..sweep.plan import identical_balls
+
+    return starts_for_runs(balancer.n_balls, PLATEAU_RUNS[1 if quick else 0],
+                           identical_balls(balancer))
 
 
 def default_grid(G_balls: float, quick: bool):
@@ -45,7 +73,8 @@ DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
 
-def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick: bool = False,
+def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int | None = None,
+                    quick: bool = False,
                     store_dir=None, executor="local", workers=None, scheduler=None,
                     g_range: float | None = None, prefix: str = "study", progress: bool = False):
     """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
@@ -63,10 +92,10 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
         Plateau speeds as multiples of Omega_n [-]; None = :func:`default_grid`.
     G : array_like or None
         Initial grades [mm/s]; None = :func:`default_grid`.
-    n : int
-        Start positions per ball.
+    n : int or None
+        Start positions per ball; None = :func:`default_plateau_starts`.
     quick : bool
-        The coarse :func:`default_grid`.
+        The coarse :func:`default_grid` (and start grid).
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
@@ -98,6 +127,7 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int = 20, quick
                              "the plateau study needs a temporary speed reduction: use a tsr "
                              "profile (e.g. --profile tsr)")
     fn = s.natural_frequencies[0]
+    n = default_plateau_starts(s.balancer, quick) if n is None else n
     G_b = float(_grade(s.balancer.capacity, s.total_mass, cfg.spin.nominal_speed))
     g_range = G_b if g_range is None else g_range
     r0, g0 = default_grid(G_b, quick)

@@ -22,7 +22,7 @@ from .statistics import mode, plateau_speed, profile_text, regions, start_positi
 
 __all__ = ["case_sets", "checkpoint_labels", "compute_machine", "compute_monte_carlo",
            "compute_single", "compute_start_positions", "default_starts", "load", "run_start_grid",
-           "start_family", "store_path"]
+           "start_family", "start_positions_summary", "starts_for_runs", "store_path"]
 
 
 def load(base, sets=()):
@@ -346,6 +346,34 @@ def default_starts(n_balls: int, quick: bool) -> int:
     return {1: 360, 2: 50}.get(n_balls, 20 if n_balls == 3 else 10)
 
 
+def starts_for_runs(n_balls: int, runs: int, identical: bool = True) -> int:
+    """The largest number of positions per ball n >= 1 whose start grid (004 sec. 4.2:
+    n(n+1)/2 runs for two identical balls, C(n+N-1, N) for N, n^N for unequal balls) has at
+    most ``runs`` configurations, so that a study's cost per cell stays the same whatever the
+    ball count (e.g. 210 runs: n = 20 for two balls as 004 Fig. 14-15, 9 for three).
+
+    Parameters
+    ----------
+    n_balls : int
+        Number of balls N >= 1.
+    runs : int
+        Most start configurations per cell (>= 1).
+    identical : bool
+        Identical balls (the grid keeps one ordering of each configuration).
+
+    Returns
+    -------
+    int
+        Positions per ball n (>= 1).
+    """
+    from ..sweep.plan import n_start_grid
+
+    n = 1
+    while n_start_grid(n + 1, n_balls, identical) <= runs:
+        n += 1
+    return n
+
+
 def compute_start_positions(base, *, n: int | None = None, samples: int | None = None,
                             seed: int = 0, grid: dict | None = None, sets=(),
                             grade: float = 16.0, quick: bool = False, name: str = "starts",
@@ -443,6 +471,8 @@ def compute_start_positions(base, *, n: int | None = None, samples: int | None =
                               ).assign_attrs(units="-", long_name="004 Table 2 regions, first "
                                              "vs last read-out")
     ds = ds.assign_coords(checkpoint_label=("checkpoint", labels))
+    for d in cell_dims:                   # the unstacked per-cell variables drop these attrs
+        ds[d].attrs.update(raw[d].attrs)
     ok = raw["status"].values == 0
     ds.attrs.update({
         "study": "start_positions", "n_balls": N,
@@ -454,6 +484,80 @@ def compute_start_positions(base, *, n: int | None = None, samples: int | None =
         "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
         "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
+
+
+def _checkpoint_rows(ds, sel: dict) -> list:
+    """Per checkpoint of one cell (``sel``: its grid coordinates) label, time [s],
+    p5/p50/p95 and mode [mm/s], share at or below the target grade [-]."""
+    rows = []
+    for i, t in enumerate(ds["checkpoint"].values):
+        at = {**sel, "checkpoint": i}
+        rows.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
+                     **{f"p{q}_grade_G_mm_s": float(ds[f"grade_p{q}"].isel(at))
+                        for q in (5, 50, 95)},
+                     "mode_grade_G_mm_s": float(ds["grade_mode"].isel(at)),
+                     "share_below_grade": float(ds["share_below_grade"].isel(at))})
+    return rows
+
+
+def start_positions_summary(ds) -> dict:
+    """JSON-ready summary of a :func:`compute_start_positions` result: per checkpoint its
+    label, time [s], p5/p50/p95 and mode [mm/s] and share at or below the target grade; the
+    region shares (004 Table 2). With a grid, the same per cell under "cells" (each with its
+    coordinates in SI, keys with units), and "checkpoints" pooled over every cell.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The study's dataset.
+
+    Returns
+    -------
+    dict
+        "grade_G_mm_s", "runs", "failed", "starts", "G_ini_mm_s", "G_balls_mm_s",
+        "checkpoints", "regions" (two read-outs or more), "cells" (with a grid).
+    """
+    from ..sweep.summary import grid_axes, percentiles, share_below
+
+    a = ds.attrs
+    cells = [d for d in ds["grade_G"].dims if d not in ("sample", "checkpoint")]
+    out = {"study": "start-positions", "grade_G_mm_s": a["grade"], "runs": a["runs"],
+           "failed": a["failed"], "starts": a["starts"], "G_ini_mm_s": a["G_ini"],
+           "G_balls_mm_s": a["G_balls"]}
+    if not cells:
+        out["checkpoints"] = _checkpoint_rows(ds, {})
+        if "region_share" in ds:
+            out["regions"] = {str(r): float(v) for r, v in
+                              zip(ds["region"].values, ds["region_share"].values)}
+        return out
+    dims = (*cells, "sample")
+    p = percentiles(ds, "grade_G", (5, 50, 95), dim=dims)
+    share = share_below(ds, a["grade"], dim=dims)
+    g_ok = ds["grade_G"].where(ds["status"] == 0)
+    pooled = []
+    for i, t in enumerate(ds["checkpoint"].values):
+        col = g_ok.isel(checkpoint=i).values.ravel()
+        pooled.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
+                       **{f"p{q}_grade_G_mm_s": float(p.sel(percentile=q).isel(checkpoint=i))
+                          for q in (5, 50, 95)},
+                       "mode_grade_G_mm_s": float(mode(col[np.isfinite(col)])[0])
+                       if np.isfinite(col).any() else math.nan,
+                       "share_below_grade": float(share.isel(checkpoint=i))})
+    out["checkpoints"] = pooled
+    out["pooled_over_cells"] = True
+    axes = {a["dim"]: a for a in grid_axes(ds)}
+    out["grid"] = list(axes.values())
+    rows = []
+    for idx in np.ndindex(*(ds.sizes[d] for d in cells)):
+        sel = dict(zip(cells, idx))
+        row = {"coords": {axes[d]["key"]: axes[d]["values"][k] for d, k in sel.items()},
+               "checkpoints": _checkpoint_rows(ds, sel)}
+        if "region_share" in ds:
+            row["regions"] = {str(r): float(v) for r, v in
+                              zip(ds["region"].values, ds["region_share"].isel(sel).values)}
+        rows.append(row)
+    out["cells"] = rows
+    return out
 
 
 def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None, store_dir=None,

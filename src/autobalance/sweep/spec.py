@@ -135,7 +135,27 @@ class SweepSpec:
         return tuple(len(a.values) for a in self.grid)
 
 
-def _axis(path: str, spec: Any) -> GridAxis:
+def grid_axis(path: str, spec: Any) -> GridAxis:
+    """One grid axis of a sweep description: ``grid.<path> = [values]`` or ``{start, stop,
+    num}`` (values with units as strings, bare numbers SI), validated and converted to SI.
+
+    Parameters
+    ----------
+    path : str
+        Config path, e.g. ``"rotor.unbalance"``.
+    spec : list or dict
+        The values, or ``{"start", "stop", "num"}``.
+
+    Returns
+    -------
+    GridAxis
+        Its ``si`` values are SI.
+
+    Raises
+    ------
+    SweepError
+        One line naming ``grid.<path>`` and what is allowed.
+    """
     kind = field_kind(path)
     if isinstance(spec, dict):
         unknown = set(spec) - {"start", "stop", "num"}
@@ -221,7 +241,7 @@ def spec_from_dict(d: dict, label: str = "<dict>", *, base: Config | None = None
     grid_d = d.get("grid", {})
     if not isinstance(grid_d, dict):
         raise SweepError(f"grid = {grid_d!r}: expected a table of path = values")
-    grid = tuple(_axis(p, v) for p, v in grid_d.items())
+    grid = tuple(grid_axis(p, v) for p, v in grid_d.items())
     mc = d.get("monte_carlo", {"kind": "none"})
     if not isinstance(mc, dict):
         raise SweepError(f"monte_carlo = {mc!r}: expected a table")
@@ -342,4 +362,4 @@ def as_spec(spec: SweepSpec | dict | str | Path, base: Config | System | None = 
 
 
 __all__ = ["GridAxis", "MC_KINDS", "SweepError", "SweepSpec", "as_spec", "field_kind",
-           "load_spec", "spec_from_dict"]
+           "grid_axis", "load_spec", "spec_from_dict"]
