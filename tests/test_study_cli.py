@@ -238,6 +238,8 @@ def test_tolerances_cli_and_its_simulation_check():
     (("speed-map", CENTRIFUGE, "--damping", "-1"), "--damping"),
     (("tolerances", CENTRIFUGE, "--split", "rolling=x"), "--split"),
     (("tolerances", CENTRIFUGE, "--speed", "-3 rpm"), "--speed"),
+    (("tolerances", CENTRIFUGE, "--method", "paper"), "--method"),
+    (("tolerances", CENTRIFUGE, "--residual-fraction", "1.5"), "--residual-fraction"),
     (("design", CENTRIFUGE, "--confidence", "1.5"), "--confidence"),
     (("design", CENTRIFUGE, "--unbalance", "5"), "--unbalance"),
     (("design", CENTRIFUGE, "--unbalance", "2 g*m:1 g*m"), "--unbalance"),

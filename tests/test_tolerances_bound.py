@@ -314,6 +314,34 @@ def test_analyze_tolerance_text_and_json():
     assert out["target_grade_G_mm_s"] == 16.0 and "design" in out
 
 
+def test_study_with_000s_method_is_000_eq60_63_66_and_its_true_bound_beside_it():
+    """``method="000"`` (the path 000's reproduction takes): eq 60 rho_max = p_rho q Me/M,
+    eq 63 f/r = 2 p_r q e/R, eq 65 F = (1/2) p_f q Me^2 sin(2pi/3) w^2/(2 Me cos gamma) with
+    000's M = 37 kg, R = 0.28 m, gamma = 61 deg; beside it the true bound of the washer built
+    with those tolerances (the estimate is not a guarantee)."""
+    from autobalance.studies.start_positions import load
+
+    Me, q, w, gam = 0.025, 0.1, 1000 * RPM, math.radians(61.0)
+    r = compute_tolerances(load("washer_000", [f"rotor.unbalance={Me!r}"]), residual_fraction=q,
+                           method="000")
+    e = Me / 37.0
+    assert r["method"] == "000" and r["speed_rad_s"] == pytest.approx(w, rel=1e-12)
+    assert r["target_unbalance_kg_m"] == pytest.approx(q * Me, rel=1e-12)
+    assert r["max_eccentricity_m"] == pytest.approx(0.5 * q * e, rel=1e-12)
+    assert r["max_rolling_resistance"] == pytest.approx(2 * 0.35 * q * e / 0.28, rel=1e-12)
+    F = 0.5 * 0.1 * q * Me * Me * math.sin(2 * math.pi / 3) * w * w / (2 * Me * math.cos(gam))
+    assert r["max_suspension_friction_N"] == pytest.approx(F, rel=1e-12)
+    built = machine_with_tolerances(load("washer_000", [f"rotor.unbalance={Me!r}"]).system, r)
+    again = worst_case_prediction(built, w)["worst_residual_kg_m"]
+    assert r["design_worst_residual_kg_m"] == pytest.approx(again, rel=1e-9)
+    assert r["design_meets_target"] == (again <= q * Me)
+    # a grade target is the same as its residual fraction
+    G = r["target_grade_G_mm_s"]
+    by_grade = compute_tolerances(load("washer_000", [f"rotor.unbalance={Me!r}"]), grade=G,
+                                  method="000")
+    assert by_grade["max_eccentricity_m"] == pytest.approx(r["max_eccentricity_m"], rel=1e-9)
+
+
 def test_infeasible_targets_are_refused_clearly():
     s = load_config(CEN).system
     below = tolerances_for_grade(s, 0.5 * s.natural_frequencies[0], 16.0)
@@ -336,6 +364,9 @@ def test_infeasible_targets_are_refused_clearly():
     (lambda s: machine_with_tolerances(s, {}), "tolerances.max_eccentricity_m"),
     (lambda s: check_tolerances_by_simulation(TOP, {}, n=0), "n"),
     (lambda s: compute_tolerances(TOP, speed=-5.0), "speed"),
+    (lambda s: compute_tolerances(TOP, method="paper"), "method"),
+    (lambda s: compute_tolerances(TOP, residual_fraction=0.0), "residual_fraction"),
+    (lambda s: compute_tolerances(TOP, method="000", grade=1e4), "grade"),
 ])
 def test_bad_input_one_line_error(fn, field):
     with pytest.raises(ParameterError) as ei:

@@ -710,6 +710,13 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                check: Annotated[int, typer.Option(
                    "--check", help="Also simulate this many random starts of the machine built "
                                    "with the designed tolerances (0: none).")] = 0,
+               residual_fraction: Annotated[Optional[float], typer.Option(
+                   "--residual-fraction", metavar="Q",
+                   help="Target as 000 states it: a residual of Q x the machine's unbalance "
+                        "(000: 0.1), instead of --grade.")] = None,
+               method: Annotated[str, typer.Option(
+                   "--method", help="bound: the true worst case of this balancer; 000: 000's "
+                                    "one-ball estimate (eq 56-66 as published).")] = "bound",
                json_: JsonOpt = False) -> None:
     """Tolerances for a target grade: the largest ring eccentricity, rolling resistance and
     suspension friction whose worst-case residual stays within its share of the grade (000 eq
@@ -726,6 +733,10 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         "cause=share,..." over eccentricity, rolling, friction, other, summing to 1.
     check : int
         Random starts simulated with the designed tolerances (>= 0).
+    residual_fraction : float
+        Target residual / unbalance [-] in (0, 1].
+    method : str
+        "bound" or "000".
     """
     from ..config import parse_quantity
     from ..studies.tolerances import check_tolerances_by_simulation, compute_tolerances
@@ -747,7 +758,15 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                                       "'eccentricity=0.5,rolling=0.35,friction=0.1,other=0.05'") from None
         if check < 0:
             raise ConfigError(f"--check = {check}: must be an integer >= 0")
-        res = {"study": "tolerances", **compute_tolerances(cfg, grade=G, speed=w, split=sp)}
+        if method not in ("bound", "000"):
+            raise ConfigError(f"--method = {method!r}: must be bound (the true worst case) or "
+                              "000 (000's one-ball estimate)")
+        q = residual_fraction
+        if q is not None and not (math.isfinite(q) and 0 < q <= 1):
+            raise ConfigError(f"--residual-fraction = {q:g}: must be within (0, 1], e.g. 0.1")
+        res = {"study": "tolerances", **compute_tolerances(cfg, grade=G, speed=w, split=sp,
+                                                           residual_fraction=q, method=method)}
+        G = res["target_grade_G_mm_s"]
         if check and res.get("feasible"):
             sim = check_tolerances_by_simulation(cfg, res, n=check)
             res["simulation_check"] = sim
@@ -755,14 +774,23 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         print_json(res)
         return
     typer.echo(f"{cfg.name} at {du.fmt(res['speed_rad_s'], 'speed')}: target {grade_text(G)} = "
-               f"{du.fmt(res['target_unbalance_kg_m'], 'unbalance')} residual")
+               f"{du.fmt(res['target_unbalance_kg_m'], 'unbalance')} residual"
+               + (f" ({q:g} of the unbalance)" if q is not None else "")
+               + ("; method 000 (one-ball estimate, not a bound)" if method == "000" else ""))
     if not res.get("feasible"):
         typer.echo(f"  not feasible: {res.get('reason')}")
     else:
-        typer.echo(f"  allowed (all three at once): ring eccentricity "
+        typer.echo(f"  allowed ({'all three at once' if method == 'bound' else 'each for its share'}"
+                   "): ring eccentricity "
                    f"{du.fmt(res['max_eccentricity_m'], 'length')}, rolling resistance f/r "
                    f"{res['max_rolling_resistance']:.3g}, suspension friction "
-                   f"{res['max_suspension_friction_N']:.3g} N (joint scale {res['joint_scale']:.3g})")
+                   f"{res['max_suspension_friction_N']:.3g} N" + (
+                       f" (joint scale {res['joint_scale']:.3g})" if res["joint_scale"] is not None
+                       else ""))
+        if method == "000":
+            typer.echo(f"  the true worst case with all three: "
+                       f"{du.fmt(res['design_worst_residual_kg_m'], 'unbalance')} "
+                       f"({'within' if res['design_meets_target'] else 'above'} the target)")
     typer.echo(f"  this machine's own tolerances: worst case "
                f"{du.fmt(res['worst_residual_kg_m'], 'unbalance')} = G{res['worst_grade_G_mm_s']:.3g} "
                f"({'meets' if res['meets_target'] else 'misses'} the target); expected "

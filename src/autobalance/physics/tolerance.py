@@ -35,7 +35,7 @@ from .worst_case import ASSUMPTIONS, residual_bound
 from .vibratory import gain_phase
 
 __all__ = ["DEFAULT_SPLIT", "TOLERANCE_CAUSES", "design_tolerances", "predict_residual",
-           "tolerances_for_grade", "worst_case_prediction"]
+           "tolerances_000", "tolerances_for_grade", "worst_case_prediction"]
 
 #: The causes a tolerance is designed for, with the keyword of :func:`residual_bound` each sets.
 TOLERANCE_CAUSES = {"eccentricity": "eccentricity", "rolling": "rolling_resistance",
@@ -341,6 +341,58 @@ def tolerances_for_grade(system, speed, grade: float = 16.0, *, nominal_speed: f
             "bound_at_max_kg_m": at_max,
             "design_worst_residual_kg_m": both["worst_residual_kg_m"],
             "design_meets_target": bool(both["separated"] and both["worst_residual_kg_m"] <= u_g)}
+
+
+def tolerances_000(system, speed, residual_fraction: float, *, nominal_speed: float | None = None,
+                   split: dict | None = None) -> dict:
+    """000's own tolerance design (:func:`design_tolerances`, eq 56-66 with one ball of
+    m R = Me, e = Me/M and w >> w_x, w_y) for a machine, in the keys of
+    :func:`tolerances_for_grade`, with the true bound of the machine built with all three
+    tolerances (:func:`~.worst_case.residual_bound`) beside it: how far the paper's estimate
+    is from a guarantee for this balancer.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine: Me = rotor.unbalance [kg*m], M = rotor.mass [kg] (000: the drum without
+        balls, 37 kg), R = balancer.race_radius [m], gamma = suspension.dry_friction_angle [rad].
+    speed : float
+        w [rad/s], > 0.
+    residual_fraction : float
+        q = required residual / Me [-] (000: 0.1), in (0, 1].
+    nominal_speed : float, optional
+        Omega of the target's grade [rad/s] (default ``speed``).
+    split : dict of str to float, optional
+        Weights p_j [-] per cause (000 eq 56); default :data:`DEFAULT_SPLIT`.
+
+    Returns
+    -------
+    dict
+        The keys of :func:`tolerances_for_grade` ("feasible" is always True: the estimate
+        exists for any q) and "paper_000" (the whole :func:`design_tolerances` result).
+    """
+    w = _positive("speed", speed)
+    Om = w if nominal_speed is None else _positive("nominal_speed", nominal_speed)
+    U = system.rotor.unbalance
+    d = design_tolerances(U, system.rotor.mass, system.balancer.race_radius, w,
+                          residual_fraction=residual_fraction, split=split,
+                          friction_angle=system.suspension.dry_friction_angle)
+    tol = {"eccentricity": d["rho_max_m"], "rolling": d["f_r_max"],
+           "friction": d["friction_force_max_n"]}
+    both = residual_bound(system, w, rolling_resistance=tol["rolling"],
+                          eccentricity=tol["eccentricity"], friction_force=tol["friction"],
+                          eccentricity_angle=None)
+    u_t = residual_fraction * U
+    return {"speed_rad_s": w, "nominal_speed_rad_s": Om,
+            "target_grade_G_mm_s": float(grade_value(u_t, system.total_mass, Om)),
+            "target_unbalance_kg_m": u_t, "split": _split(DEFAULT_SPLIT if split is None else split),
+            "budget_kg_m": d["budgets_kg_m"], "feasible": True, "reason": None,
+            "max_eccentricity_m": tol["eccentricity"], "max_rolling_resistance": tol["rolling"],
+            "max_suspension_friction_N": tol["friction"], "joint_scale": None,
+            "bound_at_max_kg_m": None,
+            "design_worst_residual_kg_m": both["worst_residual_kg_m"],
+            "design_meets_target": bool(both["separated"] and both["worst_residual_kg_m"] <= u_t),
+            "paper_000": d}
 
 
 def worst_case_prediction(system, speed, *, nominal_speed: float | None = None,

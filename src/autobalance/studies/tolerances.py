@@ -18,12 +18,18 @@ import numpy as np
 from ..models import InitialState, ParameterError
 from ..physics.iso1940 import grade_class, grade_value
 from ..physics.worst_case import attained_residual, residual_bound
-from ..physics.tolerance import tolerances_for_grade, worst_case_prediction
+from ..physics.iso1940 import unbalance_value
+from ..physics.tolerance import tolerances_000, tolerances_for_grade, worst_case_prediction
 from .start_positions import load
 from .statistics import plateau_speed
 
 __all__ = ["check_tolerances_by_simulation", "collinear_residuals", "compute_tolerances",
            "machine_with_tolerances"]
+
+#: The tolerance designs :func:`compute_tolerances` offers: the true bound for any balancer,
+#: or 000's one-ball estimate (the paper's method, kept for its reproduction).
+METHODS = {"bound": "000 eq 56-66 generalised: the true worst-case bound of this balancer",
+           "000": "000 eq 56-66 as published: one ball with m R = Me, e = Me/M, w >> w_n"}
 
 #: Keys of a tolerance dict (as :func:`compute_tolerances` returns them).
 TOLERANCE_KEYS = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")
@@ -41,7 +47,8 @@ def _settle_speed(cfg, speed):
 
 
 def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
-                       split: dict | None = None) -> dict:
+                       split: dict | None = None, residual_fraction: float | None = None,
+                       method: str = "bound") -> dict:
     """Allowed race eccentricity, rolling resistance and suspension friction of a machine for a
     target grade, and the true worst case of its own tolerances (000 eq 56-66 generalised).
 
@@ -62,6 +69,14 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
     split : dict of str to float or None
         Shares of the target residual per cause [-] (000 eq 56; default 000's 0.5
         eccentricity, 0.35 rolling, 0.1 friction, 0.05 other).
+    residual_fraction : float or None
+        Target as 000 states it: residual = q x the machine's unbalance [-], in (0, 1]
+        (000: q = 0.1), instead of ``grade``.
+    method : str
+        "bound" (default): each tolerance from the true bound of this balancer
+        (:func:`~autobalance.physics.tolerance.tolerances_for_grade`); "000": 000's
+        one-ball estimate (:func:`~autobalance.physics.tolerance.tolerances_000`, its
+        "paper_000" result included), with the true bound of the machine built with it.
 
     Returns
     -------
@@ -79,13 +94,29 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
     s = cfg.system
     if s.balancer.n_balls < 1:
         raise ParameterError("balancer.n_balls", 0, "needs at least one ball for a tolerance study")
+    if method not in METHODS:
+        raise ParameterError("method", method, "must be one of: " + "; ".join(
+            f"{k!r} ({v})" for k, v in METHODS.items()))
     w, basis = _settle_speed(cfg, speed)
     Om = cfg.spin.nominal_speed
-    d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split)
+    U, mt = s.rotor.unbalance, s.total_mass
+    if residual_fraction is not None:
+        q = float(residual_fraction)
+        if not (math.isfinite(q) and 0 < q <= 1) or U <= 0:
+            raise ParameterError("residual_fraction", residual_fraction,
+                                 "must be within (0, 1] of a machine with an unbalance > 0")
+        grade = float(grade_value(q * U, mt, Om))
+    if method == "000":
+        q = (float(residual_fraction) if residual_fraction is not None
+             else float(unbalance_value(grade, mt, Om)) / U if U > 0 else math.inf)
+        if not q <= 1:
+            raise ParameterError("grade", grade, f"the 000 method needs a target residual at "
+                                 f"most the unbalance (G{float(grade_value(U, mt, Om)):.4g} here)")
+        d = tolerances_000(s, w, q, nominal_speed=Om, split=split)
+    else:
+        d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split)
     p = worst_case_prediction(s, w, nominal_speed=Om)
     att = attained_residual(s, w, eccentricity_angle=None, n_starts=8)
-    U = s.rotor.unbalance
-    mt = s.total_mass
     u_g = d["target_unbalance_kg_m"]
     warnings = []
     if not d["feasible"]:
@@ -98,7 +129,8 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
         warnings.append("in the worst case the balls at rest leave more than the rotor's own "
                         "unbalance (e.g. clustered on the heavy side)")
     out = {
-        "name": cfg.name, "speed_rad_s": w, "speed_basis": basis, "nominal_speed_rad_s": Om,
+        "name": cfg.name, "method": method, "speed_rad_s": w, "speed_basis": basis,
+        "nominal_speed_rad_s": Om,
         "unbalance_kg_m": U, "total_mass_kg": mt, "capacity_kg_m": p["capacity_kg_m"],
         "target_grade_G_mm_s": d["target_grade_G_mm_s"],
         "target_grade_class_G_mm_s": float(grade_class(d["target_grade_G_mm_s"])),
@@ -124,6 +156,9 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
         "separated": p["separated"], "balancing": p["balancing"],
         "assumptions": p["assumptions"], "warnings": warnings,
     }
+    if "paper_000" in d:
+        out["paper_000"] = d["paper_000"]
+        out["design_meets_target"] = d["design_meets_target"]
     out["collinear_residuals_kg_m"] = collinear_residuals(s)
     if getattr(cfg, "profile_kind", "") == "tsr":
         wp = plateau_speed(cfg.spin)

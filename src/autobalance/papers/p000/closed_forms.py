@@ -273,11 +273,17 @@ def run_tolerance(ctx) -> Outcome:
         Variant (the quick and full variants compute the same).
     """
     from ...physics.error_bounds import friction_force_for_deviation
-    from ...physics.tolerance import design_tolerances
+    from ...studies.start_positions import load
+    from ...studies.tolerances import compute_tolerances
 
     rows = rows_of("000-tolerance")
     gam = math.radians(61.0)
-    des = {Me: design_tolerances(Me, 37.0, 0.28, W1000, friction_angle=gam) for Me in (0.025, 0.05)}
+    # the design study, with 000's own method and target (q = 0.1 of Me): the washer_000
+    # preset (M = 37 kg, R = 0.28 m, gamma = 61 deg) at 1000 rpm
+    study = {Me: compute_tolerances(load("washer_000", [f"rotor.unbalance={Me!r}"]),
+                                    residual_fraction=0.1, speed=W1000, method="000")
+             for Me in (0.025, 0.05)}
+    des = {Me: r["paper_000"] for Me, r in study.items()}
     d = des[0.05]
     exact = "exact (1e-12)"
     frac = {"eq58_fraction_of_Me": (d["budgets_kg_m"]["eccentricity"] / 0.05, "eccentricity share p_rho q"),
@@ -308,5 +314,9 @@ def run_tolerance(ctx) -> Outcome:
              f"{p66 / F66 * 0.005:.3f} Me w^2 sin(2pi/3)/cos(gamma)")
     v = {f"{k}_{Me:g}": ((), des[Me][k], u) for Me in des for k, u in
          (("rho_max_m", "m"), ("f_r_max", "1"), ("friction_force_max_n", "N"), ("friction_force_eq66_printed_n", "N"))}
+    # not a published number: the true worst case of the washer built with 000's tolerances
+    v.update({f"true_bound_at_000_tolerances_kg_m_{Me:g}": ((), study[Me]["design_worst_residual_kg_m"], "kg*m")
+              for Me in study})
     return Outcome(rows, {}, dataset(v, speed_rad_s=W1000, mass_kg=37.0, race_radius_m=0.28),
-                   "design_tolerances (000 eq 56-66) for Me = 0.025 and 0.05 kg m at 1000 rpm.")
+                   "study tolerances, method 000 (design_tolerances, 000 eq 56-66) for Me = "
+                   "0.025 and 0.05 kg m at 1000 rpm.")
