@@ -519,6 +519,10 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
            n_unbalance: Annotated[Optional[int], typer.Option(
                "--n-unbalance", help="Unbalances across the range (default 4; quick 3).")] = None,
            seed: Annotated[int, typer.Option("--seed", help="Seed of the start positions.")] = 0,
+           refine_plateau: Annotated[bool, typer.Option(
+               "--refine-plateau/--no-refine-plateau",
+               help="Run the plateau study on the best TSR candidate and add its recommended "
+                    "plateau as one more candidate.")] = True,
            quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
            plot: PlotOpt = None, scheduler: SchedulerOpt = None, workers: WorkersOpt = None,
            executor: ExecutorOpt = None, json_: JsonOpt = False) -> None:
@@ -544,6 +548,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         Random starts per unbalance and design; unbalances across the range (>= 1).
     seed : int
         Seed of the start positions.
+    refine_plateau : bool
+        The plateau study on the best TSR candidate.
     """
     from ..config import parse_quantity
     from ..studies.design import DesignSpace, compute_design, design_summary
@@ -594,7 +600,9 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         ds = compute_design(cfg, grade=G, confidence=confidence, unbalance_range=rng,
                             n_unbalance=n_unbalance or (3 if quick else 4),
                             starts=starts or (10 if quick else 40), space=space, seed=seed,
-                            store_dir=_store(store, cfg, "design", rng, space, starts, seed),
+                            quick=quick, refine_plateau=refine_plateau,
+                            store_dir=_store(store, cfg, "design", rng, space, starts, seed,
+                                             quick),
                             executor=executor or "local", workers=workers, scheduler=scheduler,
                             progress=not json_)
 
@@ -613,7 +621,14 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     typer.echo(f"{cfg.name}: {res['n_designs']} designs x {len(u)} unbalances "
                f"({du.fmt(u[0], 'unbalance')} - {du.fmt(u[-1], 'unbalance')}, G{res['G_ini_mm_s'][0]:.3g}-"
                f"G{res['G_ini_mm_s'][-1]:.3g}) x {res['starts']} starts = {res['simulations']} "
-               f"simulations; target {grade_text(G)} for {100 * confidence:g} % of starts")
+               f"simulations (+ {res['simulations_plateau_study']} in the plateau study); "
+               f"target {grade_text(G)} for {100 * confidence:g} % of starts")
+    if "plateau_study" in res:
+        p = res["plateau_study"]
+        typer.echo(f"  plateau study on {p['design']}: recommended {p['recommended_plateau_ratio']:.3g} x "
+                   "the natural frequency (mean 95th percentile " + ", ".join(
+                       f"{r:.3g}: G{v:.3g}" for r, v in zip(p["ratios"], p["mean_p95_grade_G_mm_s"]))
+                   + ")" + ("; at the edge of the ratios studied" if p["at_grid_edge"] else ""))
     typer.echo(f"  {res['n_meeting']} designs meet the target" + (
         f"; cheapest: {res['best']['name']} (margin {res['best']['margin_grade_G_mm_s']:.2f} mm/s)"
         if res["best"] else ""))
@@ -622,6 +637,16 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    f"{1e3 * r['total_ball_mass_kg']:.3g} g, worst {100 * confidence:g} % grade "
                    f"G{r['worst_quantile_grade_G_mm_s']:.3g}, margin "
                    f"{r['margin_grade_G_mm_s']:+.2f} mm/s" + ("  (Pareto)" if r["pareto"] else ""))
+    t = res.get("tolerances")
+    if t:
+        if t["feasible"]:
+            typer.echo(f"  to build {t['design']} for a worst case within {grade_text(G)}: ring "
+                       f"eccentricity <= {du.fmt(t['max_eccentricity_m'], 'length')}, f/r <= "
+                       f"{t['max_rolling_resistance']:.3g}, damper friction <= "
+                       f"{t['max_suspension_friction_N']:.3g} N (study tolerances); with the "
+                       f"friction simulated here the worst case is G{t['own_worst_grade_G_mm_s']:.3g}")
+        else:
+            typer.echo(f"  tolerances of {t['design']}: not feasible ({t['reason']})")
 
 
 @app.command("speed-map")

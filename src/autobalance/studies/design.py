@@ -63,7 +63,8 @@ class DesignSpace:
         return cls(n_balls=(2, 3), capacity_ratios=(1.2, 1.8), profiles=("std", "tsr"))
 
 
-def profile_variants(cfg) -> dict:
+def profile_variants(cfg, plateau_ratio: float = PLATEAU_RATIO,
+                     natural_frequency: float | None = None) -> dict:
     """The speed profiles a design may use, as ``--set`` overrides of the machine's profile
     (004 sec. 4.4: the standard run-up, a 3x slower run-up; 004 sec. 3.2: a temporary speed
     reduction to :data:`PLATEAU_RATIO` x the first natural frequency for 10/20/10 s).
@@ -74,6 +75,11 @@ def profile_variants(cfg) -> dict:
     ----------
     cfg : Config
         The machine (its ``spin``: nominal speed [rad/s], run-up time and read-out [s]).
+    plateau_ratio : float
+        The TSR plateau over the first natural frequency [-].
+    natural_frequency : float or None
+        That frequency [rad/s]; None = the machine's first (with its own balls; a candidate
+        passes its own, with the candidate's balls).
 
     Returns
     -------
@@ -89,7 +95,8 @@ def profile_variants(cfg) -> dict:
     slow_ru = 3.0 * t_ru
     slow_dur = max(std_dur, slow_ru + (std_dur - t_read))
     tsr_dur = max(dur if spin.name == "tsr" else 0.0, t_read + 40.0 + max(10.0, std_dur - t_read))
-    wp = PLATEAU_RATIO * cfg.system.natural_frequencies[0]
+    fn = cfg.system.natural_frequencies[0] if natural_frequency is None else natural_frequency
+    wp = plateau_ratio * fn
     out = {
         "std": ["profile.kind=std", f"profile.nominal={wn!r}", f"profile.runup_time={t_ru!r}",
                 f"profile.duration={std_dur!r}", f"profile.runup_fraction={t_read / std_dur!r}"],
@@ -123,9 +130,11 @@ def candidate_designs(cfg, space: DesignSpace, U_max: float, variants: dict | No
     Returns
     -------
     list of dict
-        name, n_balls, ball_mass [kg], race_radius [m], capacity [kg*m], profile, duration
-        [s], sets (the "path=value" overrides that make the candidate from the machine) and
-        config (the candidate's Config).
+        name, n_balls, ball_mass [kg], race_radius [m], capacity [kg*m], profile,
+        plateau_ratio [-] (over the first natural frequency with the candidate's balls; NaN
+        unless tsr), duration [s], ball_sets and sets (the "path=value"
+        overrides that make the candidate's balls, and the whole candidate, from the machine)
+        and config (the candidate's Config).
     """
     b = cfg.system.balancer
     variants = profile_variants(cfg) if variants is None else variants
@@ -150,21 +159,37 @@ def candidate_designs(cfg, space: DesignSpace, U_max: float, variants: dict | No
                 for prof in space.profiles:
                     if prof not in variants:
                         continue
-                    sets = ball + variants[prof]
-                    cand = load(cfg, sets)
-                    out.append({"name": f"{N}x{1e3 * m:.3g}g-R{1e3 * R:.3g}mm-{prof}",
-                                "n_balls": N, "ball_mass": m, "race_radius": R,
-                                "capacity": N * m * R, "capacity_ratio": ratio,
-                                "profile": prof, "duration": float(cand.spin.duration),
-                                "sets": sets, "config": cand})
+                    c = _candidate(cfg, N, m, R, ratio, prof, ball, variants,
+                                   PLATEAU_RATIO if prof == "tsr" else math.nan)
+                    if c is not None:
+                        out.append(c)
     return out
+
+
+def _candidate(cfg, N, m, R, ratio, prof, ball_sets, variants, plateau_ratio) -> dict | None:
+    """One candidate design as :func:`candidate_designs` lists it; a TSR plateau is
+    ``plateau_ratio`` x the first natural frequency of the machine with the candidate's balls
+    (None when that plateau is not below the nominal speed)."""
+    if prof == "tsr":
+        fn = load(cfg, ball_sets).system.natural_frequencies[0]
+        variants = profile_variants(cfg, plateau_ratio, natural_frequency=fn)
+        if "tsr" not in variants:
+            return None
+    sets = list(ball_sets) + list(variants[prof])
+    cand = load(cfg, sets)
+    tag = prof if prof != "tsr" or plateau_ratio == PLATEAU_RATIO else f"tsr{plateau_ratio:.3g}"
+    return {"name": f"{N}x{1e3 * m:.3g}g-R{1e3 * R:.3g}mm-{tag}", "n_balls": N, "ball_mass": m,
+            "race_radius": R, "capacity": N * m * R, "capacity_ratio": ratio, "profile": prof,
+            "plateau_ratio": plateau_ratio, "duration": float(cand.spin.duration),
+            "ball_sets": list(ball_sets), "sets": sets, "config": cand}
 
 
 def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
                    unbalance_range: tuple | None = None, n_unbalance: int = 4, starts: int = 20,
                    space: DesignSpace | None = None, quick: bool = False, seed: int = 0,
                    store_dir=None, executor="local", workers=None, scheduler=None,
-                   progress: bool = False):
+                   progress: bool = False, refine_plateau: bool = True,
+                   tolerances: bool = True):
     """Search ball count, ball mass, race radius and speed profile for designs that meet a target
     grade over a range of initial unbalances (module docstring).
 
@@ -196,13 +221,21 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
         :func:`autobalance.studies.start_positions.run_start_grid`.
     progress : bool
         Show each sweep's progress bar on stderr.
+    refine_plateau : bool
+        Run the plateau study on the best TSR candidate (ratios :data:`REFINE_RATIOS`, the
+        design's unbalances) and add its recommended plateau as one more candidate.
+    tolerances : bool
+        Add the allowed ring eccentricity, rolling resistance and suspension friction of the
+        recommended design for the target grade (study tolerances, true bound).
 
     Returns
     -------
     xarray.Dataset
         grade_G [mm/s] over (design, unbalance, sample) at the last read-out; per design and
-        unbalance the quantile [mm/s]; per design worst_quantile, margin [mm/s], meets, rank and
-        pareto; attrs with the search's counts (simulations run) and settings.
+        unbalance the quantile [mm/s]; per design worst_quantile, margin [mm/s], meets, rank,
+        pareto and plateau_ratio [-]; attrs with the search's counts (simulations run, those of
+        the plateau study), the plateau study's result (plateau_*) and the recommended design's
+        tolerances (tolerance_*), and the settings.
     """
     import xarray as xr
 
@@ -227,17 +260,20 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
         raise ParameterError("profiles", space.profiles, f"none applies to this machine's "
                              f"profile; available: {', '.join(variants)}")
     M, wn = cfg.system.total_mass, cfg.spin.nominal_speed
-    g = np.full((len(cands), Us.size, starts), np.nan)
-    for i, c in enumerate(cands):
-        # the candidate as a base of its own: its ball count changes the initial angles, which a
-        # random Monte Carlo may not take as overrides
-        raw = run_start_grid(c["config"], f"design-{c['name']}", (),
-                             {"rotor.unbalance": [float(u) for u in Us]}, 0, samples=starts,
-                             seed=seed, store=store_path(store_dir, f"design-{c['name']}"),
-                             executor=executor, workers=workers, scheduler=scheduler,
-                             progress=progress)
-        gi = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
-        g[i] = gi.transpose("rotor__unbalance", "sample").values
+    run = dict(seed=seed, store_dir=store_dir, executor=executor, workers=workers,
+               scheduler=scheduler, progress=progress)
+    g = [_evaluate(c, Us, starts, **run) for c in cands]
+    # the plateau study (004 sec. 4.6) on the best TSR candidate; its recommended plateau joins
+    # the search as one more candidate, judged like every other
+    refine = {}
+    if refine_plateau and any(c["profile"] == "tsr" for c in cands):
+        q0 = np.array([np.nanquantile(gi, confidence, axis=1).max() for gi in g])
+        k = min((i for i, c in enumerate(cands) if c["profile"] == "tsr"), key=lambda i: q0[i])
+        refine = _refine_plateau(cfg, cands[k], Us, starts, quick, **run)
+        if refine["candidate"] is not None:
+            cands.append(refine["candidate"])
+            g.append(_evaluate(refine["candidate"], Us, starts, **run))
+    g = np.array(g)
     # grades at the machine's nominal speed and total mass with the candidate's balls
     quant = np.nanquantile(g, confidence, axis=2)                          # (design, U)
     worst = quant.max(axis=1)
@@ -254,6 +290,10 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
                                and ((ball_mass[j] < ball_mass[k]) or (worst[j] < worst[k]))
                                for j in range(len(cands))) for k in range(len(cands))])
     G_u = grade_value(Us, M, wn)
+    # the tolerances to build the recommended design with (the first that meets the target,
+    # else the best ranked): study tolerances for the same grade (closed form)
+    pick = int(order[0])
+    tol = _design_tolerances(cands[pick]["config"], grade) if tolerances else {}
     ds = xr.Dataset(
         {"grade_G": (("design", "unbalance", "sample"), g, {"units": "mm/s",
                                                             "long_name": "grade at the last read-out"}),
@@ -268,6 +308,10 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
          "race_radius": ("design", [c["race_radius"] for c in cands], {"units": "m"}),
          "capacity": ("design", [c["capacity"] for c in cands], {"units": "kg*m"}),
          "profile": ("design", [c["profile"] for c in cands]),
+         "sets": ("design", ["; ".join(c["sets"]) for c in cands],
+                  {"long_name": "the --set overrides that make the design from the machine"}),
+         "plateau_ratio": ("design", [c["plateau_ratio"] for c in cands],
+                           {"units": "-", "long_name": "TSR plateau / first natural frequency"}),
          "duration": ("design", dur, {"units": "s"})},
         coords={"design": [c["name"] for c in cands],
                 "unbalance": ("unbalance", Us, {"units": "kg*m"}),
@@ -276,8 +320,76 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
                      "starts": int(starts), "seed": int(seed), "n_designs": len(cands),
                      "simulations": int(g.size), "failed": int(np.isnan(g).sum()),
                      "profiles": "; ".join(f"{k}: {' '.join(v)}" for k, v in variants.items()),
+                     "simulations_plateau_study": int(refine.get("simulations", 0)),
+                     **{f"plateau_{k}": v for k, v in refine.items()
+                        if k not in ("candidate", "simulations")},
+                     "tolerances_design": str(cands[pick]["name"]) if tol else "",
+                     **{f"tolerance_{k}": v for k, v in tol.items()},
                      "wall_s": time.perf_counter() - t0})
     return ds
+
+
+def _evaluate(c: dict, Us, starts: int, *, seed, store_dir, executor, workers, scheduler,
+              progress) -> np.ndarray:
+    """Final grades [mm/s] of one candidate, (unbalance, start): uniform random starts (the
+    same for every candidate: one seed) at each unbalance; failed runs NaN."""
+    # the candidate as a base of its own: its ball count changes the initial angles, which a
+    # random Monte Carlo may not take as overrides
+    raw = run_start_grid(c["config"], f"design-{c['name']}", (),
+                         {"rotor.unbalance": [float(u) for u in Us]}, 0, samples=starts,
+                         seed=seed, store=store_path(store_dir, f"design-{c['name']}"),
+                         executor=executor, workers=workers, scheduler=scheduler,
+                         progress=progress)
+    gi = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
+    return gi.transpose("rotor__unbalance", "sample").values
+
+
+#: Plateau ratios [-] the design's plateau study tries (full, quick).
+REFINE_RATIOS = (tuple(np.round(np.arange(0.98, 1.1601, 0.02), 3)), (1.0, 1.06, 1.12))
+
+
+def _refine_plateau(cfg, cand: dict, Us, starts: int, quick: bool, *, seed, store_dir,
+                    executor, workers, scheduler, progress) -> dict:
+    """The plateau study (:func:`.plateau.compute_plateau`, 004 sec. 4.6's criterion) for one
+    TSR candidate at the design's unbalances, with about ``starts`` grid starts per cell;
+    returns the recommended ratio, the study's mean 95th percentiles and, when it differs
+    from :data:`PLATEAU_RATIO`, the candidate with that plateau (else None)."""
+    from ..sweep.plan import identical_balls, n_start_grid
+    from .plateau import compute_plateau, plateau_summary
+    from .start_positions import starts_for_runs
+
+    b = cand["config"].system.balancer
+    n = starts_for_runs(b.n_balls, starts, identical_balls(b))
+    ratios = np.array(REFINE_RATIOS[1 if quick else 0])
+    G = np.atleast_1d(grade_value(Us, cand["config"].system.total_mass,
+                                  cand["config"].spin.nominal_speed))
+    ds = compute_plateau(cand["config"], ratios=ratios, G=G, n=n, g_range=float(G.max()),
+                         store_dir=store_path(store_dir, f"design-plateau-{cand['name']}"),
+                         executor=executor, workers=workers, scheduler=scheduler,
+                         prefix="design", progress=progress)
+    ps = plateau_summary(ds)
+    r = ps["recommended_plateau_ratio"]
+    new = None
+    if not math.isclose(r, PLATEAU_RATIO, rel_tol=1e-9):
+        new = _candidate(cfg, cand["n_balls"], cand["ball_mass"], cand["race_radius"],
+                         cand["capacity_ratio"], "tsr", cand["ball_sets"], {}, r)
+    return {"candidate": new, "studied": cand["name"], "ratios": ratios,
+            "mean_p95_grade_G_mm_s": np.asarray(ps["mean_p95_grade_G_mm_s"], float),
+            "recommended_ratio": r, "at_grid_edge": int(ps["at_grid_edge"]),
+            "simulations": int(ratios.size * G.size * n_start_grid(n, b.n_balls, identical_balls(b)))}
+
+
+def _design_tolerances(config, grade: float) -> dict:
+    """The tolerances for the target grade of a design (:func:`.tolerances.compute_tolerances`,
+    the true bound) as flat SI attrs; {} when the study refuses (e.g. capacity short)."""
+    from .tolerances import compute_tolerances
+
+    t = compute_tolerances(config, grade=grade)
+    keys = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")
+    out = {"feasible": int(bool(t["feasible"])), "reason": t["reason"] or "",
+           "own_worst_grade_G_mm_s": float(t["worst_grade_G_mm_s"])}
+    out.update({k: float(t[k]) if t[k] is not None else math.nan for k in keys})
+    return out
 
 
 def design_summary(ds, top: int = 5) -> dict:
@@ -294,10 +406,12 @@ def design_summary(ds, top: int = 5) -> dict:
     Returns
     -------
     dict
-        grade_G_mm_s, confidence, simulations, designs (name, n_balls, ball_mass_kg,
-        total_ball_mass_kg, race_radius_m, capacity_kg_m, profile, duration_s,
-        worst_quantile_grade_G_mm_s, margin_grade_G_mm_s, meets, pareto), pareto (names),
-        best (the first design that meets the target, or None).
+        grade_G_mm_s, confidence, simulations (and simulations_plateau_study), designs (name,
+        n_balls, ball_mass_kg, total_ball_mass_kg, race_radius_m, capacity_kg_m, profile,
+        plateau_ratio, duration_s, sets (the "path=value" overrides that make it from the
+        machine), worst_quantile_grade_G_mm_s, margin_grade_G_mm_s, meets, pareto), pareto (names), best (the first design that meets the target, or None),
+        plateau_study (the studied design, ratios, mean 95th percentiles, recommended ratio)
+        and tolerances (of the recommended design for the target grade), when computed.
     """
     order = np.argsort(ds["rank"].values)
     rows = []
@@ -307,16 +421,36 @@ def design_summary(ds, top: int = 5) -> dict:
                      "ball_mass_kg": float(d["ball_mass"]),
                      "total_ball_mass_kg": float(d["total_ball_mass"]),
                      "race_radius_m": float(d["race_radius"]), "capacity_kg_m": float(d["capacity"]),
-                     "profile": str(d["profile"].values), "duration_s": float(d["duration"]),
+                     "profile": str(d["profile"].values),
+                     "plateau_ratio": float(d["plateau_ratio"]), "duration_s": float(d["duration"]),
+                     "sets": str(d["sets"].values).split("; "),
                      "worst_quantile_grade_G_mm_s": float(d["worst_quantile"]),
                      "margin_grade_G_mm_s": float(d["margin"]), "meets": bool(d["meets"]),
                      "pareto": bool(d["pareto"]),
                      "quantile_grade_G_mm_s": d["quantile"].values})
     best = next((r for r in rows if r["meets"]), None)
-    return {"grade_G_mm_s": ds.attrs["grade"], "confidence": ds.attrs["confidence"],
-            "unbalance_kg_m": ds["unbalance"].values, "G_ini_mm_s": ds["G_ini"].values,
-            "starts": ds.attrs["starts"], "simulations": ds.attrs["simulations"],
-            "failed": ds.attrs["failed"], "n_designs": ds.attrs["n_designs"],
-            "n_meeting": int(ds["meets"].sum()), "best": best,
-            "pareto": [r["name"] for r in rows if r["pareto"]],
-            "designs": rows[:top], "all_designs": [r["name"] for r in rows]}
+    a = ds.attrs
+    out = {"grade_G_mm_s": a["grade"], "confidence": a["confidence"],
+           "unbalance_kg_m": ds["unbalance"].values, "G_ini_mm_s": ds["G_ini"].values,
+           "starts": a["starts"], "simulations": a["simulations"],
+           "simulations_plateau_study": a.get("simulations_plateau_study", 0),
+           "failed": a["failed"], "n_designs": ds.sizes["design"],
+           "n_meeting": int(ds["meets"].sum()), "best": best,
+           "pareto": [r["name"] for r in rows if r["pareto"]],
+           "designs": rows[:top], "all_designs": [r["name"] for r in rows]}
+    if "plateau_recommended_ratio" in a:
+        out["plateau_study"] = {
+            "design": a["plateau_studied"], "ratios": np.atleast_1d(a["plateau_ratios"]),
+            "mean_p95_grade_G_mm_s": np.atleast_1d(a["plateau_mean_p95_grade_G_mm_s"]),
+            "recommended_plateau_ratio": float(a["plateau_recommended_ratio"]),
+            "at_grid_edge": bool(a["plateau_at_grid_edge"])}
+    if a.get("tolerances_design"):
+        out["tolerances"] = {"design": a["tolerances_design"],
+                             "feasible": bool(a["tolerance_feasible"]),
+                             "reason": a["tolerance_reason"] or None,
+                             **{k: (None if not math.isfinite(a[f"tolerance_{k}"])
+                                    else float(a[f"tolerance_{k}"]))
+                                for k in ("max_eccentricity_m", "max_rolling_resistance",
+                                          "max_suspension_friction_N")},
+                             "own_worst_grade_G_mm_s": float(a["tolerance_own_worst_grade_G_mm_s"])}
+    return out
