@@ -629,7 +629,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    "the natural frequency (mean 95th percentile " + ", ".join(
                        f"{r:.3g}: G{v:.3g}" for r, v in zip(p["ratios"], p["mean_p95_grade_G_mm_s"]))
                    + ")" + ("; at the edge of the ratios studied" if p["at_grid_edge"] else ""))
-    typer.echo(f"  {res['n_meeting']} designs meet the target" + (
+    typer.echo(f"  {res['n_meeting']} design{' meets' if res['n_meeting'] == 1 else 's meet'} "
+               "the target" + (
         f"; cheapest: {res['best']['name']} (margin {res['best']['margin_grade_G_mm_s']:.2f} mm/s)"
         if res["best"] else ""))
     for r in res["designs"]:

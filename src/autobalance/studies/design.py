@@ -290,9 +290,9 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
                                and ((ball_mass[j] < ball_mass[k]) or (worst[j] < worst[k]))
                                for j in range(len(cands))) for k in range(len(cands))])
     G_u = grade_value(Us, M, wn)
-    # the tolerances to build the recommended design with (the first that meets the target,
-    # else the best ranked): study tolerances for the same grade (closed form)
-    pick = int(order[0])
+    # the tolerances to build the recommended design with (the cheapest that meets the target,
+    # else the one closest to it): study tolerances for the same grade (closed form)
+    pick = int(order[0]) if meets.any() else int(np.argmin(worst))
     tol = _design_tolerances(cands[pick]["config"], grade) if tolerances else {}
     ds = xr.Dataset(
         {"grade_G": (("design", "unbalance", "sample"), g, {"units": "mm/s",
