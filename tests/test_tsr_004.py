@@ -12,6 +12,8 @@ import shutil
 import numpy as np
 import pytest
 import xarray as xr
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from autobalance.cli import app
@@ -118,6 +120,41 @@ def test_regions_partition_and_table2():
     assert t.regions([10], [12], 20)["I.A"] == 1 and t.regions([12], [10], 20)["I.B"] == 1
     assert t.regions([25], [10], 20)["II"] == 1 and t.regions([25], [30], 20)["III"] == 1
     assert t.regions([10], [25], 20)["IV"] == 1
+
+
+def test_regions_with_a_tie_tolerance_count_unchanged_runs_as_unchanged():
+    """Strict Table 2 regions split a run that the speed reduction left unchanged by round-off
+    (G_TSR = G_STD + 1e-6 is I.A, - 1e-6 is I.B); with the tie tolerance both are I.B, and
+    grades at G_INI within it count as G_INI. A tie of 0 is the strict table."""
+    from autobalance.studies.statistics import TIE_MM_S
+
+    assert t.regions([13.5], [13.5 + 1e-6], 20)["I.A"] == 1
+    assert t.regions([13.5], [13.5 + 1e-6], 20, TIE_MM_S)["I.B"] == 1
+    assert t.regions([13.5], [13.5 - 1e-6], 20, TIE_MM_S)["I.B"] == 1
+    assert t.regions([13.5], [13.5 + 0.1], 20, TIE_MM_S)["I.A"] == 1            # a real change
+    assert t.regions([20.0 + 1e-6], [10.0], 20)["II"] == 1
+    assert t.regions([20.0 + 1e-6], [10.0], 20, TIE_MM_S)["I.B"] == 1           # at G_INI: success
+    rng = np.random.default_rng(2)
+    s = rng.uniform(0, 40, 2000)
+    u = np.where(rng.random(2000) < 0.5, s + rng.normal(0, 1e-3, 2000), rng.uniform(0, 40, 2000))
+    for tie in (0.0, 1e-4, TIE_MM_S, 0.5):
+        r = t.regions(s, u, 20.0, tie)
+        assert math.isclose(sum(r.values()), 1.0)                              # still a partition
+    assert t.regions(s, u, 20.0, 0.0) == t.regions(s, u, 20.0)
+    strict, tied = t.regions(s, u, 20.0), t.regions(s, u, 20.0, TIE_MM_S)
+    assert tied["I.A"] < strict["I.A"] and tied["I.B"] > strict["I.B"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.sampled_from([0.0, 5.0, 10.0, 20.0]), st.sampled_from([0.0, 5.0, 10.0, 20.0]),
+       st.floats(0, 40), st.sampled_from([0.0, 1e-6, 0.02, 1.0]),
+       st.sampled_from([0.0, 1e-7, -1e-7, 0.01, -0.01, 3.0]))
+def test_every_run_is_in_exactly_one_region_even_on_ties(s, u, g_ini, tie, eps):
+    """Ties (equal grades, or grades snapped together by the tie tolerance) leave no run out."""
+    r = t.regions([s + eps], [u], g_ini, tie)
+    assert sorted(r.values()) == [0.0, 0.0, 0.0, 0.0, 1.0]
+    r = t.regions([s], [s + eps], s, tie)
+    assert sorted(r.values()) == [0.0, 0.0, 0.0, 0.0, 1.0]
 
 
 def test_valid_ranges_interpolation():

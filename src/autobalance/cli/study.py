@@ -212,7 +212,9 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                        f"{100 * last['share_below_grade']:.1f} %")
     if res.get("regions"):
         typer.echo("  004 Table 2 regions (first vs last read-out): " + ", ".join(
-            f"{k} {100 * v:.1f} %" for k, v in res["regions"].items()))
+            f"{k} {100 * v:.1f} %" for k, v in res["regions"].items())
+            + f"; grades within {res['tie_mm_s']:g} mm/s taken as equal: " + ", ".join(
+            f"{k} {100 * v:.1f} %" for k, v in res["regions_tied"].items()))
 
 
 def _grid(specs) -> dict | None:

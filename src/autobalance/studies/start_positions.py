@@ -18,7 +18,7 @@ import numpy as np
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .statistics import mode, plateau_speed, profile_text, regions, start_position_stats
+from .statistics import TIE_MM_S, mode, plateau_speed, profile_text, regions, start_position_stats
 
 __all__ = ["case_sets", "checkpoint_labels", "compute_machine", "compute_monte_carlo",
            "compute_single", "compute_start_positions", "default_starts", "load", "run_start_grid",
@@ -444,7 +444,7 @@ def compute_start_positions(base, *, n: int | None = None, samples: int | None =
     stacked = g_ok.stack(_cell=cell_dims) if cell_dims else g_ok.expand_dims(_cell=[0])
     labels = checkpoint_labels(cfg.spin)
     modes = np.full((stacked.sizes["_cell"], len(labels)), np.nan)
-    regions_ = []
+    regions_, tied_ = [], []
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
     for k in range(stacked.sizes["_cell"]):
         gk = stacked.isel(_cell=k).transpose("sample", "checkpoint").values
@@ -459,6 +459,8 @@ def compute_start_positions(base, *, n: int | None = None, samples: int | None =
                 gi = float(_grade(u, cfg.system.total_mass, cfg.spin.nominal_speed))
             regions_.append(regions(gk[okr, 0], gk[okr, -1], gi) if okr.any()
                             else dict.fromkeys(("I.A", "I.B", "II", "III", "IV"), np.nan))
+            tied_.append(regions(gk[okr, 0], gk[okr, -1], gi, TIE_MM_S) if okr.any()
+                         else dict.fromkeys(("I.A", "I.B", "II", "III", "IV"), np.nan))
     mode_da = xr.DataArray(modes, dims=("_cell", "checkpoint"),
                            coords={"_cell": stacked["_cell"], "checkpoint": raw["checkpoint"]})
     ds["grade_mode"] = (mode_da.unstack("_cell") if cell_dims else mode_da.isel(_cell=0, drop=True)
@@ -470,6 +472,12 @@ def compute_start_positions(base, *, n: int | None = None, samples: int | None =
         ds["region_share"] = (reg.unstack("_cell") if cell_dims else reg.isel(_cell=0, drop=True)
                               ).assign_attrs(units="-", long_name="004 Table 2 regions, first "
                                              "vs last read-out")
+        tie = xr.DataArray([[r[m] for m in names] for r in tied_], dims=("_cell", "region"),
+                           coords={"_cell": stacked["_cell"], "region": names})
+        ds["region_share_tied"] = (tie.unstack("_cell") if cell_dims
+                                   else tie.isel(_cell=0, drop=True)).assign_attrs(
+            units="-", tie_mm_s=TIE_MM_S,
+            long_name=f"004 Table 2 regions, grades within {TIE_MM_S:g} mm/s taken as equal")
     ds = ds.assign_coords(checkpoint_label=("checkpoint", labels))
     for d in cell_dims:                   # the unstacked per-cell variables drop these attrs
         ds[d].attrs.update(raw[d].attrs)
@@ -529,6 +537,9 @@ def start_positions_summary(ds) -> dict:
         if "region_share" in ds:
             out["regions"] = {str(r): float(v) for r, v in
                               zip(ds["region"].values, ds["region_share"].values)}
+            out["regions_tied"] = {str(r): float(v) for r, v in
+                                   zip(ds["region"].values, ds["region_share_tied"].values)}
+            out["tie_mm_s"] = TIE_MM_S
         return out
     dims = (*cells, "sample")
     p = percentiles(ds, "grade_G", (5, 50, 95), dim=dims)
@@ -555,6 +566,8 @@ def start_positions_summary(ds) -> dict:
         if "region_share" in ds:
             row["regions"] = {str(r): float(v) for r, v in
                               zip(ds["region"].values, ds["region_share"].isel(sel).values)}
+            row["regions_tied"] = {str(r): float(v) for r, v in zip(
+                ds["region"].values, ds["region_share_tied"].isel(sel).values)}
         rows.append(row)
     out["cells"] = rows
     return out

@@ -11,11 +11,23 @@ __all__ = ["half_drop", "mode", "plateau_speed", "profile_text", "regions", "ris
            "start_position_stats", "valid_ranges"]
 
 
-def regions(g_std, g_tsr, g_ini):
+#: Tie tolerance of the region table [mm/s]: grades closer than this are taken as equal. It is
+#: the integration's own resolution: halving the step changes a 004 Monte-Carlo grade by at most
+#: 0.0155 mm/s (``make bench``, half-step check over 1275 runs).
+TIE_MM_S = 0.02
+
+
+def regions(g_std, g_tsr, g_ini, tie: float = 0.0):
     """004 Table 2 regions: shares [-] of I.A, I.B, II, III, IV (every run in exactly one).
 
-    I.A G_STD < G_TSR <= G_INI; I.B G_TSR <= G_STD <= G_INI; II G_TSR < G_INI < G_STD;
-    III G_INI < G_STD and G_INI < G_TSR; IV G_STD <= G_INI < G_TSR.
+    I.A G_STD < G_TSR <= G_INI; I.B G_TSR <= G_STD <= G_INI; II G_TSR <= G_INI < G_STD (004:
+    G_TSR < G_INI; the two differ only when G_TSR equals G_INI exactly, which 004's five
+    regions leave out); III G_INI < G_STD and G_INI < G_TSR; IV G_STD <= G_INI < G_TSR.
+
+    The strict comparisons split ties by round-off: many runs end the speed reduction where
+    they began it (G_TSR - G_STD ~ 1e-6 mm/s). With ``tie`` > 0, grades within ``tie`` of each
+    other are equal: G_TSR is first set to G_STD when |G_TSR - G_STD| <= tie, then each of the
+    two to G_INI when within ``tie`` of it (so an unchanged run counts in I.B, not I.A).
 
     Parameters
     ----------
@@ -25,14 +37,21 @@ def regions(g_std, g_tsr, g_ini):
         Grades at the TSR read-out [mm/s], same shape.
     g_ini : float
         Initial grade G_INI [mm/s].
+    tie : float
+        Tie tolerance [mm/s], >= 0 (0: strict, as 004's definitions read;
+        :data:`TIE_MM_S`: the integration's resolution).
 
     Returns
     -------
     dict of str to float
         Region name -> share of the runs [-].
     """
-    s, t, i = np.asarray(g_std), np.asarray(g_tsr), float(g_ini)
-    m = {"I.A": (s < t) & (t <= i), "I.B": (t <= s) & (s <= i), "II": (t < i) & (i < s),
+    s, t, i = np.asarray(g_std, float), np.asarray(g_tsr, float), float(g_ini)
+    if tie > 0:
+        t = np.where(np.abs(t - s) <= tie, s, t)
+        s = np.where(np.abs(s - i) <= tie, i, s)
+        t = np.where(np.abs(t - i) <= tie, i, t)
+    m = {"I.A": (s < t) & (t <= i), "I.B": (t <= s) & (s <= i), "II": (t <= i) & (i < s),
          "III": (i < s) & (i < t), "IV": (s <= i) & (i < t)}
     return {k: float(v.mean()) for k, v in m.items()}
 
@@ -129,15 +148,16 @@ def start_position_stats(s, t, g_ini, limit: float = 16.0) -> dict:
     Returns
     -------
     dict of str to float
-        mode_*, mode_*_se, median_* [mm/s]; share_G16_*, success_* (share <= G_ini) and
-        region_* (:func:`regions`) [-].
+        mode_*, mode_*_se, median_* [mm/s]; share_G16_*, success_* (share <= G_ini),
+        region_* (:func:`regions`, strict) and region_tied_* (ties within :data:`TIE_MM_S`) [-].
     """
     (ms, ses), (mt, set_) = mode(s), mode(t)
     return {"mode_STD": ms, "mode_STD_se": ses, "mode_TSR": mt, "mode_TSR_se": set_,
             "median_STD": float(np.median(s)), "median_TSR": float(np.median(t)),
             "share_G16_STD": float(np.mean(s <= limit)), "share_G16_TSR": float(np.mean(t <= limit)),
             "success_STD": float(np.mean(s <= g_ini)), "success_TSR": float(np.mean(t <= g_ini)),
-            **{f"region_{k}": v for k, v in regions(s, t, g_ini).items()}}
+            **{f"region_{k}": v for k, v in regions(s, t, g_ini).items()},
+            **{f"region_tied_{k}": v for k, v in regions(s, t, g_ini, TIE_MM_S).items()}}
 
 
 def half_drop(ratio, g) -> float:

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ...studies.statistics import valid_ranges
+from ...studies.statistics import TIE_MM_S, valid_ranges
 from ...validation.target import Rows
 from .published import G_LIMIT, G_SPAN, PLATEAU_CASES, PUBLISHED, UNBALANCE_CASES
 
@@ -175,7 +175,9 @@ def compare_monte_carlo(ds=None) -> list:
             round(100 * c, 1),
             f"+-{100 * tol:.1f}",
             abs(c - pub) <= tol,
-            "2 sigma binomial (both samples); G_INI = rotor's own grade",
+            "2 sigma binomial (both samples); G_INI = rotor's own grade; strict comparisons"
+            + (f" (grades within {TIE_MM_S:g} mm/s taken as equal: "
+               f"{100 * a[f'region_tied_{k}']:.1f} %)" if f"region_tied_{k}" in a else ""),
             shown=100 * pub,
         )
     return rows
