@@ -16,7 +16,7 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, ConfigDict, ValidationError, create_model
 from pydantic_core import PydanticCustomError
 
-from ..models import (FRICTION_LAWS, INERTIA_FACTOR, NORMAL_FORCES, BallBalancer, Gravity,
+from ..models import (CONTACT_MODELS, FRICTION_LAWS, INERTIA_FACTOR, NORMAL_FORCES, BallBalancer, Gravity,
                       InitialState, MotorDrive, ParameterError, Rotor, SimOptions, SpeedProfile,
                       Suspension)
 from .units import UNIT_LABEL, ConfigError, _Bad, _expect, _si
@@ -82,7 +82,8 @@ SECTIONS: dict[str, dict[str, F]] = {
         ball_radius=F("length"), element=F("text", choices=tuple(INERTIA_FACTOR)),
         damping=F("rot_damping", "per_ball"), rolling_resistance=F("ratio", "per_ball"),
         stiction=F("ratio", "per_ball"), eccentricity=F("length"),
-        eccentricity_angle=F("angle"), restitution=F("ratio"), contact_frequency=F("speed")),
+        eccentricity_angle=F("angle"), restitution=F("ratio"), contact_frequency=F("speed"),
+        contact=F("text", choices=CONTACT_MODELS)),
     "gravity": _fields_of(Gravity, g=F("acceleration"), direction=F("angle")),
     "initial": _fields_of(
         InitialState, ball_angles=F("angle", "list"), ball_speeds=F("speed", "list"),

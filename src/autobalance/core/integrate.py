@@ -27,7 +27,7 @@ from numba import njit
 
 from .jit import inline_kernel, kernel
 
-from .layout import (B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
+from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
                      S_YMAX, P_DELTA, P_HOLDS, P_SYM)
 from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_roots,
@@ -516,8 +516,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             if a1 > stats[S_AMAX]:
                 stats[S_AMAX] = a1
                 stats[S_TAMAX] = t1
-        # contact bookkeeping (counts contacts started)
-        if N > 1:
+        # contact bookkeeping (counts contacts started; none without a contact model, where
+        # balls pass through each other)
+        if N > 1 and B[0, B_KC] > 0.0:
             for i in range(N):
                 j, gap = neighbour_gap(y1, i, N, P[P_DELTA])
                 if gap < 0.0 and in_contact[i] == 0:

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -11,6 +11,10 @@ from ._validate import ParameterError, count, finite, in_range, nonneg, per_ball
 
 #: Rotational inertia factor kappa in I = kappa*m*r^2 for the rolling elements.
 INERTIA_FACTOR = {"ball": 0.4, "roller": 0.5, "point": 0.0}
+
+#: Ball-ball contact models: "compliant" (a spring-dashpot between neighbours, which keep
+#: their order; 000's impacts) or "none" (points that pass through each other, 004's model).
+CONTACT_MODELS = ("compliant", "none")
 
 _COEFFICIENTS = {
     "balancer.rolling_resistance": "rolling-resistance coefficient f/r = F_r/N",
@@ -61,6 +65,10 @@ class BallBalancer:
         Coefficient of restitution of ball-ball impacts [-] (000: impacts between balls).
     contact_frequency : float
         Natural frequency of the compliant ball-ball contact [rad/s]; 0 = 5x the run's top speed.
+    contact : str
+        "compliant" (default: balls touch at the contact angle 2 asin(r/R) and keep their
+        order) or "none" (004's point masses: no ball-ball force, balls pass through each other
+        and may coincide; the contact angle is 0).
     """
 
     n_balls: int
@@ -75,6 +83,9 @@ class BallBalancer:
     eccentricity_angle: float = 0.0
     restitution: float = 0.5
     contact_frequency: float = 0.0
+    # not in the generated repr: _repr below adds it when not the default, so that the
+    # identities of sweep stores made before the field existed stay valid (sweep/store.py)
+    contact: str = field(default="compliant", repr=False)
 
     def __post_init__(self):
         n = count("balancer.n_balls", self.n_balls, 0)
@@ -87,6 +98,10 @@ class BallBalancer:
         if self.element not in INERTIA_FACTOR:
             raise ParameterError("balancer.element", self.element,
                                  f"must be one of {sorted(INERTIA_FACTOR)}")
+        if self.contact not in CONTACT_MODELS:
+            raise ParameterError("balancer.contact", self.contact,
+                                 f"must be one of {', '.join(CONTACT_MODELS)} (compliant: balls "
+                                 "touch and keep their order; none: points that pass through)")
         if n == 0:
             for name in ("ball_mass", "damping", "rolling_resistance"):
                 object.__setattr__(self, name, ())
@@ -99,7 +114,8 @@ class BallBalancer:
         if self.ball_radius >= self.race_radius:
             raise ParameterError("balancer.ball_radius", self.ball_radius,
                                  f"must be < race_radius = {self.race_radius}")
-        if n * 2 * math.asin(self.ball_radius / self.race_radius) > 2 * math.pi + 1e-12:
+        if (self.contact == "compliant"
+                and n * 2 * math.asin(self.ball_radius / self.race_radius) > 2 * math.pi + 1e-12):
             fit = int((2 * math.pi + 1e-12) // (2 * math.asin(self.ball_radius / self.race_radius)))
             raise ParameterError("balancer.n_balls", n,
                                  f"that many balls of this radius do not fit in the race "
@@ -146,5 +162,20 @@ class BallBalancer:
 
     @property
     def contact_angle(self) -> float:
-        """Smallest centre-angle between neighbouring balls, 2*asin(r/R) [rad]."""
-        return 2 * math.asin(self.ball_radius / self.race_radius) if self.n_balls else 0.0
+        """Smallest centre-angle between neighbouring balls, 2*asin(r/R) [rad]; 0 without
+        contact (``contact = "none"``: the balls may coincide)."""
+        if not self.n_balls or self.contact == "none":
+            return 0.0
+        return 2 * math.asin(self.ball_radius / self.race_radius)
+
+
+_generated_repr = BallBalancer.__repr__
+
+
+def _repr(self) -> str:
+    """The dataclass repr, with ``contact`` only when it is not the default."""
+    r = _generated_repr(self)
+    return r if self.contact == "compliant" else f"{r[:-1]}, contact={self.contact!r})"
+
+
+BallBalancer.__repr__ = _repr

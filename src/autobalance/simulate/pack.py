@@ -144,8 +144,9 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
         wc = b.contact_frequency or 5.0 * spin.nominal_speed
         e = b.restitution
         zeta = 1.0 if e <= 0.0 else -math.log(e) / math.sqrt(math.pi**2 + math.log(e) ** 2)
-        B[:, B_KC] = jeff * wc**2
-        B[:, B_CC] = 2.0 * zeta * jeff * wc
+        if b.contact == "compliant":          # "none": no ball-ball force (004's points)
+            B[:, B_KC] = jeff * wc**2
+            B[:, B_CC] = 2.0 * zeta * jeff * wc
     return P, B
 
 

@@ -154,6 +154,49 @@ def separate(angles: np.ndarray, delta: float) -> np.ndarray:
     return a0 + np.angle(np.exp(1j * (out - a0)))
 
 
+#: Spacing [rad] that :func:`split_coincident` gives balls starting at one angle without a
+#: contact model (docs/sweeps.md: the coincident state is an invariant set of the equations;
+#: exactly on it the kernel never leaves it, while round-off would). 1e-9 rad is 0.3 nm on a
+#: 0.3 m race: far below any tolerance, far above the angles' round-off (~1e-15 rad).
+COINCIDENT_SPLIT = 1e-9
+
+
+def split_coincident(angles: np.ndarray, eps: float = COINCIDENT_SPLIT) -> np.ndarray:
+    """Balls without contact (``balancer.contact = "none"``, 004's points) that start at
+    exactly the same angle, spread symmetrically about it by ``eps`` [rad] each.
+
+    Two identical points at one angle with one velocity stay together forever in exact
+    arithmetic: the coincident state is an invariant set of the equations of motion. Where it
+    is unstable (e.g. a TSR plateau at 1.02 Omega_n) any real pair - and round-off in an
+    implicit integrator - leaves it, but the stick kernel's arithmetic is symmetric bit for
+    bit and does not. Where it is stable the spread decays and the outcome equals the
+    coincident one (to ~eps).
+
+    Parameters
+    ----------
+    angles : ndarray
+        Start angles of one configuration [rad].
+    eps : float
+        Spacing of the spread balls [rad], > 0.
+
+    Returns
+    -------
+    ndarray
+        The angles, coincident ones (equal mod 2 pi to 1e-12 rad) spread; others unchanged.
+    """
+    a = np.array(angles, float)
+    w = np.mod(a, 2 * np.pi)
+    done = np.zeros(a.size, bool)
+    for i in range(a.size):
+        if done[i]:
+            continue
+        same = np.nonzero(np.abs(np.angle(np.exp(1j * (w - w[i])))) <= 1e-12)[0]
+        done[same] = True
+        if same.size > 1:
+            a[same] += eps * (np.arange(same.size) - 0.5 * (same.size - 1))
+    return a
+
+
 def _chunk(groups, todo: np.ndarray, batch_size: int) -> list:
     tasks = []
     for g0, g1 in groups:
@@ -332,7 +375,8 @@ def _sample_angles(spec: SweepSpec, cell, identical: bool) -> np.ndarray:
     """The samples' start angles (n_samples, N) [rad] for the ball count N of ``cell``: the
     start grid, uniform random angles (the same generator call for every N: a cell of N balls
     gets the angles a sweep of N balls alone gets), or the cell's own start angles; balls
-    closer than the contact angle moved apart (:func:`separate`)."""
+    closer than the contact angle moved apart (:func:`separate`); without contact, balls at
+    one angle spread by :data:`COINCIDENT_SPLIT` (:func:`split_coincident`)."""
     b = cell.system.balancer
     n = b.n_balls
     if spec.mc_kind == "start_grid":
@@ -342,6 +386,8 @@ def _sample_angles(spec: SweepSpec, cell, identical: bool) -> np.ndarray:
         angles = rng.uniform(0.0, 2 * np.pi, size=(spec.mc_samples, n))
     else:
         angles = np.asarray(cell.initial.angles_for(b), float).reshape(1, n)
+    if b.contact == "none":
+        return np.array([split_coincident(a) for a in angles]).reshape(len(angles), n)
     return np.array([separate(a, b.contact_angle) for a in angles]).reshape(len(angles), n)
 
 
