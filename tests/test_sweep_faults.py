@@ -59,6 +59,13 @@ def n_task_files(store: Path) -> int:
     return len(list(d.glob("r*.npz"))) if d.is_dir() else 0
 
 
+def terminal_signals() -> None:
+    """In the child before exec: Ctrl-C as a terminal leaves it (default disposition). A test
+    run started in the background of a non-interactive shell inherits SIGINT ignored, and
+    Python then keeps ignoring it, as ``nohup`` intends; the interrupt tests need a terminal."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def wait_for_tasks(proc, store: Path, n: int, timeout: float = 120.0) -> None:
     deadline = time.monotonic() + timeout
     while n_task_files(store) < n:
@@ -263,7 +270,7 @@ def test_interrupt_stops_promptly_keeps_tasks_no_orphans(slow_ref, tmp_path, sig
     store = tmp_path / "s"
     a = subprocess.Popen(cli("sweep", str(desc), "--store", str(store), "--workers", "2"),
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         start_new_session=True)
+                         start_new_session=True, preexec_fn=terminal_signals)
     try:
         wait_for_tasks(a, store, 4)
         workers = psutil.Process(a.pid).children(recursive=True)
