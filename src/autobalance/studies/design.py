@@ -15,7 +15,10 @@ Sizing rules (ours, stated): a capacity below the largest unbalance cannot balan
 4.3: the residual is at least U - N m R); 004 sec. 4.3 also finds that an over-sized balancer
 balances poorly, hence capacity ratios from 1.1 to 2. Steel balls keep their density: the ball
 radius scales with the cube root of the mass. The TSR plateau is 1.06 x the first natural
-frequency (004 sec. 3.2 chooses a plateau just above resonance; :mod:`.plateau` refines it).
+frequency of the machine with the candidate's balls (004 sec. 3.2 chooses a plateau just
+above resonance); the plateau study (:mod:`.plateau`, 004 sec. 4.6) then runs on the best TSR
+candidate, and its recommended plateau joins the search as one more candidate. The
+recommended design also gets the tolerances of :mod:`.tolerances` for the target grade.
 """
 from __future__ import annotations
 
@@ -381,7 +384,8 @@ def _refine_plateau(cfg, cand: dict, Us, starts: int, quick: bool, *, seed, stor
 
 def _design_tolerances(config, grade: float) -> dict:
     """The tolerances for the target grade of a design (:func:`.tolerances.compute_tolerances`,
-    the true bound) as flat SI attrs; {} when the study refuses (e.g. capacity short)."""
+    the true bound) as flat SI attrs; feasible = 0 with the study's reason (and NaN
+    tolerances) when it refuses, e.g. below the balancing onset."""
     from .tolerances import compute_tolerances
 
     t = compute_tolerances(config, grade=grade)
