@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-__all__ = ["half_drop", "mode", "plateau_speed", "profile_text", "regions", "rise_after_min",
-           "start_position_stats", "valid_ranges"]
+__all__ = ["TIE_MM_S", "half_drop", "mode", "mode_value", "plateau_speed", "profile_text",
+           "regions", "rise_after_min", "start_position_stats", "valid_ranges"]
 
 
 #: Tie tolerance of the region table [mm/s]: grades closer than this are taken as equal. It is
@@ -79,15 +79,34 @@ def mode(g, width=1.0, n_boot=200, seed=0):
     """
     g = np.asarray(g, float)
     g = g[np.isfinite(g)]
-    edges = np.arange(0.0, max(g.max(), 1.0) + 2 * width, width)
-
-    def mode(x):
-        h, _ = np.histogram(x, edges)
-        return edges[np.argmax(h)] + width / 2
-
     rng = np.random.default_rng(seed)
-    boots = [mode(rng.choice(g, g.size)) for _ in range(n_boot)]
-    return float(mode(g)), float(np.std(boots))
+    boots = [mode_value(rng.choice(g, g.size), width, g.max()) for _ in range(n_boot)]
+    return mode_value(g, width), float(np.std(boots))
+
+
+def mode_value(g, width: float = 1.0, top: float | None = None) -> float:
+    """Centre of the fullest ``width`` bin of a sample [mm/s] (bins start at 0; the first of
+    equally full bins).
+
+    Parameters
+    ----------
+    g : array_like
+        Grades [mm/s], finite.
+    width : float
+        Bin width [mm/s].
+    top : float or None
+        Largest value the bins must cover [mm/s] (None: the sample's own maximum).
+
+    Returns
+    -------
+    float
+        The mode [mm/s].
+    """
+    g = np.asarray(g, float)
+    hi = g.max() if top is None else top
+    edges = np.arange(0.0, max(hi, 1.0) + 2 * width, width)
+    h, _ = np.histogram(g, edges)
+    return float(edges[np.argmax(h)] + width / 2)
 
 
 def valid_ranges(G_ini, p95, limit=16.0, span=50.0):
