@@ -41,6 +41,12 @@ StoreOpt = Annotated[Optional[Path], typer.Option(
     "--store", metavar="DIR", help="Keep the simulations in resumable sweep stores under DIR "
                                    "(a rerun computes only what is missing).")]
 
+StartsOpt = Annotated[Optional[int], typer.Option(
+    "--n", help="Start positions per ball of 004's equispaced grid (default 50 for 2 balls, "
+                "20 for 3; quick 12 / 8).")]
+RandomOpt = Annotated[Optional[int], typer.Option(
+    "--random", help="Uniform random start angles instead of the grid: this many.")]
+
 #: Most speeds of a ``study speed-map --speeds`` grid.
 MAX_MAP_SPEEDS = 2000
 #: Figure formats of ``--plot``.
@@ -132,12 +138,7 @@ def _store(store: Optional[Path], cfg, *parts) -> Optional[Path]:
 @app.command("start-positions")
 def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                     grade: GradeOpt = 16.0, units: UnitsOpt = None,
-                    n: Annotated[Optional[int], typer.Option(
-                        "--n", help="Start positions per ball of 004's equispaced grid (default "
-                                    "50 for 2 balls, 20 for 3; quick 12 / 8).")] = None,
-                    samples: Annotated[Optional[int], typer.Option(
-                        "--random", help="Uniform random start angles instead of the grid: "
-                                         "this many.")] = None,
+                    n: StartsOpt = None, samples: RandomOpt = None,
                     seed: Annotated[int, typer.Option("--seed", help="Seed of --random.")] = 0,
                     grid: Annotated[Optional[list[str]], typer.Option(
                         "--grid", metavar="PATH=V1,V2|PATH=LO:HI:N",
@@ -273,9 +274,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                     steps: Annotated[Optional[int], typer.Option(
                         "--steps", help="Grid intervals of the initial grade (default 25; "
                                         "quick 10).")] = None,
-                    n: Annotated[Optional[int], typer.Option(
-                        "--n", help="Start positions per ball (default 50 / 20 for 2 / 3 "
-                                    "balls; quick 12 / 8).")] = None,
+                    n: StartsOpt = None,
                     quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
                     plot: PlotOpt = None, scheduler: SchedulerOpt = None,
                     workers: WorkersOpt = None, executor: ExecutorOpt = None,
@@ -660,11 +659,7 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
                     help="One variant: overrides as for --set, several joined by ';' "
                          "(repeatable; default: contact none, ball damping and rolling "
                          "resistance x0.5 and x2, run-up x0.78, TSR plateau x0.96).")] = None,
-                n: Annotated[Optional[int], typer.Option(
-                    "--n", help="Start positions per ball of 004's grid (default 50 for 2 "
-                                "balls, 20 for 3; quick 12 / 8).")] = None,
-                samples: Annotated[Optional[int], typer.Option(
-                    "--random", help="Uniform random start angles instead of the grid.")] = None,
+                n: StartsOpt = None, samples: RandomOpt = None,
                 seed: Annotated[int, typer.Option("--seed", help="Seed of --random and of "
                                                   "the bootstrap.")] = 0,
                 z: Annotated[float, typer.Option(

@@ -18,7 +18,8 @@ import numpy as np
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .statistics import TIE_MM_S, mode, plateau_speed, profile_text, regions, start_position_stats
+from .statistics import (REGION_NAMES, TIE_MM_S, mode_value, plateau_speed, profile_text, regions,
+                         start_position_stats)
 
 __all__ = ["case_sets", "checkpoint_labels", "compute_machine", "compute_monte_carlo",
            "compute_single", "compute_start_positions", "default_starts", "load", "run_start_grid",
@@ -444,38 +445,37 @@ def compute_start_positions(base, *, n: int | None = None, samples: int | None =
     stacked = g_ok.stack(_cell=cell_dims) if cell_dims else g_ok.expand_dims(_cell=[0])
     labels = checkpoint_labels(cfg.spin)
     modes = np.full((stacked.sizes["_cell"], len(labels)), np.nan)
-    regions_, tied_ = [], []
+    ties = (0.0, TIE_MM_S)                     # 004's strict table, and ties taken as equal
+    region_rows = {tie: [] for tie in ties}
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
     for k in range(stacked.sizes["_cell"]):
         gk = stacked.isel(_cell=k).transpose("sample", "checkpoint").values
         for j in range(len(labels)):
             col = gk[:, j][np.isfinite(gk[:, j])]
-            modes[k, j] = mode(col)[0] if col.size else np.nan
+            modes[k, j] = mode_value(col) if col.size else np.nan
         if len(labels) >= 2:
             okr = np.isfinite(gk[:, 0]) & np.isfinite(gk[:, -1])
             gi = g_ini
             if "rotor__unbalance" in cell_dims:
                 u = float(stacked.isel(_cell=k)["rotor__unbalance"])
                 gi = float(_grade(u, cfg.system.total_mass, cfg.spin.nominal_speed))
-            regions_.append(regions(gk[okr, 0], gk[okr, -1], gi) if okr.any()
-                            else dict.fromkeys(("I.A", "I.B", "II", "III", "IV"), np.nan))
-            tied_.append(regions(gk[okr, 0], gk[okr, -1], gi, TIE_MM_S) if okr.any()
-                         else dict.fromkeys(("I.A", "I.B", "II", "III", "IV"), np.nan))
-    mode_da = xr.DataArray(modes, dims=("_cell", "checkpoint"),
-                           coords={"_cell": stacked["_cell"], "checkpoint": raw["checkpoint"]})
-    ds["grade_mode"] = (mode_da.unstack("_cell") if cell_dims else mode_da.isel(_cell=0, drop=True)
-                        ).assign_attrs(units="mm/s", long_name="mode (1 mm/s bins)")
-    if regions_:
-        names = list(regions_[0])
-        reg = xr.DataArray([[r[m] for m in names] for r in regions_], dims=("_cell", "region"),
-                           coords={"_cell": stacked["_cell"], "region": names})
-        ds["region_share"] = (reg.unstack("_cell") if cell_dims else reg.isel(_cell=0, drop=True)
-                              ).assign_attrs(units="-", long_name="004 Table 2 regions, first "
-                                             "vs last read-out")
-        tie = xr.DataArray([[r[m] for m in names] for r in tied_], dims=("_cell", "region"),
-                           coords={"_cell": stacked["_cell"], "region": names})
-        ds["region_share_tied"] = (tie.unstack("_cell") if cell_dims
-                                   else tie.isel(_cell=0, drop=True)).assign_attrs(
+            for tie in ties:
+                region_rows[tie].append(regions(gk[okr, 0], gk[okr, -1], gi, tie) if okr.any()
+                                        else dict.fromkeys(REGION_NAMES, np.nan))
+
+    def per_cell(values, dim: str, coord):
+        """(cell, dim) values -> a variable over the grid's cells (none without a grid)."""
+        da = xr.DataArray(values, dims=("_cell", dim), coords={"_cell": stacked["_cell"], dim: coord})
+        return da.unstack("_cell") if cell_dims else da.isel(_cell=0, drop=True)
+
+    ds["grade_mode"] = per_cell(modes, "checkpoint", raw["checkpoint"]).assign_attrs(
+        units="mm/s", long_name="mode (1 mm/s bins)")
+    if region_rows[0.0]:
+        names = list(REGION_NAMES)
+        strict, tied = ([[r[m] for m in names] for r in region_rows[tie]] for tie in ties)
+        ds["region_share"] = per_cell(strict, "region", names).assign_attrs(
+            units="-", long_name="004 Table 2 regions, first vs last read-out")
+        ds["region_share_tied"] = per_cell(tied, "region", names).assign_attrs(
             units="-", tie_mm_s=TIE_MM_S,
             long_name=f"004 Table 2 regions, grades within {TIE_MM_S:g} mm/s taken as equal")
     ds = ds.assign_coords(checkpoint_label=("checkpoint", labels))
@@ -508,6 +508,16 @@ def _checkpoint_rows(ds, sel: dict) -> list:
     return rows
 
 
+def _region_rows(ds, sel: dict) -> dict:
+    """004 Table 2's region shares of one cell, strict ("regions") and with ties taken as equal
+    ("regions_tied"); {} without two read-outs."""
+    if "region_share" not in ds:
+        return {}
+    names = [str(r) for r in ds["region"].values]
+    return {key: dict(zip(names, map(float, ds[var].isel(sel).values)))
+            for key, var in (("regions", "region_share"), ("regions_tied", "region_share_tied"))}
+
+
 def start_positions_summary(ds) -> dict:
     """JSON-ready summary of a :func:`compute_start_positions` result: per checkpoint its
     label, time [s], p5/p50/p95 and mode [mm/s] and share at or below the target grade; the
@@ -534,11 +544,8 @@ def start_positions_summary(ds) -> dict:
            "G_balls_mm_s": a["G_balls"]}
     if not cells:
         out["checkpoints"] = _checkpoint_rows(ds, {})
+        out.update(_region_rows(ds, {}))
         if "region_share" in ds:
-            out["regions"] = {str(r): float(v) for r, v in
-                              zip(ds["region"].values, ds["region_share"].values)}
-            out["regions_tied"] = {str(r): float(v) for r, v in
-                                   zip(ds["region"].values, ds["region_share_tied"].values)}
             out["tie_mm_s"] = TIE_MM_S
         return out
     dims = (*cells, "sample")
@@ -551,7 +558,7 @@ def start_positions_summary(ds) -> dict:
         pooled.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
                        **{f"p{q}_grade_G_mm_s": float(p.sel(percentile=q).isel(checkpoint=i))
                           for q in (5, 50, 95)},
-                       "mode_grade_G_mm_s": float(mode(col[np.isfinite(col)])[0])
+                       "mode_grade_G_mm_s": mode_value(col[np.isfinite(col)])
                        if np.isfinite(col).any() else math.nan,
                        "share_below_grade": float(share.isel(checkpoint=i))})
     out["checkpoints"] = pooled
@@ -561,14 +568,8 @@ def start_positions_summary(ds) -> dict:
     rows = []
     for idx in np.ndindex(*(ds.sizes[d] for d in cells)):
         sel = dict(zip(cells, idx))
-        row = {"coords": {axes[d]["key"]: axes[d]["values"][k] for d, k in sel.items()},
-               "checkpoints": _checkpoint_rows(ds, sel)}
-        if "region_share" in ds:
-            row["regions"] = {str(r): float(v) for r, v in
-                              zip(ds["region"].values, ds["region_share"].isel(sel).values)}
-            row["regions_tied"] = {str(r): float(v) for r, v in zip(
-                ds["region"].values, ds["region_share_tied"].isel(sel).values)}
-        rows.append(row)
+        rows.append({"coords": {axes[d]["key"]: axes[d]["values"][k] for d, k in sel.items()},
+                     "checkpoints": _checkpoint_rows(ds, sel), **_region_rows(ds, sel)})
     out["cells"] = rows
     return out
 

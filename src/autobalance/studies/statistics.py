@@ -7,9 +7,12 @@ import math
 
 import numpy as np
 
-__all__ = ["TIE_MM_S", "half_drop", "mode", "mode_value", "plateau_speed", "profile_text",
+__all__ = ["REGION_NAMES", "TIE_MM_S", "half_drop", "mode", "mode_value", "plateau_speed", "profile_text",
            "regions", "rise_after_min", "start_position_stats", "valid_ranges"]
 
+
+#: 004 Table 2's regions, in its order.
+REGION_NAMES = ("I.A", "I.B", "II", "III", "IV")
 
 #: Tie tolerance of the region table [mm/s]: grades closer than this are taken as equal. It is
 #: the integration's own resolution: halving the step changes a 004 Monte-Carlo grade by at most

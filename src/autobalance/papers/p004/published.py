@@ -8,11 +8,13 @@ __all__ = ["C_R", "G_LIMIT", "G_SPAN", "G_TSR_RANGE", "ITEMS_004", "MU_R", "PLAT
 
 import numpy as np
 
+from ...studies.statistics import REGION_NAMES
+
 PRESET = "vub_jeffcott_004"
 G_LIMIT = 16.0          # 004 sec. 4: the rotor must qualify G16
 G_SPAN = 50.0           # 004 Tables 3-4: efficiency = valid range / [G0, G50]
 G_TSR_RANGE = 34.0      # 004 sec. 4.6: ideal plateau averaged over G_ini <= G34
-REGIONS = ("I.A", "I.B", "II", "III", "IV")   # 004 Table 2
+REGIONS = REGION_NAMES   # 004 Table 2
 
 #: (mu_r, c_r) of the initial-unbalance cases of 004 Tables 3-4.
 UNBALANCE_CASES = {"nominal": (1.0, 1.0), "mu0.5": (0.5, 1.0), "mu0.25": (0.25, 1.0),
