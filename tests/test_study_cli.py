@@ -225,6 +225,7 @@ def test_tolerances_cli_and_its_simulation_check():
     (("start-positions", CENTRIFUGE, "--grid", "rotor.nothing=1,2"), "--grid"),
     (("start-positions", CENTRIFUGE, "--grid", "rotor.unbalance=2 kg,3 kg"), "--grid"),
     (("start-positions", CENTRIFUGE, "--grid", "rotor.unbalance=1:2"), "--grid"),
+    (("start-positions", CENTRIFUGE, "--grid", "balancer.n_balls=2,3"), "--random"),
     (("unbalance-range", CENTRIFUGE, "--steps", "0"), "--steps"),
     (("unbalance-range", CENTRIFUGE, "--g-max", "-3"), "--g-max"),
     (("plateau", TOPLOADER, "--quick"), "profile.kind"),

@@ -174,6 +174,9 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                               scheduler, store, units)
         _counts(n=n, random=samples)
         axes = _grid(grid)
+        if axes and "balancer.n_balls" in axes and samples is None:
+            raise ConfigError("--grid balancer.n_balls=...: needs --random K (the start grid's "
+                              "size depends on the ball count; K random starts suit every count)")
         ds = compute_start_positions(cfg, n=n, samples=samples, seed=seed, grade=G, quick=quick,
                                      name="start-positions", grid=axes,
                                      store=_store(store, cfg, "start-positions", n, samples, seed,
