@@ -40,6 +40,11 @@ from .rhs import neighbour_gap, profile_segment, rhs
 #: the mode resolution, so a ball at the limit neither chatters nor stalls the integrator
 STICK_TOL = 1e-9
 
+#: largest creep of a stuck ball [rad] within one closed-form jump of a hold under the creep law
+#: (P_FLAW = 2): the jump is cut into chunks, each advancing the balls at their creep speed at the
+#: chunk's midpoint (docs/numerics.md, "The tanh law's slow manifold")
+CREEP_CHUNK = 1e-5
+
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
 A21 = 1 / 5
@@ -233,7 +238,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     nout = out_t.shape[0]
     kout = 0
     t = 0.0
-    exact = P[P_FLAW] == 0.0
+    exact = P[P_FLAW] != 1.0          # exact stick-slip, with (2) or without (0) creep
+    creep = P[P_FLAW] == 2.0
     # isotropic, no gravity, no base motion: max|x| = max|y| = max|w| (no sub-sampling needed)
     symmetric = P[P_SYM] == 1.0
     # initial modes: balls at rest relative to the race start stuck if they can
@@ -300,11 +306,35 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
                 if hold_margin_ok(lam, lam[N:2 * N], N, B, P[P_R], abs(p1) + abs(p2)):
                     tau_end = t_seg - t
+                    if creep:
+                        # stuck balls creep (tanh slow manifold): jump at most CREEP_CHUNK of
+                        # creep, at the creep speeds of the chunk's midpoint (f1[2 + i])
+                        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                            ftmp, lam, Mm, fv, A, bb, idx, trig)
+                        cmax = 0.0
+                        for i in range(N):
+                            cmax = max(cmax, abs(ftmp[2 + i]))
+                        if cmax * tau_end > CREEP_CHUNK:
+                            tau_end = CREEP_CHUNK / cmax
+                            t_seg = t + tau_end
+                        w, wd = hold_state(0.5 * tau_end, wss, s1, s2, c1, c2)
+                        for j in range(n):
+                            y1[j] = y[j] + 0.5 * tau_end * ftmp[j] if 2 <= j < ip else y[j]
+                        y1[0], y1[1], y1[nq], y1[nq + 1] = w.real, w.imag, wd.real, wd.imag
+                        y1[ip] = y[ip] + 0.5 * W * tau_end
+                        rhs(t + 0.5 * tau_end, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                            stuck, sgn, spin, f1, lam, Mm, fv, A, bb, idx, trig)
+                        nrhs += 2
+                    else:
+                        for i in range(N):
+                            f1[2 + i] = 0.0
                     while kout < nout and out_t[kout] <= t_seg:
                         tau = out_t[kout] - t
                         w, wd = hold_state(tau, wss, s1, s2, c1, c2)
                         for j in range(n):
                             out_y[kout, j] = y[j]
+                        for i in range(N):
+                            out_y[kout, 2 + i] += f1[2 + i] * tau
                         out_y[kout, 0] = w.real
                         out_y[kout, 1] = w.imag
                         out_y[kout, nq] = wd.real
@@ -329,6 +359,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     y[nq] = wd.real
                     y[nq + 1] = wd.imag
                     y[ip] += W * tau_end
+                    for i in range(N):
+                        y[2 + i] += f1[2 + i] * tau_end
                     t = t_seg
                     nhold += 1
                     seg = profile_segment(t, prof_t)

@@ -15,7 +15,37 @@ array as its exploded struct (7-9 words each).
 """
 from __future__ import annotations
 
+import hashlib
+from pathlib import Path
+
 from numba import njit
+
+
+def _drop_stale_cache(here: Path = Path(__file__).parent) -> bool:
+    """Delete the compiled cache of every kernel in this package when any of its sources changed.
+
+    numba keys a cached kernel on its own file only, so a kernel that calls one in another file
+    (batch -> integrate -> rhs) kept stale machine code after that file changed: a silently wrong
+    result in a working copy. One hash of all ``core/*.py`` sources, stamped beside the cache,
+    makes a change anywhere in core recompile everything. Unwritable caches (an installed
+    release, whose files all change together) are left alone. Returns True if it deleted.
+    """
+    try:
+        h = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(here.glob("*.py")))).hexdigest()
+        cache = here / "__pycache__"
+        stamp = cache / "core-sources.sha256"
+        if stamp.is_file() and stamp.read_text() == h:
+            return False
+        for p in cache.glob("*.nb[ic]"):
+            p.unlink(missing_ok=True)
+        cache.mkdir(exist_ok=True)
+        stamp.write_text(h)
+        return True
+    except OSError:                                    # pragma: no cover - read-only install
+        return False
+
+
+_drop_stale_cache()
 
 try:        # ``_nrt`` is a CPU target option of numba (numba/core/cpu.py), private by name
     from numba.core.cpu import CPUTargetOptions

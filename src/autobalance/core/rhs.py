@@ -5,7 +5,9 @@ x + i y = (u + i v) e^{i psi}, written as M(q) q'' = f(q, q', t) + friction. The
 000 eq (2)-(4) (constant speed, rho = 0, translate to the inertial frame), 000 eq (15)-(18)
 (motor-driven spin), 000 eq (33)-(36) (race eccentricity rho, beta), 000 eq (50) (gravity on the
 balls) and 004 eq (8)-(10) (Jeffcott rotor, isotropic suspension). Rolling resistance is Coulomb
-(000 eq 20, 004 "mu F_n") with exact stick (switch model, Leine et al. 1998) or the 004 tanh law.
+(000 eq 20, 004 "mu F_n") with exact stick (switch model, Leine et al. 1998), the 004 tanh law,
+or exact stick with stuck balls creeping along the tanh law's slow manifold (P_FLAW = 2;
+:func:`creep_speed`, twin of autobalance.physics.friction.creep_speed).
 
 Units: SI throughout ([m], [kg], [rad], [s], [N], [N*m]).
 
@@ -22,6 +24,26 @@ from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
                      P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
                      P_VSAT, P_WF, P_ISO)
+
+
+#: |lambda| / (mu N R) is clipped to this below 1 in the creep law: at the limit the slow
+#: manifold ends (the ball slips) and atanh diverges; atanh(1 - 1e-12) = 14.2.
+CREEP_RATIO_MAX = 1.0 - 1e-12
+
+
+@kernel
+def creep_speed(lam, lim, vsat):
+    """Creep of a stuck ball on the tanh law's slow manifold, -v_sat atanh(lam / lim) [rad/s]
+    (compiled twin of autobalance.physics.friction.creep_speed): lam the friction torque the
+    ball needs [N*m], lim = mu N R [N*m], vsat [rad/s]."""
+    if lim <= 0.0:
+        return 0.0
+    r = lam / lim
+    if r > CREEP_RATIO_MAX:
+        r = CREEP_RATIO_MAX
+    elif r < -CREEP_RATIO_MAX:
+        r = -CREEP_RATIO_MAX
+    return -vsat * math.atanh(r)
 
 
 @kernel
@@ -340,6 +362,7 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
         # x = (u'', v''); then alpha_i'' = (g_i - b_i . x) / J_i. The reduced mass matrix is
         # positive definite iff every J_i > 0 and S is (ok). bb holds 1/J_i.
         fric = P[P_FLAW] == 1.0
+        creep = P[P_FLAW] == 2.0
         s00 = Mt
         s11 = Mt
         s01 = 0.0
@@ -384,6 +407,8 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
                 # required friction of a stuck ball: lam_i = M[k,:] q'' - f_k
                 lam[i] = -fv[k] + Mm[k, 0] * x0 + Mm[k, 1] * x1 + Mm[k, ip] * psidd
                 dy[k] = 0.0
+                if creep:
+                    dy[k] = creep_speed(lam[i], B[i, B_MU] * lam[2 * N + i] * R, P[P_VSAT])
                 dy[nq + k] = 0.0
         dy[nq + ip] = psidd
         dy[ip] = psid
@@ -424,7 +449,7 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     for a_ in range(nf_):
         dy[nq + idx[a_]] = bb[a_]
     # required friction of stuck balls: lam_i = M[k,:] q'' - f_k
-    if P[P_FLAW] == 0.0:
+    if P[P_FLAW] != 1.0:
         for i in range(N):
             if stuck[i] == 1:
                 k = 2 + i
@@ -433,4 +458,6 @@ def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
                     s_ += Mm[k, j] * dy[nq + j]
                 lam[i] = s_
                 dy[k] = 0.0
+                if P[P_FLAW] == 2.0:
+                    dy[k] = creep_speed(s_, B[i, B_MU] * lam[2 * N + i] * R, P[P_VSAT])
     return ok

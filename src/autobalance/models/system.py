@@ -10,7 +10,7 @@ from ._validate import ParameterError, count, finite, in_range, nonneg, positive
 from .balancer import BallBalancer
 from .rotor import Gravity, Rotor, Suspension
 
-FRICTION_LAWS = ("stick", "tanh")
+FRICTION_LAWS = ("stick", "tanh", "creep")
 NORMAL_FORCES = ("ball", "drum")
 
 
@@ -147,9 +147,12 @@ class SimOptions:
     ----------
     friction_law : str
         "stick": exact Coulomb stick-slip (switch model with event location, default);
-        "tanh": 004's regularised law mu*N*tanh(alpha_dot/v_sat) (stiff; for comparison).
+        "tanh": 004's regularised law mu*N*tanh(alpha_dot/v_sat) (stiff; for comparison);
+        "creep": exact stick-slip, stuck balls creeping along the tanh law's slow manifold at
+        -v_sat*atanh(lambda/(mu N R)) (physics.friction.creep_speed): 004's law at the speed of
+        the stick kernel (needs stiction = rolling resistance).
     v_sat : float
-        Saturation speed of the tanh law [rad/s] (004: 1e-6 rad/s).
+        Saturation speed of the tanh law [rad/s] (004: 1e-6 rad/s); used by "tanh" and "creep".
     normal_force : str
         "ball": N_i = m_i (R (psi_dot + alpha_dot_i)^2 - g.e_r) (our default, docs/model.md);
         "drum": N_i = m_i R psi_dot^2 (000 eq 20 as printed).

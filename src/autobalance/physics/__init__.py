@@ -18,6 +18,7 @@ from .error_bounds import (ball_natural_frequencies, ball_natural_frequency_sing
                            symmetric_rolling_deviation)
 from .tolerance import design_tolerances, predict_residual, tolerances_for_grade, worst_case_prediction
 from .worst_case import attained_residual, residual_bound
+from .friction import creep_speed
 from .immobility import immobile_mask, immobility, steady_deflection, stick_threshold_grade, tangential_force
 
 __all__ = [
@@ -35,6 +36,8 @@ __all__ = [
     "single_ball_force", "single_ball_stability", "speed_regime",
     "suspension_friction_deviation", "symmetric_rolling_deviation",
     "vibratory_components", "vibratory_forces",
+    # 004's tanh law's slow manifold
+    "creep_speed",
     # 004 immobility
     "immobile_mask", "immobility", "steady_deflection", "stick_threshold_grade", "tangential_force",
 ]

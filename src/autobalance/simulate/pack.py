@@ -14,6 +14,8 @@ from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_
                      P_R, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
 
 LAW_ID = {"constant": 0.0, "linear": 1.0, "harmonic": 2.0}
+#: options.friction_law -> core.layout.P_FLAW
+FRICTION_LAW_ID = {"stick": 0.0, "tanh": 1.0, "creep": 2.0}
 
 
 def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray, float]:
@@ -58,7 +60,8 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOpti
         ``isotropic``: kx = ky, cx = cy, no base motion, no suspension dry friction, so the
         suspension force is -k w - c (w' + i psi' w) in the rotor frame (004 eq 8-9; rhs.py).
         ``symmetric``: isotropic and no gravity, so max|x| = max|y| = max|w| (integrate.py).
-        ``holds``: symmetric, exact stick-slip law, prescribed spin, constant unbalance and
+        ``holds``: symmetric, exact stick-slip law (with or without creep), prescribed spin,
+        constant unbalance and
         ``options.exact_holds``: stuck constant-speed holds may be solved in closed form
         (core/hold.py). A new effect that breaks a closed form must be added here.
     """
@@ -66,7 +69,7 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOpti
     isotropic = (s.kx == s.ky and s.cx == s.cy and s.base_frequency == 0.0
                  and s.dry_friction_force == 0.0)
     symmetric = isotropic and g.g == 0.0
-    holds = (symmetric and bool(options.exact_holds) and options.friction_law == "stick"
+    holds = (symmetric and bool(options.exact_holds) and options.friction_law in ("stick", "creep")
              and not isinstance(spin, MotorDrive) and system.rotor.unbalance_table()[0].size == 1)
     return holds, isotropic, symmetric
 
@@ -124,7 +127,13 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
         P[P_LAW] = LAW_ID[spin.law]
         P[P_T0], P[P_WF] = spin.torque, spin.final_speed
         P[P_WHOLD] = spin.hold_fraction * spin.final_speed
-    P[P_FLAW] = 0.0 if options.friction_law == "stick" else 1.0
+    P[P_FLAW] = FRICTION_LAW_ID[options.friction_law]
+    if options.friction_law == "creep" and any(
+            st != mu for st, mu in zip(b.stiction, b.rolling_resistance)):
+        from ..models import ParameterError
+        raise ParameterError("options.friction_law", "creep",
+                             "needs balancer.stiction equal to balancer.rolling_resistance "
+                             "(the tanh law it emulates has no separate static coefficient)")
     P[P_VSAT] = options.v_sat
     P[P_NMODEL] = 0.0 if options.normal_force == "ball" else 1.0
     P[P_DELTA] = b.contact_angle
