@@ -54,6 +54,15 @@ def test_tsr_plateau_must_be_below_nominal(plateau):
         SpeedProfile.tsr(nominal=TWO_PI * 100.0, plateau=TWO_PI * 100.0)
 
 
+def test_a_constant_profile_refuses_another_start_speed():
+    """SpeedProfile.constant(start_speed=) used to be ignored: a run meant to start elsewhere
+    silently started at full speed."""
+    assert ab.SpeedProfile.constant(100.0, 1.0, start_speed=100.0).speeds == (100.0, 100.0)
+    with pytest.raises(ab.ParameterError) as e:
+        ab.SpeedProfile.constant(100.0, 1.0, start_speed=50.0)
+    assert e.value.field == "profile.start_speed" and "ramp" in str(e.value)
+
+
 def test_tsr_default_knots_unchanged():
     """The 004 presets and studies use runup_time = runup_fraction * duration (or none): same
     knots as before the run-up-hold fix."""

@@ -170,6 +170,29 @@ def test_options_grid_each_run_uses_its_cells_options(tmp_path):
     assert (steps[1] != steps[0]).sum() >= n_s // 2   # the cells really ran differently
 
 
+def test_an_options_override_is_part_of_the_store_identity(tmp_path):
+    """sweep(..., options=) on a preset base: the runs use the override, and a resume with other
+    options is refused in one line instead of mixing runs of both in one store."""
+    d = {"sweep": {"name": "optover", "base": "vub_jeffcott_004", "set": SHORT},
+         "monte_carlo": {"kind": "start_grid", "n": 2}}
+    store = tmp_path / "s"
+    loose = ab.SimOptions(rtol=1e-4)
+    ds = sweep(spec_from_dict(d), store, executor="serial", progress=False, options=loose)
+    cfg = load_config("vub_jeffcott_004", SHORT)
+    a0 = tuple(make_plan(spec_from_dict(d)).start_angles[0])
+    sim = ab.simulate(cfg.system, cfg.spin, options=loose, initial=ab.InitialState(ball_angles=a0))
+    assert int(ds["steps"].isel(sample=0)) == sim.summary()["solver"]["steps"]
+    first = sorted((store / "tasks").glob("r*.npz"))[0]
+    first.unlink()
+    before = files(store)
+    with pytest.raises(StoreMismatch) as e:
+        sweep(spec_from_dict(d), store, executor="serial", progress=False, resume=True,
+              options=ab.SimOptions(rtol=1e-8))
+    assert "\n" not in str(e.value)
+    assert files(store) == before
+    sweep(spec_from_dict(d), store, executor="serial", progress=False, resume=True, options=loose)
+
+
 # -- 5. failed runs have no outcome ------------------------------------------------------------
 def test_failed_runs_are_nan_with_status(tmp_path):
     d = {"sweep": {"name": "fail", "base": "vub_jeffcott_004", "set": SHORT},

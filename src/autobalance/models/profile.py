@@ -105,7 +105,8 @@ class SpeedProfile:
         duration : float
             Length of the run [s], > 0.
         start_speed : float or None
-            Accepted for call compatibility and ignored [rad/s]: the profile starts at ``speed``.
+            Accepted for call compatibility [rad/s]: None or ``speed`` (a constant profile starts
+            at its speed; :meth:`ramp` starts elsewhere). Any other value is refused.
 
         Returns
         -------
@@ -114,6 +115,10 @@ class SpeedProfile:
         """
         positive("profile.speed", speed)
         positive("profile.duration", duration)
+        if start_speed is not None and start_speed != speed:
+            raise ParameterError("profile.start_speed", start_speed,
+                                 f"a constant profile starts at its speed {speed!r} rad/s; "
+                                 "use SpeedProfile.ramp to start at another speed")
         return cls((0.0, duration), (speed, speed), name="constant")
 
     @classmethod

@@ -7,6 +7,8 @@ therefore bit-identical across executors, and a lost worker only costs the tasks
 """
 from __future__ import annotations
 
+import dataclasses
+
 import os
 import signal
 import sys
@@ -296,13 +298,17 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *, base=None, 
     store = Path(store)
     check_store_path(store)
     plan = make_plan(spec)
+    if options is not None:
+        # the override is part of every cell, hence of the store's identity: a resume with
+        # other options is refused instead of mixing runs of both in one store
+        plan.cells = [dataclasses.replace(c, options=options) for c in plan.cells]
     lock = StoreLock(store)
     client = None
     try:
         client = _dask_client(scheduler) if executor == "dask" else None
         with _signals_raise():
             return _sweep_locked(plan, store, lock, executor, workers, client, resume,
-                                 progress, options, assemble_result)
+                                 progress, assemble_result)
     finally:
         lock.release()
         if client is not None:
@@ -328,7 +334,7 @@ class _signals_raise:
             signal.signal(signal.SIGTERM, self.old)
 
 
-def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress, options,
+def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress,
                   assemble_result):
     init_store(store, plan, resume, lock)
     warn = (lambda msg: print(f"warning: {msg}", file=sys.stderr, flush=True))
@@ -348,7 +354,7 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
         print(_estimate_line(plan, plan.n_runs - done_runs, n_workers), file=sys.stderr,
               flush=True)
     bar = Progress(plan.n_runs, done_runs, enabled=progress)
-    payloads = (task_payload(plan, t, options) for t in todo_tasks)
+    payloads = (task_payload(plan, t) for t in todo_tasks)
     finished = [done_runs]
 
     def on_result(res):
