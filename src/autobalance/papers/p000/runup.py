@@ -30,6 +30,7 @@ import numpy as np
 
 from ...models import MotorDrive
 from ...physics.runup import runup_fraction_closed_form, runup_time_closed_form
+from ...studies.runup import balancing_time as _balancing_time
 from ...validation.target import Rows
 from .washer import W1000, washer
 
@@ -83,7 +84,8 @@ PUBLISHED = {
 # -- simulations -------------------------------------------------------------------------------
 def balancing_time(sim, fraction=0.05) -> float:
     """Last time [s] at which the whirl amplitude exceeds ``fraction`` of the unbalanced drum's
-    amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e).
+    amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e); the run-up study's
+    :func:`autobalance.studies.runup.balancing_time` on a Simulation.
 
     Parameters
     ----------
@@ -93,8 +95,7 @@ def balancing_time(sim, fraction=0.05) -> float:
         Threshold as a fraction of e [-].
     """
     s = sim.system
-    k = np.nonzero(sim.amplitude > fraction * s.rotor.unbalance / s.total_mass)[0]
-    return float(sim.t[k[-1]]) if k.size else 0.0
+    return _balancing_time(sim.t, sim.amplitude, s.rotor.unbalance / s.total_mass, fraction)
 
 
 def settle(c_i=2.0, duration=10.0):
