@@ -1,5 +1,6 @@
 """Liquid (Leblanc) balancers: free surface and motion modes (003), kinetostatics (001),
-reduced-order run-up dynamics. See docs/liquid.md."""
+the liquid in a displaced chamber (quasi-static), reduced-order run-up dynamics. See
+docs/liquid.md."""
 from .config import Bench, list_liquid_presets, load_bench, load_liquids
 from .dynamics import RunUp, engagement, fill_sweep, run_up, steady_response
 from .free_surface import (MODE_NAMES, FreeSurface, bottom_touch_speed, entrainment_speed,
@@ -9,16 +10,17 @@ from .free_surface import (MODE_NAMES, FreeSurface, bottom_touch_speed, entrainm
 from .kinetostatic import (alpha0, alpha0_residual, balancing_efficiency, eccentricity_ratio,
                            friction_angle, friction_force, friction_tan_bound, jeffcott_phase,
                            laminar_pipe_force, residual_lambda0)
+from .quasistatic import QuasiStatic, intact_ring_unbalance, lens, quasi_static
 from .models import (G_STANDARD, PLACEMENT_LAWS, WATER, Chamber, Liquid, LiquidBalancer,
                      LiquidModel, VerticalRotor, sufficient_volume)
 
 __all__ = [
     "Bench", "Chamber", "FreeSurface", "G_STANDARD", "Liquid", "LiquidBalancer", "LiquidModel",
-    "MODE_NAMES", "PLACEMENT_LAWS", "RunUp", "VerticalRotor", "WATER", "alpha0",
+    "MODE_NAMES", "PLACEMENT_LAWS", "QuasiStatic", "RunUp", "VerticalRotor", "WATER", "alpha0",
     "alpha0_residual", "balancing_efficiency", "bottom_touch_speed", "eccentricity_ratio",
     "engagement", "entrainment_speed", "fill_sweep", "free_surface", "friction_angle",
-    "friction_force", "friction_tan_bound", "gravity_mode_speed", "jeffcott_phase",
-    "laminar_pipe_force", "lid_touch_speed", "liquid_volume", "list_liquid_presets", "load_bench",
-    "load_liquids", "mode_speeds", "motion_mode", "residual_lambda0", "run_up", "steady_response",
+    "friction_force", "friction_tan_bound", "gravity_mode_speed", "intact_ring_unbalance", "jeffcott_phase",
+    "laminar_pipe_force", "lens", "lid_touch_speed", "liquid_volume", "list_liquid_presets", "load_bench",
+    "load_liquids", "mode_speeds", "motion_mode", "quasi_static", "residual_lambda0", "run_up", "steady_response",
     "sufficient_volume", "surface_height", "surface_profiles",
 ]
