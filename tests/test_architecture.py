@@ -302,3 +302,35 @@ def test_checker_finds_upward_imports_and_cycles(tmp_path):
                                               "cycle: other, side"}
     with pytest.raises(AssertionError, match="no layer for"):
         violations(src, "pkg", [("low",), ("high", "side")])
+
+
+# -- size: no module over 600 lines, no function body over 100 (issue 13) ---------------------
+#: The compiled integrator loop and right-hand side: one numba function each, kept whole because
+#: a call between numba functions passes every array as its exploded struct (core/jit.py) and the
+#: loop's locals are its state (core/integrate.py, core/rhs.py say why).
+SIZE_EXCEPTIONS = {"autobalance/core/integrate.py": ("_integrate",), "autobalance/core/rhs.py": ("rhs",)}
+MAX_MODULE_LINES, MAX_FUNCTION_LINES = 600, 100
+
+
+def _function_sizes(tree):
+    for n in ast.walk(tree):
+        if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            first = n.body[0]
+            doc = (isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant)
+                   and isinstance(first.value.value, str))
+            start = first.end_lineno + 1 if doc and len(n.body) > 1 else first.lineno
+            yield n.name, n.end_lineno - start + 1
+
+
+def test_no_module_over_600_lines_and_no_function_body_over_100():
+    too_long = []
+    for path in sorted((SRC / ROOT).rglob("*.py")):
+        rel = path.relative_to(SRC).as_posix()
+        text = path.read_text()
+        allowed = SIZE_EXCEPTIONS.get(rel, ())
+        if text.count("\n") > MAX_MODULE_LINES and not allowed:
+            too_long.append(f"{rel}: {text.count(chr(10))} lines")
+        for name, n in _function_sizes(ast.parse(text)):
+            if n > MAX_FUNCTION_LINES and name not in allowed:
+                too_long.append(f"{rel}::{name}: {n} lines without its docstring")
+    assert not too_long, "split these (docs/architecture.md):\n" + "\n".join(too_long)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from autobalance.config import load_config
-from autobalance.studies import immobility, plateau, start_positions, statistics, unbalance
+from autobalance.studies import common, immobility, plateau, start_positions, statistics, unbalance
 
 SHORT = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s",
          "profile.plateau_time=2 s", "profile.up_time=1 s"]
@@ -18,8 +18,8 @@ def machine(tmp_path_factory):
 
 
 def test_monte_carlo_same_from_a_preset_and_from_a_python_config(machine, tmp_path):
-    a = start_positions.run_start_grid("vub_jeffcott_004", "a", SHORT, {}, 4, executor="serial")
-    b = start_positions.run_start_grid(machine, "b", [], {}, 4, executor="serial")
+    a = common.run_start_grid("vub_jeffcott_004", "a", SHORT, {}, 4, executor="serial")
+    b = common.run_start_grid(machine, "b", [], {}, 4, executor="serial")
     assert a.sizes["sample"] == 10 and np.array_equal(a["grade_G"].values, b["grade_G"].values)
     ds = start_positions.compute_monte_carlo(machine, 4, executor="serial", limit=10.0)
     assert ds.attrs["runs"] == 10 and 0.0 <= ds.attrs["share_G16_TSR"] <= 1.0
@@ -57,8 +57,8 @@ def test_cases_scale_each_balls_own_friction():
     """A (mu_r, c_r) case scales every ball's rolling resistance, not ball 1's for all."""
     from autobalance.config import replace_values
 
-    assert start_positions.case_sets("vub_jeffcott_004", 0.5, 1.0)[0] == "balancer.rolling_resistance=0.001"
+    assert common.case_sets("vub_jeffcott_004", 0.5, 1.0)[0] == "balancer.rolling_resistance=0.001"
     two = replace_values(load_config("vub_jeffcott_004"), {"balancer.rolling_resistance": [0.002, 0.004]})
-    sets = start_positions.case_sets(two, 0.5, 2.0)
+    sets = common.case_sets(two, 0.5, 2.0)
     assert sets[0] == "balancer.rolling_resistance=[0.001, 0.002]"
-    assert start_positions.load(two, sets).system.balancer.rolling_resistance == (0.001, 0.002)
+    assert common.load(two, sets).system.balancer.rolling_resistance == (0.001, 0.002)

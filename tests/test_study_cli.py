@@ -97,7 +97,7 @@ def test_start_positions_grid_reports_each_cell_as_its_own_run(tmp_path):
 
 def test_plateau_default_starts_keep_the_runs_per_cell_for_any_ball_count():
     from autobalance.sweep.plan import n_start_grid
-    from autobalance.studies.start_positions import starts_for_runs
+    from autobalance.studies.common import starts_for_runs
 
     assert starts_for_runs(2, 210) == 20 and starts_for_runs(2, 36) == 8    # 004 Fig. 14-15: n = 20
     assert starts_for_runs(3, 210) == 9 and starts_for_runs(3, 36) == 5

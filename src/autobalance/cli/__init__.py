@@ -19,7 +19,7 @@ from typing import Optional
 import typer
 
 from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
-from . import study_runup  # noqa: F401  (registers `study runup`)
+from . import study_design, study_maps, study_runup  # noqa: F401  (register their study commands)
 from .common import USER_ERRORS, one_line, print_error
 
 __all__ = ["app", "main"]
@@ -41,7 +41,7 @@ app.add_typer(analyze.app, name="analyze",
 app.add_typer(study.app, name="study",
               help="Design studies of any machine: speed map, start positions, unbalance "
                    "range, TSR plateau, immobility, tolerances, sensitivity, run-up.")
-app.command("design")(study.design)
+app.command("design")(study_design.design)
 app.command("reproduce")(reproduce.reproduce)
 app.add_typer(liquid.app, name="liquid",
               help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..models import ParameterError
 from ..physics.iso1940 import grade_value
-from .start_positions import load, run_start_grid, store_path
+from .common import load, run_start_grid, store_path
 
 __all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary",
            "profile_variants"]
@@ -221,7 +221,7 @@ def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where the sweeps run and are kept (one resumable store per design under ``store_dir``;
         None = temporary stores), as for
-        :func:`autobalance.studies.start_positions.run_start_grid`.
+        :func:`autobalance.studies.common.run_start_grid`.
     progress : bool
         Show each sweep's progress bar on stderr.
     refine_plateau : bool
@@ -359,7 +359,7 @@ def _refine_plateau(cfg, cand: dict, Us, starts: int, quick: bool, *, seed, stor
     from :data:`PLATEAU_RATIO`, the candidate with that plateau (else None)."""
     from ..sweep.plan import identical_balls, n_start_grid
     from .plateau import compute_plateau, plateau_summary
-    from .start_positions import starts_for_runs
+    from .common import starts_for_runs
 
     b = cand["config"].system.balancer
     n = starts_for_runs(b.n_balls, starts, identical_balls(b))

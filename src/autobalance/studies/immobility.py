@@ -8,7 +8,7 @@ import numpy as np
 
 from ..physics.immobility import check_immobility, immobility, stick_threshold_grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .start_positions import load
+from .common import load
 from .statistics import plateau_speed
 
 __all__ = ["compute_immobility"]

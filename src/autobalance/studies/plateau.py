@@ -10,7 +10,7 @@ import numpy as np
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .start_positions import case_sets, load, run_start_grid, starts_for_runs, store_path
+from .common import case_sets, load, run_start_grid, starts_for_runs, store_path
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
 __all__ = ["DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", "default_grid",
@@ -99,7 +99,7 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int | None = No
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
-        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.common.run_start_grid`.
     g_range : float or None
         Largest G_ini of the mean that picks the ideal plateau [mm/s] (004: G34); None = the
         balls' grade G_balls.
@@ -188,7 +188,7 @@ def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float =
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
-        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.common.run_start_grid`.
     prefix : str
         Prefix of the sweeps' names.
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..models import MotorDrive, ParameterError
 from ..physics.runup import runup_time_closed_form
-from .start_positions import load
+from .common import load
 
 __all__ = ["BALANCING_FRACTION", "balancing_time", "compute_runup", "runup_summary"]
 

@@ -18,7 +18,8 @@ import numpy as np
 
 from ..models import ParameterError
 from ..physics.iso1940 import grade_value
-from .start_positions import compute_start_positions, load
+from .common import load
+from .start_positions import compute_start_positions
 from .statistics import TIE_MM_S, mode_value, regions
 
 __all__ = ["QUANTITIES", "compute_sensitivity", "default_variants", "quantities",
@@ -128,7 +129,7 @@ def compute_sensitivity(base, variants: dict | None = None, *, n: int | None = N
         Bootstrap resamples of the starts (>= 2).
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the runs go (one resumable store per variant under ``store_dir``; None =
-        temporary stores), as for :func:`.start_positions.run_start_grid`.
+        temporary stores), as for :func:`.common.run_start_grid`.
     progress : bool
         Show each Monte Carlo's progress bar on stderr.
 
@@ -141,7 +142,7 @@ def compute_sensitivity(base, variants: dict | None = None, *, n: int | None = N
     """
     import xarray as xr
 
-    from .start_positions import store_path
+    from .common import store_path
 
     t0 = time.perf_counter()
     cfg = load(base)

@@ -39,7 +39,7 @@ from ..models import ParameterError
 from ..physics.equilibria import find_equilibrium_set
 from ..physics.iso1940 import grade_value
 from .equilibria import full_stability, steady_rotor_frame
-from .start_positions import load
+from .common import load
 
 __all__ = ["compute_speed_map", "speed_map_summary"]
 
@@ -183,7 +183,7 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
     ----------
     base : str, Path or Config
         The machine: a preset name, a TOML config path or a Config
-        (:func:`autobalance.studies.start_positions.load`).
+        (:func:`autobalance.studies.common.load`).
     speeds : array_like, optional
         Spin speeds [rad/s], > 0 (sorted, duplicates merged). Default: 120 (quick: 30)
         geometrically spaced points from 0.3 x the lowest natural frequency to 1.3 x the
@@ -212,7 +212,6 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
         ``nominal_speed_rad_s``, ``range_rtol``, ``method``, the evaluation counts and
         ``wall_s``. Every value is NetCDF-writable (no booleans, no nested lists).
     """
-    import xarray as xr
 
     t0 = time.perf_counter()
     cfg = load(base)
@@ -270,9 +269,31 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
     for i, r in enumerate(dmp_ranges):
         if r:
             rng[i, :len(r)] = r
-    res = np.array([r["residual"] for r in rows])
     mt = system.total_mass
-    ds = xr.Dataset(
+    ds = _dataset(rows, w, factors, main_stable, dmp_exists, dmp_stable, rng, mt)
+    ds.attrs.update({
+        "study": "speed_map", "machine": cfg.name or str(base), "n_balls": int(system.balancer.n_balls),
+        "stable_ranges_rad_s": np.array(ranges, float).ravel(),
+        "natural_frequencies_rad_s": np.array(system.natural_frequencies, float),
+        "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
+        "total_mass_kg": float(mt), "capacity_kg_m": float(system.balancer.capacity),
+        "range_rtol": float(rtol), "method": method, "full": int(bool(full)), "quick": int(bool(quick)),
+        "evaluations": int(counts["evaluations"]), "no_verdict": int(counts["failed"]),
+        "definitions": "balanced: W = W* (zero residual without race eccentricity); only states "
+                       "without ball overlap count; best stable state: least residual among stable ones",
+        "wall_s": float(time.perf_counter() - t0),
+    })
+    return ds
+
+
+def _dataset(rows, w, factors, main_stable, dmp_exists, dmp_stable, rng, mt):
+    """The speed map's variables and coordinates (:func:`compute_speed_map`): rows of
+    ``_evaluate`` per speed w [rad/s], the damping factors [-], the stability flags and ranges
+    [rad/s] per factor, the total mass mt [kg]."""
+    import xarray as xr
+
+    res = np.array([r["residual"] for r in rows])
+    return xr.Dataset(
         {
             "balanced_exists": ("speed", np.array([r["exists"] for r in rows], np.int8),
                                 {"units": "1", "long_name": "a reachable balanced state exists (W = W*)"}),
@@ -303,19 +324,6 @@ def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = 
                                    {"units": "1", "long_name": "factor on the suspension damping cx, cy"}),
                 "edge": ("edge", np.array([0, 1], np.int8), {"long_name": "0 lower, 1 upper"})},
     )
-    ds.attrs.update({
-        "study": "speed_map", "machine": cfg.name or str(base), "n_balls": int(system.balancer.n_balls),
-        "stable_ranges_rad_s": np.array(ranges, float).ravel(),
-        "natural_frequencies_rad_s": np.array(system.natural_frequencies, float),
-        "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
-        "total_mass_kg": float(mt), "capacity_kg_m": float(system.balancer.capacity),
-        "range_rtol": float(rtol), "method": method, "full": int(bool(full)), "quick": int(bool(quick)),
-        "evaluations": int(counts["evaluations"]), "no_verdict": int(counts["failed"]),
-        "definitions": "balanced: W = W* (zero residual without race eccentricity); only states "
-                       "without ball overlap count; best stable state: least residual among stable ones",
-        "wall_s": float(time.perf_counter() - t0),
-    })
-    return ds
 
 
 def _pairs(flat) -> list:

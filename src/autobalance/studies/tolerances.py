@@ -20,7 +20,7 @@ from ..physics.iso1940 import grade_class, grade_value
 from ..physics.worst_case import attained_residual, residual_bound
 from ..physics.iso1940 import unbalance_value
 from ..physics.tolerance import tolerances_000, tolerances_for_grade, worst_case_prediction
-from .start_positions import load
+from .common import load
 from .statistics import plateau_speed
 
 __all__ = ["check_tolerances_by_simulation", "collinear_residuals", "compute_tolerances",

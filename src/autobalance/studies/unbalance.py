@@ -9,7 +9,7 @@ import numpy as np
 
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .start_positions import case_sets, checkpoint_labels, load, run_start_grid, store_path
+from .common import case_sets, checkpoint_labels, load, run_start_grid, store_path
 from .statistics import profile_text, valid_ranges
 
 __all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
@@ -61,7 +61,7 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
-        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.common.run_start_grid`.
     prefix : str
         Prefix of the sweeps' names.
     progress : bool
@@ -71,7 +71,7 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
     -------
     xarray.Dataset
         grade_G [mm/s] over (case, G_ini [mm/s], procedure = the profile's read-outs
-        (:func:`~autobalance.studies.start_positions.checkpoint_labels`; 004: STD/TSR),
+        (:func:`~autobalance.studies.common.checkpoint_labels`; 004: STD/TSR),
         percentile 5/50/95), failed_runs per case, the operating boundaries [mm/s]
         (:func:`operating_boundaries`); attrs G_balls [mm/s], grid_step [mm/s].
     """
@@ -140,7 +140,7 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
     store_dir, executor, workers, scheduler : str, Path, int or None
         Where and how the sweeps run: ``store_dir`` holds one resumable store per sweep (a rerun
         of the same description computes nothing; None = temporary stores); ``executor``,
-        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.start_positions.run_start_grid`.
+        ``workers`` and ``scheduler`` as for :func:`autobalance.studies.common.run_start_grid`.
     unbalance_ds : xarray.Dataset or None
         A :func:`compute_unbalance` result to reuse for STD and TSR when it has the same grades,
         ``n`` and a "nominal" case; otherwise it is computed.

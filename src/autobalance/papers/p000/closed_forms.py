@@ -273,7 +273,7 @@ def run_tolerance(ctx) -> Outcome:
         Variant (the quick and full variants compute the same).
     """
     from ...physics.error_bounds import friction_force_for_deviation
-    from ...studies.start_positions import load
+    from ...studies.common import load
     from ...studies.tolerances import compute_tolerances
 
     rows = rows_of("000-tolerance")

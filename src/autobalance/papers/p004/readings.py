@@ -20,7 +20,7 @@ import json
 import numpy as np
 
 from ...studies.sensitivity import compute_sensitivity
-from ...studies.start_positions import load
+from ...studies.common import load
 from ...studies.statistics import start_position_stats
 from .compare import compare_monte_carlo
 from .published import G_LIMIT, PRESET, PUBLISHED

@@ -1,0 +1,235 @@
+"""What every study of :mod:`autobalance.studies` shares: the machine with overrides (``load``),
+004's friction and damping cases as overrides (``case_sets``), resumable stores (``store_path``),
+the start grid run as one sweep (``run_start_grid``), the default starts per ball count and the
+read-out labels of a profile.
+
+Every study takes ``base``, the machine: a preset name, a TOML config path or a Config built in
+Python (:func:`autobalance.config.from_models`).
+"""
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["case_sets", "checkpoint_labels", "default_starts", "load", "run_start_grid",
+           "starts_for_runs", "store_path"]
+
+
+def load(base, sets=()):
+    """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        A preset name, a TOML config path, or a :class:`autobalance.config.Config` built in
+        Python (:func:`autobalance.config.from_models`).
+    sets : sequence of str
+        Overrides "path=value" (values with units, as for ``--set``).
+
+    Returns
+    -------
+    Config
+    """
+    from ..config import Config, load_config, replace_values
+    from ..config.overrides import parse_override
+
+    if isinstance(base, Config):
+        return replace_values(base, dict(parse_override(s) for s in sets)) if sets else base
+    return load_config(base, list(sets))
+
+
+def case_sets(base, mu_r: float, c_r: float) -> list:
+    """Overrides scaling the base machine's rolling resistance by ``mu_r`` [-] and its suspension
+    damping by ``c_r`` [-] (004 sec. 4.5 varies mu and c around its Table 1 values).
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine: a preset name, a TOML config path or a loaded Config (as for :func:`load`).
+    mu_r : float
+        Factor on each ball's rolling-resistance coefficient mu [-].
+    c_r : float
+        Factor on the suspension damping cx, cy [-].
+
+    Returns
+    -------
+    list of str
+        Three "path=value" overrides (balancer.rolling_resistance, suspension.cx, suspension.cy).
+    """
+    s = load(base).system
+    mu = [float(x) * mu_r for x in s.balancer.rolling_resistance]     # each ball's own, scaled
+    mu_text = repr(mu[0]) if len(set(mu)) <= 1 else "[" + ", ".join(map(repr, mu)) + "]"
+    return [f"balancer.rolling_resistance={mu_text}",
+            f"suspension.cx={s.suspension.cx * c_r!r}",
+            f"suspension.cy={s.suspension.cy * c_r!r}"]
+
+
+def store_path(store_dir, name):
+    """``store_dir / name`` (a resumable sweep store) or None (a temporary store).
+
+    Parameters
+    ----------
+    store_dir : str or Path or None
+        Directory of the study's sweep stores; None = temporary stores.
+    name : str
+        Name of this sweep's store.
+
+    Returns
+    -------
+    Path or None
+    """
+    return None if store_dir is None else Path(store_dir) / name
+
+
+def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", workers=None,
+                   scheduler=None, history_dt: float = 0.0, samples: int | None = None,
+                   seed: int = 0, progress: bool = False):
+    """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2: n x n equispaced start
+    positions of two identical balls, n(n+1)/2 runs) of the machine ``base`` with ``sets``
+    overrides over ``grid`` (path -> values) and return its Dataset.
+
+    ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
+    a temporary one.
+
+    Parameters
+    ----------
+    base : str or Path
+        The machine: a preset name or a TOML config path (its system, profile, options and
+        balls).
+    name : str
+        Name of the sweep.
+    sets : iterable of str
+        "path=value" overrides applied to ``base`` for every run.
+    grid : dict of str to list
+        Config path -> values of the sweep grid, in the units of that path (e.g.
+        "rotor.unbalance" [kg*m], "profile.plateau" [rad/s]); empty = one cell.
+    n : int
+        Start positions per ball of the start grid (n(n+1)/2 runs per grid cell).
+    store : str or Path or None
+        The sweep store directory (resumed), or None for a temporary one.
+    executor : str
+        "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
+    workers : int or None
+        Local worker processes (None: the sweep's default); the batch size assumes 2.
+    scheduler : str or None
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+    history_dt : float
+        Spacing of the stored grade history [s]; 0 = checkpoints only.
+    samples : int or None
+        Uniform random start angles instead of the grid: this many per grid cell (``n`` is then
+        ignored); None = the start grid.
+    seed : int
+        Seed of the random start angles.
+    progress : bool
+        Show the sweep's progress bar on stderr.
+
+    Returns
+    -------
+    xarray.Dataset
+        The sweep's assembled result (grade_G [mm/s] per sample and checkpoint, status,
+        start_angle [rad], and the history when ``history_dt`` > 0).
+    """
+    from ..sweep import spec_from_dict, sweep
+    from ..sweep.plan import identical_balls, n_start_grid
+
+    n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
+    if samples is None:
+        b = load(base, sets).system.balancer
+        per_cell = n_start_grid(n, b.n_balls, identical_balls(b))   # 2 balls: n(n+1)/2
+    else:
+        per_cell = int(samples)
+    n_runs = n_cells * per_cell
+    w = workers or 2
+    bs = max(1, min(64, math.ceil(n_runs / (4 * w))))
+    from ..config import Config
+
+    python_base = isinstance(base, Config)
+    head = {"name": name, "set": list(sets), "batch_size": bs}
+    if not python_base:
+        head["base"] = str(base)
+    spec = spec_from_dict({"sweep": head,
+                           "grid": grid,
+                           "monte_carlo": ({"kind": "start_grid", "n": int(n)} if samples is None
+                                           else {"kind": "random", "samples": int(samples),
+                                                 "seed": int(seed)}),
+                           **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})},
+                          base=base if python_base else None)
+    if store is None:
+        with tempfile.TemporaryDirectory() as d:
+            return sweep(spec, Path(d) / name, executor=executor, workers=workers,
+                         scheduler=scheduler, progress=progress).load()
+    return sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
+                 resume=True, progress=progress).load()
+
+
+def checkpoint_labels(spin) -> list:
+    """Names of a profile's read-outs: "STD" and "TSR" for 004's temporary speed reduction
+    (Fig. 3), otherwise "t=<time> s".
+
+    Parameters
+    ----------
+    spin : SpeedProfile or MotorDrive
+        The profile (its ``name`` and ``checkpoints`` [s]).
+
+    Returns
+    -------
+    list of str
+        One label per checkpoint.
+    """
+    cps = [float(c) for c in spin.checkpoints]
+    if getattr(spin, "name", "") == "tsr" and len(cps) == 2:
+        return ["STD", "TSR"]
+    return [f"t={c:g} s" for c in cps]
+
+
+def default_starts(n_balls: int, quick: bool) -> int:
+    """Start positions per ball of the default start grid: 004's 50 (1275 runs) for two balls,
+    fewer for more balls so that the grid stays near a thousand runs (20 for three: 1540);
+    quick: 12 for two balls (78 runs), 8 for three (120).
+
+    Parameters
+    ----------
+    n_balls : int
+        Number of balls N >= 1.
+    quick : bool
+        The coarse grid.
+
+    Returns
+    -------
+    int
+        Positions per ball n.
+    """
+    if quick:
+        return {1: 24, 2: 12}.get(n_balls, 8 if n_balls == 3 else 5)
+    return {1: 360, 2: 50}.get(n_balls, 20 if n_balls == 3 else 10)
+
+
+def starts_for_runs(n_balls: int, runs: int, identical: bool = True) -> int:
+    """The largest number of positions per ball n >= 1 whose start grid (004 sec. 4.2:
+    n(n+1)/2 runs for two identical balls, C(n+N-1, N) for N, n^N for unequal balls) has at
+    most ``runs`` configurations, so that a study's cost per cell stays the same whatever the
+    ball count (e.g. 210 runs: n = 20 for two balls as 004 Fig. 14-15, 9 for three).
+
+    Parameters
+    ----------
+    n_balls : int
+        Number of balls N >= 1.
+    runs : int
+        Most start configurations per cell (>= 1).
+    identical : bool
+        Identical balls (the grid keeps one ordering of each configuration).
+
+    Returns
+    -------
+    int
+        Positions per ball n (>= 1).
+    """
+    from ..sweep.plan import n_start_grid
+
+    n = 1
+    while n_start_grid(n + 1, n_balls, identical) <= runs:
+        n += 1
+    return n
