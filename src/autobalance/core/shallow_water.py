@@ -1,0 +1,221 @@
+"""Depth-averaged shallow-water (Saint-Venant) equations of a liquid film on the outer wall of a
+rotating, displaced chamber, along its circumference (issue 15; model: docs/liquid.md sec. 3c).
+
+Unknowns per cell of the periodic wall coordinate x = R theta (chamber frame): the film thickness
+eta [m] and its tangential discharge q = eta v [m^2/s] (v relative to the wall):
+
+    eta_t + q_x = 0
+    q_t + (q^2/eta + g eta^2/2)_x = -g eta b_x + eta a(x, t) - eta k(eta, v) v
+
+with g = Omega^2 R the centrifugal "gravity" across the film, b = -Re(c e^{-i theta}) the wall's
+height in the centrifugal potential when the chamber centre is displaced by c from the rotation
+axis (the film gathers where the wall is farthest from the axis), a the tangential inertial
+acceleration of the chamber frame (Euler -Omega' R, the chamber's own motion) and k the wall
+friction rate (laminar film 3 nu / eta^2, turbulent Blasius).
+
+Scheme: finite volumes, HLL flux on the hydrostatic reconstruction of Audusse, Bouchut, Bristeau,
+Klein & Perthame (2004, SIAM J. Sci. Comput. 25, 2050-2065): well balanced (a film at rest on any
+wall profile stays at rest to round-off, dry cells included) and positivity preserving under the
+CFL condition; friction implicit (stable for thin films); forward Euler in time, first order in
+space. All kernels work on preallocated arrays (core/jit.py).
+"""
+from __future__ import annotations
+
+import math
+
+from .jit import kernel
+
+#: Films thinner than this fraction of R are dry: no velocity, no friction [-].
+DRY_FRACTION = 1e-12
+#: Courant number of the time step [-] (positivity of the hydrostatic reconstruction needs <= 1/2).
+CFL = 0.45
+#: Reynolds number of the laminar-turbulent switch of the wall friction [-] (pipe flow, 4 eta v/nu).
+RE_TURBULENT = 2300.0
+
+
+@kernel
+def hll_flux(hl, ql, hr, qr, g, dry):
+    """HLL flux (Harten, Lax & van Leer 1983) of the shallow-water equations between the states
+    (hl, ql) and (hr, qr) [m, m^2/s], gravity g [m/s^2], dry threshold [m]: (F_eta, F_q)."""
+    ul = ql / hl if hl > dry else 0.0
+    ur = qr / hr if hr > dry else 0.0
+    cl = math.sqrt(g * hl)
+    cr = math.sqrt(g * hr)
+    sl = min(ul - cl, ur - cr)
+    sr = max(ul + cl, ur + cr)
+    fl0 = ql
+    fl1 = ql * ul + 0.5 * g * hl * hl
+    fr0 = qr
+    fr1 = qr * ur + 0.5 * g * hr * hr
+    if sl >= 0.0:
+        return fl0, fl1
+    if sr <= 0.0:
+        return fr0, fr1
+    if sr - sl <= 0.0:
+        return 0.0, 0.0
+    f0 = (sr * fl0 - sl * fr0 + sl * sr * (hr - hl)) / (sr - sl)
+    f1 = (sr * fl1 - sl * fr1 + sl * sr * (qr - ql)) / (sr - sl)
+    return f0, f1
+
+
+@kernel
+def friction_rate(h, v, nu, R):
+    """Wall friction rate k [1/s] of a film of thickness h [m] moving at v [m/s] relative to the
+    wall, kinematic viscosity nu [m^2/s]: the larger of the laminar film's 3 nu / h^2 (half
+    Poiseuille profile) and the turbulent Blasius law lambda/(8 h) |v|, lambda = 0.3164 Re^-1/4,
+    Re = 4 h |v| / nu (hydraulic diameter of a wide film); 0 for a dry cell (R: the scale)."""
+    if h <= DRY_FRACTION * R:
+        return 0.0
+    k = 3.0 * nu / (h * h)
+    re = 4.0 * h * abs(v) / nu
+    if re > RE_TURBULENT:
+        kt = 0.3164 * re ** -0.25 / (8.0 * h) * abs(v)
+        if kt > k:
+            k = kt
+    return k
+
+
+@kernel
+def sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr):
+    """One forward-Euler step dt [s] of the film (module docstring) on n periodic cells of width
+    dx [m]: h, q the state [m, m^2/s]; b the wall height [m] and a the tangential acceleration
+    [m/s^2] per cell; g [m/s^2]; nu [m^2/s]; R [m] (dry scale). Writes hn, qn; fh, fq, hl, hr are
+    work arrays (n,) for the interface fluxes and reconstructed depths (left / right of the
+    interface i + 1/2 between cells i and i + 1)."""
+    n = h.shape[0]
+    dry = DRY_FRACTION * R
+    for i in range(n):
+        j = i + 1 if i + 1 < n else 0
+        bs = max(b[i], b[j])
+        hls = max(0.0, h[i] + b[i] - bs)
+        hrs = max(0.0, h[j] + b[j] - bs)
+        ul = q[i] / h[i] if h[i] > dry else 0.0
+        ur = q[j] / h[j] if h[j] > dry else 0.0
+        f0, f1 = hll_flux(hls, hls * ul, hrs, hrs * ur, g, dry)
+        fh[i] = f0
+        fq[i] = f1
+        hl[i] = hls
+        hr[i] = hrs
+    for i in range(n):
+        k = i - 1 if i > 0 else n - 1
+        # F_{i+1/2}^- - F_{i-1/2}^+ with the hydrostatic corrections of Audusse et al. (2004)
+        dh = fh[i] - fh[k]
+        dq = (fq[i] + 0.5 * g * (h[i] * h[i] - hl[i] * hl[i])) \
+            - (fq[k] + 0.5 * g * (h[i] * h[i] - hr[k] * hr[k]))
+        hi = h[i] - dt / dx * dh
+        qi = q[i] - dt / dx * dq
+        if hi <= dry:
+            hn[i] = max(hi, 0.0)
+            qn[i] = 0.0
+            continue
+        qi += dt * hi * a[i]
+        kf = friction_rate(hi, qi / hi, nu, R)
+        hn[i] = hi
+        qn[i] = qi / (1.0 + dt * kf)
+
+
+@kernel
+def sw_max_speed(h, q, g, R):
+    """Largest |v| + sqrt(g h) over the cells [m/s] (the CFL speed)."""
+    dry = DRY_FRACTION * R
+    s = 0.0
+    for i in range(h.shape[0]):
+        c = math.sqrt(g * max(h[i], 0.0))
+        v = abs(q[i] / h[i]) if h[i] > dry else 0.0
+        if v + c > s:
+            s = v + c
+    return s
+
+
+@kernel
+def wall_height(theta, cx, cy, b):
+    """b = -(cx cos theta + cy sin theta) [m]: the wall's height in the centrifugal potential of a
+    chamber displaced by (cx, cy) [m] from the axis (first order in |c|/R)."""
+    for i in range(theta.shape[0]):
+        b[i] = -(cx * math.cos(theta[i]) + cy * math.sin(theta[i]))
+
+
+@kernel
+def frame_acceleration(theta, R, w, wd, cx, cy, vx, vy, ax, ay, a):
+    """Tangential inertial acceleration of the chamber frame at each wall cell [m/s^2]: the
+    Euler term -w' R and -(c'' + 2 i w c' + i w' c) . e_theta of the chamber's motion c(t) in
+    the rotor frame (w [rad/s], wd [rad/s^2], c [m], c' [m/s], c'' [m/s^2] as x, y parts);
+    e_theta = (-sin theta, cos theta). The centrifugal part is the wall height b."""
+    px = ax - 2.0 * w * vy - wd * cy
+    py = ay + 2.0 * w * vx + wd * cx
+    for i in range(theta.shape[0]):
+        s = math.sin(theta[i])
+        c = math.cos(theta[i])
+        a[i] = -wd * R - (-px * s + py * c)
+
+
+@kernel
+def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax, tay,
+                 out_t, out_h, out_q, hn, qn, fh, fq, hl, hr, b, a):
+    """Integrate the film from t = 0 to t_end [s] with the CFL time step, the forcing read from
+    the tables tt [s] of spin w [rad/s], w' [rad/s^2] and the chamber's displacement c, c', c''
+    ([m], [m/s], [m/s^2]; x and y parts), linearly interpolated. h, q hold the initial state and
+    are overwritten by the final one; out_h, out_q (len(out_t), n) receive the state at the
+    sorted output times out_t [s]. Returns the number of steps (-1: a non-finite state)."""
+    n = h.shape[0]
+    dx = R * 2.0 * math.pi / n
+    t = 0.0
+    kout = 0
+    nout = out_t.shape[0]
+    steps = 0
+    while kout < nout and out_t[kout] <= t:
+        for i in range(n):
+            out_h[kout, i] = h[i]
+            out_q[kout, i] = q[i]
+        kout += 1
+    while t < t_end:
+        w = _interp(t, tt, tw)
+        g = w * w * R
+        s = sw_max_speed(h, q, g, R)
+        dt = t_end - t
+        if s > 0.0 and CFL * dx / s < dt:
+            dt = CFL * dx / s
+        if kout < nout and out_t[kout] - t < dt and out_t[kout] > t:
+            dt = out_t[kout] - t
+        cx = _interp(t, tt, tcx)
+        cy = _interp(t, tt, tcy)
+        wall_height(theta, cx, cy, b)
+        frame_acceleration(theta, R, w, _interp(t, tt, twd), cx, cy, _interp(t, tt, tvx),
+                           _interp(t, tt, tvy), _interp(t, tt, tax), _interp(t, tt, tay), a)
+        sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
+        ok = True
+        for i in range(n):
+            h[i] = hn[i]
+            q[i] = qn[i]
+            if not (math.isfinite(h[i]) and math.isfinite(q[i])):
+                ok = False
+        steps += 1
+        if not ok:
+            return -1
+        t += dt
+        while kout < nout and out_t[kout] <= t + 1e-12 * max(1.0, t):
+            for i in range(n):
+                out_h[kout, i] = h[i]
+                out_q[kout, i] = q[i]
+            kout += 1
+    return steps
+
+
+@kernel
+def _interp(t, tt, vv):
+    """Linear interpolation in a table, held constant outside."""
+    n = tt.shape[0]
+    if n == 1 or t <= tt[0]:
+        return vv[0]
+    if t >= tt[n - 1]:
+        return vv[n - 1]
+    lo = 0
+    hi = n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if tt[mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    f = (t - tt[lo]) / (tt[hi] - tt[lo])
+    return vv[lo] + f * (vv[hi] - vv[lo])

@@ -1,0 +1,235 @@
+"""The liquid film on the outer wall of a rotating, displaced chamber, in time (issue 15, first
+dynamic step): the depth-averaged shallow-water equations along the circumference
+(:mod:`autobalance.core.shallow_water`, docs/liquid.md sec. 3c) driven by a prescribed spin
+Omega(t) and a prescribed chamber displacement c(t) in the rotor frame. The film is the liquid
+of 003's mode 4 (a ring on the wall, lid to bottom); its first moment about the chamber centre is
+the liquid's unbalance. Not yet coupled to the rotor, and no spin-up from rest (modes 1-3).
+
+:func:`film_equilibrium` is the film at rest on the displaced wall (the scheme's well-balanced
+steady state, in closed form); it is the thin-film limit of
+:func:`autobalance.liquid.quasistatic.quasi_static` (planar axis).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.shallow_water import sw_integrate
+from ..models._validate import ParameterError, nonneg, positive
+
+__all__ = ["FilmRun", "film_equilibrium", "film_run", "film_unbalance", "film_wave_speed"]
+
+
+def _theta(n: int) -> np.ndarray:
+    return (np.arange(n) + 0.5) * (2 * np.pi / n)
+
+
+def film_unbalance(thickness, radius: float, height: float, density: float) -> complex:
+    """First moment of a thin film about the chamber centre [kg*m]: rho H R^2 sum(eta e^{i
+    theta}) dtheta over the cells (thin film: the liquid at radius R).
+
+    Parameters
+    ----------
+    thickness : array_like (..., n)
+        Film thickness eta per cell [m].
+    radius : float
+        Wall radius R [m].
+    height : float
+        Chamber height H [m] (the film spans it).
+    density : float
+        rho [kg/m^3].
+
+    Returns
+    -------
+    complex or ndarray of complex
+        [kg*m].
+    """
+    eta = np.asarray(thickness, float)
+    th = _theta(eta.shape[-1])
+    return density * height * radius ** 2 * (2 * np.pi / eta.shape[-1]) * (eta * np.exp(1j * th)).sum(-1)
+
+
+def film_wave_speed(thickness: float, speed: float, radius: float) -> float:
+    """Linear wave speed of the film relative to the wall, sqrt(g eta), g = Omega^2 R [m/s]
+    (shallow water under the centrifugal gravity; the standing mode k of the ring has the
+    frequency k sqrt(g eta) / R).
+
+    Parameters
+    ----------
+    thickness : float
+        Mean film thickness eta [m].
+    speed : float
+        Spin speed Omega [rad/s].
+    radius : float
+        Wall radius R [m].
+    """
+    return math.sqrt(speed * speed * radius * thickness)
+
+
+def film_equilibrium(volume: float, radius: float, height: float, deflection: complex,
+                     n_cells: int = 256) -> np.ndarray:
+    """The film at rest on the wall of a chamber displaced by c: eta = max(0, C + Re(c e^{-i
+    theta})) per cell [m], C from the volume V = H R sum(eta) dtheta (the centrifugal "lake at
+    rest"; dry where the wall is nearest the axis once |c| exceeds the mean thickness).
+
+    Parameters
+    ----------
+    volume : float
+        Liquid volume V [m^3].
+    radius : float
+        Wall radius R [m].
+    height : float
+        Chamber height H [m].
+    deflection : complex
+        Chamber centre relative to the rotation axis, rotor frame [m].
+    n_cells : int
+        Cells around the wall [-].
+
+    Returns
+    -------
+    ndarray (n_cells,)
+        [m].
+    """
+    th = _theta(n_cells)
+    rise = np.real(complex(deflection) * np.exp(-1j * th))
+    target = volume / (height * radius * 2 * np.pi / n_cells)
+
+    def excess(C):
+        return np.maximum(C + rise, 0.0).sum() - target
+
+    lo, hi = -abs(deflection), target / n_cells + abs(deflection)
+    from scipy.optimize import brentq
+
+    C = brentq(excess, lo, hi, xtol=1e-15 * radius, rtol=4.5 * 2.2205e-16)
+    return np.maximum(C + rise, 0.0)
+
+
+@dataclass(frozen=True)
+class FilmRun:
+    """A run of :func:`film_run`.
+
+    Parameters
+    ----------
+    t : ndarray (nt,)
+        Output times [s].
+    theta : ndarray (n,)
+        Cell centres [rad], chamber frame, from the rotor's unbalance direction.
+    thickness : ndarray (nt, n)
+        Film thickness eta [m].
+    discharge : ndarray (nt, n)
+        eta v [m^2/s], v the film's speed relative to the wall.
+    radius, height, density : float
+        R [m], H [m], rho [kg/m^3].
+    steps : int
+        Time steps taken [-].
+    """
+
+    t: np.ndarray
+    theta: np.ndarray
+    thickness: np.ndarray
+    discharge: np.ndarray
+    radius: float
+    height: float
+    density: float
+    steps: int
+
+    @property
+    def volume(self) -> np.ndarray:
+        """Liquid volume at each output time [m^3] (H R sum(eta) dtheta)."""
+        return self.height * self.radius * (2 * np.pi / self.theta.size) * self.thickness.sum(-1)
+
+    @property
+    def unbalance(self) -> np.ndarray:
+        """The film's first moment about the chamber centre at each output time [kg*m]."""
+        return film_unbalance(self.thickness, self.radius, self.height, self.density)
+
+
+def _table(value, t_end, name):
+    """(times, values) of a constant or of a (times, values) pair, values as complex."""
+    if isinstance(value, tuple) and len(value) == 2:
+        t = np.asarray(value[0], float)
+        v = np.asarray(value[1], complex)
+        if t.ndim != 1 or t.size < 2 or v.shape != t.shape or np.any(np.diff(t) <= 0):
+            raise ParameterError(name, "table", "needs increasing times and one value per time")
+        return t, v
+    return np.array([0.0, t_end]), np.full(2, complex(value))
+
+
+def film_run(radius: float, height: float, volume: float, speed, t_end: float, *,
+             deflection=0j, density: float = 1000.0, viscosity: float = 1.0e-6,
+             n_cells: int = 256, save_dt: float | None = None, initial=None) -> FilmRun:
+    """Integrate the film (module docstring) from t = 0 to ``t_end``.
+
+    Parameters
+    ----------
+    radius : float
+        Wall radius R [m].
+    height : float
+        Chamber height H [m].
+    volume : float
+        Liquid volume V [m^3] (a thin film: V << 2 pi R^2 H).
+    speed : float or (array, array)
+        Spin Omega [rad/s], constant or a table (times [s], speeds [rad/s]); > 0 throughout.
+    t_end : float
+        End time [s].
+    deflection : complex or (array, array)
+        Chamber centre relative to the rotation axis, rotor frame [m]: constant or a table
+        (times [s], complex values [m]); its rates come from the table's finite differences.
+    density : float
+        rho [kg/m^3].
+    viscosity : float
+        Kinematic viscosity nu [m^2/s].
+    n_cells : int
+        Cells around the wall [-].
+    save_dt : float or None
+        Output spacing [s] (None: 200 outputs).
+    initial : (array, array) or None
+        Initial (eta [m], q [m^2/s]) per cell; None: a uniform film at rest relative to the wall.
+
+    Returns
+    -------
+    FilmRun
+    """
+    R = positive("radius", radius)
+    H = positive("height", height)
+    V = positive("volume", volume)
+    T = positive("t_end", t_end)
+    positive("density", density)
+    nu = positive("viscosity", viscosity)
+    if int(n_cells) != n_cells or n_cells < 8:
+        raise ParameterError("n_cells", n_cells, "must be an integer >= 8")
+    n = int(n_cells)
+    if V / (2 * np.pi * R * H) > 0.25 * R:
+        raise ParameterError("volume", volume, "a wall film needs a mean thickness V / (2 pi R H) "
+                             f"<= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
+    tw, w = _table(speed, T, "speed")
+    if np.any(w.real <= 0) or np.any(w.imag != 0):
+        raise ParameterError("speed", "table" if w.size > 2 else float(w[0].real),
+                             "must be > 0 [rad/s]: the film model needs the centrifugal field")
+    tc, c = _table(deflection, T, "deflection")
+    tt = np.union1d(tw, tc)
+    wv = np.interp(tt, tw, w.real)
+    cv = np.interp(tt, tc, c.real) + 1j * np.interp(tt, tc, c.imag)
+    wd = np.gradient(wv, tt) if tt.size > 2 else np.full(tt.size, (wv[-1] - wv[0]) / (tt[-1] - tt[0]))
+    cd = np.gradient(cv, tt) if tt.size > 2 else np.full(tt.size, (cv[-1] - cv[0]) / (tt[-1] - tt[0]))
+    cdd = np.gradient(cd, tt) if tt.size > 2 else np.zeros(tt.size, complex)
+    th = _theta(n)
+    if initial is None:
+        h = np.full(n, V / (H * R * 2 * np.pi))
+        q = np.zeros(n)
+    else:
+        h, q = (np.array(x, float) for x in initial)
+        if h.shape != (n,) or q.shape != (n,) or np.any(h < 0) or not np.all(np.isfinite(h)):
+            raise ParameterError("initial", "arrays", f"needs eta >= 0 and q, {n} finite values each")
+    nonneg("save_dt", save_dt if save_dt is not None else 0.0)
+    out_t = np.linspace(0.0, T, 201) if not save_dt else np.arange(0.0, T + 0.5 * save_dt, save_dt)
+    out_h = np.zeros((out_t.size, n))
+    out_q = np.zeros((out_t.size, n))
+    work = [np.zeros(n) for _ in range(8)]
+    steps = sw_integrate(h, q, th, R, nu, T, tt, wv, wd, cv.real, cv.imag, cd.real, cd.imag,
+                         cdd.real, cdd.imag, out_t, out_h, out_q, *work)
+    if steps < 0:
+        raise FloatingPointError("film_run: the film state became non-finite")
+    return FilmRun(out_t, th, out_h, out_q, R, H, float(density), int(steps))
