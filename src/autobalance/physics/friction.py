@@ -47,6 +47,6 @@ def creep_speed(required_torque, kinetic_limit, v_sat):
     """
     lam = np.asarray(required_torque, float)
     lim = np.asarray(kinetic_limit, float)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         r = np.where(lim > 0.0, lam / np.where(lim > 0.0, lim, 1.0), 0.0)
     return -v_sat * np.arctanh(np.clip(r, -CREEP_RATIO_MAX, CREEP_RATIO_MAX))
