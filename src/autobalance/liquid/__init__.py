@@ -11,6 +11,7 @@ from .kinetostatic import (alpha0, alpha0_residual, balancing_efficiency, eccent
                            friction_angle, friction_force, friction_tan_bound, jeffcott_phase,
                            laminar_pipe_force, residual_lambda0)
 from .film import FilmRun, film_equilibrium, film_run, film_unbalance, film_wave_speed
+from .steady import response_curve, ring_response, synchronous_deflection
 from .quasistatic import QuasiStatic, intact_ring_unbalance, lens, quasi_static
 from .models import (G_STANDARD, PLACEMENT_LAWS, WATER, Chamber, Liquid, LiquidBalancer,
                      LiquidModel, VerticalRotor, sufficient_volume)
@@ -23,6 +24,6 @@ __all__ = [
     "film_wave_speed", "fill_sweep", "free_surface", "friction_angle",
     "friction_force", "friction_tan_bound", "gravity_mode_speed", "intact_ring_unbalance", "jeffcott_phase",
     "laminar_pipe_force", "lens", "lid_touch_speed", "liquid_volume", "list_liquid_presets", "load_bench",
-    "load_liquids", "mode_speeds", "motion_mode", "quasi_static", "residual_lambda0", "run_up", "steady_response",
-    "sufficient_volume", "surface_height", "surface_profiles",
+    "load_liquids", "mode_speeds", "motion_mode", "quasi_static", "residual_lambda0", "response_curve", "ring_response", "run_up", "steady_response",
+    "sufficient_volume", "surface_height", "surface_profiles", "synchronous_deflection",
 ]

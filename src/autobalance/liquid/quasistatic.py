@@ -290,7 +290,8 @@ def _vertical(R, h, ri, V, rho, W, c, g, mass):
         full_val = math.pi * (R * R - ri * ri) * full if which == 0 else 0.0
         if s_top <= s_lo:
             return full_val
-        val, _ = quad(f, s_lo, s_top, points=pts or None, epsabs=0.0, epsrel=RTOL, limit=200)
+        val, _ = quad(f, s_lo, s_top, points=pts or None, epsabs=RTOL * R ** 4, epsrel=RTOL,
+                      limit=200)
         return full_val + a * val
 
     def excess(zs):

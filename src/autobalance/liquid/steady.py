@@ -1,0 +1,161 @@
+"""The synchronous whirl of a rotor with a Leblanc balancer whose liquid sits quasi-statically
+in the displaced chamber (issue 15): no calibrated engagement, no lumped capacity.
+
+A Jeffcott rotor (mass M, stiffness k, damping c, unbalance D along the rotor frame's x axis)
+carries a chamber with liquid of mass m_l = rho V. In steady synchronous whirl at Omega the
+deflection w (rotor frame) is constant and the liquid is in the rigid rotation of
+:func:`autobalance.liquid.quasistatic.quasi_static`: its pull on the rotor is
+Omega^2 (m_l w + U_l(w)) (the liquid translating with the chamber plus its first moment about
+the chamber centre). The rotor's balance in the rotor frame (004 eq 8-9 with all rates zero;
+textbook Jeffcott) is then
+
+    G(w) = (k - (M + m_l) Omega^2 + i c Omega) w - Omega^2 (D + U_l(w)) = 0,
+
+a nonlinear equation in w because the liquid gathers differently as the deflection grows (ring,
+then crescent). While the ring is intact U_l = rho (V_c - V) w, so w = Omega^2 D / (k -
+(M + rho V_c) Omega^2 + i c Omega): the liquid adds the mass of a *full* chamber and balances
+nothing (:func:`ring_response`). It balances only once the film breaks, where U_l bends away from
+the deflection's proportion. The equation has several roots near resonance; :func:`response_curve`
+follows them up and down in speed. Validity: the liquid must turn with the rotor (003's mode 4,
+Omega above the entrainment speed, liquid/free_surface.py) and the whirl must be steady; the
+stability of these states is not decided here (partly filled rotors can whirl asynchronously
+above resonance: Kollmann 1962; Ehrich 1992).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import fsolve
+
+from ..models._validate import ParameterError, positive
+from .models import G_STANDARD
+from .quasistatic import quasi_static
+
+__all__ = ["response_curve", "ring_response", "synchronous_deflection"]
+
+
+def _G(w, rotor, Wsp, chamber, volume, density, g, axis):
+    R, H, ri = chamber
+    q = quasi_static(R, H, volume, density, Wsp, w, inner_radius=ri, g=g, axis=axis)
+    dyn = rotor.stiffness - (rotor.mass + q.mass) * Wsp ** 2 + 1j * rotor.damping * Wsp
+    return dyn * w - Wsp ** 2 * (rotor.unbalance + q.unbalance)
+
+
+def ring_response(rotor, chamber_volume: float, volume: float, density: float,
+                  speed: float) -> complex:
+    """Deflection [m] while the liquid is an intact ring: Omega^2 D / (k - (M + rho V_c)
+    Omega^2 + i c Omega) (module docstring; a full chamber's mass, no balancing).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    chamber_volume : float
+        V_c [m^3] of the outer wall's cylinder.
+    volume : float
+        Liquid volume V [m^3].
+    density : float
+        rho [kg/m^3].
+    speed : float
+        Omega [rad/s].
+    """
+    W = speed
+    return W * W * rotor.unbalance / (rotor.stiffness - (rotor.mass + density * chamber_volume) * W * W
+                                      + 1j * rotor.damping * W)
+
+
+def synchronous_deflection(rotor, radius: float, height: float, volume: float, density: float,
+                           speed: float, *, inner_radius: float = 0.0, g: float = G_STANDARD,
+                           axis: str = "vertical", guess: complex | None = None) -> complex:
+    """A root w [m] of G(w) = 0 (module docstring) near ``guess``.
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    radius, height : float
+        Chamber R, h [m].
+    volume : float
+        Liquid volume V [m^3].
+    density : float
+        rho [kg/m^3].
+    speed : float
+        Omega [rad/s], > 0.
+    inner_radius : float
+        Inner wall r_i [m].
+    g : float
+        Gravity [m/s^2].
+    axis : str
+        "vertical", "horizontal" or "planar" (:func:`~autobalance.liquid.quasistatic.quasi_static`).
+    guess : complex or None
+        Start of the Newton iteration [m] (None: the rotor without liquid's unbalance).
+
+    Returns
+    -------
+    complex
+        w [m]; NaN if the iteration does not converge.
+    """
+    W = positive("speed", speed)
+    chamber = (float(radius), float(height), float(inner_radius))
+    if guess is None:
+        m = rotor.mass + density * volume
+        guess = W * W * rotor.unbalance / (rotor.stiffness - m * W * W + 1j * rotor.damping * W)
+    scale = max(abs(guess), 1e-6 * radius)
+
+    def f(x):
+        r = _G(complex(x[0], x[1]) * scale, rotor, W, chamber, volume, density, g, axis)
+        return [r.real / (rotor.stiffness * scale), r.imag / (rotor.stiffness * scale)]
+
+    sol, info, _, _ = fsolve(f, [guess.real / scale, guess.imag / scale], full_output=True,
+                               xtol=1e-12)
+    w = complex(sol[0], sol[1]) * scale
+    if not np.max(np.abs(info["fvec"])) <= 1e-9:         # |G| <= 1e-9 k |w|: a root
+        return complex(math.nan, math.nan)
+    return w
+
+
+def response_curve(rotor, radius: float, height: float, volume: float, density: float, speeds,
+                   *, inner_radius: float = 0.0, g: float = G_STANDARD, axis: str = "vertical"):
+    """Synchronous deflections [m] over ``speeds``, followed by continuation upwards and downwards
+    (two branches; they differ where the response jumps).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    radius, height : float
+        Chamber R, h [m].
+    volume : float
+        Liquid volume V [m^3].
+    density : float
+        rho [kg/m^3].
+    speeds : array_like
+        Increasing speeds Omega [rad/s], > 0.
+    inner_radius : float
+        Inner wall r_i [m].
+    g : float
+        Gravity [m/s^2].
+    axis : str
+        As for :func:`synchronous_deflection`.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Complex deflections [m] of the upward and the downward sweep.
+    """
+    w = np.asarray(speeds, float)
+    if w.ndim != 1 or w.size < 1 or np.any(w <= 0) or np.any(np.diff(w) <= 0):
+        raise ParameterError("speeds", "array", "must be increasing speeds > 0 [rad/s]")
+    kw = dict(inner_radius=inner_radius, g=g, axis=axis)
+    up = np.empty(w.size, complex)
+    guess = None
+    for i, W in enumerate(w):
+        up[i] = synchronous_deflection(rotor, radius, height, volume, density, W, guess=guess, **kw)
+        guess = up[i] if np.isfinite(up[i]) else None
+    down = np.empty(w.size, complex)
+    guess = None
+    for i in range(w.size - 1, -1, -1):
+        down[i] = synchronous_deflection(rotor, radius, height, volume, density, w[i], guess=guess, **kw)
+        guess = down[i] if np.isfinite(down[i]) else None
+    return up, down
