@@ -219,3 +219,114 @@ def _interp(t, tt, vv):
             hi = mid
     f = (t - tt[lo]) / (tt[hi] - tt[lo])
     return vv[lo] + f * (vv[hi] - vv[lo])
+
+
+@kernel
+def film_moment(h, q, theta, R, H, rho):
+    """The thin film's first moment about the chamber centre U = rho H R^2 sum(eta e^{i theta})
+    dtheta [kg*m] and its rate U' = i rho H R sum(q e^{i theta}) dtheta [kg*m/s] (continuity,
+    integrated by parts on the periodic wall)."""
+    n = h.shape[0]
+    dth = 2.0 * math.pi / n
+    u = 0j
+    ud = 0j
+    for i in range(n):
+        e = complex(math.cos(theta[i]), math.sin(theta[i]))
+        u += h[i] * e
+        ud += q[i] * e
+    return rho * H * R * R * dth * u, 1j * rho * H * R * dth * ud
+
+
+@kernel
+def _rotor_rate(Z, Y, U, Ud, w_, wd_, Mt, k, c, D):
+    """Z'' of the rotor-plus-liquid first moment Z = M_t w + U in the rotor frame (module
+    docstring of sw_coupled); returns (w, w', Y')."""
+    w = (Z - U) / Mt
+    wd = (Y - Ud) / Mt
+    yd = -2j * w_ * Y - 1j * wd_ * Z + w_ * w_ * Z - c * (wd + 1j * w_ * w) - k * w \
+        + D * complex(w_ * w_, -wd_)
+    return w, wd, yd
+
+
+@kernel
+def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, twd,
+               out_t, out_h, out_q, out_w, hn, qn, fh, fq, hl, hr, b, a):
+    """The film coupled two-way with an isotropic Jeffcott rotor (mass M_t = M + rho V with the
+    liquid, stiffness k, damping c, unbalance D on the rotor frame's x axis) at the prescribed
+    spin w(t) (tables tt [s], tw [rad/s], twd [rad/s^2]).
+
+    The rotor's balance in the rotor frame, with the liquid's pull written through the total
+    first moment Z = M_t w + U (w the chamber's deflection [m], U the film's moment [kg*m]):
+    Z'' + 2 i W Z' + i W' Z - W^2 Z + c (w' + i W w) + k w = D (W^2 - i W'), so the film's
+    acceleration never needs differentiating. Each film step (CFL) advances the rotor by 4 RK4
+    sub-steps with U, U' frozen (explicit coupling), and the film by one step forced by the
+    deflection and by w'' from the previous step. h, q, and the returned (Z, Y) are the final
+    state; out_w receives w at out_t. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
+    n = h.shape[0]
+    dx = R * 2.0 * math.pi / n
+    t = 0.0
+    Z = Z0
+    Y = Y0
+    kout = 0
+    nout = out_t.shape[0]
+    steps = 0
+    wdd = 0j
+    U, Ud = film_moment(h, q, theta, R, H, rho)
+    wd_prev = (Y - Ud) / Mt
+    while t < t_end:
+        W = _interp(t, tt, tw)
+        Wd = _interp(t, tt, twd)
+        U, Ud = film_moment(h, q, theta, R, H, rho)
+        w = (Z - U) / Mt
+        wd = (Y - Ud) / Mt
+        while kout < nout and out_t[kout] <= t:
+            for i in range(n):
+                out_h[kout, i] = h[i]
+                out_q[kout, i] = q[i]
+            out_w[kout] = w
+            kout += 1
+        g = W * W * R
+        s = sw_max_speed(h, q, g, R)
+        dt = t_end - t
+        if s > 0.0 and CFL * dx / s < dt:
+            dt = CFL * dx / s
+        if kout < nout and out_t[kout] - t < dt:
+            dt = out_t[kout] - t
+        # film step, forced by the chamber's deflection and motion at t
+        wall_height(theta, w.real, w.imag, b)
+        frame_acceleration(theta, R, W, Wd, w.real, w.imag, wd.real, wd.imag, wdd.real,
+                           wdd.imag, a)
+        sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
+        # rotor: 4 RK4 sub-steps with the film's moment frozen
+        hs = dt / 4.0
+        for _ in range(4):
+            _, _, k1 = _rotor_rate(Z, Y, U, Ud, W, Wd, Mt, k, c, D)
+            _, _, k2 = _rotor_rate(Z + 0.5 * hs * Y, Y + 0.5 * hs * k1, U, Ud, W, Wd, Mt, k, c, D)
+            _, _, k3 = _rotor_rate(Z + 0.5 * hs * (Y + 0.5 * hs * k1), Y + 0.5 * hs * k2, U, Ud,
+                                   W, Wd, Mt, k, c, D)
+            _, _, k4 = _rotor_rate(Z + hs * (Y + 0.5 * hs * k2), Y + hs * k3, U, Ud, W, Wd, Mt,
+                                   k, c, D)
+            Z = Z + hs * (Y + hs / 6.0 * (k1 + k2 + k3))
+            Y = Y + hs / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        ok = math.isfinite(Z.real) and math.isfinite(Z.imag)
+        for i in range(n):
+            h[i] = hn[i]
+            q[i] = qn[i]
+            if not (math.isfinite(h[i]) and math.isfinite(q[i])):
+                ok = False
+        steps += 1
+        if not ok:
+            return -1, Z, Y
+        U, Ud = film_moment(h, q, theta, R, H, rho)
+        wd_new = (Y - Ud) / Mt
+        wdd = (wd_new - wd_prev) / dt
+        wd_prev = wd_new
+        t += dt
+    U, Ud = film_moment(h, q, theta, R, H, rho)
+    while kout < nout:
+        for i in range(n):
+            out_h[kout, i] = h[i]
+            out_q[kout, i] = q[i]
+        out_w[kout] = (Z - U) / Mt
+        kout += 1
+    return steps, Z, Y

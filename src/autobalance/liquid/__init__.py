@@ -10,16 +10,17 @@ from .free_surface import (MODE_NAMES, FreeSurface, bottom_touch_speed, entrainm
 from .kinetostatic import (alpha0, alpha0_residual, balancing_efficiency, eccentricity_ratio,
                            friction_angle, friction_force, friction_tan_bound, jeffcott_phase,
                            laminar_pipe_force, residual_lambda0)
-from .film import FilmRun, film_equilibrium, film_run, film_unbalance, film_wave_speed
+from .film import (CoupledRun, FilmRun, coupled_run, film_equilibrium, film_run, film_unbalance,
+                   film_wave_speed)
 from .steady import response_curve, ring_response, synchronous_deflection
 from .quasistatic import QuasiStatic, intact_ring_unbalance, lens, quasi_static
 from .models import (G_STANDARD, PLACEMENT_LAWS, WATER, Chamber, Liquid, LiquidBalancer,
                      LiquidModel, VerticalRotor, sufficient_volume)
 
 __all__ = [
-    "Bench", "Chamber", "FilmRun", "FreeSurface", "G_STANDARD", "Liquid", "LiquidBalancer", "LiquidModel",
+    "Bench", "Chamber", "CoupledRun", "FilmRun", "FreeSurface", "G_STANDARD", "Liquid", "LiquidBalancer", "LiquidModel",
     "MODE_NAMES", "PLACEMENT_LAWS", "QuasiStatic", "RunUp", "VerticalRotor", "WATER", "alpha0",
-    "alpha0_residual", "balancing_efficiency", "bottom_touch_speed", "eccentricity_ratio",
+    "alpha0_residual", "balancing_efficiency", "bottom_touch_speed", "coupled_run", "eccentricity_ratio",
     "engagement", "entrainment_speed", "film_equilibrium", "film_run", "film_unbalance",
     "film_wave_speed", "fill_sweep", "free_surface", "friction_angle",
     "friction_force", "friction_tan_bound", "gravity_mode_speed", "intact_ring_unbalance", "jeffcott_phase",

@@ -19,7 +19,8 @@ import numpy as np
 from ..core.shallow_water import sw_integrate
 from ..models._validate import ParameterError, nonneg, positive
 
-__all__ = ["FilmRun", "film_equilibrium", "film_run", "film_unbalance", "film_wave_speed"]
+__all__ = ["CoupledRun", "FilmRun", "coupled_run", "film_equilibrium", "film_run", "film_unbalance",
+           "film_wave_speed"]
 
 
 def _theta(n: int) -> np.ndarray:
@@ -233,3 +234,97 @@ def film_run(radius: float, height: float, volume: float, speed, t_end: float, *
     if steps < 0:
         raise FloatingPointError("film_run: the film state became non-finite")
     return FilmRun(out_t, th, out_h, out_q, R, H, float(density), int(steps))
+
+
+@dataclass(frozen=True)
+class CoupledRun:
+    """A run of :func:`coupled_run`.
+
+    Parameters
+    ----------
+    t : ndarray (nt,)
+        Output times [s].
+    deflection : ndarray (nt,) of complex
+        The chamber's (rotor's) deflection w in the rotor frame [m].
+    film : FilmRun
+        The film at the same times.
+    steps : int
+        Time steps [-].
+    """
+
+    t: np.ndarray
+    deflection: np.ndarray
+    film: FilmRun
+    steps: int
+
+
+def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end: float, *,
+                density: float = 1000.0, viscosity: float = 1.0e-6, n_cells: int = 256,
+                save_dt: float | None = None, deflection: complex = 0j) -> CoupledRun:
+    """The film coupled two-way with an isotropic Jeffcott rotor at a prescribed spin
+    (:func:`autobalance.core.shallow_water.sw_coupled`): the rotor's deflection moves the wall
+    (centrifugal wall height, frame accelerations) and the film's first moment pulls the rotor.
+    Starts with the rotor at ``deflection``, at rest in the rotor frame, and the film at rest
+    on the displaced wall (:func:`film_equilibrium`).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg] (without the liquid), k [N/m], c [N*s/m], D [kg*m] (on the rotor frame's x axis).
+    radius, height : float
+        Chamber R, H [m].
+    volume : float
+        Liquid volume V [m^3] (a wall film).
+    speed : float or (array, array)
+        Spin Omega [rad/s], constant or a table (times [s], speeds [rad/s]), > 0.
+    t_end : float
+        End time [s].
+    density : float
+        rho [kg/m^3].
+    viscosity : float
+        nu [m^2/s].
+    n_cells : int
+        Cells around the wall [-].
+    save_dt : float or None
+        Output spacing [s] (None: 200 outputs).
+    deflection : complex
+        Initial deflection w(0) [m].
+
+    Returns
+    -------
+    CoupledRun
+    """
+    from ..core.shallow_water import film_moment, sw_coupled
+
+    R, H, V = positive("radius", radius), positive("height", height), positive("volume", volume)
+    T = positive("t_end", t_end)
+    rho, nu = positive("density", density), positive("viscosity", viscosity)
+    if int(n_cells) != n_cells or n_cells < 8:
+        raise ParameterError("n_cells", n_cells, "must be an integer >= 8")
+    if V / (2 * np.pi * R * H) > 0.25 * R:
+        raise ParameterError("volume", volume, "a wall film needs a mean thickness V / (2 pi R H) "
+                             f"<= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
+    n = int(n_cells)
+    tw, w = _table(speed, T, "speed")
+    if np.any(w.real <= 0) or np.any(w.imag != 0):
+        raise ParameterError("speed", "table" if w.size > 2 else float(w[0].real),
+                             "must be > 0 [rad/s]: the film model needs the centrifugal field")
+    wv = w.real
+    wd = np.gradient(wv, tw) if tw.size > 2 else np.full(tw.size, (wv[-1] - wv[0]) / (tw[-1] - tw[0]))
+    th = _theta(n)
+    h = film_equilibrium(V, R, H, complex(deflection), n)
+    q = np.zeros(n)
+    Mt = rotor.mass + rho * V
+    U, Ud = film_moment(h, q, th, R, H, rho)
+    Z0 = Mt * complex(deflection) + U
+    out_t = np.linspace(0.0, T, 201) if not save_dt else np.arange(0.0, T + 0.5 * save_dt, save_dt)
+    out_h, out_q = np.zeros((out_t.size, n)), np.zeros((out_t.size, n))
+    out_w = np.zeros(out_t.size, complex)
+    work = [np.zeros(n) for _ in range(8)]
+    steps, Z, Y = sw_coupled(h, q, th, R, H, rho, nu, Mt, rotor.stiffness, rotor.damping,
+                             rotor.unbalance, Z0, complex(Ud), T, tw, wv, wd, out_t, out_h, out_q,
+                             out_w, *work)
+    if steps < 0:
+        raise FloatingPointError("coupled_run: the state became non-finite")
+    film = FilmRun(out_t, th, out_h, out_q, R, H, float(rho), int(steps))
+    return CoupledRun(out_t, out_w, film, int(steps))
