@@ -54,7 +54,27 @@ def test_simulate_json_and_plots(tmp_path):
     assert all(s["optimum_volume_m3"] == pytest.approx(150e-6) for s in f["fill_sweep"][1:])
 
 
+def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
+    """``--model physical``: the quasi-static liquid's steady whirl (NaN below omega_0, where the
+    liquid does not turn with the chamber), the coupled film's run-up from omega_0 and the fill
+    sweep, in the lumped model's keys; the liquid lowers the whirl above resonance only."""
+    png = tmp_path / "p.png"
+    d = _json(["simulate", "--model", "physical", "--omega", "15:80 1/s:14", "--run-up",
+               "--plot", str(png)])
+    assert d["model"] == "physical" and d["placement"] is None
+    amp, dry, w = d["amplitude_m"], d["amplitude_dry_m"], d["omega_rad_s"]
+    assert all(a is None for a, x in zip(amp, w) if x < d["omega_0_rad_s"])
+    assert all(a < b for a, b, x in zip(amp, dry, w) if x >= 1.2 * d["omega_n_rad_s"])
+    assert all(a > b for a, b, x in zip(amp, dry, w) if d["omega_0_rad_s"] <= x <= 0.8 * d["omega_n_rad_s"])
+    ru = d["run_up"]
+    assert ru["peak_amplitude_m"] < ru["peak_amplitude_dry_m"]
+    assert png.stat().st_size > 10_000
+    f = _json(["simulate", "--model", "physical", "--omega", "54 1/s", "--fill-sweep"])
+    assert len(f["fill_sweep"]) == 4 and f["fill_sweep"][3]["optimum_volume_m3"] >= 150e-6
+
+
 @pytest.mark.parametrize("args, exc", [
+    (["simulate", "--model", "exact"], ConfigError),
     (["surface", "--volume", "7 l"], ParameterError),          # larger than the chamber
     (["surface", "--radius", "-0.2 m"], ParameterError),       # negative size
     (["speeds", "--volume", "100 kg"], ConfigError),           # wrong unit

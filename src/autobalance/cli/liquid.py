@@ -254,19 +254,24 @@ def _bench(preset, radius, liquid, volume, unbalance, placement):
     return b, bal, rot, model
 
 
-def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model) -> None:
+def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model, label=None) -> None:
     """The steady response (with the run-up) or, with a fill sweep, the amplitude vs fill."""
+    import logging
+
     from ..plotting.liquid import fill_figure, response_figure
+
+    # matplotlib logs a fallback line per missing TeX font when a log axis is drawn
+    logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
 
     if sw is not None:
         # the fill sweep varies V: name the fixed quantities only
         fixed = (f"R = {bal.chamber.radius:g} m, {bal.liquid.name}, "
-                 f"D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
+                 f"D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
         fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
                           "Amplitude vs fill (003 Fig. 5)\n" + fixed)
     else:
         title = (f"R = {bal.chamber.radius:g} m, V = {bal.volume * 1e6:.4g} ml "
-                 f"{bal.liquid.name}, D = {rot.unbalance * 1e5:.4g} g·cm, {model.placement}")
+                 f"{bal.liquid.name}, D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
         fig = response_figure(st, w0, wn, ru, title)
     fig.savefig(plot, dpi=120)
 
@@ -283,6 +288,10 @@ def simulate(preset: Annotated[str, typer.Argument(help="Bench preset or .toml."
                                                help="Also integrate the run-up.")] = False,
              fill: Annotated[bool, typer.Option("--fill-sweep", help="Amplitude vs fill at "
                                                 "0.6, 0.8, 1, 1.2 omega_r (003 Fig. 5).")] = False,
+             model_kind: Annotated[str, typer.Option(
+                 "--model", help="lumped (calibrated engagement, the report's) or physical (the "
+                                 "liquid in the displaced chamber; the run-up couples the wall "
+                                 "film and starts at omega_0).")] = "lumped",
              as_json: JsonOpt = False, plot: PlotOpt = None):
     """Rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
 
@@ -299,36 +308,52 @@ def simulate(preset: Annotated[str, typer.Argument(help="Bench preset or .toml."
         Also integrate the run-up.
     fill : bool
         Amplitude vs fill at 0.6, 0.8, 1, 1.2 omega_r (003 Fig. 5).
+    model_kind : str
+        "lumped" (docs/liquid.md sec. 3) or "physical" (sec. 3b-3d).
     plot : str
         Figure (.png, .pdf, .svg): the response, or the fill sweep with ``--fill-sweep``.
     """
     from ..liquid import entrainment_speed, fill_sweep, run_up, steady_response
 
+    if model_kind not in ("lumped", "physical"):
+        raise ConfigError(f"--model = {model_kind!r}: must be 'lumped' or 'physical'")
     b, bal, rot, model = _bench(preset, radius, liquid, volume, unbalance, placement)
     _check_plot(plot)
     ws = _list(omega, "speed", "omega")
-    st = steady_response(rot, bal, ws, model)
+    physical = model_kind == "physical"
+    if physical:
+        from ..liquid.film import physical_run_up as run_up  # noqa: F811
+        from ..liquid.steady import physical_fill_sweep, physical_steady_response
+
+        if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
+            raise ConfigError(f"--omega = {omega!r}: the physical model needs increasing speeds > 0")
+        st = physical_steady_response(rot, bal, ws, model.g)
+    else:
+        st = steady_response(rot, bal, ws, model)
     w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g)
     wn = rot.natural_frequency(bal.mass)
-    out = {"preset": preset, "volume_m3": bal.volume, "radius_m": bal.chamber.radius,
+    out = {"preset": preset, "model": model_kind, "volume_m3": bal.volume, "radius_m": bal.chamber.radius,
            "liquid": bal.liquid.name, "unbalance_kg_m": rot.unbalance,
            "capacity_kg_m": bal.capacity, "k": bal.capacity / rot.unbalance
-           if rot.unbalance else None, "placement": model.placement,
+           if rot.unbalance else None, "placement": None if physical else model.placement,
            "omega_0_rad_s": w0, "omega_n_rad_s": wn, **st}
     ru = sw = None
     if run:
-        ru = run_up(rot, bal, model, b.omega_end, b.duration, n_out=1500)
+        ru = (run_up(rot, bal, b.omega_end, b.duration, model.g) if physical
+              else run_up(rot, bal, model, b.omega_end, b.duration, n_out=1500))
         out["run_up"] = ru.summary()
     if fill:
-        sw = [fill_sweep(rot, bal, b.sweep_volumes, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
+        sw = [physical_fill_sweep(rot, bal, b.sweep_volumes, f * wn, model.g) if physical
+              else fill_sweep(rot, bal, b.sweep_volumes, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
         out["fill_sweep"] = [{"omega_rad_s": s["omega_rad_s"], "volume_m3": s["volume_m3"],
                               "amplitude_m": s["amplitude_m"],
                               "optimum_volume_m3": s["optimum_volume_m3"]} for s in sw]
     if plot:
-        _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model)
+        _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model,
+                  "physical model" if physical else None)
         out["plot"] = plot
     if not as_json:
         out = {k: v for k, v in out.items() if not isinstance(v, (np.ndarray, list, dict))} | {
-            "max_amplitude_m": float(np.max(st["amplitude_m"])),
+            "max_amplitude_m": float(np.nanmax(st["amplitude_m"])),
             "max_amplitude_dry_m": float(np.max(st["amplitude_dry_m"]))}
     _out(out, as_json)

@@ -18,9 +18,10 @@ import numpy as np
 
 from ..core.shallow_water import sw_integrate
 from ..models._validate import ParameterError, nonneg, positive
+from .models import G_STANDARD
 
 __all__ = ["CoupledRun", "FilmRun", "coupled_run", "film_equilibrium", "film_run", "film_unbalance",
-           "film_wave_speed"]
+           "film_wave_speed", "physical_run_up"]
 
 
 def _theta(n: int) -> np.ndarray:
@@ -328,3 +329,53 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
         raise FloatingPointError("coupled_run: the state became non-finite")
     film = FilmRun(out_t, th, out_h, out_q, R, H, float(rho), int(steps))
     return CoupledRun(out_t, out_w, film, int(steps))
+
+
+def physical_run_up(rotor, bal, omega_end: float, duration: float, g: float = G_STANDARD,
+                    n_cells: int = 256, n_out: int = 1500):
+    """A run-up with the wall film coupled to the rotor (:func:`coupled_run`), as the lumped
+    model's :class:`autobalance.liquid.RunUp`: linear in speed from the entrainment speed omega_0
+    (003 eq 6; below it the liquid is not a ring on the wall and the film model does not apply)
+    to ``omega_end`` over the part of ``duration`` the bench's linear run-up 0 -> omega_end would
+    spend there; the empty rotor over the same ramp.
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    bal : LiquidBalancer
+        Chamber, liquid (rho [kg/m^3], nu [m^2/s]) and volume [m^3].
+    omega_end : float
+        Final speed [rad/s].
+    duration : float
+        Time of the whole run-up from rest [s] (the rate omega_end / duration [rad/s^2]).
+    g : float
+        Gravity [m/s^2] (for omega_0).
+    n_cells : int
+        Film cells [-].
+    n_out : int
+        Output samples [-].
+
+    Returns
+    -------
+    RunUp
+        t [s] from the start at omega_0, omega [rad/s], amplitude and amplitude_dry [m],
+        liquid_angle [rad] and liquid_unbalance [kg*m] of the film's moment.
+    """
+    from .dynamics import RunUp
+    from .free_surface import entrainment_speed
+
+    R, h, V = bal.chamber.radius, bal.chamber.height, bal.volume
+    w0 = entrainment_speed(V, R, h, g)
+    if not w0 < omega_end:
+        raise ParameterError("omega_end", omega_end, f"must exceed the entrainment speed {w0:.4g} 1/s")
+    T = duration * (omega_end - w0) / omega_end
+    table = (np.array([0.0, T]), np.array([w0, omega_end]))
+    dt = T / (n_out - 1)
+    wet = coupled_run(rotor, R, h, V, table, T, density=bal.liquid.density,
+                      viscosity=bal.liquid.kinematic_viscosity, n_cells=n_cells, save_dt=dt)
+    dry = coupled_run(rotor, R, h, 1e-12, table, T, n_cells=16, save_dt=dt)
+    U = wet.film.unbalance
+    return RunUp(t=wet.t, omega=np.interp(wet.t, table[0], table[1]),
+                 amplitude=np.abs(wet.deflection), liquid_angle=np.angle(U),
+                 liquid_unbalance=np.abs(U), amplitude_dry=np.abs(dry.deflection))

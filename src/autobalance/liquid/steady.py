@@ -32,7 +32,8 @@ from ..models._validate import ParameterError, positive
 from .models import G_STANDARD
 from .quasistatic import quasi_static
 
-__all__ = ["response_curve", "ring_response", "synchronous_deflection"]
+__all__ = ["physical_fill_sweep", "physical_steady_response", "response_curve", "ring_response",
+           "synchronous_deflection"]
 
 
 def _G(w, rotor, Wsp, chamber, volume, density, g, axis):
@@ -159,3 +160,79 @@ def response_curve(rotor, radius: float, height: float, volume: float, density: 
         down[i] = synchronous_deflection(rotor, radius, height, volume, density, w[i], guess=guess, **kw)
         guess = down[i] if np.isfinite(down[i]) else None
     return up, down
+
+
+def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
+    """The bench's steady whirl over ``speeds`` with the quasi-static liquid (:func:`response_curve`,
+    upward sweep), in the keys of :func:`autobalance.liquid.steady_response` (the lumped model),
+    so that the CLI and the figures take either. Below the entrainment speed omega_0 (003 eq 6)
+    the liquid does not turn with the chamber and the model does not apply: NaN there.
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    bal : LiquidBalancer
+        Chamber (R, h [m]), liquid (rho [kg/m^3]) and volume V [m^3].
+    speeds : array_like
+        Increasing speeds [rad/s], > 0.
+    g : float
+        Gravity [m/s^2].
+
+    Returns
+    -------
+    dict
+        omega_rad_s, amplitude_m, amplitude_dry_m (empty chamber), efficiency [-],
+        liquid_angle_deg (of U_l from D) [deg], liquid_unbalance_kg_m, phase_deg (of w from D).
+    """
+    from .free_surface import entrainment_speed
+
+    om = np.asarray(speeds, float)
+    R, h, rho, V = bal.chamber.radius, bal.chamber.height, bal.liquid.density, bal.volume
+    w0 = entrainment_speed(V, R, h, g)
+    ok = om >= w0
+    w = np.full(om.size, complex(math.nan, math.nan))
+    if ok.any():
+        w[ok], _ = response_curve(rotor, R, h, V, rho, om[ok], g=g)
+    U = np.array([quasi_static(R, h, V, rho, W, x, g=g).unbalance if np.isfinite(x) else
+                  complex(math.nan, math.nan) for W, x in zip(om, w)])
+    dry = np.abs(om ** 2 * rotor.unbalance / (rotor.stiffness - rotor.mass * om ** 2
+                                              + 1j * rotor.damping * om))
+    amp = np.abs(w)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        eff = dry / amp
+    return {"omega_rad_s": om, "amplitude_m": amp, "amplitude_dry_m": dry, "efficiency": eff,
+            "liquid_angle_deg": np.degrees(np.angle(U)), "liquid_unbalance_kg_m": np.abs(U),
+            "phase_deg": np.degrees(np.angle(w))}
+
+
+def physical_fill_sweep(rotor, bal, volumes, omega: float, g: float = G_STANDARD) -> dict:
+    """Steady amplitude [m] at one speed for several fills with the quasi-static liquid, in the
+    keys of :func:`autobalance.liquid.fill_sweep` (003 Fig. 5).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    bal : LiquidBalancer
+        Chamber and liquid (its volume is replaced by each of ``volumes``).
+    volumes : array_like
+        Fill volumes [m^3], > 0 (0 is the empty chamber).
+    omega : float
+        Speed [rad/s].
+    g : float
+        Gravity [m/s^2].
+
+    Returns
+    -------
+    dict
+        volume_m3, amplitude_m, efficiency, optimum_volume_m3, omega_rad_s.
+    """
+    vols = np.asarray(volumes, float)
+    R, h, rho = bal.chamber.radius, bal.chamber.height, bal.liquid.density
+    dry = abs(omega ** 2 * rotor.unbalance / (rotor.stiffness - rotor.mass * omega ** 2
+                                              + 1j * rotor.damping * omega))
+    amps = np.array([dry if V <= 0 else abs(synchronous_deflection(rotor, R, h, V, rho, omega, g=g))
+                     for V in vols])
+    return {"volume_m3": vols, "amplitude_m": amps, "efficiency": dry / amps,
+            "optimum_volume_m3": float(vols[int(np.nanargmin(amps))]), "omega_rad_s": float(omega)}
