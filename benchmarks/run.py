@@ -119,6 +119,26 @@ def main() -> dict:
                              "creep_steps": sim_cr.summary()["solver"]["steps"]})
     lines.append(f"   004's tanh law (creep emulation, v_sat 1e-6 rad/s): {t_cr*1e3:.1f} ms "
                  f"({t_cr/t_tsr:.2f}x stick); checkpoint grades differ by {dG:.1e} mm/s")
+    # --- D: the worst-case residual bound behind `study tolerances` (physics/worst_case.py) -----
+    import autobalance.physics.reachable_set as wc
+    from autobalance.studies.tolerances import compute_tolerances
+
+    compute_tolerances("examples/centrifuge.toml", grade=16.0)          # compile
+    tol = {}
+    for flag in (False, True):
+        wc.COMPILED_GAP = flag
+        t0 = time.perf_counter()
+        d = compute_tolerances("examples/centrifuge.toml", grade=16.0)
+        tol[flag] = (time.perf_counter() - t0, d)
+    wc.COMPILED_GAP = True
+    same = all(tol[True][1][k] == tol[False][1][k] for k in
+               ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N",
+                "worst_residual_kg_m"))
+    res["D_tolerances_centrifuge"] = {"numpy_s": tol[False][0], "compiled_s": tol[True][0],
+                                      "same_figures": same}
+    lines.append(f"D. study tolerances of examples/centrifuge.toml (the circle test of the worst-case bound): "
+                 f"NumPy home {tol[False][0]:.2f} s, compiled twin {tol[True][0]:.2f} s "
+                 f"({tol[False][0] / tol[True][0]:.1f}x), same tolerances: {same}")
     print("\n".join(lines))
     os.makedirs("out", exist_ok=True)
     with open("out/bench.json", "w") as f:

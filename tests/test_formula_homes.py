@@ -142,3 +142,41 @@ def test_profile_kinds_registry_and_schema_agree():
     for kind, ctor in PROFILE_KINDS.items():
         params = set(inspect.signature(ctor).parameters) - {"self"}
         assert set(SCHEMA[kind]) <= params, (kind, set(SCHEMA[kind]) - params)
+
+
+@settings(max_examples=60, deadline=None)
+@given(n=st.sampled_from([1, 2]), c1=st.floats(0.1, 2.0), c2=st.floats(0.1, 2.0),
+       s1=st.floats(0.0, 1.6), s2=st.floats(0.0, 1.6), seed=st.integers(0, 2 ** 16))
+def test_compiled_twin_of_the_circle_test(n, c1, c2, s1, s2, seed):
+    """core/worst_case.row_min_distance against physics/reachable_set._arcs_distance (the home) on
+    random required moments: the same row minima (identical operations, scalar order)."""
+    from autobalance.core.worst_case import N_ARCS, row_min_distance
+    from autobalance.physics.reachable_set import _arcs_distance
+
+    rng = np.random.default_rng(seed)
+    t0 = (rng.normal(size=(3, 64)) + 1j * rng.normal(size=(3, 64))) * (c1 + c2)
+    shift = complex(rng.normal(), rng.normal())
+    c = np.array([c1, c2][:n])
+    s = np.array([s1, s2][:n])
+    home = _arcs_distance((t0 + shift).ravel(), c, s).reshape(t0.shape).min(axis=1)
+    twin = np.empty(3)
+    row_min_distance(t0, shift, n, c1, c2 if n == 2 else 0.0, s1, s2 if n == 2 else 0.0,
+                     np.empty((N_ARCS, 11)), twin)
+    assert np.allclose(twin, home, rtol=1e-12, atol=1e-14 * (c1 + c2))
+
+
+def test_residual_bound_is_the_same_with_the_twin():
+    """The whole bound (scan and bisection) with the twin and with the home: the same figures."""
+    import autobalance.physics.reachable_set as rs
+    from autobalance.physics.worst_case import residual_bound
+
+    s = washer_000(rho=1e-4, beta=0.3)
+    try:
+        rs.COMPILED_GAP = False
+        home = residual_bound(s, 104.7, rolling_resistance=2e-3, n_theta=256, n_beta=6)
+        rs.COMPILED_GAP = True
+        twin = residual_bound(s, 104.7, rolling_resistance=2e-3, n_theta=256, n_beta=6)
+    finally:
+        rs.COMPILED_GAP = True
+    assert twin["worst_residual_kg_m"] == pytest.approx(home["worst_residual_kg_m"], rel=1e-9)
+    assert twin["separated"] == home["separated"]
