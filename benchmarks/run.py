@@ -64,6 +64,7 @@ def main() -> dict:
     t_in, sim_in = timed(lambda: simulate(s, prof, initial=ini, options=o_integ))
     Tr = 0.2
     prof_r = ab.SpeedProfile.constant(W, Tr)
+    radau(s, ab.SpeedProfile.constant(W, 1e-3), 1e-3, ini, "kernel")   # compile the RHS first
     t_rk, sol_k = radau(s, prof_r, Tr, ini, "kernel")
     t_rp, sol_p = radau(s, prof_r, Tr, ini, "paper")
     a = {
