@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 from .jit import kernel
+from .rhs import table_interp
 
 #: Films thinner than this fraction of R are dry: no velocity, no friction [-].
 DRY_FRACTION = 1e-12
@@ -150,6 +151,18 @@ def frame_acceleration(theta, R, w, wd, cx, cy, vx, vy, ax, ay, a):
 
 
 @kernel
+def _emit(out_t, out_h, out_q, kout, t, h, q):
+    """Store the film state at every output time out_t[k] <= t from k = kout on; returns the next
+    output index."""
+    while kout < out_t.shape[0] and out_t[kout] <= t:
+        for i in range(h.shape[0]):
+            out_h[kout, i] = h[i]
+            out_q[kout, i] = q[i]
+        kout += 1
+    return kout
+
+
+@kernel
 def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax, tay,
                  out_t, out_h, out_q, hn, qn, fh, fq, hl, hr, b, a):
     """Integrate the film from t = 0 to t_end [s] with the CFL time step, the forcing read from
@@ -163,13 +176,9 @@ def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax
     kout = 0
     nout = out_t.shape[0]
     steps = 0
-    while kout < nout and out_t[kout] <= t:
-        for i in range(n):
-            out_h[kout, i] = h[i]
-            out_q[kout, i] = q[i]
-        kout += 1
+    kout = _emit(out_t, out_h, out_q, kout, t, h, q)
     while t < t_end:
-        w = _interp(t, tt, tw)
+        w = table_interp(t, tt, tw)
         g = w * w * R
         s = sw_max_speed(h, q, g, R)
         dt = t_end - t
@@ -177,11 +186,11 @@ def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax
             dt = CFL * dx / s
         if kout < nout and out_t[kout] - t < dt and out_t[kout] > t:
             dt = out_t[kout] - t
-        cx = _interp(t, tt, tcx)
-        cy = _interp(t, tt, tcy)
+        cx = table_interp(t, tt, tcx)
+        cy = table_interp(t, tt, tcy)
         wall_height(theta, cx, cy, b)
-        frame_acceleration(theta, R, w, _interp(t, tt, twd), cx, cy, _interp(t, tt, tvx),
-                           _interp(t, tt, tvy), _interp(t, tt, tax), _interp(t, tt, tay), a)
+        frame_acceleration(theta, R, w, table_interp(t, tt, twd), cx, cy, table_interp(t, tt, tvx),
+                           table_interp(t, tt, tvy), table_interp(t, tt, tax), table_interp(t, tt, tay), a)
         sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
         ok = True
         for i in range(n):
@@ -193,32 +202,9 @@ def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax
         if not ok:
             return -1
         t += dt
-        while kout < nout and out_t[kout] <= t + 1e-12 * max(1.0, t):
-            for i in range(n):
-                out_h[kout, i] = h[i]
-                out_q[kout, i] = q[i]
-            kout += 1
+        kout = _emit(out_t, out_h, out_q, kout, t + 1e-12 * max(1.0, t), h, q)
     return steps
 
-
-@kernel
-def _interp(t, tt, vv):
-    """Linear interpolation in a table, held constant outside."""
-    n = tt.shape[0]
-    if n == 1 or t <= tt[0]:
-        return vv[0]
-    if t >= tt[n - 1]:
-        return vv[n - 1]
-    lo = 0
-    hi = n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if tt[mid] <= t:
-            lo = mid
-        else:
-            hi = mid
-    f = (t - tt[lo]) / (tt[hi] - tt[lo])
-    return vv[lo] + f * (vv[hi] - vv[lo])
 
 
 @kernel
@@ -274,17 +260,15 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
     U, Ud = film_moment(h, q, theta, R, H, rho)
     wd_prev = (Y - Ud) / Mt
     while t < t_end:
-        W = _interp(t, tt, tw)
-        Wd = _interp(t, tt, twd)
+        W = table_interp(t, tt, tw)
+        Wd = table_interp(t, tt, twd)
         U, Ud = film_moment(h, q, theta, R, H, rho)
         w = (Z - U) / Mt
         wd = (Y - Ud) / Mt
-        while kout < nout and out_t[kout] <= t:
-            for i in range(n):
-                out_h[kout, i] = h[i]
-                out_q[kout, i] = q[i]
-            out_w[kout] = w
-            kout += 1
+        k0 = kout
+        kout = _emit(out_t, out_h, out_q, kout, t, h, q)
+        for j in range(k0, kout):
+            out_w[j] = w
         g = W * W * R
         s = sw_max_speed(h, q, g, R)
         dt = t_end - t
@@ -323,10 +307,8 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
         wd_prev = wd_new
         t += dt
     U, Ud = film_moment(h, q, theta, R, H, rho)
-    while kout < nout:
-        for i in range(n):
-            out_h[kout, i] = h[i]
-            out_q[kout, i] = q[i]
-        out_w[kout] = (Z - U) / Mt
-        kout += 1
+    k0 = kout
+    kout = _emit(out_t, out_h, out_q, kout, math.inf, h, q)
+    for j in range(k0, kout):
+        out_w[j] = (Z - U) / Mt
     return steps, Z, Y

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.shallow_water import sw_integrate
+from ..core.shallow_water import sw_integrate, wall_height
 from ..models._validate import ParameterError, nonneg, positive
 from .models import G_STANDARD
 
@@ -95,7 +95,10 @@ def film_equilibrium(volume: float, radius: float, height: float, deflection: co
         [m].
     """
     th = _theta(n_cells)
-    rise = np.real(complex(deflection) * np.exp(-1j * th))
+    c = complex(deflection)
+    b = np.empty(n_cells)
+    wall_height(th, c.real, c.imag, b)               # the scheme's own wall, b = -Re(c e^{-i theta})
+    rise = -b
     target = volume / (height * radius * 2 * np.pi / n_cells)
 
     def excess(C):

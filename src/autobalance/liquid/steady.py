@@ -149,17 +149,17 @@ def response_curve(rotor, radius: float, height: float, volume: float, density: 
     if w.ndim != 1 or w.size < 1 or np.any(w <= 0) or np.any(np.diff(w) <= 0):
         raise ParameterError("speeds", "array", "must be increasing speeds > 0 [rad/s]")
     kw = dict(inner_radius=inner_radius, g=g, axis=axis)
-    up = np.empty(w.size, complex)
-    guess = None
-    for i, W in enumerate(w):
-        up[i] = synchronous_deflection(rotor, radius, height, volume, density, W, guess=guess, **kw)
-        guess = up[i] if np.isfinite(up[i]) else None
-    down = np.empty(w.size, complex)
-    guess = None
-    for i in range(w.size - 1, -1, -1):
-        down[i] = synchronous_deflection(rotor, radius, height, volume, density, w[i], guess=guess, **kw)
-        guess = down[i] if np.isfinite(down[i]) else None
-    return up, down
+
+    def sweep(order):
+        out = np.empty(w.size, complex)
+        guess = None
+        for i in order:                 # continuation: each root starts from the previous one
+            out[i] = synchronous_deflection(rotor, radius, height, volume, density, w[i],
+                                            guess=guess, **kw)
+            guess = out[i] if np.isfinite(out[i]) else None
+        return out
+
+    return sweep(range(w.size)), sweep(range(w.size - 1, -1, -1))
 
 
 def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
