@@ -323,6 +323,30 @@ def test_interrupt_stops_promptly_keeps_tasks_no_orphans(slow_ref, tmp_path, sig
     assert_bit_identical(open_sweep(store), slow_ref)
 
 
+def test_a_stopped_pool_survives_the_exit_hooks_race_on_its_wakeup_pipe():
+    """concurrent.futures' exit hook pokes every pool's wake-up pipe without a lock: it may see the
+    pipe open and write after the pool's manager closed it. That state, made deterministic on a
+    real pool stopped by _stop_pool (the Ctrl-C and write-error path): the poke does not raise,
+    where the unpatched one does (it printed "Exception ignored ... Bad file descriptor" after
+    the one-line error, in fresh-clone runs of the two tests above and below)."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import _ThreadWakeup
+
+    from autobalance.sweep.execute import _stop_pool
+
+    ex = ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("spawn"))
+    ex.submit(pow, 2, 3).result(timeout=60)
+    wakeup = ex._executor_manager_thread_wakeup
+    _stop_pool(ex)
+    assert wakeup._closed                          # the manager closed the pipe
+    wakeup._closed = False                         # the hook's check passed just before that
+    wakeup.wakeup()                                # the hook's write: no exception
+    with pytest.raises(OSError):
+        _ThreadWakeup.wakeup(wakeup)               # what the unpatched pipe does
+    wakeup._closed = True
+
+
 # -- write errors ----------------------------------------------------------------------------------
 @pytest.mark.slow
 def test_read_only_store_fails_before_computing(tmp_path):

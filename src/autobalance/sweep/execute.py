@@ -115,6 +115,7 @@ def _stop_pool(ex) -> None:
     """Kill the pool's processes now (Ctrl-C, a write error): finished tasks are already on
     disk, the ones running are lost and rerun on --resume."""
     procs = list(getattr(ex, "_processes", {}).values())
+    _quiet_exit_wakeup(getattr(ex, "_executor_manager_thread_wakeup", None))
     for p in procs:
         try:
             p.kill()
@@ -126,12 +127,33 @@ def _stop_pool(ex) -> None:
             p.join(timeout=5)
         except (OSError, AttributeError, ValueError, AssertionError):
             pass
-    # let the pool's manager thread finish closing its wake-up pipe: on Python 3.11 the exit
-    # hook of concurrent.futures otherwise may write to that pipe while it closes and print
-    # "Exception ignored ... OSError: [Errno 9] Bad file descriptor" after our one-line error
+    # let the pool's manager thread finish closing its wake-up pipe (prompt exit in the common
+    # case; _quiet_exit_wakeup covers a manager still closing when the interpreter exits)
     manager = getattr(ex, "_executor_manager_thread", None)
     if manager is not None:
         manager.join(timeout=5)
+
+
+def _quiet_exit_wakeup(wakeup) -> None:
+    """Make a stopped pool's wake-up pipe safe to poke at interpreter exit.
+
+    concurrent.futures' exit hook (Python 3.11, ``_python_exit``) calls ``wakeup()`` on every
+    pool's pipe without the pool's lock: it checks ``_closed`` and then writes, while the pool's
+    manager thread may close the pipe in between. After a Ctrl-C or a write error the manager is
+    often still closing, and the write failed with "Exception ignored ... OSError: [Errno 9] Bad
+    file descriptor" after our one-line error (seen under load and on a quiet machine). A closed
+    pipe needs no wake-up, so this pool's ``wakeup`` ignores a pipe closed under it."""
+    if wakeup is None:
+        return
+    method = type(wakeup).wakeup
+
+    def wakeup_unless_closed(w=wakeup):
+        try:
+            method(w)
+        except (OSError, ValueError):
+            pass
+
+    wakeup.wakeup = wakeup_unless_closed
 
 
 _GUARD_HINT = ("a script that calls autobalance.sweep() must do so under "
