@@ -31,7 +31,8 @@ FUZZ = settings(max_examples=60, deadline=None, derandomize=True,
 UNIT_OF = {"mass": "3 kg", "unbalance": "3 g*m", "inertia": "3 kg*m^2",
            "rot_damping": "3 N*m*s/rad", "stiffness": "3 N/mm", "damping": "3 N*s/m",
            "force": "3 N", "torque": "3 N*m*s", "length": "3 mm", "velocity": "3 mm/s",
-           "acceleration": "3 m/s^2", "speed": "3 rpm", "time": "3 s"}
+           "acceleration": "3 m/s^2", "speed": "3 rpm", "time": "3 s", "volume": "3 ml",
+           "density": "3 kg/m^3", "kin_viscosity": "3 cSt"}
 DIMLESS = {"angle", "ratio", "speed"}   # rpm, deg and bare ratios are all 1/s or 1: not "wrong"
 
 
@@ -104,8 +105,10 @@ def toml_value(v) -> str:
 
 
 def preset_with(sec: str, key: str, value) -> str:
-    """The 004 preset's TOML with ``[sec] key`` replaced by ``value``."""
-    raw = tomllib.loads(preset_path("vub_jeffcott_004").read_text())
+    """The 004 preset's TOML (003's liquid bench for a ``[liquid]`` key) with ``[sec] key``
+    replaced by ``value``."""
+    name = "leblanc_003" if sec == "liquid" else "vub_jeffcott_004"
+    raw = tomllib.loads(preset_path(name).read_text())
     raw.setdefault(sec, {})[key] = value
     lines = []
     for k, v in raw.items():
@@ -134,8 +137,8 @@ def test_fuzz_bad_config_file(tmp_path, capsys, bad):
 @given(bad=bad_field())
 def test_fuzz_bad_set_override(capsys, bad):
     sec, key, value = bad
-    code, out, err = run_main(capsys, ["show", "vub_jeffcott_004", "--set",
-                                       f"{sec}.{key}={toml_value(value)}"])
+    base = "leblanc_003" if sec == "liquid" else "vub_jeffcott_004"
+    code, out, err = run_main(capsys, ["show", base, "--set", f"{sec}.{key}={toml_value(value)}"])
     count("--set overrides")
     assert_one_line(code, out, err, f"{sec}.{key}")
 

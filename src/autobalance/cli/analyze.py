@@ -60,7 +60,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
     with guard():
         check_plot(plot)
         check_plot(damping_plot, what="--damping-plot")
-        cfg = load_machine(source, set_)
+        cfg = load_machine(source, set_, balls="needed")
         from ..physics.vibratory import force_jacobian, vibratory_components
 
         w = speed_at(cfg, speed)
@@ -119,7 +119,7 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     """
     with guard():
-        cfg = load_machine(source, set_)
+        cfg = load_machine(source, set_, balls="needed")
         from ..physics.equilibria import balancing_onset_speed, find_equilibrium_set
         from ..physics.vibratory import speed_regime
 
@@ -239,7 +239,7 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     """
     with guard():
         check_plot(plot)
-        cfg = load_machine(source, set_)
+        cfg = load_machine(source, set_, balls="needed")
         import numpy as np
 
         w = speed_at(cfg, speed)
@@ -324,7 +324,7 @@ def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         method (:func:`autobalance.physics.tolerance.design_tolerances`), in (0, 1].
     """
     with guard():
-        cfg = load_machine(source, set_)
+        cfg = load_machine(source, set_, balls="needed")
         from ..physics.tolerance import design_tolerances
         from ..studies.tolerances import compute_tolerances
 
@@ -372,7 +372,7 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
     """
     with guard():
         check_plot(plot)
-        cfg = load_machine(source, set_)
+        cfg = load_machine(source, set_, balls="needed")
         from ..simulate.kinetic_static import compare_with_full
 
         w = speed_at(cfg, speed)

@@ -157,7 +157,8 @@ def print_json(obj: dict) -> None:
     typer.echo(json.dumps(to_jsonable(obj), allow_nan=False))
 
 
-def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optional[str] = None):
+def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optional[str] = None,
+                 balls: str = "any"):
     """The configuration named on the command line, with its ``--set`` and ``--profile``.
 
     Parameters
@@ -169,6 +170,9 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
     profile : str, optional
         A speed profile kind to switch to (``--profile``): the override ``profile.kind=...``
         after the others.
+    balls : str
+        ``"any"``: any machine; ``"rotor"``: a ball-balancer machine or the bare rotor (no
+        liquid); ``"needed"``: a ball balancer (:meth:`autobalance.System.require_balls`).
 
     Returns
     -------
@@ -179,7 +183,10 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
     ConfigError, ParameterError, OSError
         Bad file, value or override (one line).
     """
-    return load_config(source, list(sets or []) + ([f"profile.kind={profile}"] if profile else []))
+    cfg = load_config(source, list(sets or []) + ([f"profile.kind={profile}"] if profile else []))
+    if balls != "any":
+        cfg.system.require_balls("this command's analyses", allow_empty=balls == "rotor")
+    return cfg
 
 
 # -- checks before the work ---------------------------------------------------------------------

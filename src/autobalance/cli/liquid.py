@@ -53,7 +53,7 @@ def _out(obj: dict, as_json: bool) -> None:
 
 
 def _q(value: str, kind: str, field: str) -> float:
-    from ..liquid.config import parse_quantity
+    from ..config import parse_quantity
     return parse_quantity(value, kind, field)
 
 

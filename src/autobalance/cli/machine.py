@@ -58,8 +58,10 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         return
     typer.echo(f"{d['name']}: {d['description']}")
     typer.echo(f"source: {d['source']}")
-    for section in ("rotor", "suspension", "balancer", "gravity", "profile", "initial", "options",
-                    "derived"):
+    for section in ("rotor", "suspension", "balancer", "gravity", "liquid", "profile", "initial",
+                    "options", "derived"):
+        if section not in d:
+            continue
         typer.echo(f"[{section}]")
         raw = cfg.raw.get(section, {}) if isinstance(cfg.raw.get(section), dict) else {}
         for key, value in d[section].items():

@@ -186,7 +186,7 @@ def response(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         Speed grid ``"lo:hi:n"`` [rad/s or with units] (:func:`speed_grid`).
     """
     with guard():
-        cfg = load_machine(source, set_, profile)
+        cfg = load_machine(source, set_, profile, balls="rotor")
         grid = speed_grid(speeds, cfg.spin.nominal_speed)
         from ..physics.response import response_table
 
@@ -224,7 +224,7 @@ def analyze_response(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = N
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     """
     with guard():
-        cfg = load_machine(source, set_)
+        cfg = load_machine(source, set_, balls="rotor")
         from ..physics.vibratory import drum_response, speed_regime
 
         w = speed_at(cfg, speed)

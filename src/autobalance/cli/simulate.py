@@ -134,14 +134,20 @@ def run_config(cfg):
 
     Returns
     -------
-    sim : autobalance.result.Simulation
-        The run (``status`` says whether it finished; it does not raise on failure).
+    sim : autobalance.result.Simulation or autobalance.liquid.simulate.LiquidSimulation
+        The run (``status`` says whether it finished; it does not raise on failure); a system
+        with a ``[liquid]`` section runs the liquid film model.
     wall : float
         Wall time of the run [s].
     """
+    t0 = time.perf_counter()
+    if cfg.system.liquid is not None:
+        from ..liquid.simulate import simulate_liquid
+
+        sim = simulate_liquid(cfg.system, cfg.spin)
+        return sim, time.perf_counter() - t0
     from ..simulate import simulate
 
-    t0 = time.perf_counter()
     sim = simulate(cfg.system, cfg.spin, initial=cfg.initial, options=cfg.options, throw=False)
     return sim, time.perf_counter() - t0
 
@@ -182,7 +188,12 @@ def write_outputs(sim, out: Optional[Path], plot, units=None,
 
         speed = {} if units is None else {"speed_unit": units.unit("speed"),
                                           "speed_factor": units.factor("speed")}
-        fig = plot_simulation(sim, grade_limit=grade, grade_label=grade_text(grade), **speed)
+        if hasattr(sim, "liquid_unbalance"):
+            from ..plotting.liquid import liquid_run_figure
+
+            fig = liquid_run_figure(sim, grade, grade_text(grade))
+        else:
+            fig = plot_simulation(sim, grade_limit=grade, grade_label=grade_text(grade), **speed)
         fig = fig[0] if isinstance(fig, tuple) else fig
         fig.savefig(plot, dpi=120)
         plt.close(fig)

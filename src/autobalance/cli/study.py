@@ -90,7 +90,7 @@ def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=Non
         raise ConfigError(f"--store {str(store)!r}: exists and is not a directory")
     if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
         quiet_dask_logs()
-    cfg = load_machine(source, set_, profile)
+    cfg = load_machine(source, set_, profile, balls="needed")
     return cfg, G, display_units(cfg, units)
 
 

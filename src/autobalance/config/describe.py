@@ -76,12 +76,16 @@ def describe(config: Config) -> dict:
     initial["ball_angles_rad"] = _jsonable(config.initial.angles_for(s.balancer))
     initial["ball_speeds_rad_s"] = _jsonable(config.initial.speeds_for(s.balancer))
     wx, wy = s.natural_frequencies
+    liquid = {} if s.liquid is None else {"liquid": _fields(s.liquid, SECTIONS["liquid"])}
+    derived_liquid = {} if s.liquid is None else {"liquid_mass_kg": s.liquid.mass,
+                                                  "liquid_capacity_kg_m": s.liquid.capacity}
     return {
         "name": s.name, "description": s.description, "source": config.source,
         "rotor": _fields(s.rotor, SECTIONS["rotor"]),
         "suspension": _fields(s.suspension, SECTIONS["suspension"]),
         "balancer": _fields(s.balancer, SECTIONS["balancer"]),
         "gravity": _fields(s.gravity, SECTIONS["gravity"]),
+        **liquid,
         "profile": _describe_profile(config),
         "initial": initial,
         "options": _fields(config.options, SECTIONS["options"]),
@@ -89,6 +93,7 @@ def describe(config: Config) -> dict:
             "total_mass_kg": s.total_mass,
             "eccentricity_m": s.rotor.eccentricity,
             "ball_capacity_kg_m": s.balancer.capacity,
+            **derived_liquid,
             "natural_frequencies_rad_s": [wx, wy],
             "natural_frequencies_hz": [wx / TWO_PI, wy / TWO_PI],
         },

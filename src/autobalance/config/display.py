@@ -30,7 +30,8 @@ __all__ = ["DISPLAY_KINDS", "WRITTEN_KEYS", "DisplayUnits", "display_units", "wr
 
 #: The kinds shown in display units, and their SI unit (grade: ISO 1940's mm/s, always).
 DISPLAY_KINDS: dict[str, str] = {"speed": "rad/s", "unbalance": "kg*m", "length": "m",
-                                 "mass": "kg", "force": "N", "time": "s", "grade": "mm/s"}
+                                 "mass": "kg", "force": "N", "time": "s", "volume": "m^3",
+                                 "grade": "mm/s"}
 
 #: The keys whose written unit sets a kind's display unit, first match wins; then any other key
 #: of that kind (schema order).
@@ -42,6 +43,7 @@ WRITTEN_KEYS: dict[str, tuple[str, ...]] = {
     "mass": ("rotor.mass", "balancer.ball_mass"),
     "force": ("suspension.dry_friction_force",),
     "time": ("profile.duration", "profile.ramp_time", "profile.times"),
+    "volume": ("liquid.volume",),
 }
 
 _NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")

@@ -122,6 +122,8 @@ def from_models(system: System, spin: SpeedProfile | MotorDrive | dict,
     _build("initial", initial.speeds_for, system.balancer)
     raw = {k: getattr(system, k) for k in ("name", "description") if getattr(system, k)}
     raw.update({s: _table(getattr(system, s)) for s in ("rotor", "suspension", "gravity")})
+    if system.liquid is not None:
+        raw["liquid"] = _table(system.liquid)
     raw.update(balancer=_balancer_table(system.balancer), profile=prof,
                initial=_table(initial), options=_table(options))
     return Config(system, spin, initial, options, raw=raw, source=source,
@@ -194,6 +196,13 @@ def _replace_model(config: Config, section: str, si: dict):
     if not si:
         return model, None
     cls = SECTION_MODELS[section]
+    if model is None:                      # a [liquid] section added by these values
+        si = {k: v for k, v in si.items() if v is not _UNSET}
+        for key, spec in SECTIONS[section].items():
+            if spec.required and key not in si:
+                raise ConfigError(f"{section}.{key}: missing; required {spec.need} (the system "
+                                  f"has no [{section}] section yet)")
+        return _build(section, cls, **si), None
     table = None
     if section == "balancer":
         derived = set()
@@ -293,8 +302,8 @@ def replace_values(config: Config, values) -> Config:
     si = {s: _check_keys(s, SECTIONS[s], groups[s]) for s in SECTIONS if s in groups}
     raw = {**_raw(config), **top}
     models = {}
-    for section in ("rotor", "suspension", "balancer", "gravity", "profile", "initial",
-                    "options"):
+    for section in ("rotor", "suspension", "balancer", "gravity", "liquid", "profile",
+                    "initial", "options"):
         if section == "profile":
             spin, kind = config.spin, config.profile_kind
             if "profile" in groups:
@@ -307,7 +316,7 @@ def replace_values(config: Config, values) -> Config:
             _build("initial", models["initial"].angles_for, models["balancer"])
             _build("initial", models["initial"].speeds_for, models["balancer"])
     system = dataclasses.replace(config.system, **top, **{s: models[s] for s in
-                                 ("rotor", "suspension", "balancer", "gravity")})
+                                 ("rotor", "suspension", "balancer", "gravity", "liquid")})
     sources = {**config.sources, **{f"{s}.{k}" if s else k: f"set {v!r}"
                                     for s, g in {"": top, **groups}.items() for k, v in g.items()}}
     return dataclasses.replace(config, system=system, spin=spin, initial=models["initial"],

@@ -6,8 +6,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..models import (BallBalancer, Gravity, InitialState, MotorDrive, Rotor, SimOptions,
-                      SpeedProfile, Suspension, System)
+from ..models import (BallBalancer, Gravity, InitialState, LiquidDevice, MotorDrive, Rotor,
+                      SimOptions, SpeedProfile, Suspension, System)
 from .overrides import apply_overrides
 from .presets import _preset_dir, preset_path
 from .schema import (_MODELS, _PROFILE_MODELS, PROFILE_KINDS, REQUIRED_SECTIONS, SECTIONS,
@@ -158,6 +158,7 @@ def from_dict(raw: dict, source: str = "<dict>", sources: dict | None = None) ->
     balancer = _build("balancer", BallBalancer, **p["balancer"]) if "balancer" in p \
         else BallBalancer(0)
     gravity = _build("gravity", Gravity, **p.get("gravity", {}))
+    liquid = _build("liquid", LiquidDevice, **p["liquid"]) if "liquid" in p else None
     spin, kind, _ = _profile(raw["profile"])
     initial = _build("initial", InitialState, **p.get("initial", {}))
     _build("initial", initial.angles_for, balancer)
@@ -165,7 +166,7 @@ def from_dict(raw: dict, source: str = "<dict>", sources: dict | None = None) ->
     options = _build("options", SimOptions, **p.get("options", {}))
     name = raw.get("name") or Path(str(source)).stem
     system = System(rotor, suspension, balancer, gravity, name=name,
-                    description=raw.get("description", ""))
+                    description=raw.get("description", ""), liquid=liquid)
     return Config(system, spin, initial, options, raw=raw, source=str(source),
                   sources=dict(sources or {}), profile_kind=kind)
 

@@ -16,8 +16,8 @@ from typing import Annotated, Any
 from pydantic import BeforeValidator, ConfigDict, ValidationError, create_model
 from pydantic_core import PydanticCustomError
 
-from ..models import (CONTACT_MODELS, FRICTION_LAWS, INERTIA_FACTOR, NORMAL_FORCES, BallBalancer, Gravity,
-                      InitialState, MotorDrive, ParameterError, Rotor, SimOptions, SpeedProfile,
+from ..models import (AXES, CONTACT_MODELS, FRICTION_LAWS, INERTIA_FACTOR, NORMAL_FORCES, BallBalancer, Gravity,
+                      InitialState, LiquidDevice, MotorDrive, ParameterError, Rotor, SimOptions, SpeedProfile,
                       Suspension)
 from .units import UNIT_LABEL, ConfigError, _Bad, _expect, _si
 
@@ -64,7 +64,8 @@ def _fields_of(cls, skip: tuple = (), **specs: F) -> dict[str, F]:
 
 #: The model dataclass of each section.
 SECTION_MODELS = {"rotor": Rotor, "suspension": Suspension, "balancer": BallBalancer,
-                  "gravity": Gravity, "initial": InitialState, "options": SimOptions}
+                  "gravity": Gravity, "liquid": LiquidDevice, "initial": InitialState,
+                  "options": SimOptions}
 
 SECTIONS: dict[str, dict[str, F]] = {
     "rotor": _fields_of(
@@ -85,6 +86,10 @@ SECTIONS: dict[str, dict[str, F]] = {
         eccentricity_angle=F("angle"), restitution=F("ratio"), contact_frequency=F("speed"),
         contact=F("text", choices=CONTACT_MODELS)),
     "gravity": _fields_of(Gravity, g=F("acceleration"), direction=F("angle")),
+    "liquid": _fields_of(
+        LiquidDevice, chamber_radius=F("length"), chamber_height=F("length"), volume=F("volume"),
+        density=F("density"), kinematic_viscosity=F("kin_viscosity"), friction_arc=F("angle"),
+        axis=F("text", choices=AXES)),
     "initial": _fields_of(
         InitialState, ball_angles=F("angle", "list"), ball_speeds=F("speed", "list"),
         x=F("length"), y=F("length"), vx=F("velocity"), vy=F("velocity"),
@@ -114,8 +119,8 @@ PROFILE_KINDS: dict[str, dict[str, F]] = {
                         final_speed=F("speed"), duration=F("time"), hold_fraction=F("ratio"),
                         initial_speed=F("speed")),
 }
-TOP_LEVEL = ("name", "description", "rotor", "suspension", "balancer", "gravity", "profile",
-             "initial", "options")
+TOP_LEVEL = ("name", "description", "rotor", "suspension", "balancer", "gravity", "liquid",
+             "profile", "initial", "options")
 REQUIRED_SECTIONS = ("rotor", "suspension", "profile")
 
 

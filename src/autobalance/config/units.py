@@ -43,6 +43,9 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "speed": ("rad/s", "a rotational speed", "'1000 rpm' or '167 Hz'"),
     "time": ("s", "a time", "'90 s'"),
     "ratio": ("", "a dimensionless number", "'0.002'"),
+    "volume": ("m^3", "a volume", "'150 ml'"),
+    "density": ("kg/m^3", "a density", "'1000 kg/m^3'"),
+    "kin_viscosity": ("m^2/s", "a kinematic viscosity", "'1.01e-6 m^2/s' or '1 cSt'"),
 }
 #: Display form of the SI unit of each kind, and the suffix used in :func:`describe` keys.
 UNIT_LABEL = {k: v[0].replace("^", "") or "-" for k, v in KINDS.items()}

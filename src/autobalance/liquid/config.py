@@ -7,41 +7,7 @@ from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 
-from ..config import ConfigError, ureg
-from ..config import parse_quantity as _parse
-
-#: Kinds the core config does not know: kind -> (SI unit, example).
-_EXTRA = {"density": ("kg/m^3", "'1000 kg/m^3'"), "volume": ("m^3", "'150 ml'"),
-          "kin_viscosity": ("m^2/s", "'1.01e-6 m^2/s'")}
-
-
-def parse_quantity(value, kind: str, field: str = "value") -> float:
-    """SI float of a number or a string with units; adds density, volume, kinematic viscosity.
-
-    Parameters
-    ----------
-    value : float or str
-        A number (taken as SI) or a quantity with units, e.g. ``"150 ml"``.
-    kind : str
-        Kind of quantity (``"density"``, ``"volume"``, ``"kin_viscosity"`` or a kind of
-        :func:`autobalance.config.parse_quantity`); fixes the SI unit of the result.
-    field : str
-        Field name for the error message.
-
-    Returns
-    -------
-    float
-        The value in SI units (kg/m^3, m^3, m^2/s, ...).
-    """
-    if kind not in _EXTRA:
-        return _parse(value, kind, field)
-    unit, example = _EXTRA[kind]
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        return float(value)
-    try:
-        return float(ureg.Quantity(str(value).strip()).to(unit).magnitude)
-    except Exception:
-        raise ConfigError(f"{field} = {value!r}: expected [{unit}], e.g. {example}") from None
+from ..config import ConfigError, parse_quantity
 from .models import Chamber, Liquid, LiquidBalancer, LiquidModel, VerticalRotor
 
 __all__ = ["Bench", "load_bench", "load_liquids", "list_liquid_presets"]

@@ -1,11 +1,12 @@
 """Physical parameters as frozen dataclasses in SI units, validated on construction."""
 from ._validate import ParameterError
 from .balancer import CONTACT_MODELS, INERTIA_FACTOR, BallBalancer
+from .liquid import AXES, LiquidDevice
 from .profile import PROFILE_KINDS, MotorDrive, SpeedProfile
 from .rotor import Gravity, Rotor, Suspension
 from .system import FRICTION_LAWS, NORMAL_FORCES, InitialState, SimOptions, System
 
 __all__ = [
-    "BallBalancer", "CONTACT_MODELS", "FRICTION_LAWS", "Gravity", "PROFILE_KINDS", "INERTIA_FACTOR", "InitialState", "MotorDrive",
+    "AXES", "BallBalancer", "CONTACT_MODELS", "FRICTION_LAWS", "Gravity", "PROFILE_KINDS", "INERTIA_FACTOR", "InitialState", "LiquidDevice", "MotorDrive",
     "NORMAL_FORCES", "ParameterError", "Rotor", "SimOptions", "SpeedProfile", "Suspension", "System",
 ]

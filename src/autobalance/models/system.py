@@ -8,6 +8,7 @@ import numpy as np
 from ..limits import DEFAULT_MAX_STEPS
 from ._validate import ParameterError, count, finite, in_range, nonneg, positive
 from .balancer import BallBalancer
+from .liquid import LiquidDevice
 from .rotor import Gravity, Rotor, Suspension
 
 FRICTION_LAWS = ("stick", "tanh", "creep")
@@ -16,7 +17,7 @@ NORMAL_FORCES = ("ball", "drum")
 
 @dataclass(frozen=True)
 class System:
-    """Rotor on its suspension with a ball balancer, in a gravity field.
+    """Rotor on its suspension with a ball balancer and/or a liquid balancer, in a gravity field.
 
     ``dataclasses.replace`` makes sweep points; validation happens in each part.
     """
@@ -27,11 +28,40 @@ class System:
     gravity: Gravity = field(default_factory=Gravity)
     name: str = ""
     description: str = ""
+    liquid: LiquidDevice | None = None
+
+    def __post_init__(self):
+        if self.liquid is not None and not isinstance(self.liquid, LiquidDevice):
+            raise ParameterError("liquid", self.liquid, "must be a LiquidDevice or None")
+
+    def require_balls(self, what: str, allow_empty: bool = False) -> None:
+        """Refuse, in one line, a machine an analysis of ball balancers cannot take.
+
+        Parameters
+        ----------
+        what : str
+            The analysis, named in the message (e.g. ``"the studies"``).
+        allow_empty : bool
+            Accept a machine without balls (the bare rotor) [-].
+
+        Raises
+        ------
+        ParameterError
+            A liquid balancer (the ball analyses would take the liquid as a rigid mass), or no
+            balls unless ``allow_empty``.
+        """
+        if self.liquid is not None:
+            raise ParameterError("liquid", "a [liquid] section", f"{what} take ball balancers "
+                                 "only so far; a liquid balancer runs with `autobalance simulate`")
+        if not allow_empty and self.balancer.n_balls == 0:
+            raise ParameterError("balancer.n_balls", 0, f"{what} need a ball balancer (>= 1 ball)")
 
     @property
     def total_mass(self) -> float:
-        """M_t = M + sum(m_i) [kg], the mass carried by the suspension (004: M_t)."""
-        return self.rotor.mass + self.balancer.total_mass
+        """M_t = M + sum(m_i) + rho V [kg], the mass carried by the suspension (004: M_t; the
+        liquid's mass moves with the chamber)."""
+        liquid = self.liquid.mass if self.liquid is not None else 0.0
+        return self.rotor.mass + self.balancer.total_mass + liquid
 
     @property
     def natural_frequencies(self) -> tuple[float, float]:

@@ -18,7 +18,7 @@ from .timeplot import _new_figure
 
 __all__ = ["bars_figure", "curves_figure", "efficiency_bars_figure", "fill_figure",
            "fill_panels_figure", "fill_vs_radius_figure", "friction_angle_figure",
-           "kinetostatic_figure", "liquid_states_figure", "mode_speeds_figure",
+           "kinetostatic_figure", "liquid_run_figure", "liquid_states_figure", "mode_speeds_figure",
            "response_figure", "speed_series_figure", "surface_figure"]
 
 ML = 1e-6   # [m^3] per ml
@@ -404,3 +404,38 @@ def speed_series_figure(omegas, curves, omega_r, ylabel, title="", suptitle="",
     return curves_figure([{"x": omegas, "xlabel": "rotor speed ω [1/s]", "ylabel": ylabel,
                            "logy": True, "title": title, "vlines": [(omega_r, "ω_r")],
                            "curves": cs}], suptitle, size=(7.5, 4.6))
+
+
+def liquid_run_figure(sim, grade_limit: float = 16.0, grade_label: str | None = None,
+                      time_unit: str = "s") -> Figure:
+    """One liquid-balancer run over time: the whirl amplitude with and without the liquid, the
+    liquid's moment and angle from the unbalance, and the ISO grade.
+
+    Parameters
+    ----------
+    sim : autobalance.liquid.simulate.LiquidSimulation
+        The run (t [s], amplitude [m], liquid_unbalance [kg*m], grade [mm/s]).
+    grade_limit : float
+        Grade drawn as a dashed line [mm/s].
+    grade_label : str or None
+        Its legend text (default ``"G<grade_limit>"``).
+    time_unit : str
+        Label of the time axis (the values are [s]).
+    """
+    U = sim.liquid_unbalance
+    cap = sim.system.liquid.capacity
+    x, xl = sim.t, f"time [{time_unit}]"
+    fig = curves_figure([
+        {"x": x, "xlabel": xl, "ylabel": "whirl amplitude [mm]", "title": "rotor",
+         "curves": [("with liquid", 1e3 * sim.amplitude, ""),
+                    ("without liquid", 1e3 * sim.amplitude_without_liquid, "--")]},
+        {"x": x, "xlabel": xl, "ylabel": "liquid moment / capacity ρVR [-], angle / 180° [-]",
+         "title": "liquid", "curves": [("|U| / ρVR", np.abs(U) / cap, ""),
+                                       ("angle from the unbalance / 180°",
+                                        np.degrees(np.unwrap(np.angle(U))) / 180.0, ":")]},
+        {"x": x, "xlabel": xl, "ylabel": "grade G [mm/s]", "title": "ISO 1940 grade",
+         "curves": [("G of |D + U|", sim.grade, ""),
+                    (grade_label or f"G{grade_limit:g}", np.full(x.size, grade_limit), "k--")]},
+    ], suptitle=f"{sim.system.name}: liquid balancer (film from t = {sim.film_start:.3g} s)",
+        size=(15.0, 4.4))
+    return fig

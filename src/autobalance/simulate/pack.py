@@ -103,8 +103,15 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     Raises
     ------
     ParameterError
-        A motor drive on a rotor without polar inertia.
+        A motor drive on a rotor without polar inertia; a system with a liquid balancer (the
+        ball kernel does not model one: :func:`autobalance.liquid.simulate_liquid` runs it).
     """
+    if system.liquid is not None:
+        from ..models import ParameterError
+        raise ParameterError("liquid", "a [liquid] section",
+                             "the ball simulator has no liquid model: a liquid balancer alone "
+                             "runs with autobalance.liquid.simulate_liquid (`autobalance "
+                             "simulate` chooses it); balls beside a liquid are not modelled yet")
     r, s, b, g = system.rotor, system.suspension, system.balancer, system.gravity
     P = np.zeros(N_P)
     P[P_MT] = system.total_mass

@@ -19,7 +19,8 @@ __all__ = ["case_sets", "checkpoint_labels", "default_starts", "load", "run_star
 
 
 def load(base, sets=()):
-    """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied.
+    """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied;
+    every study here is of a ball balancer, so the machine must have one.
 
     Parameters
     ----------
@@ -32,13 +33,21 @@ def load(base, sets=()):
     Returns
     -------
     Config
+
+    Raises
+    ------
+    ParameterError
+        A machine without balls, or with a liquid balancer (one line).
     """
     from ..config import Config, load_config, replace_values
     from ..config.overrides import parse_override
 
     if isinstance(base, Config):
-        return replace_values(base, dict(parse_override(s) for s in sets)) if sets else base
-    return load_config(base, list(sets))
+        cfg = replace_values(base, dict(parse_override(s) for s in sets)) if sets else base
+    else:
+        cfg = load_config(base, list(sets))
+    cfg.system.require_balls("the studies")
+    return cfg
 
 
 def case_sets(base, mu_r: float, c_r: float) -> list:

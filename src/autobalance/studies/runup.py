@@ -125,9 +125,6 @@ def compute_runup(base, *, laws=None, sets=(), bare: bool = True,
     cfg = load(base, sets)
     cases = _cases(cfg, laws)
     s = cfg.system
-    if s.balancer.n_balls == 0:
-        raise ParameterError("balancer.n_balls", 0, "a run-up study compares the machine with "
-                                                    "and without its balls: needs >= 1 ball")
     W = cfg.spin.nominal_speed
     if save_dt is None:
         save_dt = 2 * math.pi / W / SAMPLES_PER_REV

@@ -1,0 +1,248 @@
+"""One run of a System whose balancer is a liquid (its ``[liquid]`` section), through its speed
+profile, with the wall film coupled two-way to the rotor (:func:`.film.coupled_run`).
+
+The film model holds once the liquid is a ring on the wall: from the first time the profile
+reaches the entrainment speed omega_0 (003 eq 6). Before it the liquid lies as a pool; the run
+starts at omega_0 on the synchronous orbit of the rotor carrying the liquid as a rigid centred
+mass (a quasi-steady start: the Jeffcott closed form, :func:`autobalance.physics.response.
+axis_response`, valid for a run-up slow against the rotor's decay time) with the film at rest on
+the displaced wall. docs/liquid.md sec. 3e gives the scope and what is not modelled yet.
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..models import MotorDrive, ParameterError, SpeedProfile, System
+from ..physics.iso1940 import grade_value
+from ..physics.response import dynamic_stiffness
+from .film import coupled_run
+from .free_surface import entrainment_speed
+from .models import G_STANDARD, VerticalRotor
+
+__all__ = ["LiquidSimulation", "simulate_liquid"]
+
+
+@dataclass(frozen=True)
+class LiquidSimulation:
+    """A run of :func:`simulate_liquid`; every array is over the output times ``t``.
+
+    Parameters
+    ----------
+    system : System
+        The machine (its ``liquid`` is the balancer).
+    t : ndarray
+        Output times from the start of the profile [s] (from ``film_start``).
+    speed : ndarray
+        Spin Omega [rad/s].
+    deflection : ndarray of complex
+        Rotor (chamber) deflection w in the rotor frame, x along the unbalance [m].
+    liquid_unbalance : ndarray of complex
+        The liquid's first moment U about the chamber centre, rotor frame [kg*m].
+    film_start : float
+        Time the profile first reaches the entrainment speed [s].
+    entrainment_speed : float
+        omega_0 (003 eq 6) [rad/s].
+    nominal_speed : float
+        The profile's nominal speed, for the ISO grade [rad/s].
+    steps : int
+        Film time steps [-].
+    """
+
+    system: System
+    t: np.ndarray
+    speed: np.ndarray
+    deflection: np.ndarray
+    liquid_unbalance: np.ndarray
+    film_start: float
+    entrainment_speed: float
+    nominal_speed: float
+    steps: int
+    status: str = "ok"
+    message: str = ""
+
+    @property
+    def amplitude(self) -> np.ndarray:
+        """Whirl amplitude |w| [m]."""
+        return np.abs(self.deflection)
+
+    @property
+    def residual_unbalance(self) -> np.ndarray:
+        """|D + U| [kg*m]: the rotor's unbalance with the liquid's moment."""
+        return np.abs(self.system.rotor.unbalance + self.liquid_unbalance)
+
+    @property
+    def grade(self) -> np.ndarray:
+        """ISO 1940 grade of the residual unbalance on the total mass at the nominal speed
+        (004 sec. 4) [mm/s]."""
+        return grade_value(self.residual_unbalance, self.system.total_mass, self.nominal_speed)
+
+    @property
+    def amplitude_without_liquid(self) -> np.ndarray:
+        """Synchronous amplitude of the same rotor without the liquid at each speed (Jeffcott
+        closed form, textbook) [m]."""
+        r, s = self.system.rotor, self.system.suspension
+        d = dynamic_stiffness(r.mass, s.kx, s.cx, self.speed)
+        return r.unbalance * self.speed ** 2 / np.abs(d)
+
+    def summary(self) -> dict:
+        """Start, final state and peak of the run (SI, unit-suffixed keys, as the ball
+        simulator's summary where they mean the same)."""
+        i = int(np.argmax(self.amplitude))
+        U = self.liquid_unbalance[-1]
+        return {
+            "status": self.status, "message": self.message, "system": self.system.name,
+            "model": "liquid wall film",
+            "duration_s": float(self.t[-1]),
+            "nominal_speed_rad_s": self.nominal_speed,
+            "entrainment_speed_rad_s": self.entrainment_speed,
+            "film_start_s": self.film_start,
+            "initial_grade_G_mm_s": float(self.grade[0]),
+            "final": {
+                "time_s": float(self.t[-1]), "speed_rad_s": float(self.speed[-1]),
+                "amplitude_m": float(self.amplitude[-1]),
+                "amplitude_without_liquid_m": float(self.amplitude_without_liquid[-1]),
+                "liquid_unbalance_kg_m": float(abs(U)),
+                "liquid_angle_deg": float(np.degrees(np.angle(U))),
+                "residual_unbalance_kg_m": float(self.residual_unbalance[-1]),
+                "grade_G_mm_s": float(self.grade[-1]),
+            },
+            "max_amplitude_m": float(self.amplitude[i]),
+            "time_of_max_amplitude_s": float(self.t[i]),
+            "speed_of_max_amplitude_rad_s": float(self.speed[i]),
+            "max_amplitude_without_liquid_m": float(np.max(self.amplitude_without_liquid)),
+            "film_steps": self.steps,
+        }
+
+    def to_xarray(self):
+        """The histories as an :class:`xarray.Dataset` (SI; complex values split into x, y)."""
+        import xarray as xr
+
+        w, U = self.deflection, self.liquid_unbalance
+        data = {"speed": ("time", self.speed, {"units": "rad/s"}),
+                "x": ("time", w.real, {"units": "m", "long_name": "deflection along the unbalance"}),
+                "y": ("time", w.imag, {"units": "m", "long_name": "deflection, rotor frame y"}),
+                "amplitude": ("time", self.amplitude, {"units": "m"}),
+                "amplitude_without_liquid": ("time", self.amplitude_without_liquid, {"units": "m"}),
+                "liquid_unbalance_x": ("time", U.real, {"units": "kg m"}),
+                "liquid_unbalance_y": ("time", U.imag, {"units": "kg m"}),
+                "grade": ("time", self.grade, {"units": "mm/s"})}
+        attrs = {"model": "wall film coupled with the rotor (autobalance.liquid.simulate)",
+                 "entrainment_speed_rad_s": self.entrainment_speed,
+                 "film_start_s": self.film_start, "status": self.status,
+                 "system": json.dumps({"name": self.system.name})}
+        return xr.Dataset(data, coords={"time": ("time", self.t, {"units": "s"})}, attrs=attrs)
+
+    def to_netcdf(self, path) -> None:
+        """Write :meth:`to_xarray` to a NetCDF file.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file [-].
+        """
+        ds = self.to_xarray()
+        ds.to_netcdf(path, engine="netcdf4",
+                     encoding={name: {"zlib": True, "complevel": 4} for name in ds.data_vars})
+
+
+def _check(system: System, spin) -> None:
+    """One-line errors for what the film model does not cover."""
+    liq, s, r = system.liquid, system.suspension, system.rotor
+    if liq is None:
+        raise ParameterError("liquid", None, "needs a [liquid] section")
+    if system.balancer.n_balls:
+        raise ParameterError("balancer.n_balls", system.balancer.n_balls,
+                             "must be 0 beside a [liquid] section (balls and liquid together "
+                             "are not modelled yet)")
+    if liq.axis != "vertical":
+        raise ParameterError("liquid.axis", liq.axis, "the film model covers a vertical axis "
+                             "only so far (gravity in the chamber's plane is not modelled yet)")
+    if system.gravity.g != 0.0:
+        raise ParameterError("gravity.g", system.gravity.g, "must be 0 with a vertical-axis "
+                             "liquid balancer ([gravity] acts in the rotor's plane)")
+    if s.kx != s.ky or s.cx != s.cy:
+        raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the film "
+                             "model's rotor is isotropic")
+    for name in ("dry_friction_force", "base_amplitude_x", "base_amplitude_y"):
+        if getattr(s, name) != 0.0:
+            raise ParameterError(f"suspension.{name}", getattr(s, name),
+                                 "must be 0 with a liquid balancer (not modelled yet)")
+    if r.unbalance_schedule:
+        raise ParameterError("rotor.unbalance_schedule", list(r.unbalance_schedule),
+                             "must be empty with a liquid balancer (not modelled yet)")
+    if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
+        raise ParameterError("profile.kind", "motor", "a liquid balancer needs a prescribed "
+                             "speed profile (constant, ramp, table, std or tsr)")
+
+
+def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.ndarray]:
+    """(t0, times from t0 [s], speeds [rad/s]) of the profile from its first reaching w0."""
+    t = np.asarray(spin.times, float)
+    w = np.asarray(spin.speeds, float)
+    above = np.nonzero(w >= w0)[0]
+    if above.size == 0:
+        raise ParameterError("profile", f"max {w.max():.4g} rad/s", f"never reaches the liquid's "
+                             f"entrainment speed omega_0 = {w0:.4g} rad/s (003 eq 6); below it "
+                             "the liquid is a pool, not a wall film")
+    i = int(above[0])
+    t0 = t[0] if i == 0 else t[i - 1] + (w0 - w[i - 1]) / (w[i] - w[i - 1]) * (t[i] - t[i - 1])
+    tt = np.concatenate([[t0], t[i:][t[i:] > t0]])
+    ww = np.interp(tt, t, w)
+    ww[0] = max(ww[0], w0)
+    low = np.nonzero(ww < w0 * (1 - 1e-12))[0]
+    if low.size:
+        raise ParameterError("profile", f"{ww[low[0]]:.4g} rad/s at {tt[low[0]]:.4g} s",
+                             f"falls below the entrainment speed omega_0 = {w0:.4g} rad/s after "
+                             "reaching it; the film model needs the liquid on the wall")
+    if tt[-1] <= t0:
+        raise ParameterError("profile", f"end at {t[-1]:.4g} s", f"reaches omega_0 = {w0:.4g} "
+                             "rad/s only at its end: nothing to simulate")
+    return float(t0), tt - t0, ww
+
+
+def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
+                    n_out: int = 1001, g_axial: float = G_STANDARD) -> LiquidSimulation:
+    """Run a liquid-balancer System through a speed profile (module docstring).
+
+    Parameters
+    ----------
+    system : System
+        Rotor (mass [kg], unbalance [kg*m]), isotropic suspension (k [N/m], c [N*s/m]) and a
+        vertical-axis ``liquid`` section; no balls.
+    spin : SpeedProfile
+        Prescribed speed [rad/s] over time [s].
+    n_cells : int
+        Film cells around the wall [-].
+    n_out : int
+        Output samples from the film's start to the end [-].
+    g_axial : float
+        Gravity along the vertical axis, for the entrainment speed [m/s^2].
+
+    Returns
+    -------
+    LiquidSimulation
+
+    Raises
+    ------
+    ParameterError
+        One line for a machine or profile outside the film model (balls beside the liquid, a
+        horizontal axis, an anisotropic suspension, a motor drive, a profile that never
+        reaches or later falls below omega_0).
+    """
+    _check(system, spin)
+    liq, r, s = system.liquid, system.rotor, system.suspension
+    if int(n_out) != n_out or n_out < 2:
+        raise ParameterError("n_out", n_out, "must be an integer >= 2")
+    w0 = entrainment_speed(liq.volume, liq.chamber_radius, liq.chamber_height, g_axial)
+    t0, tt, ww = _film_table(spin, w0)
+    T = float(tt[-1])
+    rotor = VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)
+    start = ww[0] ** 2 * r.unbalance / dynamic_stiffness(system.total_mass, s.kx, s.cx, ww[0])
+    run = coupled_run(rotor, liq.chamber_radius, liq.chamber_height, liq.volume, (tt, ww), T,
+                      density=liq.density, viscosity=liq.kinematic_viscosity, n_cells=n_cells,
+                      save_dt=T / (int(n_out) - 1), deflection=complex(start))
+    return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), run.deflection,
+                            run.film.unbalance, t0, w0, float(spin.nominal_speed), run.steps)
