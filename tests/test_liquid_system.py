@@ -194,3 +194,63 @@ def test_cli_simulate_show_and_refusals(tmp_path):
         lines = r.stderr.strip().splitlines()
         assert r.returncode == 2 and len(lines) == 1, r.stderr
         assert lines[0].startswith(f"error: {field}") and "Traceback" not in r.stderr
+
+
+# -- sweep ---------------------------------------------------------------------------------------
+SHORT = ["profile.duration=8 s", "profile.ramp_time=8 s"]
+
+
+def test_liquid_sweep_equals_its_single_runs(tmp_path):
+    """A grid over the fill: each cell's stored grade and residual equal simulate_liquid's own
+    (read at the checkpoint); the history is NaN before the film forms; resume adds nothing."""
+    from autobalance.sweep import spec_from_dict, sweep
+
+    d = {"sweep": {"name": "fill", "base": "leblanc_003", "set": SHORT},
+         "grid": {"liquid.volume": ["100 ml", "300 ml"]},
+         "outputs": {"history_dt": "1 s"}}
+    ds = sweep(spec_from_dict(d), tmp_path / "s", executor="local", workers=2, progress=False)
+    for i, v in enumerate(["100 ml", "300 ml"]):
+        cfg = bench(*SHORT, f"liquid.volume={v}")
+        sim = simulate_liquid(cfg.system, cfg.spin)
+        cell = ds.isel(liquid__volume=i, sample=0)
+        assert float(cell["grade_G"].values[-1]) == sim.summary()["final"]["grade_G_mm_s"]
+        assert float(cell["residual_unbalance"].values[-1]) == pytest.approx(
+            sim.residual_unbalance[-1], rel=1e-12)
+        assert int(cell["status"]) == 0 and int(cell["steps"]) == sim.steps
+        amp = cell["amplitude_history"].values
+        before = ds["history_time"].values < sim.film_start
+        assert np.isnan(amp[before]).all() and np.isfinite(amp[~before]).all()
+    again = sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False,
+                  resume=True)
+    assert again["grade_G"].equals(ds["grade_G"])
+
+
+@pytest.mark.parametrize("extra, needle", [
+    ({"monte_carlo": {"kind": "random", "samples": 3}}, "monte_carlo.kind"),
+    ({"grid": {"liquid.axis": ["vertical", "horizontal"]}}, "liquid.axis='horizontal'"),
+])
+def test_liquid_sweep_refusals(tmp_path, extra, needle):
+    from autobalance.sweep import SweepError, spec_from_dict, sweep
+
+    d = {"sweep": {"name": "bad", "base": "leblanc_003", "set": SHORT},
+         "grid": {"liquid.volume": ["100 ml"]}}
+    for k, v in extra.items():
+        d[k] = {**d.get(k, {}), **v}
+    with pytest.raises(SweepError) as e:
+        sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False)
+    assert needle in str(e.value) and "\n" not in str(e.value)
+    assert not (tmp_path / "s").exists()
+
+
+def test_store_identity_sees_the_liquid():
+    """System's repr leaves the liquid out (ball stores keep their identity); the store's
+    identity adds it, so a resume with another fill is refused, not mixed."""
+    from autobalance.sweep import make_plan, spec_from_dict
+    from autobalance.sweep.store import identity
+
+    def ident(volume):
+        d = {"sweep": {"name": "f", "base": "leblanc_003", "set": SHORT + [f"liquid.volume={volume}"]},
+             "grid": {"rotor.unbalance": ["1000 g*cm"]}}
+        return identity(make_plan(spec_from_dict(d)))
+
+    assert ident("100 ml") == ident("100 ml") != ident("101 ml")

@@ -22,7 +22,14 @@ from .film import coupled_run
 from .free_surface import entrainment_speed
 from .models import G_STANDARD, VerticalRotor
 
-__all__ = ["LiquidSimulation", "simulate_liquid"]
+__all__ = ["LiquidSimulation", "check_liquid_run", "run_seconds_estimate", "simulate_liquid"]
+
+#: Wall time of one film step on 256 cells with its 4 rotor sub-steps [s] (measured on the
+#: 2-core machine of docs/numerics.md: 15232 steps of the leblanc_003 run-up in 1.0 s).
+STEP_COST_256 = 6.6e-5
+#: Film steps per CFL estimate of the uniform film's wave speed (measured on leblanc_003: the
+#: film's own velocity and thickness variations shorten the step) [-].
+STEP_FACTOR = 1.6
 
 
 @dataclass(frozen=True)
@@ -87,6 +94,31 @@ class LiquidSimulation:
         d = dynamic_stiffness(r.mass, s.kx, s.cx, self.speed)
         return r.unbalance * self.speed ** 2 / np.abs(d)
 
+    @property
+    def max_amplitude_before_film(self) -> float:
+        """Largest synchronous amplitude before the film forms [m]: the rotor with its liquid as
+        a rigid centred mass, quasi-steady over the profile's speeds up to omega_0 (Jeffcott
+        closed form; exact for a slow run-up, an upper bound of its transient otherwise)."""
+        r, s = self.system.rotor, self.system.suspension
+        w = np.linspace(0.0, self.entrainment_speed, 2001)
+        return float(np.max(r.unbalance * w ** 2
+                            / np.abs(dynamic_stiffness(self.system.total_mass, s.kx, s.cx, w))))
+
+    def at(self, times) -> dict:
+        """Grade [mm/s] and residual unbalance [kg*m] at ``times`` [s]: the run's, linearly
+        interpolated; before the film forms the liquid is a centred pool (U = 0).
+
+        Parameters
+        ----------
+        times : array_like
+            Times [s] within the profile.
+        """
+        t = np.asarray(times, float)
+        u = np.interp(t, self.t, self.residual_unbalance)
+        u = np.where(t < self.film_start, abs(self.system.rotor.unbalance), u)
+        return {"residual_unbalance": u,
+                "grade_G": grade_value(u, self.system.total_mass, self.nominal_speed)}
+
     def summary(self) -> dict:
         """Start, final state and peak of the run (SI, unit-suffixed keys, as the ball
         simulator's summary where they mean the same)."""
@@ -113,6 +145,7 @@ class LiquidSimulation:
             "time_of_max_amplitude_s": float(self.t[i]),
             "speed_of_max_amplitude_rad_s": float(self.speed[i]),
             "max_amplitude_without_liquid_m": float(np.max(self.amplitude_without_liquid)),
+            "max_amplitude_before_film_m": self.max_amplitude_before_film,
             "film_steps": self.steps,
         }
 
@@ -203,6 +236,61 @@ def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.nd
     return float(t0), tt - t0, ww
 
 
+def check_liquid_run(system: System, spin, g_axial: float = G_STANDARD) -> float:
+    """Refuse, before any work, a machine or profile outside the film model; return omega_0.
+
+    Parameters
+    ----------
+    system : System
+        The machine (a ``liquid`` section, no balls).
+    spin : SpeedProfile
+        Its profile.
+    g_axial : float
+        Gravity along the vertical axis [m/s^2].
+
+    Returns
+    -------
+    float
+        The entrainment speed omega_0 (003 eq 6) [rad/s].
+
+    Raises
+    ------
+    ParameterError
+        As :func:`simulate_liquid` (one line).
+    """
+    _check(system, spin)
+    liq = system.liquid
+    w0 = entrainment_speed(liq.volume, liq.chamber_radius, liq.chamber_height, g_axial)
+    _film_table(spin, w0)
+    return w0
+
+
+def run_seconds_estimate(system: System, spin, n_cells: int = 256) -> float:
+    """Estimated wall time of :func:`simulate_liquid` [s]: film steps from the CFL condition
+    on the uniform film (wave speed Omega sqrt(R eta), cell 2 pi R / n) over the profile from
+    omega_0, times the measured cost of a step.
+
+    Parameters
+    ----------
+    system : System
+        The machine (checked by :func:`check_liquid_run`).
+    spin : SpeedProfile
+        Its profile.
+    n_cells : int
+        Film cells [-].
+    """
+    from ..core.shallow_water import CFL
+
+    w0 = check_liquid_run(system, spin)
+    liq = system.liquid
+    R = liq.chamber_radius
+    eta = liq.volume / (2 * np.pi * R * liq.chamber_height)
+    t0, tt, ww = _film_table(spin, w0)
+    mean_speed = float(np.sum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt)) / tt[-1])
+    steps = STEP_FACTOR * tt[-1] * mean_speed * np.sqrt(R * eta) / (CFL * 2 * np.pi * R / n_cells)
+    return float(steps * STEP_COST_256 * n_cells / 256)
+
+
 def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
                     n_out: int = 1001, g_axial: float = G_STANDARD) -> LiquidSimulation:
     """Run a liquid-balancer System through a speed profile (module docstring).
@@ -232,11 +320,10 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
         horizontal axis, an anisotropic suspension, a motor drive, a profile that never
         reaches or later falls below omega_0).
     """
-    _check(system, spin)
+    w0 = check_liquid_run(system, spin, g_axial)
     liq, r, s = system.liquid, system.rotor, system.suspension
     if int(n_out) != n_out or n_out < 2:
         raise ParameterError("n_out", n_out, "must be an integer >= 2")
-    w0 = entrainment_speed(liq.volume, liq.chamber_radius, liq.chamber_height, g_axial)
     t0, tt, ww = _film_table(spin, w0)
     T = float(tt[-1])
     rotor = VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)

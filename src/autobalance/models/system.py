@@ -28,7 +28,9 @@ class System:
     gravity: Gravity = field(default_factory=Gravity)
     name: str = ""
     description: str = ""
-    liquid: LiquidDevice | None = None
+    # out of the repr (stores key on it: repr(System) of a ball machine stays as before the
+    # liquid joined); sweep/store.identity adds a liquid explicitly
+    liquid: LiquidDevice | None = field(default=None, repr=False)
 
     def __post_init__(self):
         if self.liquid is not None and not isinstance(self.liquid, LiquidDevice):

@@ -249,7 +249,11 @@ def _estimate_line(plan: Plan, n_todo: int, workers: int) -> str:
     from ..limits import fmt_seconds, step_cost, steps_estimate
 
     c = plan.cells[0]
-    sec = n_todo * steps_estimate(c.system, c.spin, c.options) * step_cost(plan.n_balls)
+    if c.system.liquid is not None:
+        from ..liquid.simulate import run_seconds_estimate
+        sec = n_todo * run_seconds_estimate(c.system, c.spin)
+    else:
+        sec = n_todo * steps_estimate(c.system, c.spin, c.options) * step_cost(plan.n_balls)
     return (f"{plan.spec.name}: {n_todo} of {plan.n_runs} runs to compute, about "
             f"{fmt_seconds(sec / max(workers, 1))} on {workers} worker(s) (estimate)")
 

@@ -431,11 +431,17 @@ def make_plan(spec: SweepSpec) -> Plan:
             pairs += _follow_n_balls(spec, given, pairs[n_axis][1])
         try:
             cells.append(replace_values(cells[0], pairs) if cells else build(pairs))
+            if cells[-1].system.liquid is not None:       # the film model's scope, up front
+                from ..liquid.simulate import check_liquid_run
+                check_liquid_run(cells[-1].system, cells[-1].spin)
         except Exception as e:   # ConfigError / ParameterError / ResourceError
             field = str(e).split(" ", 1)[0].split("[", 1)[0].rstrip(":")
             culprit = (f"grid point {where}" if n_axis is not None and field in _FOLLOW
                        else _culprit(spec, str(e), where))
             raise SweepError(f"{culprit}: {e}") from None
+    if cells[0].system.liquid is not None and spec.mc_kind != "none":
+        raise SweepError(f"monte_carlo.kind = {spec.mc_kind!r}: a liquid balancer has no ball "
+                         "start positions to sample; leave out [monte_carlo]")
     first = {}                                   # N -> its first cell
     for c in cells:
         first.setdefault(c.system.balancer.n_balls, c)
@@ -508,6 +514,9 @@ def run_task(payload: dict) -> dict:
     spin = payload["spin"]
     cps = np.asarray(spin.checkpoints, float)
     hist = np.asarray(payload["history_times"], float)
+    if payload["systems"][0].liquid is not None:
+        from .liquid_task import run_liquid_task
+        return run_liquid_task(payload, cps, hist)
     out_t = np.concatenate([cps, hist])
     res = simulate_batch(payload["systems"], spin, payload["initials"],
                          options=payload["options"], out_times=out_t)
@@ -546,3 +555,4 @@ def run_task(payload: dict) -> dict:
                 out[name] = np.array(out[name], float)
                 out[name][failed] = np.nan
     return out
+

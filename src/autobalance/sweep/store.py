@@ -70,6 +70,8 @@ def identity(plan: Plan) -> str:
     h.update(__version__.encode())
     for c in plan.cells:
         h.update(repr((c.system, c.spin, c.initial, c.options)).encode())
+        if c.system.liquid is not None:      # not in System's repr (models/system.py)
+            h.update(repr(c.system.liquid).encode())
     if len(plan.angles) == 1:
         h.update(np.ascontiguousarray(plan.start_angles, float).tobytes())
     else:                                   # a balancer.n_balls axis: the angles of every N

@@ -1,0 +1,38 @@
+"""The sweep task of a liquid-balancer machine (a ``[liquid]`` section): one wall-film run per
+grid cell, stored in the variables of the ball runs (:data:`autobalance.sweep.store.VARIABLES`)."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
+    """:func:`autobalance.sweep.plan.run_task` for liquid balancers: one wall-film run per system
+    (:func:`autobalance.liquid.simulate.simulate_liquid`), read at the checkpoints and history
+    times as the ball runs are; no balls (``ball_angle`` all NaN), no stick-slip events."""
+    from ..liquid.simulate import simulate_liquid
+    from ..physics.iso1940 import grade_value
+
+    spin, systems = payload["spin"], payload["systems"]
+    n, n_cp = len(systems), cps.size
+    out = {"first": payload["first"], "count": n,
+           "grade_G": np.zeros((n, n_cp)), "residual_unbalance": np.zeros((n, n_cp)),
+           "ball_angle": np.full((n, n_cp, payload.get("ball_slots", 0)), np.nan),
+           "initial_grade_G": np.array([grade_value(abs(s.rotor.unbalance), s.total_mass,
+                                                    spin.nominal_speed) for s in systems]),
+           "max_amplitude": np.zeros(n), "status": np.zeros(n, np.int8),
+           "steps": np.zeros(n, np.int64), "events": np.zeros(n, np.int64)}
+    if hist.size:
+        for name in ("grade_G_history", "amplitude_history", "speed_history"):
+            out[name] = np.full((n, hist.size), np.nan)
+    for i, s in enumerate(systems):
+        sim = simulate_liquid(s, spin)
+        at = sim.at(cps)
+        out["grade_G"][i], out["residual_unbalance"][i] = at["grade_G"], at["residual_unbalance"]
+        out["max_amplitude"][i] = max(float(np.max(sim.amplitude)), sim.max_amplitude_before_film)
+        out["steps"][i] = sim.steps
+        if hist.size:
+            film = hist >= sim.film_start
+            out["grade_G_history"][i] = sim.at(hist)["grade_G"]
+            out["amplitude_history"][i, film] = np.interp(hist[film], sim.t, sim.amplitude)
+            out["speed_history"][i] = [spin.speed(t) for t in hist]
+    return out
