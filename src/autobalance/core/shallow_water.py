@@ -13,6 +13,13 @@ axis (the film gathers where the wall is farthest from the axis), a the tangenti
 acceleration of the chamber frame (Euler -Omega' R, the chamber's own motion) and k the wall
 friction rate (laminar film 3 nu / eta^2, turbulent Blasius).
 
+Gravity in the chamber's plane (a horizontal axis), g_p e^{i gamma} in the inertial frame, is
+g_p e^{i(gamma - psi)} in the rotor frame (psi the spin angle). With the centrifugal field its
+potential is -Omega^2 |r + g_p e^{i(gamma - psi)} / Omega^2|^2 / 2 + const: gravity moves the
+centre of the potential by -g_p e^{i(gamma - psi)}/Omega^2, so the wall height is b of the
+effective displacement c + g_p e^{i(gamma - psi)}/Omega^2 (the free surface of a rotating
+horizontal drum is a circle offset by g/Omega^2; first order in g/(Omega^2 R) like b itself).
+
 Scheme: finite volumes, HLL flux on the hydrostatic reconstruction of Audusse, Bouchut, Bristeau,
 Klein & Perthame (2004, SIAM J. Sci. Comput. 25, 2050-2065): well balanced (a film at rest on any
 wall profile stays at rest to round-off, dry cells included) and positivity preserving under the
@@ -137,6 +144,14 @@ def wall_height(theta, cx, cy, b):
 
 
 @kernel
+def gravity_offset(gp, gdir, psi, w):
+    """Rotor-frame shift [m] of the centre of the centrifugal-plus-gravity potential:
+    g_p e^{i(gamma - psi)} / w^2 (module docstring); gp [m/s^2], gdir = gamma and psi [rad],
+    w [rad/s] > 0."""
+    return gp / (w * w) * complex(math.cos(gdir - psi), math.sin(gdir - psi))
+
+
+@kernel
 def frame_acceleration(theta, R, w, wd, cx, cy, vx, vy, ax, ay, a):
     """Tangential inertial acceleration of the chamber frame at each wall cell [m/s^2]: the
     Euler term -w' R and -(c'' + 2 i w c' + i w' c) . e_theta of the chamber's motion c(t) in
@@ -164,15 +179,17 @@ def _emit(out_t, out_h, out_q, kout, t, h, q):
 
 @kernel
 def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax, tay,
-                 out_t, out_h, out_q, hn, qn, fh, fq, hl, hr, b, a):
+                 gp, gdir, out_t, out_h, out_q, hn, qn, fh, fq, hl, hr, b, a):
     """Integrate the film from t = 0 to t_end [s] with the CFL time step, the forcing read from
     the tables tt [s] of spin w [rad/s], w' [rad/s^2] and the chamber's displacement c, c', c''
-    ([m], [m/s], [m/s^2]; x and y parts), linearly interpolated. h, q hold the initial state and
-    are overwritten by the final one; out_h, out_q (len(out_t), n) receive the state at the
+    ([m], [m/s], [m/s^2]; x and y parts), linearly interpolated; in-plane gravity gp [m/s^2] at
+    the inertial angle gdir [rad], the spin angle psi = 0 at t = 0. h, q hold the initial state
+    and are overwritten by the final one; out_h, out_q (len(out_t), n) receive the state at the
     sorted output times out_t [s]. Returns the number of steps (-1: a non-finite state)."""
     n = h.shape[0]
     dx = R * 2.0 * math.pi / n
     t = 0.0
+    psi = 0.0
     kout = 0
     nout = out_t.shape[0]
     steps = 0
@@ -188,10 +205,13 @@ def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax
             dt = out_t[kout] - t
         cx = table_interp(t, tt, tcx)
         cy = table_interp(t, tt, tcy)
-        wall_height(theta, cx, cy, b)
-        frame_acceleration(theta, R, w, table_interp(t, tt, twd), cx, cy, table_interp(t, tt, tvx),
+        wd = table_interp(t, tt, twd)
+        off = gravity_offset(gp, gdir, psi, w) if gp != 0.0 else 0j
+        wall_height(theta, cx + off.real, cy + off.imag, b)
+        frame_acceleration(theta, R, w, wd, cx, cy, table_interp(t, tt, tvx),
                            table_interp(t, tt, tvy), table_interp(t, tt, tax), table_interp(t, tt, tay), a)
         sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
+        psi += w * dt + 0.5 * wd * dt * dt
         ok = True
         for i in range(n):
             h[i] = hn[i]
@@ -224,18 +244,25 @@ def film_moment(h, q, theta, R, H, rho):
 
 
 @kernel
-def _rotor_rate(Z, Y, U, Ud, w_, wd_, Mt, k, c, D):
+def _rotor_rate(Z, Y, U, Ud, w_, wd_, Mt, k, c, D, F):
     """Z'' of the rotor-plus-liquid first moment Z = M_t w + U in the rotor frame (module
-    docstring of sw_coupled); returns (w, w', Y')."""
+    docstring of sw_coupled) with the external force F [N] in the rotor frame (gravity on M_t);
+    returns (w, w', Y')."""
     w = (Z - U) / Mt
     wd = (Y - Ud) / Mt
     yd = -2j * w_ * Y - 1j * wd_ * Z + w_ * w_ * Z - c * (wd + 1j * w_ * w) - k * w \
-        + D * complex(w_ * w_, -wd_)
+        + D * complex(w_ * w_, -wd_) + F
     return w, wd, yd
 
 
 @kernel
-def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, twd,
+def _gravity_force(Mt, gp, gdir, psi):
+    """Gravity on M_t in the rotor frame, M_t g_p e^{i(gamma - psi)} [N]."""
+    return Mt * gp * complex(math.cos(gdir - psi), math.sin(gdir - psi))
+
+
+@kernel
+def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, twd, gp, gdir,
                out_t, out_h, out_q, out_w, hn, qn, fh, fq, hl, hr, b, a):
     """The film coupled two-way with an isotropic Jeffcott rotor (mass M_t = M + rho V with the
     liquid, stiffness k, damping c, unbalance D on the rotor frame's x axis) at the prescribed
@@ -243,8 +270,9 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
 
     The rotor's balance in the rotor frame, with the liquid's pull written through the total
     first moment Z = M_t w + U (w the chamber's deflection [m], U the film's moment [kg*m]):
-    Z'' + 2 i W Z' + i W' Z - W^2 Z + c (w' + i W w) + k w = D (W^2 - i W'), so the film's
-    acceleration never needs differentiating. Each film step (CFL) advances the rotor by 4 RK4
+    Z'' + 2 i W Z' + i W' Z - W^2 Z + c (w' + i W w) + k w = D (W^2 - i W') + M_t g_p e^{i(gamma
+    - psi)}, so the film's acceleration never needs differentiating; in-plane gravity gp
+    [m/s^2] at the inertial angle gdir [rad] (0: a vertical axis), psi = 0 at t = 0. Each film step (CFL) advances the rotor by 4 RK4
     sub-steps with U, U' frozen (explicit coupling), and the film by one step forced by the
     deflection and by w'' from the previous step. h, q, and the returned (Z, Y) are the final
     state; out_w receives w at out_t. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
@@ -257,6 +285,7 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
     nout = out_t.shape[0]
     steps = 0
     wdd = 0j
+    psi = 0.0
     U, Ud = film_moment(h, q, theta, R, H, rho)
     wd_prev = (Y - Ud) / Mt
     while t < t_end:
@@ -277,21 +306,30 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
         if kout < nout and out_t[kout] - t < dt:
             dt = out_t[kout] - t
         # film step, forced by the chamber's deflection and motion at t
-        wall_height(theta, w.real, w.imag, b)
+        off = gravity_offset(gp, gdir, psi, W) if gp != 0.0 else 0j
+        wall_height(theta, w.real + off.real, w.imag + off.imag, b)
         frame_acceleration(theta, R, W, Wd, w.real, w.imag, wd.real, wd.imag, wdd.real,
                            wdd.imag, a)
         sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
         # rotor: 4 RK4 sub-steps with the film's moment frozen
         hs = dt / 4.0
-        for _ in range(4):
-            _, _, k1 = _rotor_rate(Z, Y, U, Ud, W, Wd, Mt, k, c, D)
-            _, _, k2 = _rotor_rate(Z + 0.5 * hs * Y, Y + 0.5 * hs * k1, U, Ud, W, Wd, Mt, k, c, D)
+        for j in range(4):
+            t0 = j * hs          # the spin angle within the step: psi + W tau + W' tau^2 / 2
+            F0 = _gravity_force(Mt, gp, gdir, psi + W * t0 + 0.5 * Wd * t0 * t0)
+            th = t0 + 0.5 * hs
+            Fh = _gravity_force(Mt, gp, gdir, psi + W * th + 0.5 * Wd * th * th)
+            t1 = t0 + hs
+            F1 = _gravity_force(Mt, gp, gdir, psi + W * t1 + 0.5 * Wd * t1 * t1)
+            _, _, k1 = _rotor_rate(Z, Y, U, Ud, W, Wd, Mt, k, c, D, F0)
+            _, _, k2 = _rotor_rate(Z + 0.5 * hs * Y, Y + 0.5 * hs * k1, U, Ud, W, Wd, Mt, k, c, D,
+                                   Fh)
             _, _, k3 = _rotor_rate(Z + 0.5 * hs * (Y + 0.5 * hs * k1), Y + 0.5 * hs * k2, U, Ud,
-                                   W, Wd, Mt, k, c, D)
+                                   W, Wd, Mt, k, c, D, Fh)
             _, _, k4 = _rotor_rate(Z + hs * (Y + 0.5 * hs * k2), Y + hs * k3, U, Ud, W, Wd, Mt,
-                                   k, c, D)
+                                   k, c, D, F1)
             Z = Z + hs * (Y + hs / 6.0 * (k1 + k2 + k3))
             Y = Y + hs / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        psi += W * dt + 0.5 * Wd * dt * dt
         ok = math.isfinite(Z.real) and math.isfinite(Z.imag)
         for i in range(n):
             h[i] = hn[i]

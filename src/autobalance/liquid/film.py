@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.shallow_water import sw_integrate, wall_height
-from ..models._validate import ParameterError, nonneg, positive
+from ..models._validate import ParameterError, finite, nonneg, positive
 from .models import G_STANDARD
 
 __all__ = ["CoupledRun", "FilmRun", "coupled_run", "film_equilibrium", "film_run", "film_unbalance",
@@ -164,7 +164,8 @@ def _table(value, t_end, name):
 
 def film_run(radius: float, height: float, volume: float, speed, t_end: float, *,
              deflection=0j, density: float = 1000.0, viscosity: float = 1.0e-6,
-             n_cells: int = 256, save_dt: float | None = None, initial=None) -> FilmRun:
+             n_cells: int = 256, save_dt: float | None = None, initial=None,
+             gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi) -> FilmRun:
     """Integrate the film (module docstring) from t = 0 to ``t_end``.
 
     Parameters
@@ -192,6 +193,10 @@ def film_run(radius: float, height: float, volume: float, speed, t_end: float, *
         Output spacing [s] (None: 200 outputs).
     initial : (array, array) or None
         Initial (eta [m], q [m^2/s]) per cell; None: a uniform film at rest relative to the wall.
+    gravity : float
+        Gravity in the chamber's plane g_p [m/s^2] (a horizontal axis; 0: none).
+    gravity_direction : float
+        Its inertial direction gamma [rad] (-pi/2: down); the spin angle is 0 at t = 0.
 
     Returns
     -------
@@ -234,7 +239,9 @@ def film_run(radius: float, height: float, volume: float, speed, t_end: float, *
     out_q = np.zeros((out_t.size, n))
     work = [np.zeros(n) for _ in range(8)]
     steps = sw_integrate(h, q, th, R, nu, T, tt, wv, wd, cv.real, cv.imag, cd.real, cd.imag,
-                         cdd.real, cdd.imag, out_t, out_h, out_q, *work)
+                         cdd.real, cdd.imag, nonneg("gravity", gravity),
+                         finite("gravity_direction", gravity_direction), out_t, out_h, out_q,
+                         *work)
     if steps < 0:
         raise FloatingPointError("film_run: the film state became non-finite")
     return FilmRun(out_t, th, out_h, out_q, R, H, float(density), int(steps))
@@ -264,12 +271,14 @@ class CoupledRun:
 
 def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end: float, *,
                 density: float = 1000.0, viscosity: float = 1.0e-6, n_cells: int = 256,
-                save_dt: float | None = None, deflection: complex = 0j) -> CoupledRun:
+                save_dt: float | None = None, deflection: complex = 0j, velocity: complex = 0j,
+                gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi) -> CoupledRun:
     """The film coupled two-way with an isotropic Jeffcott rotor at a prescribed spin
     (:func:`autobalance.core.shallow_water.sw_coupled`): the rotor's deflection moves the wall
     (centrifugal wall height, frame accelerations) and the film's first moment pulls the rotor.
-    Starts with the rotor at ``deflection``, at rest in the rotor frame, and the film at rest
-    on the displaced wall (:func:`film_equilibrium`).
+    Starts with the rotor at ``deflection`` moving at ``velocity`` in the rotor frame, and the
+    film at rest on the displaced wall (:func:`film_equilibrium`, with gravity's offset of the
+    potential, core/shallow_water.py).
 
     Parameters
     ----------
@@ -293,6 +302,12 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
         Output spacing [s] (None: 200 outputs).
     deflection : complex
         Initial deflection w(0) [m].
+    velocity : complex
+        Initial deflection rate w'(0) in the rotor frame [m/s].
+    gravity : float
+        Gravity in the chamber's plane g_p [m/s^2] (a horizontal axis; 0: a vertical one).
+    gravity_direction : float
+        Its inertial direction gamma [rad] (-pi/2: down); the spin angle is 0 at t = 0.
 
     Returns
     -------
@@ -316,18 +331,21 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
     wv = w.real
     wd = np.gradient(wv, tw) if tw.size > 2 else np.full(tw.size, (wv[-1] - wv[0]) / (tw[-1] - tw[0]))
     th = _theta(n)
-    h = film_equilibrium(V, R, H, complex(deflection), n)
+    gp, gdir = nonneg("gravity", gravity), finite("gravity_direction", gravity_direction)
+    off = gp / wv[0] ** 2 * np.exp(1j * gdir)
+    h = film_equilibrium(V, R, H, complex(deflection) + off, n)
     q = np.zeros(n)
     Mt = rotor.mass + rho * V
     U, Ud = film_moment(h, q, th, R, H, rho)
     Z0 = Mt * complex(deflection) + U
+    Y0 = Mt * complex(velocity) + Ud
     out_t = np.linspace(0.0, T, 201) if not save_dt else np.arange(0.0, T + 0.5 * save_dt, save_dt)
     out_h, out_q = np.zeros((out_t.size, n)), np.zeros((out_t.size, n))
     out_w = np.zeros(out_t.size, complex)
     work = [np.zeros(n) for _ in range(8)]
     steps, Z, Y = sw_coupled(h, q, th, R, H, rho, nu, Mt, rotor.stiffness, rotor.damping,
-                             rotor.unbalance, Z0, complex(Ud), T, tw, wv, wd, out_t, out_h, out_q,
-                             out_w, *work)
+                             rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd, gp, gdir, out_t,
+                             out_h, out_q, out_w, *work)
     if steps < 0:
         raise FloatingPointError("coupled_run: the state became non-finite")
     film = FilmRun(out_t, th, out_h, out_q, R, H, float(rho), int(steps))

@@ -2,11 +2,14 @@
 profile, with the wall film coupled two-way to the rotor (:func:`.film.coupled_run`).
 
 The film model holds once the liquid is a ring on the wall: from the first time the profile
-reaches the entrainment speed omega_0 (003 eq 6). Before it the liquid lies as a pool; the run
-starts at omega_0 on the synchronous orbit of the rotor carrying the liquid as a rigid centred
-mass (a quasi-steady start: the Jeffcott closed form, :func:`autobalance.physics.response.
-axis_response`, valid for a run-up slow against the rotor's decay time) with the film at rest on
-the displaced wall. docs/liquid.md sec. 3e gives the scope and what is not modelled yet.
+reaches the film's start speed omega_f (:func:`film_start_speed`: on a vertical axis the
+entrainment speed of 003 eq 6; on a horizontal one the speed where gravity's offset of the
+potential g/Omega^2 is R/10). Before it the liquid lies as a pool; the run starts at omega_f on
+the synchronous orbit of the rotor carrying the liquid as a rigid centred mass (a quasi-steady
+start: the Jeffcott closed form, valid for a run-up slow against the rotor's decay time), plus
+the static sag M_t g / k under in-plane gravity, with the film at rest on the displaced wall.
+The reported deflection is the whirl about the static sag. docs/liquid.md sec. 3e gives the
+scope and what is not modelled yet.
 """
 from __future__ import annotations
 
@@ -19,10 +22,16 @@ from ..models import MotorDrive, ParameterError, SpeedProfile, System
 from ..physics.iso1940 import grade_value
 from ..physics.response import dynamic_stiffness
 from .film import coupled_run
+from ..models._validate import positive
 from .free_surface import entrainment_speed
 from .models import G_STANDARD, VerticalRotor
 
-__all__ = ["LiquidSimulation", "check_liquid_run", "run_seconds_estimate", "simulate_liquid"]
+__all__ = ["LiquidSimulation", "check_liquid_run", "film_start_speed", "revolution_average",
+           "run_seconds_estimate", "simulate_liquid"]
+
+#: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
+#: for the film model (first order in g/(Omega^2 R), core/shallow_water.py) [-]; our criterion.
+GRAVITY_OFFSET_MAX = 0.1
 
 #: Wall time of one film step on 256 cells with its 4 rotor sub-steps [s] (measured on the
 #: 2-core machine of docs/numerics.md: 15232 steps of the leblanc_003 run-up in 1.0 s).
@@ -45,13 +54,17 @@ class LiquidSimulation:
     speed : ndarray
         Spin Omega [rad/s].
     deflection : ndarray of complex
-        Rotor (chamber) deflection w in the rotor frame, x along the unbalance [m].
+        Rotor (chamber) deflection about its static sag, rotor frame, x along the unbalance [m].
     liquid_unbalance : ndarray of complex
         The liquid's first moment U about the chamber centre, rotor frame [kg*m].
+    synchronous_unbalance : ndarray of complex
+        U averaged over one revolution of the spin angle (:func:`revolution_average`): the
+        part turning with the rotor, without the gravity-held part that stands still in the
+        inertial frame and loads the supports statically [kg*m].
     film_start : float
-        Time the profile first reaches the entrainment speed [s].
-    entrainment_speed : float
-        omega_0 (003 eq 6) [rad/s].
+        Time the profile first reaches omega_f [s].
+    film_start_speed : float
+        omega_f (:func:`film_start_speed`) [rad/s].
     nominal_speed : float
         The profile's nominal speed, for the ISO grade [rad/s].
     steps : int
@@ -63,8 +76,9 @@ class LiquidSimulation:
     speed: np.ndarray
     deflection: np.ndarray
     liquid_unbalance: np.ndarray
+    synchronous_unbalance: np.ndarray
     film_start: float
-    entrainment_speed: float
+    film_start_speed: float
     nominal_speed: float
     steps: int
     status: str = "ok"
@@ -77,8 +91,8 @@ class LiquidSimulation:
 
     @property
     def residual_unbalance(self) -> np.ndarray:
-        """|D + U| [kg*m]: the rotor's unbalance with the liquid's moment."""
-        return np.abs(self.system.rotor.unbalance + self.liquid_unbalance)
+        """|D + U_s| [kg*m]: the rotor's unbalance with the liquid's synchronous moment."""
+        return np.abs(self.system.rotor.unbalance + self.synchronous_unbalance)
 
     @property
     def grade(self) -> np.ndarray:
@@ -100,7 +114,7 @@ class LiquidSimulation:
         a rigid centred mass, quasi-steady over the profile's speeds up to omega_0 (Jeffcott
         closed form; exact for a slow run-up, an upper bound of its transient otherwise)."""
         r, s = self.system.rotor, self.system.suspension
-        w = np.linspace(0.0, self.entrainment_speed, 2001)
+        w = np.linspace(0.0, self.film_start_speed, 2001)
         return float(np.max(r.unbalance * w ** 2
                             / np.abs(dynamic_stiffness(self.system.total_mass, s.kx, s.cx, w))))
 
@@ -123,15 +137,17 @@ class LiquidSimulation:
         """Start, final state and peak of the run (SI, unit-suffixed keys, as the ball
         simulator's summary where they mean the same)."""
         i = int(np.argmax(self.amplitude))
-        U = self.liquid_unbalance[-1]
+        U = self.synchronous_unbalance[-1]
         return {
             "status": self.status, "message": self.message, "system": self.system.name,
             "model": "liquid wall film",
             "duration_s": float(self.t[-1]),
             "nominal_speed_rad_s": self.nominal_speed,
-            "entrainment_speed_rad_s": self.entrainment_speed,
+            "film_start_speed_rad_s": self.film_start_speed,
             "film_start_s": self.film_start,
-            "initial_grade_G_mm_s": float(self.grade[0]),
+            "initial_grade_G_mm_s": float(grade_value(abs(self.system.rotor.unbalance),
+                                                      self.system.total_mass,
+                                                      self.nominal_speed)),  # D alone
             "final": {
                 "time_s": float(self.t[-1]), "speed_rad_s": float(self.speed[-1]),
                 "amplitude_m": float(self.amplitude[-1]),
@@ -161,9 +177,13 @@ class LiquidSimulation:
                 "amplitude_without_liquid": ("time", self.amplitude_without_liquid, {"units": "m"}),
                 "liquid_unbalance_x": ("time", U.real, {"units": "kg m"}),
                 "liquid_unbalance_y": ("time", U.imag, {"units": "kg m"}),
+                "synchronous_unbalance_x": ("time", self.synchronous_unbalance.real,
+                                            {"units": "kg m", "long_name": "revolution average"}),
+                "synchronous_unbalance_y": ("time", self.synchronous_unbalance.imag,
+                                            {"units": "kg m"}),
                 "grade": ("time", self.grade, {"units": "mm/s"})}
         attrs = {"model": "wall film coupled with the rotor (autobalance.liquid.simulate)",
-                 "entrainment_speed_rad_s": self.entrainment_speed,
+                 "film_start_speed_rad_s": self.film_start_speed,
                  "film_start_s": self.film_start, "status": self.status,
                  "system": json.dumps({"name": self.system.name})}
         return xr.Dataset(data, coords={"time": ("time", self.t, {"units": "s"})}, attrs=attrs)
@@ -190,12 +210,12 @@ def _check(system: System, spin) -> None:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls,
                              "must be 0 beside a [liquid] section (balls and liquid together "
                              "are not modelled yet)")
-    if liq.axis != "vertical":
-        raise ParameterError("liquid.axis", liq.axis, "the film model covers a vertical axis "
-                             "only so far (gravity in the chamber's plane is not modelled yet)")
-    if system.gravity.g != 0.0:
+    if liq.axis == "vertical" and system.gravity.g != 0.0:
         raise ParameterError("gravity.g", system.gravity.g, "must be 0 with a vertical-axis "
                              "liquid balancer ([gravity] acts in the rotor's plane)")
+    if liq.axis == "horizontal" and not system.gravity.g > 0.0:
+        raise ParameterError("gravity.g", system.gravity.g, "must be > 0 with a horizontal-axis "
+                             "liquid balancer (e.g. '9.81 m/s^2'; [gravity] is in the plane)")
     if s.kx != s.ky or s.cx != s.cy:
         raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the film "
                              "model's rotor is isotropic")
@@ -211,15 +231,69 @@ def _check(system: System, spin) -> None:
                              "speed profile (constant, ramp, table, std or tsr)")
 
 
+def revolution_average(psi, values):
+    """The mean of ``values`` over one revolution of the spin angle around each sample,
+    (1/2 pi) integral over [psi - pi, psi + pi] of values d(psi) (trapezoid rule); within half
+    a revolution of either end of the run the window is the first or last whole revolution (the
+    whole run if it is shorter). A component turning at -Omega in the rotor frame (gravity's)
+    averages out exactly at constant speed.
+
+    Parameters
+    ----------
+    psi : array_like
+        Spin angle at the samples, increasing [rad].
+    values : array_like
+        Samples (real or complex) [any unit].
+
+    Returns
+    -------
+    ndarray
+        The averages, in the unit of ``values``.
+    """
+    p = np.asarray(psi, float)
+    v = np.asarray(values)
+    c = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(p))])
+    span = min(2 * np.pi, p[-1] - p[0])
+    lo = np.clip(p - 0.5 * span, p[0], p[-1] - span)
+    hi = lo + span
+
+    def cum(x):
+        return np.interp(x, p, c.real) + (1j * np.interp(x, p, c.imag) if np.iscomplexobj(c)
+                                          else 0.0)
+
+    return (cum(hi) - cum(lo)) / max(span, 1e-300)
+
+
+def film_start_speed(device, g_plane: float = 0.0, g_axial: float = G_STANDARD) -> float:
+    """Speed from which the wall-film model holds [rad/s]: on a vertical axis the entrainment
+    speed omega_0 of 003 eq 6 (the liquid spans bottom to lid); on a horizontal one
+    sqrt(g / (f R)) with f = :data:`GRAVITY_OFFSET_MAX`, where gravity's offset g/Omega^2 of the
+    potential is f R (our criterion: the model is first order in it).
+
+    Parameters
+    ----------
+    device : autobalance.models.LiquidDevice
+        The chamber (R, h [m]), fill V [m^3] and axis.
+    g_plane : float
+        In-plane gravity for a horizontal axis [m/s^2].
+    g_axial : float
+        Gravity along a vertical axis [m/s^2].
+    """
+    if device.axis == "horizontal":
+        return float(np.sqrt(positive("gravity.g", g_plane)
+                             / (GRAVITY_OFFSET_MAX * device.chamber_radius)))
+    return entrainment_speed(device.volume, device.chamber_radius, device.chamber_height, g_axial)
+
+
 def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.ndarray]:
     """(t0, times from t0 [s], speeds [rad/s]) of the profile from its first reaching w0."""
     t = np.asarray(spin.times, float)
     w = np.asarray(spin.speeds, float)
     above = np.nonzero(w >= w0)[0]
     if above.size == 0:
-        raise ParameterError("profile", f"max {w.max():.4g} rad/s", f"never reaches the liquid's "
-                             f"entrainment speed omega_0 = {w0:.4g} rad/s (003 eq 6); below it "
-                             "the liquid is a pool, not a wall film")
+        raise ParameterError("profile", f"max {w.max():.4g} rad/s", f"never reaches the film "
+                             f"model's start speed {w0:.4g} rad/s (below it the liquid is a "
+                             "pool, not a wall film; docs/liquid.md sec. 3e)")
     i = int(above[0])
     t0 = t[0] if i == 0 else t[i - 1] + (w0 - w[i - 1]) / (w[i] - w[i - 1]) * (t[i] - t[i - 1])
     tt = np.concatenate([[t0], t[i:][t[i:] > t0]])
@@ -228,16 +302,17 @@ def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.nd
     low = np.nonzero(ww < w0 * (1 - 1e-12))[0]
     if low.size:
         raise ParameterError("profile", f"{ww[low[0]]:.4g} rad/s at {tt[low[0]]:.4g} s",
-                             f"falls below the entrainment speed omega_0 = {w0:.4g} rad/s after "
+                             f"falls below the film model's start speed {w0:.4g} rad/s after "
                              "reaching it; the film model needs the liquid on the wall")
     if tt[-1] <= t0:
-        raise ParameterError("profile", f"end at {t[-1]:.4g} s", f"reaches omega_0 = {w0:.4g} "
-                             "rad/s only at its end: nothing to simulate")
+        raise ParameterError("profile", f"end at {t[-1]:.4g} s", f"reaches the film model's "
+                             f"start speed {w0:.4g} rad/s only at its end: nothing to simulate")
     return float(t0), tt - t0, ww
 
 
 def check_liquid_run(system: System, spin, g_axial: float = G_STANDARD) -> float:
-    """Refuse, before any work, a machine or profile outside the film model; return omega_0.
+    """Refuse, before any work, a machine or profile outside the film model; return its start
+    speed (:func:`film_start_speed`).
 
     Parameters
     ----------
@@ -251,7 +326,7 @@ def check_liquid_run(system: System, spin, g_axial: float = G_STANDARD) -> float
     Returns
     -------
     float
-        The entrainment speed omega_0 (003 eq 6) [rad/s].
+        omega_f [rad/s].
 
     Raises
     ------
@@ -259,8 +334,7 @@ def check_liquid_run(system: System, spin, g_axial: float = G_STANDARD) -> float
         As :func:`simulate_liquid` (one line).
     """
     _check(system, spin)
-    liq = system.liquid
-    w0 = entrainment_speed(liq.volume, liq.chamber_radius, liq.chamber_height, g_axial)
+    w0 = film_start_speed(system.liquid, system.gravity.g, g_axial)
     _film_table(spin, w0)
     return w0
 
@@ -292,20 +366,21 @@ def run_seconds_estimate(system: System, spin, n_cells: int = 256) -> float:
 
 
 def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
-                    n_out: int = 1001, g_axial: float = G_STANDARD) -> LiquidSimulation:
+                    n_out: int | None = None, g_axial: float = G_STANDARD) -> LiquidSimulation:
     """Run a liquid-balancer System through a speed profile (module docstring).
 
     Parameters
     ----------
     system : System
         Rotor (mass [kg], unbalance [kg*m]), isotropic suspension (k [N/m], c [N*s/m]) and a
-        vertical-axis ``liquid`` section; no balls.
+        ``liquid`` section; no balls; [gravity] in the plane for a horizontal axis.
     spin : SpeedProfile
         Prescribed speed [rad/s] over time [s].
     n_cells : int
         Film cells around the wall [-].
-    n_out : int
-        Output samples from the film's start to the end [-].
+    n_out : int or None
+        Output samples from the film's start to the end [-]; None: 1001, or 8 per revolution
+        if more (for the revolution average), at most 200 001.
     g_axial : float
         Gravity along the vertical axis, for the entrainment speed [m/s^2].
 
@@ -316,20 +391,35 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     Raises
     ------
     ParameterError
-        One line for a machine or profile outside the film model (balls beside the liquid, a
-        horizontal axis, an anisotropic suspension, a motor drive, a profile that never
-        reaches or later falls below omega_0).
+        One line for a machine or profile outside the film model (balls beside the liquid, an
+        anisotropic suspension, a motor drive, in-plane gravity that does not fit the axis, a
+        profile that never reaches or later falls below omega_f).
     """
     w0 = check_liquid_run(system, spin, g_axial)
     liq, r, s = system.liquid, system.rotor, system.suspension
-    if int(n_out) != n_out or n_out < 2:
-        raise ParameterError("n_out", n_out, "must be an integer >= 2")
     t0, tt, ww = _film_table(spin, w0)
+    psi_knots = np.concatenate([[0.0], np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))])
+    if n_out is None:
+        n_out = int(min(max(1001, 8 * psi_knots[-1] / (2 * np.pi) + 1), 200001))
+    if isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2:
+        raise ParameterError("n_out", n_out, "must be an integer >= 2")
     T = float(tt[-1])
     rotor = VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)
+    gp = system.gravity.g if liq.axis == "horizontal" else 0.0
+    gdir = system.gravity.direction
+    sag = system.total_mass * gp / s.kx * np.exp(1j * gdir)      # static, inertial frame
     start = ww[0] ** 2 * r.unbalance / dynamic_stiffness(system.total_mass, s.kx, s.cx, ww[0])
     run = coupled_run(rotor, liq.chamber_radius, liq.chamber_height, liq.volume, (tt, ww), T,
                       density=liq.density, viscosity=liq.kinematic_viscosity, n_cells=n_cells,
-                      save_dt=T / (int(n_out) - 1), deflection=complex(start))
-    return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), run.deflection,
-                            run.film.unbalance, t0, w0, float(spin.nominal_speed), run.steps)
+                      save_dt=T / (int(n_out) - 1), deflection=complex(start + sag),
+                      velocity=complex(-1j * ww[0] * sag), gravity=gp, gravity_direction=gdir)
+    # the spin angle at the outputs (psi = 0 at the film's start; exact on the linear table)
+    i = np.clip(np.searchsorted(tt, run.t, side="right") - 1, 0, tt.size - 2)
+    tau = run.t - tt[i]
+    slope = (ww[i + 1] - ww[i]) / (tt[i + 1] - tt[i])
+    psi = psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
+    whirl = run.deflection - sag * np.exp(-1j * psi)
+    U = run.film.unbalance
+    return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), whirl, U,
+                            revolution_average(psi, U), t0, w0, float(spin.nominal_speed),
+                            run.steps)

@@ -422,7 +422,7 @@ def liquid_run_figure(sim, grade_limit: float = 16.0, grade_label: str | None = 
     time_unit : str
         Label of the time axis (the values are [s]).
     """
-    U = sim.liquid_unbalance
+    U = sim.synchronous_unbalance
     cap = sim.system.liquid.capacity
     x, xl = sim.t, f"time [{time_unit}]"
     fig = curves_figure([
@@ -430,11 +430,12 @@ def liquid_run_figure(sim, grade_limit: float = 16.0, grade_label: str | None = 
          "curves": [("with liquid", 1e3 * sim.amplitude, ""),
                     ("without liquid", 1e3 * sim.amplitude_without_liquid, "--")]},
         {"x": x, "xlabel": xl, "ylabel": "liquid moment / capacity ρVR [-], angle / 180° [-]",
-         "title": "liquid", "curves": [("|U| / ρVR", np.abs(U) / cap, ""),
-                                       ("angle from the unbalance / 180°",
-                                        np.degrees(np.unwrap(np.angle(U))) / 180.0, ":")]},
+         "title": "liquid (synchronous part)",
+         "curves": [("|U| / ρVR", np.abs(U) / cap, ""),
+                    ("angle from the unbalance in [0, 360°) / 180°",
+                     np.mod(np.degrees(np.angle(U)), 360.0) / 180.0, ":")]},
         {"x": x, "xlabel": xl, "ylabel": "grade G [mm/s]", "title": "ISO 1940 grade",
-         "curves": [("G of |D + U|", sim.grade, ""),
+         "curves": [("G of |D + U_sync|", sim.grade, ""),
                     (grade_label or f"G{grade_limit:g}", np.full(x.size, grade_limit), "k--")]},
     ], suptitle=f"{sim.system.name}: liquid balancer (film from t = {sim.film_start:.3g} s)",
         size=(15.0, 4.4))
