@@ -161,3 +161,48 @@ def test_over_filled_water_whirls_asynchronously_and_viscosity_steadies_it():
     b = np.abs(oil.deflection[-400:])
     assert np.ptp(b) < 1e-6 * b.mean()
     assert abs(b.mean() - abs(ws)) <= 2.5 * (v / (2 * math.pi * R * H) / R) * abs(ws)
+
+
+# -- radial partitions ---------------------------------------------------------------------------
+@pytest.mark.parametrize("parts, c", [(4, 1e-3 + 0j), (2, 5e-3 * np.exp(0.7j)), (8, 3e-3j)])
+def test_partitioned_lake_at_rest_stays_at_rest(parts, c):
+    """Well balanced with walls: each compartment's own lake at rest (film_equilibrium with
+    partitions) is kept to round-off."""
+    eq = film_equilibrium(V, R, H, c, partitions=parts)
+    r = film_run(R, H, V, W, 1.0, deflection=c, initial=(eq, np.zeros_like(eq)),
+                 partitions=parts)
+    assert np.abs(r.thickness[-1] - eq).max() < 1e-15
+    assert np.abs(r.discharge).max() < 1e-15
+
+
+def test_partitions_keep_each_compartment_s_liquid():
+    """A whirling displacement, in-plane gravity and a ramp: no liquid crosses a wall (each
+    compartment's volume to round-off), positivity kept."""
+    t = np.linspace(0.0, 3.0, 301)
+    c = 4e-3 * (t / 3.0) * np.exp(1j * 2.0 * t)
+    n, parts = 256, 4
+    r = film_run(R, H, V, (t, 40.0 + 10.0 * t), 3.0, deflection=(t, c), n_cells=n,
+                 partitions=parts, gravity=9.81)
+    per = r.thickness.reshape(r.t.size, parts, n // parts).sum(axis=2)
+    assert np.ptp(per, axis=0).max() <= 1e-13 * per[0].max()
+    assert np.allclose(per[0], per[0, 0], rtol=1e-12)
+    assert r.thickness.min() >= 0.0
+
+
+def test_two_partitions_cut_the_lake_s_moment_across_them():
+    """Two walls at theta = 0 and pi: the lake at rest on a wall displaced along y (across the
+    walls) can only tilt within each half, U_y = rho H R^2 c (pi - 8/pi) against pi without
+    walls (ratio 1 - 8/pi^2 = 0.189, linear theory of the ring); along x (the walls' line) the
+    moment is unchanged. O(1/n^2) on 512 cells."""
+    n, c = 512, 1e-4
+    for d, ratio in ((1j, 1 - 8 / math.pi ** 2), (1.0, 1.0)):
+        free = film_unbalance(film_equilibrium(V, R, H, c * d, n), R, H, RHO)
+        walled = film_unbalance(film_equilibrium(V, R, H, c * d, n, partitions=2), R, H, RHO)
+        assert abs(walled / free) == pytest.approx(ratio, rel=1e-4)
+        assert abs(free) == pytest.approx(RHO * H * R * R * math.pi * c, rel=1e-4)
+
+
+def test_bad_partitions_are_one_line():
+    for parts, field in ((1, "partitions"), (3, "n_cells"), (2.5, "partitions")):
+        with pytest.raises(ParameterError, match=f"^{field}"):
+            film_run(R, H, V, W, 0.1, partitions=parts, n_cells=256)

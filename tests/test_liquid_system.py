@@ -68,7 +68,7 @@ def test_units_and_describe():
     ("liquid.density=-1", "liquid.density"),
     ("liquid.kinematic_viscosity=1 m/s", "liquid.kinematic_viscosity"),
     ("liquid.friction_arc=400 deg", "liquid.friction_arc"),
-    ("liquid.partitions=4", "liquid.partitions"),        # not a key (not modelled yet)
+    ("liquid.partitions=1", "liquid.partitions"),        # 0 or 2..64
 ])
 def test_bad_values_one_line(item, field):
     with pytest.raises(ConfigError) as e:

@@ -88,8 +88,8 @@ SECTIONS: dict[str, dict[str, F]] = {
     "gravity": _fields_of(Gravity, g=F("acceleration"), direction=F("angle")),
     "liquid": _fields_of(
         LiquidDevice, chamber_radius=F("length"), chamber_height=F("length"), volume=F("volume"),
-        density=F("density"), kinematic_viscosity=F("kin_viscosity"), friction_arc=F("angle"),
-        axis=F("text", choices=AXES)),
+        density=F("density"), kinematic_viscosity=F("kin_viscosity"), partitions=F("int"),
+        friction_arc=F("angle"), axis=F("text", choices=AXES)),
     "initial": _fields_of(
         InitialState, ball_angles=F("angle", "list"), ball_speeds=F("speed", "list"),
         x=F("length"), y=F("length"), vx=F("velocity"), vy=F("velocity"),

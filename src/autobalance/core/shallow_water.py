@@ -84,24 +84,37 @@ def friction_rate(h, v, nu, R):
 
 
 @kernel
-def sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr):
+def sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr):
     """One forward-Euler step dt [s] of the film (module docstring) on n periodic cells of width
     dx [m]: h, q the state [m, m^2/s]; b the wall height [m] and a the tangential acceleration
-    [m/s^2] per cell; g [m/s^2]; nu [m^2/s]; R [m] (dry scale). Writes hn, qn; fh, fq, hl, hr are
-    work arrays (n,) for the interface fluxes and reconstructed depths (left / right of the
-    interface i + 1/2 between cells i and i + 1)."""
+    [m/s^2] per cell; g [m/s^2]; nu [m^2/s]; R [m] (dry scale); wall[i] != 0 makes the interface
+    i + 1/2 a radial partition (a reflecting wall: each side sees its own mirror state, no mass
+    crosses). Writes hn, qn; fh, fq, fqr, hl, hr are work arrays (n,) for the interface fluxes
+    (fq the momentum flux into cell i + 1 side as seen from cell i, fqr as seen from cell i + 1)
+    and reconstructed depths (left / right of the interface i + 1/2)."""
     n = h.shape[0]
     dry = DRY_FRACTION * R
     for i in range(n):
         j = i + 1 if i + 1 < n else 0
+        ul = q[i] / h[i] if h[i] > dry else 0.0
+        ur = q[j] / h[j] if h[j] > dry else 0.0
+        if wall[i] != 0:
+            # mirror states: (h_i, u_i | h_i, -u_i) and (h_j, -u_j | h_j, u_j)
+            _, f1 = hll_flux(h[i], h[i] * ul, h[i], -h[i] * ul, g, dry)
+            _, f1r = hll_flux(h[j], -h[j] * ur, h[j], h[j] * ur, g, dry)
+            fh[i] = 0.0
+            fq[i] = f1
+            fqr[i] = f1r
+            hl[i] = h[i]
+            hr[i] = h[j]
+            continue
         bs = max(b[i], b[j])
         hls = max(0.0, h[i] + b[i] - bs)
         hrs = max(0.0, h[j] + b[j] - bs)
-        ul = q[i] / h[i] if h[i] > dry else 0.0
-        ur = q[j] / h[j] if h[j] > dry else 0.0
         f0, f1 = hll_flux(hls, hls * ul, hrs, hrs * ur, g, dry)
         fh[i] = f0
         fq[i] = f1
+        fqr[i] = f1
         hl[i] = hls
         hr[i] = hrs
     for i in range(n):
@@ -109,7 +122,7 @@ def sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr):
         # F_{i+1/2}^- - F_{i-1/2}^+ with the hydrostatic corrections of Audusse et al. (2004)
         dh = fh[i] - fh[k]
         dq = (fq[i] + 0.5 * g * (h[i] * h[i] - hl[i] * hl[i])) \
-            - (fq[k] + 0.5 * g * (h[i] * h[i] - hr[k] * hr[k]))
+            - (fqr[k] + 0.5 * g * (h[i] * h[i] - hr[k] * hr[k]))
         hi = h[i] - dt / dx * dh
         qi = q[i] - dt / dx * dq
         if hi <= dry:
@@ -179,11 +192,12 @@ def _emit(out_t, out_h, out_q, kout, t, h, q):
 
 @kernel
 def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax, tay,
-                 gp, gdir, out_t, out_h, out_q, hn, qn, fh, fq, hl, hr, b, a):
+                 gp, gdir, wall, out_t, out_h, out_q, hn, qn, fh, fq, fqr, hl, hr, b, a):
     """Integrate the film from t = 0 to t_end [s] with the CFL time step, the forcing read from
     the tables tt [s] of spin w [rad/s], w' [rad/s^2] and the chamber's displacement c, c', c''
     ([m], [m/s], [m/s^2]; x and y parts), linearly interpolated; in-plane gravity gp [m/s^2] at
-    the inertial angle gdir [rad], the spin angle psi = 0 at t = 0. h, q hold the initial state
+    the inertial angle gdir [rad], the spin angle psi = 0 at t = 0; partitions at the interfaces
+    where wall != 0 (:func:`sw_step`). h, q hold the initial state
     and are overwritten by the final one; out_h, out_q (len(out_t), n) receive the state at the
     sorted output times out_t [s]. Returns the number of steps (-1: a non-finite state)."""
     n = h.shape[0]
@@ -210,7 +224,7 @@ def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax
         wall_height(theta, cx + off.real, cy + off.imag, b)
         frame_acceleration(theta, R, w, wd, cx, cy, table_interp(t, tt, tvx),
                            table_interp(t, tt, tvy), table_interp(t, tt, tax), table_interp(t, tt, tay), a)
-        sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
+        sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr)
         psi += w * dt + 0.5 * wd * dt * dt
         ok = True
         for i in range(n):
@@ -263,7 +277,7 @@ def _gravity_force(Mt, gp, gdir, psi):
 
 @kernel
 def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, twd, gp, gdir,
-               out_t, out_h, out_q, out_w, hn, qn, fh, fq, hl, hr, b, a):
+               wall, out_t, out_h, out_q, out_w, hn, qn, fh, fq, fqr, hl, hr, b, a):
     """The film coupled two-way with an isotropic Jeffcott rotor (mass M_t = M + rho V with the
     liquid, stiffness k, damping c, unbalance D on the rotor frame's x axis) at the prescribed
     spin w(t) (tables tt [s], tw [rad/s], twd [rad/s^2]).
@@ -272,7 +286,8 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
     first moment Z = M_t w + U (w the chamber's deflection [m], U the film's moment [kg*m]):
     Z'' + 2 i W Z' + i W' Z - W^2 Z + c (w' + i W w) + k w = D (W^2 - i W') + M_t g_p e^{i(gamma
     - psi)}, so the film's acceleration never needs differentiating; in-plane gravity gp
-    [m/s^2] at the inertial angle gdir [rad] (0: a vertical axis), psi = 0 at t = 0. Each film step (CFL) advances the rotor by 4 RK4
+    [m/s^2] at the inertial angle gdir [rad] (0: a vertical axis), psi = 0 at t = 0; partitions
+    where wall != 0 (:func:`sw_step`). Each film step (CFL) advances the rotor by 4 RK4
     sub-steps with U, U' frozen (explicit coupling), and the film by one step forced by the
     deflection and by w'' from the previous step. h, q, and the returned (Z, Y) are the final
     state; out_w receives w at out_t. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
@@ -310,7 +325,7 @@ def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, t
         wall_height(theta, w.real + off.real, w.imag + off.imag, b)
         frame_acceleration(theta, R, W, Wd, w.real, w.imag, wd.real, wd.imag, wdd.real,
                            wdd.imag, a)
-        sw_step(h, q, b, a, g, dx, dt, nu, R, hn, qn, fh, fq, hl, hr)
+        sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr)
         # rotor: 4 RK4 sub-steps with the film's moment frozen
         hs = dt / 4.0
         for j in range(4):

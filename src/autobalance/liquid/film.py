@@ -70,11 +70,35 @@ def film_wave_speed(thickness: float, speed: float, radius: float) -> float:
     return math.sqrt(speed * speed * radius * thickness)
 
 
+def partition_walls(n_cells: int, partitions: int) -> np.ndarray:
+    """The interfaces of ``partitions`` equally spaced radial walls on the ring of cells: 1 at
+    the interface i + 1/2 after the last cell of each compartment, 0 elsewhere (the kernels'
+    ``wall``; the first compartment starts at theta = 0).
+
+    Parameters
+    ----------
+    n_cells : int
+        Cells around the wall [-], a multiple of ``partitions``.
+    partitions : int
+        Radial walls [-]: 0 (none) or >= 2.
+    """
+    p = int(partitions)
+    if p != partitions or p < 0 or p == 1:
+        raise ParameterError("partitions", partitions, "must be 0 (none) or an integer >= 2")
+    wall = np.zeros(int(n_cells), np.int8)
+    if p:
+        if n_cells % p:
+            raise ParameterError("n_cells", n_cells, f"must be a multiple of the {p} partitions")
+        wall[n_cells // p - 1::n_cells // p] = 1
+    return wall
+
+
 def film_equilibrium(volume: float, radius: float, height: float, deflection: complex,
-                     n_cells: int = 256) -> np.ndarray:
+                     n_cells: int = 256, partitions: int = 0) -> np.ndarray:
     """The film at rest on the wall of a chamber displaced by c: eta = max(0, C + Re(c e^{-i
     theta})) per cell [m], C from the volume V = H R sum(eta) dtheta (the centrifugal "lake at
-    rest"; dry where the wall is nearest the axis once |c| exceeds the mean thickness).
+    rest"; dry where the wall is nearest the axis once |c| exceeds the mean thickness); with
+    partitions, each compartment holds V / partitions at its own level C_k.
 
     Parameters
     ----------
@@ -88,27 +112,35 @@ def film_equilibrium(volume: float, radius: float, height: float, deflection: co
         Chamber centre relative to the rotation axis, rotor frame [m].
     n_cells : int
         Cells around the wall [-].
+    partitions : int
+        Radial walls [-] (:func:`partition_walls`).
 
     Returns
     -------
     ndarray (n_cells,)
         [m].
     """
+    from scipy.optimize import brentq
+
     th = _theta(n_cells)
     c = complex(deflection)
     b = np.empty(n_cells)
     wall_height(th, c.real, c.imag, b)               # the scheme's own wall, b = -Re(c e^{-i theta})
-    rise = -b
-    target = volume / (height * radius * 2 * np.pi / n_cells)
+    parts = max(int(partitions), 1)
+    partition_walls(n_cells, partitions)
+    out = np.empty(n_cells)
+    m = n_cells // parts
+    for k in range(parts):
+        rise = -b[k * m:(k + 1) * m]
+        target = volume / parts / (height * radius * 2 * np.pi / n_cells)
 
-    def excess(C):
-        return np.maximum(C + rise, 0.0).sum() - target
+        def excess(C):
+            return np.maximum(C + rise, 0.0).sum() - target
 
-    lo, hi = -abs(deflection), target / n_cells + abs(deflection)
-    from scipy.optimize import brentq
-
-    C = brentq(excess, lo, hi, xtol=1e-15 * radius, rtol=4.5 * 2.2205e-16)
-    return np.maximum(C + rise, 0.0)
+        lo, hi = -abs(deflection), target / m + abs(deflection)
+        C = brentq(excess, lo, hi, xtol=1e-15 * radius, rtol=4.5 * 2.2205e-16)
+        out[k * m:(k + 1) * m] = np.maximum(C + rise, 0.0)
+    return out
 
 
 @dataclass(frozen=True)
@@ -165,7 +197,8 @@ def _table(value, t_end, name):
 def film_run(radius: float, height: float, volume: float, speed, t_end: float, *,
              deflection=0j, density: float = 1000.0, viscosity: float = 1.0e-6,
              n_cells: int = 256, save_dt: float | None = None, initial=None,
-             gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi) -> FilmRun:
+             gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi,
+             partitions: int = 0) -> FilmRun:
     """Integrate the film (module docstring) from t = 0 to ``t_end``.
 
     Parameters
@@ -197,6 +230,8 @@ def film_run(radius: float, height: float, volume: float, speed, t_end: float, *
         Gravity in the chamber's plane g_p [m/s^2] (a horizontal axis; 0: none).
     gravity_direction : float
         Its inertial direction gamma [rad] (-pi/2: down); the spin angle is 0 at t = 0.
+    partitions : int
+        Equally spaced radial walls [-] (:func:`partition_walls`; 0: none).
 
     Returns
     -------
@@ -237,11 +272,11 @@ def film_run(radius: float, height: float, volume: float, speed, t_end: float, *
     out_t = np.linspace(0.0, T, 201) if not save_dt else np.arange(0.0, T + 0.5 * save_dt, save_dt)
     out_h = np.zeros((out_t.size, n))
     out_q = np.zeros((out_t.size, n))
-    work = [np.zeros(n) for _ in range(8)]
+    work = [np.zeros(n) for _ in range(9)]
     steps = sw_integrate(h, q, th, R, nu, T, tt, wv, wd, cv.real, cv.imag, cd.real, cd.imag,
                          cdd.real, cdd.imag, nonneg("gravity", gravity),
-                         finite("gravity_direction", gravity_direction), out_t, out_h, out_q,
-                         *work)
+                         finite("gravity_direction", gravity_direction),
+                         partition_walls(n, partitions), out_t, out_h, out_q, *work)
     if steps < 0:
         raise FloatingPointError("film_run: the film state became non-finite")
     return FilmRun(out_t, th, out_h, out_q, R, H, float(density), int(steps))
@@ -272,7 +307,8 @@ class CoupledRun:
 def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end: float, *,
                 density: float = 1000.0, viscosity: float = 1.0e-6, n_cells: int = 256,
                 save_dt: float | None = None, deflection: complex = 0j, velocity: complex = 0j,
-                gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi) -> CoupledRun:
+                gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi,
+                partitions: int = 0) -> CoupledRun:
     """The film coupled two-way with an isotropic Jeffcott rotor at a prescribed spin
     (:func:`autobalance.core.shallow_water.sw_coupled`): the rotor's deflection moves the wall
     (centrifugal wall height, frame accelerations) and the film's first moment pulls the rotor.
@@ -308,6 +344,8 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
         Gravity in the chamber's plane g_p [m/s^2] (a horizontal axis; 0: a vertical one).
     gravity_direction : float
         Its inertial direction gamma [rad] (-pi/2: down); the spin angle is 0 at t = 0.
+    partitions : int
+        Equally spaced radial walls [-] (:func:`partition_walls`; 0: none).
 
     Returns
     -------
@@ -333,7 +371,8 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
     th = _theta(n)
     gp, gdir = nonneg("gravity", gravity), finite("gravity_direction", gravity_direction)
     off = gp / wv[0] ** 2 * np.exp(1j * gdir)
-    h = film_equilibrium(V, R, H, complex(deflection) + off, n)
+    wall = partition_walls(n, partitions)
+    h = film_equilibrium(V, R, H, complex(deflection) + off, n, partitions)
     q = np.zeros(n)
     Mt = rotor.mass + rho * V
     U, Ud = film_moment(h, q, th, R, H, rho)
@@ -342,10 +381,10 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
     out_t = np.linspace(0.0, T, 201) if not save_dt else np.arange(0.0, T + 0.5 * save_dt, save_dt)
     out_h, out_q = np.zeros((out_t.size, n)), np.zeros((out_t.size, n))
     out_w = np.zeros(out_t.size, complex)
-    work = [np.zeros(n) for _ in range(8)]
+    work = [np.zeros(n) for _ in range(9)]
     steps, Z, Y = sw_coupled(h, q, th, R, H, rho, nu, Mt, rotor.stiffness, rotor.damping,
-                             rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd, gp, gdir, out_t,
-                             out_h, out_q, out_w, *work)
+                             rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd, gp, gdir, wall,
+                             out_t, out_h, out_q, out_w, *work)
     if steps < 0:
         raise FloatingPointError("coupled_run: the state became non-finite")
     film = FilmRun(out_t, th, out_h, out_q, R, H, float(rho), int(steps))

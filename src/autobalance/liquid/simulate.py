@@ -377,7 +377,7 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     spin : SpeedProfile
         Prescribed speed [rad/s] over time [s].
     n_cells : int
-        Film cells around the wall [-].
+        Film cells around the wall [-] (rounded up to a multiple of the partitions).
     n_out : int or None
         Output samples from the film's start to the end [-]; None: 1001, or 8 per revolution
         if more (for the revolution average), at most 200 001.
@@ -409,8 +409,11 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     gdir = system.gravity.direction
     sag = system.total_mass * gp / s.kx * np.exp(1j * gdir)      # static, inertial frame
     start = ww[0] ** 2 * r.unbalance / dynamic_stiffness(system.total_mass, s.kx, s.cx, ww[0])
+    if liq.partitions and n_cells % liq.partitions:     # whole compartments of cells
+        n_cells = liq.partitions * -(-int(n_cells) // liq.partitions)
     run = coupled_run(rotor, liq.chamber_radius, liq.chamber_height, liq.volume, (tt, ww), T,
                       density=liq.density, viscosity=liq.kinematic_viscosity, n_cells=n_cells,
+                      partitions=liq.partitions,
                       save_dt=T / (int(n_out) - 1), deflection=complex(start + sag),
                       velocity=complex(-1j * ww[0] * sag), gravity=gp, gravity_direction=gdir)
     # the spin angle at the outputs (psi = 0 at the film's start; exact on the linear table)

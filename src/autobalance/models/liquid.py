@@ -9,18 +9,20 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ._validate import ParameterError, positive
+from ._validate import ParameterError, count, positive
 
 #: Directions of the rotation axis: "vertical" (003's bench: gravity along the axis, the free
 #: surface a paraboloid) or "horizontal" (a washer's Leblanc ring: gravity in the plane).
 AXES = ("vertical", "horizontal")
+#: Most radial partitions of a chamber [-] (each compartment keeps >= 4 film cells of 256).
+MAX_PARTITIONS = 64
 
 
 @dataclass(frozen=True)
 class LiquidDevice:
     """A closed cylindrical chamber, coaxial with the rotor, partly filled with a liquid (003
-    Fig. 4; 001 Fig. 1). Annular chambers, radial partitions and several concentric chambers
-    are not modelled yet (docs/liquid.md sec. 3e).
+    Fig. 4; 001 Fig. 1), with optional radial partitions. Annular chambers and several
+    concentric chambers are not modelled yet (docs/liquid.md sec. 3e).
 
     Parameters
     ----------
@@ -34,6 +36,8 @@ class LiquidDevice:
         Liquid density rho [kg/m^3] (001: 670-1650 kg/m^3; default water).
     kinematic_viscosity : float
         nu [m^2/s] (001: 1.01e-6-97e-6 m^2/s; default water at 20 C, 003 sec. 4.2).
+    partitions : int
+        Equally spaced radial walls dividing the ring into compartments [-]: 0 (none) or 2-64.
     friction_arc : float
         Arc xi the gathered liquid covers along the wall, for 001's friction force (001 eq
         5-6 leave it open; default pi, half the wall) [rad].
@@ -46,6 +50,7 @@ class LiquidDevice:
     volume: float
     density: float = 1000.0
     kinematic_viscosity: float = 1.01e-6
+    partitions: int = 0
     friction_arc: float = math.pi
     axis: str = "vertical"
 
@@ -59,6 +64,11 @@ class LiquidDevice:
                                  f"({self.chamber_volume * 1e6:.6g} ml)")
         positive("liquid.density", self.density)
         positive("liquid.kinematic_viscosity", self.kinematic_viscosity)
+        parts = count("liquid.partitions", self.partitions, 0)
+        if parts == 1 or parts > MAX_PARTITIONS:
+            raise ParameterError("liquid.partitions", self.partitions,
+                                 f"must be 0 (none) or an integer in 2..{MAX_PARTITIONS}")
+        object.__setattr__(self, "partitions", parts)
         a = positive("liquid.friction_arc", self.friction_arc)
         if a > 2 * math.pi * (1 + 1e-12):
             raise ParameterError("liquid.friction_arc", self.friction_arc, "must be in (0, 2 pi] rad")
