@@ -37,6 +37,15 @@ def timed(fn, repeat=5):
     return statistics.median(times), out
 
 
+def report(lines: list, res: dict, name: str) -> dict:
+    """Print a benchmark's lines and write its results to out/<name> (JSON)."""
+    print("\n".join(lines))
+    os.makedirs("out", exist_ok=True)
+    with open(os.path.join("out", name), "w") as f:
+        json.dump(res, f, indent=2)
+    return res
+
+
 def radau(s, prof, T, ini, equations):
     t0 = time.perf_counter()
     sol = solve_reference(s, prof, T, initial=ini, v_sat=1e-6, method="Radau", rtol=1e-6,
@@ -140,11 +149,7 @@ def main() -> dict:
     lines.append(f"D. study tolerances of examples/centrifuge.toml (the circle test of the worst-case bound): "
                  f"NumPy home {tol[False][0]:.2f} s, compiled twin {tol[True][0]:.2f} s "
                  f"({tol[False][0] / tol[True][0]:.1f}x), same tolerances: {same}")
-    print("\n".join(lines))
-    os.makedirs("out", exist_ok=True)
-    with open("out/bench.json", "w") as f:
-        json.dump(res, f, indent=2)
-    return res
+    return report(lines, res, "bench.json")
 
 
 if __name__ == "__main__":

@@ -55,15 +55,21 @@ def test_simulate_json_and_plots(tmp_path):
 
 
 def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
-    """``--model physical``: the quasi-static liquid's steady whirl (NaN below omega_0, where the
-    liquid does not turn with the chamber), the coupled film's run-up from omega_0 and the fill
-    sweep, in the lumped model's keys; the liquid lowers the whirl above resonance only."""
+    """``--model physical``: the quasi-static liquid's steady whirl (below omega_0 the liquid is a
+    centred pool: the rotor with its mass, pool_response), the coupled film's run-up from
+    omega_0 and the fill sweep, in the lumped model's keys; the liquid lowers the whirl above
+    resonance only."""
     png = tmp_path / "p.png"
     d = _json(["simulate", "--model", "physical", "--omega", "15:80 1/s:14", "--run-up",
                "--plot", str(png)])
     assert d["model"] == "physical" and d["placement"] is None
     amp, dry, w = d["amplitude_m"], d["amplitude_dry_m"], d["omega_rad_s"]
-    assert all(a is None for a, x in zip(amp, w) if x < d["omega_0_rad_s"])
+    from autobalance.liquid import load_bench
+    from autobalance.liquid.steady import pool_response
+    b = load_bench("bench_003")
+    below = [(a, x) for a, x in zip(amp, w) if x < d["omega_0_rad_s"]]
+    assert below and all(a == pytest.approx(abs(pool_response(b.rotor, b.balancer.volume, 1000.0, x)))
+                         for a, x in below)
     assert all(a < b for a, b, x in zip(amp, dry, w) if x >= 1.2 * d["omega_n_rad_s"])
     assert all(a > b for a, b, x in zip(amp, dry, w) if d["omega_0_rad_s"] <= x <= 0.8 * d["omega_n_rad_s"])
     ru = d["run_up"]

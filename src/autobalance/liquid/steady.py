@@ -32,8 +32,8 @@ from ..models._validate import ParameterError, positive
 from .models import G_STANDARD
 from .quasistatic import quasi_static
 
-__all__ = ["physical_fill_sweep", "physical_steady_response", "response_curve", "ring_response",
-           "synchronous_deflection"]
+__all__ = ["physical_fill_sweep", "physical_steady_response", "pool_response", "response_curve",
+           "ring_response", "synchronous_deflection"]
 
 
 def _G(w, rotor, Wsp, chamber, volume, density, g, axis):
@@ -61,9 +61,7 @@ def ring_response(rotor, chamber_volume: float, volume: float, density: float,
     speed : float
         Omega [rad/s].
     """
-    W = speed
-    return W * W * rotor.unbalance / (rotor.stiffness - (rotor.mass + density * chamber_volume) * W * W
-                                      + 1j * rotor.damping * W)
+    return complex(pool_response(rotor, chamber_volume, density, speed))
 
 
 def synchronous_deflection(rotor, radius: float, height: float, volume: float, density: float,
@@ -162,11 +160,35 @@ def response_curve(rotor, radius: float, height: float, volume: float, density: 
     return sweep(range(w.size)), sweep(range(w.size - 1, -1, -1))
 
 
+def pool_response(rotor, volume: float, density: float, speed):
+    """Deflection [m] of the rotor carrying its liquid as a centred pool, below the entrainment
+    speed (003 eq 6: the liquid is not yet a ring on the wall): a rigid mass that translates with
+    the chamber and balances nothing, w = Omega^2 D / (k - (M + rho V) Omega^2 + i c Omega)
+    (Jeffcott, :func:`autobalance.physics.response.dynamic_stiffness`).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    volume : float
+        Liquid volume V [m^3].
+    density : float
+        rho [kg/m^3].
+    speed : float or array_like
+        Omega [rad/s].
+    """
+    from ..physics.response import dynamic_stiffness
+
+    W = np.asarray(speed, float)
+    return W * W * rotor.unbalance / dynamic_stiffness(rotor.mass + density * volume,
+                                                       rotor.stiffness, rotor.damping, W)
+
+
 def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
     """The bench's steady whirl over ``speeds`` with the quasi-static liquid (:func:`response_curve`,
     upward sweep), in the keys of :func:`autobalance.liquid.steady_response` (the lumped model),
     so that the CLI and the figures take either. Below the entrainment speed omega_0 (003 eq 6)
-    the liquid does not turn with the chamber and the model does not apply: NaN there.
+    the liquid is a centred pool (:func:`pool_response`; liquid unbalance 0, its angle NaN).
 
     Parameters
     ----------
@@ -183,7 +205,8 @@ def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
     -------
     dict
         omega_rad_s, amplitude_m, amplitude_dry_m (empty chamber), efficiency [-],
-        liquid_angle_deg (of U_l from D) [deg], liquid_unbalance_kg_m, phase_deg (of w from D).
+        deflection_m (complex, rotor frame), liquid_angle_deg (of U_l from D) [deg],
+        liquid_unbalance_kg_m, phase_deg (of w from D).
     """
     from .free_surface import entrainment_speed
 
@@ -196,19 +219,24 @@ def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
         w[ok], _ = response_curve(rotor, R, h, V, rho, om[ok], g=g)
     U = np.array([quasi_static(R, h, V, rho, W, x, g=g).unbalance if np.isfinite(x) else
                   complex(math.nan, math.nan) for W, x in zip(om, w)])
-    dry = np.abs(om ** 2 * rotor.unbalance / (rotor.stiffness - rotor.mass * om ** 2
-                                              + 1j * rotor.damping * om))
+    if (~ok).any():
+        w[~ok] = pool_response(rotor, V, rho, om[~ok])
+        U[~ok] = 0.0
+    dry = np.abs(pool_response(rotor, 0.0, rho, om))        # the empty chamber
     amp = np.abs(w)
     with np.errstate(divide="ignore", invalid="ignore"):
         eff = dry / amp
     return {"omega_rad_s": om, "amplitude_m": amp, "amplitude_dry_m": dry, "efficiency": eff,
-            "liquid_angle_deg": np.degrees(np.angle(U)), "liquid_unbalance_kg_m": np.abs(U),
+            "deflection_m": w,
+            "liquid_angle_deg": np.where(ok, np.degrees(np.angle(U)), math.nan),
+            "liquid_unbalance_kg_m": np.abs(U),
             "phase_deg": np.degrees(np.angle(w))}
 
 
 def physical_fill_sweep(rotor, bal, volumes, omega: float, g: float = G_STANDARD) -> dict:
     """Steady amplitude [m] at one speed for several fills with the quasi-static liquid, in the
-    keys of :func:`autobalance.liquid.fill_sweep` (003 Fig. 5).
+    keys of :func:`autobalance.liquid.fill_sweep` (003 Fig. 5); a fill whose entrainment speed
+    (003 eq 6) is above ``omega`` is a centred pool (:func:`pool_response`).
 
     Parameters
     ----------
@@ -230,9 +258,12 @@ def physical_fill_sweep(rotor, bal, volumes, omega: float, g: float = G_STANDARD
     """
     vols = np.asarray(volumes, float)
     R, h, rho = bal.chamber.radius, bal.chamber.height, bal.liquid.density
-    dry = abs(omega ** 2 * rotor.unbalance / (rotor.stiffness - rotor.mass * omega ** 2
-                                              + 1j * rotor.damping * omega))
-    amps = np.array([dry if V <= 0 else abs(synchronous_deflection(rotor, R, h, V, rho, omega, g=g))
+    dry = float(np.abs(pool_response(rotor, 0.0, rho, omega)))   # the empty chamber
+    from .free_surface import entrainment_speed
+
+    amps = np.array([dry if V <= 0 else abs(pool_response(rotor, V, rho, omega))
+                     if omega < entrainment_speed(V, R, h, g)
+                     else abs(synchronous_deflection(rotor, R, h, V, rho, omega, g=g))
                      for V in vols])
     return {"volume_m3": vols, "amplitude_m": amps, "efficiency": dry / amps,
             "optimum_volume_m3": float(vols[int(np.nanargmin(amps))]), "omega_rad_s": float(omega)}

@@ -12,6 +12,7 @@ from __future__ import annotations
 from ...validation.target import Target
 from . import closed_forms, fig5_6, fig7
 from .bench import BENCH_NOTE, QUICK
+from .fig5_6 import PHYSICAL_NOTE
 from .published import ITEMS_003, PUBLISHED
 
 __all__ = ["ITEMS_003", "PUBLISHED", "TARGETS"]
@@ -34,13 +35,14 @@ TARGETS = [
                  "C are our closed forms; the end of mode 1 is our criterion.", quick=QUICK),
     Target("003-fig5", "003", ("Fig. 5",), "Amplitude vs fill in three chambers",
            fig5_6.run_fig5, PUBLISHED["003-fig5"],
-           notes=BENCH_NOTE + " Amplitude = whirl radius |u| (003 measures 2A of the drum's "
-                 "upper edge: only shapes and optima compare). Misses: optimum for R = 0.1 m, "
-                 "off-optimum strength, resonance range and suspension frequency (see rows).",
+           notes=PHYSICAL_NOTE + " Amplitude = whirl radius |u| (003 measures 2A of the drum's "
+                 "upper edge: only shapes and optima compare). The rows' misses are physics "
+                 "contradicting 003 (below resonance the liquid raises the whirl) or our "
+                 "bench's suspension (see rows).",
            quick=QUICK),
     Target("003-fig6", "003", ("Fig. 6",), "Balancing efficiency vs chamber radius",
            fig5_6.run_fig6, PUBLISHED["003-fig6"],
-           notes=BENCH_NOTE + " Optimal filling: 003's optimum for D = 3000 g*cm (150 ml, in "
+           notes=PHYSICAL_NOTE + " Optimal filling: 003's optimum for D = 3000 g*cm (150 ml, in "
                  "the published optimum of all three chambers), scaled with D (003's "
                  "sufficiency rule) to 50 and 100 ml; speeds 0.6-1.2 omega_r as in Fig. 5 "
                  "(Fig. 6 does not give them).", quick=QUICK),

@@ -1,0 +1,82 @@
+"""Liquid-balancer benchmark (make bench, issue 15): the figures the issue asks for, on 003's
+bench (preset leblanc_003: R = 0.2 m, h = 0.05 m, water, D = 3000 g*cm, omega_r = 54 1/s).
+
+E. A run-up from rest through resonance, 0 -> 80 1/s in 16 s (the preset's rate), with the wall
+   film coupled to the rotor from the entrainment speed (simulate_liquid), 256 cells; beside it
+   the lumped model's run-up over the same ramp (liquid.dynamics.run_up, scipy LSODA), the
+   model the physical one replaces. Target: <= 1 s of wall time.
+F. The fill x speed map of the steady whirl with the quasi-static liquid (0-350 ml in 50 ml x
+   25-90 1/s in 1 1/s steps), the map behind 003 Fig. 5.
+G. The same fills x 12 constant speeds 40-84 1/s (above every fill's omega_0) with the dynamic film, each run 4 s, as one sweep on
+   all cores (autobalance.sweep, local processes): the map that also shows where the steady
+   whirl is not reached (asynchronous whirl). Target: minutes.
+Results are written to out/liquid_bench.json.
+"""
+from __future__ import annotations
+
+import os
+import tempfile
+import time
+
+import numpy as np
+
+from autobalance.config import load_config
+from autobalance.liquid import load_bench, run_up
+from autobalance.liquid.simulate import simulate_liquid
+from autobalance.liquid.steady import physical_fill_sweep
+from autobalance.sweep import spec_from_dict, sweep
+
+from run import report, timed       # benchmarks/run.py: the shared timing and output
+
+FILLS_ML = [50, 100, 150, 200, 250, 300, 350]
+
+
+def main() -> dict:
+    res, lines = {}, []
+    cfg = load_config("leblanc_003", ["profile.end_speed=80 1/s", "profile.ramp_time=16 s",
+                                      "profile.duration=16 s"])
+    simulate_liquid(cfg.system, cfg.spin)                                  # compile
+    t_e, sim = timed(lambda: simulate_liquid(cfg.system, cfg.spin), repeat=3)
+    b = load_bench("bench_003")
+    t_l, ru = timed(lambda: run_up(b.rotor, b.balancer, b.model, 80.0, 16.0), repeat=3)
+    s = sim.summary()
+    res["E_runup_0_80"] = {"film_s": t_e, "lumped_s": t_l, "film_steps": s["film_steps"],
+                           "peak_mm": 1e3 * s["max_amplitude_m"],
+                           "peak_without_liquid_mm": 1e3 * s["max_amplitude_without_liquid_m"]}
+    lines.append(f"E. 003 run-up 0 -> 80 1/s in 16 s, film coupled with the rotor from omega_0 = "
+                 f"{sim.film_start_speed:.1f} 1/s: {t_e:.2f} s ({s['film_steps']} film steps, "
+                 f"256 cells; target <= 1 s); the lumped model's run-up {t_l:.2f} s "
+                 f"(ratio {t_e / t_l:.2f}); peak {1e3 * s['max_amplitude_m']:.2f} mm "
+                 f"(without liquid {1e3 * s['max_amplitude_without_liquid_m']:.2f} mm)")
+
+    speeds = np.arange(25.0, 90.5, 1.0)
+    vols = np.array(FILLS_ML) * 1e-6
+
+    def qs_map():
+        return np.array([physical_fill_sweep(b.rotor, b.balancer, vols, w)["amplitude_m"]
+                         for w in speeds])
+
+    t_f, amap = timed(qs_map, repeat=1)
+    res["F_quasi_static_map"] = {"s": t_f, "points": int(amap.size)}
+    lines.append(f"F. fill x speed map, quasi-static liquid: {len(FILLS_ML)} fills x "
+                 f"{speeds.size} speeds = {amap.size} steady whirls in {t_f:.1f} s")
+
+    spec = {"sweep": {"name": "leblanc-map", "base": "leblanc_003", "batch_size": 4,
+                      "set": ["profile.kind=constant", "profile.duration=4 s",
+                              "profile.speed=40 1/s"]},
+            "grid": {"liquid.volume": [f"{v} ml" for v in FILLS_ML],
+                     "profile.speed": [f"{w:g} 1/s" for w in np.linspace(40.0, 84.0, 12)]}}
+    with tempfile.TemporaryDirectory() as d:
+        t0 = time.perf_counter()
+        ds = sweep(spec_from_dict(spec), os.path.join(d, "map"), executor="local",
+                   progress=False)
+        t_g = time.perf_counter() - t0
+        n = int(ds["status"].size)
+    res["G_dynamic_map"] = {"s": t_g, "runs": n}
+    lines.append(f"G. fill x speed map, dynamic film (4 s per run, one sweep, local processes): "
+                 f"{n} runs in {t_g:.1f} s ({n / t_g:.2f} runs/s; target: minutes)")
+    return report(lines, res, "liquid_bench.json")
+
+
+if __name__ == "__main__":
+    main()
