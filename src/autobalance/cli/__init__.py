@@ -19,7 +19,7 @@ from typing import Optional
 import typer
 
 from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
-from . import study_design, study_maps, study_runup  # noqa: F401  (register their study commands)
+from . import study_design, study_liquid, study_maps, study_runup  # noqa: F401  (register their study commands)
 from .common import USER_ERRORS, one_line, print_error
 
 __all__ = ["app", "main"]

@@ -172,7 +172,8 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
         after the others.
     balls : str
         ``"any"``: any machine; ``"rotor"``: a ball-balancer machine or the bare rotor (no
-        liquid); ``"needed"``: a ball balancer (:meth:`autobalance.System.require_balls`).
+        liquid); ``"needed"``: a ball balancer (:meth:`autobalance.System.require_balls`);
+        ``"liquid"``: a liquid balancer (a ``[liquid]`` section).
 
     Returns
     -------
@@ -184,7 +185,11 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
         Bad file, value or override (one line).
     """
     cfg = load_config(source, list(sets or []) + ([f"profile.kind={profile}"] if profile else []))
-    if balls != "any":
+    if balls == "liquid":
+        if cfg.system.liquid is None:
+            raise ConfigError("liquid: missing; this study needs a liquid balancer, a [liquid] "
+                              "section (e.g. the preset leblanc_003)")
+    elif balls != "any":
         cfg.system.require_balls("this command's analyses", allow_empty=balls == "rotor")
     return cfg
 

@@ -76,7 +76,7 @@ def _study_errors() -> Iterator[None]:
 
 
 def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=None,
-             scheduler=None, store=None, units=None):
+             scheduler=None, store=None, units=None, balls: str = "needed"):
     """The checks every study makes before any work; the machine, the target grade [mm/s] and
     the display units of the text and figures."""
     from ..config.display import display_units
@@ -90,7 +90,7 @@ def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=Non
         raise ConfigError(f"--store {str(store)!r}: exists and is not a directory")
     if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
         quiet_dask_logs()
-    cfg = load_machine(source, set_, profile, balls="needed")
+    cfg = load_machine(source, set_, profile, balls=balls)
     return cfg, G, display_units(cfg, units)
 
 

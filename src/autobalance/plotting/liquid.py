@@ -18,7 +18,7 @@ from .timeplot import _new_figure
 
 __all__ = ["bars_figure", "curves_figure", "efficiency_bars_figure", "fill_figure",
            "fill_panels_figure", "fill_vs_radius_figure", "friction_angle_figure",
-           "kinetostatic_figure", "liquid_run_figure", "liquid_states_figure", "mode_speeds_figure",
+           "fill_map_figure", "kinetostatic_figure", "liquid_run_figure", "liquid_states_figure", "mode_speeds_figure",
            "response_figure", "speed_series_figure", "surface_figure"]
 
 ML = 1e-6   # [m^3] per ml
@@ -440,3 +440,36 @@ def liquid_run_figure(sim, grade_limit: float = 16.0, grade_label: str | None = 
     ], suptitle=f"{sim.system.name}: liquid balancer (film from t = {sim.film_start:.3g} s)",
         size=(15.0, 4.4))
     return fig
+
+
+def fill_map_figure(ds, speed_unit: str = "rad/s", speed_factor: float = 1.0,
+                    title: str = "") -> Figure:
+    """The fill map (:func:`autobalance.studies.fill_map.compute_fill_map`): the steady whirl
+    vs speed for each fill beside the rotor without liquid, and the efficiency A(no liquid) /
+    A(liquid) (above 1: the liquid balances).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        amplitude [m] (fill, speed), amplitude_without_liquid [m], efficiency [-]; fill [m^3],
+        speed [rad/s].
+    speed_unit : str
+        Label of the speed axis.
+    speed_factor : float
+        Displayed speed per rad/s [speed_unit / (rad/s)].
+    title : str
+        Figure title.
+    """
+    x = ds["speed"].values * speed_factor
+    xl = f"speed [{speed_unit}]"
+    fills = ds["fill"].values / ML
+    amp = [(f"{v:.0f} ml", 1e3 * a, "") for v, a in zip(fills, ds["amplitude"].values)]
+    amp.append(("no liquid", 1e3 * ds["amplitude_without_liquid"].values, "k--"))
+    eff = [(f"{v:.0f} ml", e, "") for v, e in zip(fills, ds["efficiency"].values)]
+    eff.append(("1: no effect", np.ones(x.size), "k:"))
+    return curves_figure([
+        {"x": x, "xlabel": xl, "ylabel": "steady whirl [mm]", "title": "whirl", "logy": True,
+         "curves": amp},
+        {"x": x, "xlabel": xl, "ylabel": "efficiency A(no liquid) / A(liquid) [-]",
+         "title": "efficiency", "curves": eff},
+    ], suptitle=title, size=(13.0, 4.8))

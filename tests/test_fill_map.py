@@ -1,0 +1,85 @@
+"""`study fill-map`: a liquid balancer's steady whirl over fill x speed with the liquid from
+physics, for any vertical-axis machine (studies/fill_map.py; docs/liquid.md sec. 3f)."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from autobalance.config import load_config
+from autobalance.liquid.models import VerticalRotor
+from autobalance.liquid.steady import pool_response, ring_response
+from autobalance.models import ParameterError
+from autobalance.studies.fill_map import compute_fill_map, fill_map_summary
+
+
+@pytest.fixture(scope="module")
+def fmap():
+    return compute_fill_map("leblanc_003", fills=np.array([50, 150, 3000]) * 1e-6,
+                            speeds=np.linspace(20.0, 100.0, 33))
+
+
+def rotor_of(cfg):
+    s = cfg.system
+    return VerticalRotor(s.rotor.mass, s.suspension.kx, s.suspension.cx, s.rotor.unbalance)
+
+
+def test_limits_pool_and_intact_ring(fmap):
+    """Below a fill's entrainment speed (003 eq 6) the liquid is a centred pool (its mass only);
+    a large fill stays an intact ring and adds a full chamber's mass, balancing nothing
+    (liquid/steady.py ring_response): both closed forms to round-off."""
+    cfg = load_config("leblanc_003")
+    rot, L = rotor_of(cfg), cfg.system.liquid
+    W = fmap["speed"].values
+    for i, v in enumerate(fmap["fill"].values):
+        below = ~fmap["entrained"].values[i]
+        np.testing.assert_allclose(fmap["amplitude"].values[i][below],
+                                   np.abs(pool_response(rot, v, L.density, W[below])), rtol=1e-12)
+    big = fmap["entrained"].values[2]
+    ring = np.abs([ring_response(rot, L.chamber_volume, 3e-3, L.density, w) for w in W[big]])
+    np.testing.assert_allclose(fmap["amplitude"].values[2][big], ring, rtol=1e-9)
+    np.testing.assert_allclose(fmap["amplitude_without_liquid"].values,
+                               np.abs(pool_response(rot, 0.0, L.density, W)), rtol=1e-12)
+
+
+def test_the_liquid_helps_only_above_resonance(fmap):
+    e = fmap["efficiency"].sel(fill=150e-6, method="nearest").values
+    W = fmap["speed"].values
+    assert (e[(W > 30) & (W < 48)] < 1).all() and (e[W > 60] > 1.2).all()
+    d = fill_map_summary(fmap)
+    assert d["least_fill_within_tie_m3"] == min(d["fills_within_tie_m3"])
+    assert d["fills"][1]["balances_from_rad_s"] > 45.0
+    res = fmap["resonance"].values
+    assert res[1] < d["resonance_without_liquid_rad_s"]           # added mass lowers it
+
+
+def test_refusals_are_one_line():
+    for base, field in (("vub_jeffcott_004", "liquid"), ("leblanc_washer", "liquid.axis")):
+        with pytest.raises(ParameterError, match=f"^{field}"):
+            compute_fill_map(base)
+    with pytest.raises(ParameterError, match="^fills"):
+        compute_fill_map("leblanc_003", fills=[0.0])
+    with pytest.raises(ParameterError, match="^speeds"):
+        compute_fill_map("leblanc_003", speeds=[50.0, 40.0])
+
+
+def test_cli_end_to_end(tmp_path):
+    nc, png = tmp_path / "fm.nc", tmp_path / "fm.png"
+    r = subprocess.run([sys.executable, "-m", "autobalance", "study", "fill-map", "leblanc_003",
+                        "--fills", "50:200 ml:4", "--speeds", "30:90 1/s:13", "--json",
+                        "--out", str(nc), "--plot", str(png)],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert len(d["fills"]) == 4 and d["out"] == str(nc)
+    with xr.open_dataset(nc) as ds:
+        assert ds["amplitude"].shape == (4, 13) and ds.attrs["command"] == "study fill-map"
+    assert png.stat().st_size > 10_000
+    r = subprocess.run([sys.executable, "-m", "autobalance", "study", "fill-map",
+                        "vub_jeffcott_004"], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 2 and r.stderr.startswith("error: liquid") and \
+        len(r.stderr.strip().splitlines()) == 1
