@@ -157,11 +157,17 @@ def wall_height(theta, cx, cy, b):
 
 
 @kernel
+def gravity_rotor_frame(gp, gdir, psi):
+    """In-plane gravity g_p e^{i(gamma - psi)} [m/s^2] in the rotor frame turned by the spin
+    angle psi [rad]; gp [m/s^2] at the inertial angle gdir = gamma [rad] (module docstring)."""
+    return gp * complex(math.cos(gdir - psi), math.sin(gdir - psi))
+
+
+@kernel
 def gravity_offset(gp, gdir, psi, w):
     """Rotor-frame shift [m] of the centre of the centrifugal-plus-gravity potential:
-    g_p e^{i(gamma - psi)} / w^2 (module docstring); gp [m/s^2], gdir = gamma and psi [rad],
-    w [rad/s] > 0."""
-    return gp / (w * w) * complex(math.cos(gdir - psi), math.sin(gdir - psi))
+    g_p e^{i(gamma - psi)} / w^2 (module docstring), w [rad/s] > 0."""
+    return gravity_rotor_frame(gp, gdir, psi) / (w * w)
 
 
 @kernel
@@ -272,7 +278,7 @@ def _rotor_rate(Z, Y, U, Ud, w_, wd_, Mt, k, c, D, F):
 @kernel
 def _gravity_force(Mt, gp, gdir, psi):
     """Gravity on M_t in the rotor frame, M_t g_p e^{i(gamma - psi)} [N]."""
-    return Mt * gp * complex(math.cos(gdir - psi), math.sin(gdir - psi))
+    return Mt * gravity_rotor_frame(gp, gdir, psi)
 
 
 @kernel

@@ -20,14 +20,14 @@ import numpy as np
 
 from ..models import MotorDrive, ParameterError, SpeedProfile, System
 from ..physics.iso1940 import grade_value
-from ..physics.response import dynamic_stiffness
 from .film import coupled_run
 from ..models._validate import positive
 from .free_surface import entrainment_speed
 from .models import G_STANDARD, VerticalRotor
+from .steady import pool_response
 
-__all__ = ["LiquidSimulation", "check_liquid_run", "film_start_speed", "revolution_average",
-           "run_seconds_estimate", "simulate_liquid"]
+__all__ = ["LiquidSimulation", "check_liquid_run", "film_rotor", "film_start_speed",
+           "revolution_average", "run_seconds_estimate", "simulate_liquid"]
 
 #: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
 #: for the film model (first order in g/(Omega^2 R), core/shallow_water.py) [-]; our criterion.
@@ -103,20 +103,17 @@ class LiquidSimulation:
     @property
     def amplitude_without_liquid(self) -> np.ndarray:
         """Synchronous amplitude of the same rotor without the liquid at each speed (Jeffcott
-        closed form, textbook) [m]."""
-        r, s = self.system.rotor, self.system.suspension
-        d = dynamic_stiffness(r.mass, s.kx, s.cx, self.speed)
-        return r.unbalance * self.speed ** 2 / np.abs(d)
+        closed form, :func:`.steady.pool_response` of no liquid) [m]."""
+        return np.abs(pool_response(film_rotor(self.system), 0.0, 0.0, self.speed))
 
     @property
     def max_amplitude_before_film(self) -> float:
         """Largest synchronous amplitude before the film forms [m]: the rotor with its liquid as
         a rigid centred mass, quasi-steady over the profile's speeds up to omega_0 (Jeffcott
         closed form; exact for a slow run-up, an upper bound of its transient otherwise)."""
-        r, s = self.system.rotor, self.system.suspension
+        L = self.system.liquid
         w = np.linspace(0.0, self.film_start_speed, 2001)
-        return float(np.max(r.unbalance * w ** 2
-                            / np.abs(dynamic_stiffness(self.system.total_mass, s.kx, s.cx, w))))
+        return float(np.max(np.abs(pool_response(film_rotor(self.system), L.volume, L.density, w))))
 
     def at(self, times) -> dict:
         """Grade [mm/s] and residual unbalance [kg*m] at ``times`` [s]: the run's, linearly
@@ -199,6 +196,23 @@ class LiquidSimulation:
         ds = self.to_xarray()
         ds.to_netcdf(path, engine="netcdf4",
                      encoding={name: {"zlib": True, "complevel": 4} for name in ds.data_vars})
+
+
+def film_rotor(system: System) -> VerticalRotor:
+    """The liquid models' rotor of a System (isotropic suspension, checked by the callers).
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+
+    Returns
+    -------
+    VerticalRotor
+        M without the liquid [kg], k = kx [N/m], c = cx [N*s/m], D [kg*m].
+    """
+    r, s = system.rotor, system.suspension
+    return VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)
 
 
 def _check(system: System, spin) -> None:
@@ -396,7 +410,7 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
         profile that never reaches or later falls below omega_f).
     """
     w0 = check_liquid_run(system, spin, g_axial)
-    liq, r, s = system.liquid, system.rotor, system.suspension
+    liq, s = system.liquid, system.suspension
     t0, tt, ww = _film_table(spin, w0)
     psi_knots = np.concatenate([[0.0], np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))])
     if n_out is None:
@@ -404,11 +418,11 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     if isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2:
         raise ParameterError("n_out", n_out, "must be an integer >= 2")
     T = float(tt[-1])
-    rotor = VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)
+    rotor = film_rotor(system)
     gp = system.gravity.g if liq.axis == "horizontal" else 0.0
     gdir = system.gravity.direction
     sag = system.total_mass * gp / s.kx * np.exp(1j * gdir)      # static, inertial frame
-    start = ww[0] ** 2 * r.unbalance / dynamic_stiffness(system.total_mass, s.kx, s.cx, ww[0])
+    start = pool_response(rotor, liq.volume, liq.density, ww[0])   # liquid as rigid mass
     if liq.partitions and n_cells % liq.partitions:     # whole compartments of cells
         n_cells = liq.partitions * -(-int(n_cells) // liq.partitions)
     run = coupled_run(rotor, liq.chamber_radius, liq.chamber_height, liq.volume, (tt, ww), T,

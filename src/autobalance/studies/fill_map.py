@@ -22,17 +22,6 @@ SPEED_RATIOS = (0.3, 2.0)
 TIE = 0.01
 
 
-def _vertical_rotor(system):
-    """The film model's rotor of a System (isotropic suspension; M without the liquid)."""
-    from ..liquid.models import VerticalRotor
-
-    r, s = system.rotor, system.suspension
-    if s.kx != s.ky or s.cx != s.cy:
-        raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the liquid "
-                             "model's rotor is isotropic")
-    return VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)
-
-
 def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets=()):
     """Steady whirl amplitude over fill x speed for a liquid-balancer machine.
 
@@ -65,6 +54,7 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
     from ..config.overrides import parse_override
     from ..liquid.free_surface import entrainment_speed
     from ..liquid.models import Chamber, Liquid, LiquidBalancer
+    from ..liquid.simulate import film_rotor
     from ..liquid.steady import physical_fill_sweep, pool_response
 
     t0 = time.perf_counter()
@@ -85,7 +75,10 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
     if L.partitions:
         raise ParameterError("liquid.partitions", L.partitions, "must be 0 for the fill map "
                              "(the quasi-static liquid has no partitions; simulate has)")
-    rotor = _vertical_rotor(s)
+    if s.suspension.kx != s.suspension.ky or s.suspension.cx != s.suspension.cy:
+        raise ParameterError("suspension.ky", s.suspension.ky, "must equal kx (and cy cx): the "
+                             "liquid model's rotor is isotropic")
+    rotor = film_rotor(s)
     bal = LiquidBalancer(Chamber(L.chamber_radius, L.chamber_height),
                          Liquid(L.density, L.kinematic_viscosity), L.volume,
                          float(np.degrees(L.friction_arc)))
