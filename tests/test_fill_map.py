@@ -83,3 +83,18 @@ def test_cli_end_to_end(tmp_path):
                         "vub_jeffcott_004"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 2 and r.stderr.startswith("error: liquid") and \
         len(r.stderr.strip().splitlines()) == 1
+
+
+def test_stability_map_tells_steady_from_asynchronous_whirl():
+    """The coupled film at constant speed (one sweep, local processes): 75 ml at 45 1/s settles
+    on the synchronous whirl; 300 ml of water at 80 1/s (1.5 omega_r) keeps whirling
+    asynchronously (docs/liquid.md sec. 3d), its amplitude spreading by > 50 % of its mean."""
+    from autobalance.studies.fill_map import SPREAD_MAX, compute_stability_map
+
+    st = compute_stability_map("leblanc_003", fills=[75e-6, 300e-6], speeds=[45.0, 80.0],
+                               duration=6.0, executor="local", workers=2)
+    assert bool(st["steady"].sel(fill=75e-6, speed=45.0))
+    assert float(st["spread"].sel(fill=75e-6, speed=45.0)) < 0.1 * SPREAD_MAX
+    assert not bool(st["steady"].sel(fill=300e-6, speed=80.0))
+    assert float(st["spread"].sel(fill=300e-6, speed=80.0)) > 0.5
+    assert (st["mean_amplitude"] > 0).all()

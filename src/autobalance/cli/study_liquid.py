@@ -7,7 +7,8 @@ from typing import Annotated, Optional
 
 import typer
 
-from .common import JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg, UnitsOpt, guard, print_json
+from .common import (ExecutorOpt, JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg, UnitsOpt,
+                     WorkersOpt, guard, print_json)
 from .study import OutOpt, QuickOpt, _finish, _prepare, app
 
 __all__ = ["fill_map"]
@@ -22,6 +23,13 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
              speeds: Annotated[Optional[str], typer.Option(
                  "--speeds", help="Speeds: 'a:b:n' or 'a, b, c' with units, e.g. '20:100 1/s:81' "
                                   "(default: 0.3-2 times the natural frequency).")] = None,
+             dynamic: Annotated[bool, typer.Option(
+                 "--dynamic", help="Also run the wall film coupled with the rotor at constant "
+                                   "speeds (up to 8, --quick 4, above every fill's entrainment "
+                                   "speed): is the steady synchronous whirl reached?")] = False,
+             duration: Annotated[str, typer.Option(
+                 "--duration", help="Time at each speed of --dynamic, e.g. '6 s'.")] = "6 s",
+             workers: WorkersOpt = None, executor: ExecutorOpt = None,
              quick: QuickOpt = False, out: OutOpt = None, plot: PlotOpt = None,
              json_: JsonOpt = False) -> None:
     """A liquid balancer's steady whirl over fill x speed with the liquid from physics (the
@@ -37,17 +45,33 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         Fill volumes [m^3 or with units].
     speeds : str or None
         Speeds [rad/s or with units].
+    dynamic : bool
+        Add the stability map (:func:`autobalance.studies.fill_map.compute_stability_map`).
+    duration : str
+        Time at each speed of the stability map [s or with units].
+    workers, executor
+        The sweep's processes (:mod:`autobalance.cli.common`).
     """
-    from ..studies.fill_map import compute_fill_map, fill_map_summary
+    from ..config import parse_quantity
+    from ..studies.fill_map import (compute_fill_map, compute_stability_map, dynamic_speeds,
+                                    fill_map_summary)
     from .liquid import _list
 
     t0 = time.perf_counter()
     with guard():
         cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units,
-                              balls="liquid")
+                              balls="liquid", workers=workers, executor=executor)
+        T = parse_quantity(duration, "time", "--duration")
         V = None if fills is None else _list(fills, "volume", "--fills")
         W = None if speeds is None else _list(speeds, "speed", "--speeds")
         ds = compute_fill_map(cfg, fills=V, speeds=W, quick=quick)
+        stab = None
+        if dynamic:
+            stab = compute_stability_map(cfg, fills=ds["fill"].values,
+                                         speeds=dynamic_speeds(ds, 4 if quick else 8),
+                                         duration=T, executor=executor, workers=workers,
+                                         progress=not json_)
+            ds = ds.merge(stab.rename(speed="dynamic_speed"))
 
         def fig():
             from ..plotting.liquid import fill_map_figure
@@ -68,6 +92,11 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    f"entrained from {du.fmt(f['entrainment_speed_rad_s'], 'speed')}, balances "
                    + ("nowhere on the grid" if b is None else f"from {du.fmt(b, 'speed')}")
                    + f"; efficiency {f['efficiency_at_nominal']:.3g} at the nominal speed")
+    if "not_steady" in res:
+        typer.echo(f"  coupled film at {len(ds['dynamic_speed'])} speeds for {T:g} s each: "
+                   "synchronous whirl not reached at " + (", ".join(
+                       f"{v * 1e6:.0f} ml/{du.fmt(w, 'speed')}" for v, w in res["not_steady"])
+                       or "none"))
     typer.echo(f"  at {du.fmt(res['speed_on_grid_rad_s'], 'speed')}: best efficiency "
                f"{res['best_efficiency_at_nominal']:.3g}, reached (within "
                f"{100 * res['tie']:g} %) from {res['least_fill_within_tie_m3'] * 1e6:.1f} ml")

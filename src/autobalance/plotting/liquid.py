@@ -452,7 +452,7 @@ def fill_map_figure(ds, speed_unit: str = "rad/s", speed_factor: float = 1.0,
     ----------
     ds : xarray.Dataset
         amplitude [m] (fill, speed), amplitude_without_liquid [m], efficiency [-]; fill [m^3],
-        speed [rad/s].
+        speed [rad/s]; optionally spread [-] (fill, dynamic_speed [rad/s]) of the stability map.
     speed_unit : str
         Label of the speed axis.
     speed_factor : float
@@ -467,9 +467,17 @@ def fill_map_figure(ds, speed_unit: str = "rad/s", speed_factor: float = 1.0,
     amp.append(("no liquid", 1e3 * ds["amplitude_without_liquid"].values, "k--"))
     eff = [(f"{v:.0f} ml", e, "") for v, e in zip(fills, ds["efficiency"].values)]
     eff.append(("1: no effect", np.ones(x.size), "k:"))
-    return curves_figure([
+    panels = [
         {"x": x, "xlabel": xl, "ylabel": "steady whirl [mm]", "title": "whirl", "logy": True,
          "curves": amp},
         {"x": x, "xlabel": xl, "ylabel": "efficiency A(no liquid) / A(liquid) [-]",
          "title": "efficiency", "curves": eff},
-    ], suptitle=title, size=(13.0, 4.8))
+    ]
+    if "spread" in ds:          # the stability map of the coupled film
+        xd = ds["dynamic_speed"].values * speed_factor
+        cur = [(f"{v:.0f} ml", sp, "o-") for v, sp in zip(fills, ds["spread"].values)]
+        cur.append((f"{ds.attrs.get('spread_max', 0.05):g}: steady below",
+                    np.full(xd.size, ds.attrs.get("spread_max", 0.05)), "k--"))
+        panels.append({"x": xd, "xlabel": xl, "ylabel": "whirl spread, last quarter [-]",
+                       "title": "coupled film: steady?", "logy": True, "curves": cur})
+    return curves_figure(panels, suptitle=title, size=(6.5 * len(panels), 4.8))

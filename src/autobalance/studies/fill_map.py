@@ -13,7 +13,7 @@ import numpy as np
 
 from ..models import ParameterError
 
-__all__ = ["compute_fill_map", "fill_map_summary"]
+__all__ = ["compute_fill_map", "compute_stability_map", "dynamic_speeds", "fill_map_summary"]
 
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
 SPEED_RATIOS = (0.3, 2.0)
@@ -141,10 +141,111 @@ def fill_map_summary(ds) -> dict:
                       "efficiency_at_nominal": float(e[k])})
     e = ds["efficiency"].values[:, k]
     good = ds["fill"].values[e >= (1 - TIE) * e.max()]
-    return {"machine": ds.attrs["machine"], "nominal_speed_rad_s": wn,
+    extra = {}
+    if "steady" in ds:
+        bad = np.argwhere(~ds["steady"].values)
+        extra["not_steady"] = [(float(ds["fill"].values[i]), float(ds["dynamic_speed"].values[j]))
+                               for i, j in bad]
+    return {**extra,"machine": ds.attrs["machine"], "nominal_speed_rad_s": wn,
             "speed_on_grid_rad_s": float(W[k]),
             "resonance_without_liquid_rad_s": ds.attrs["resonance_without_liquid_rad_s"],
             "best_efficiency_at_nominal": float(e.max()),
             "least_fill_within_tie_m3": float(good.min()),
             "fills_within_tie_m3": [float(v) for v in good], "tie": TIE,
             "fills": fills}
+
+
+#: A whirl whose amplitude spreads by more than this fraction of its mean over the last quarter
+#: of a constant-speed run is not the steady synchronous whirl [-] (our criterion).
+SPREAD_MAX = 0.05
+
+
+def compute_stability_map(base, *, fills, speeds, duration: float = 6.0, store=None,
+                          executor: str | None = None, workers: int | None = None,
+                          progress: bool = False):
+    """Whether the steady synchronous whirl is reached, over fill x speed: the wall film
+    coupled with the rotor (:func:`autobalance.liquid.simulate.simulate_liquid`) at each
+    constant speed for ``duration``, as one sweep (resumable with ``store``). Partly filled
+    rotors can whirl asynchronously above resonance (Kollmann 1962; Ehrich 1992); this map
+    shows where the model does.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        A vertical-axis liquid-balancer machine.
+    fills : sequence of float
+        Fills [m^3].
+    speeds : sequence of float
+        Constant speeds [rad/s], each above every fill's entrainment speed (003 eq 6).
+    duration : float
+        Time at each speed [s].
+    store : path or None
+        Sweep store (None: a temporary directory).
+    executor, workers : str or None, int or None
+        As :func:`autobalance.sweep.sweep`.
+    progress : bool
+        Show the sweep's progress bar.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``spread`` (fill, speed) [-]: (max - min) / mean of the whirl amplitude over the last
+        quarter; ``steady`` (spread < :data:`SPREAD_MAX`: the synchronous whirl is reached
+        within ``duration``; not reached is an asynchronous whirl or a transient slower than
+        ``duration``, which a longer run separates); ``mean_amplitude`` [m] over it.
+    """
+    import tempfile
+    from pathlib import Path
+
+    import xarray as xr
+
+    from ..sweep import spec_from_dict, sweep
+
+    T = float(duration)
+    if not (np.isfinite(T) and T > 0):
+        raise ParameterError("duration", duration, "must be > 0 [s]")
+    spec = {"sweep": {"name": "stability-map", "batch_size": 4,
+                      "set": ["profile.kind=constant", f"profile.duration={T!r}",
+                              f"profile.speed={float(speeds[0])!r}"]},
+            "grid": {"liquid.volume": [float(v) for v in fills],
+                     "profile.speed": [float(w) for w in speeds]},
+            "outputs": {"history_dt": T / 200.0}}
+    if not hasattr(base, "system"):
+        spec["sweep"]["base"] = str(base)
+        base = None
+    with tempfile.TemporaryDirectory() as tmp:
+        ds = sweep(spec_from_dict(spec, "stability map", base=base), store or f"{tmp}/map",
+                   executor=executor, workers=workers, progress=progress,
+                   resume=store is not None and Path(store).exists())
+        ds = ds.load()
+    amp = ds["amplitude_history"].isel(sample=0)
+    late = amp.where(ds["history_time"] >= 0.75 * T, drop=True)
+    mean = late.mean("history_time")
+    spread = (late.max("history_time") - late.min("history_time")) / mean
+    out = xr.Dataset({"spread": (("fill", "speed"), spread.values, {"units": "1"}),
+                      "steady": (("fill", "speed"), spread.values < SPREAD_MAX),
+                      "mean_amplitude": (("fill", "speed"), mean.values, {"units": "m"})},
+                     coords={"fill": ("fill", np.asarray(fills, float), {"units": "m^3"}),
+                             "speed": ("speed", np.asarray(speeds, float), {"units": "rad/s"})},
+                     attrs={"duration_s": T, "spread_max": SPREAD_MAX,
+                            "model": "wall film coupled with the rotor, constant speed"})
+    return out
+
+
+def dynamic_speeds(ds, n: int) -> np.ndarray:
+    """Up to ``n`` speeds of a fill map for its stability map [rad/s]: those above every fill's
+    entrainment speed (by 2 %), evenly picked.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`compute_fill_map`'s result.
+    n : int
+        Most speeds [-].
+    """
+    W = ds["speed"].values
+    ok = W[W >= 1.02 * float(ds["entrainment_speed"].max())]
+    if ok.size == 0:
+        raise ParameterError("speeds", f"up to {W[-1]:.4g} rad/s", "none above every fill's "
+                             "entrainment speed: no film to run")
+    return ok[np.unique(np.linspace(0, ok.size - 1, min(int(n), ok.size)).round().astype(int))]
