@@ -98,3 +98,13 @@ def test_stability_map_tells_steady_from_asynchronous_whirl():
     assert not bool(st["steady"].sel(fill=300e-6, speed=80.0))
     assert float(st["spread"].sel(fill=300e-6, speed=80.0)) > 0.5
     assert (st["mean_amplitude"] > 0).all()
+
+
+def test_example_top_loader_ring_reaches_its_nominal_speed():
+    """examples/toploader-ring.toml (make run's liquid design study): the default speeds reach
+    the nominal 800 rpm, and there the liquid balances."""
+    ds = compute_fill_map("examples/toploader-ring.toml", quick=True)
+    assert ds["speed"].values[-1] == pytest.approx(800 * 2 * np.pi / 60)
+    d = fill_map_summary(ds)
+    assert d["speed_on_grid_rad_s"] == pytest.approx(800 * 2 * np.pi / 60)
+    assert d["best_efficiency_at_nominal"] > 1.0

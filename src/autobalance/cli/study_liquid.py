@@ -93,10 +93,16 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    + ("nowhere on the grid" if b is None else f"from {du.fmt(b, 'speed')}")
                    + f"; efficiency {f['efficiency_at_nominal']:.3g} at the nominal speed")
     if "not_steady" in res:
-        typer.echo(f"  coupled film at {len(ds['dynamic_speed'])} speeds for {T:g} s each: "
-                   "synchronous whirl not reached at " + (", ".join(
-                       f"{v * 1e6:.0f} ml/{du.fmt(w, 'speed')}" for v, w in res["not_steady"])
-                       or "none"))
+        n = len(ds["dynamic_speed"])
+        typer.echo(f"  coupled film at {', '.join(du.fmt(w, 'speed') for w in ds['dynamic_speed'].values)}"
+                   f", {T:g} s each: the synchronous whirl is reached at")
+        for i, v in enumerate(ds["fill"].values):
+            ok = [du.fmt(w, "speed") for w, st in zip(ds["dynamic_speed"].values,
+                                                       ds["steady"].values[i]) if st]
+            typer.echo(f"    {v * 1e6:7.1f} ml: {len(ok)} of {n}" + (f" ({', '.join(ok)})"
+                                                                   if 0 < len(ok) < n else ""))
+        typer.echo("    (not reached: an asynchronous whirl or a transient slower than the run; "
+                   "a longer --duration separates them)")
     typer.echo(f"  at {du.fmt(res['speed_on_grid_rad_s'], 'speed')}: best efficiency "
                f"{res['best_efficiency_at_nominal']:.3g}, reached (within "
                f"{100 * res['tie']:g} %) from {res['least_fill_within_tie_m3'] * 1e6:.1f} ml")

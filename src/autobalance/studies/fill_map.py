@@ -33,8 +33,9 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
         Fills [m^3], > 0 and below the chamber volume; None: 10 fills from 0.25 to 2.5 times
         the machine's (at most 0.9 of the chamber).
     speeds : sequence of float or None
-        Increasing speeds [rad/s]; None: 0.3-2.0 times the natural frequency with the machine's
-        liquid as rigid mass, 36 speeds (quick) or 121.
+        Increasing speeds [rad/s]; None: from 0.3 times the natural frequency with the
+        machine's liquid as rigid mass to 2 times it or the nominal speed if higher, 36 speeds
+        (quick) or 121.
     quick : bool
         Coarser default speed grid.
     sets : sequence of str
@@ -88,7 +89,8 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
         raise ParameterError("fills", [float(x) for x in np.atleast_1d(V)], f"must be volumes in (0, "
                              f"{L.chamber_volume:.4g}) m^3 (the chamber)")
     wn = np.sqrt(s.suspension.kx / s.total_mass)
-    W = np.asarray(np.linspace(SPEED_RATIOS[0] * wn, SPEED_RATIOS[1] * wn, 36 if quick else 121)
+    top = max(SPEED_RATIOS[1] * wn, float(cfg.spin.nominal_speed))
+    W = np.asarray(np.linspace(SPEED_RATIOS[0] * wn, top, 36 if quick else 121)
                    if speeds is None else speeds, float)
     if W.ndim != 1 or W.size < 2 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
         raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)], "must be >= 2 increasing "
