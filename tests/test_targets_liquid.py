@@ -151,13 +151,15 @@ def test_001_kinetostatics_and_friction(rows):
 
 
 def test_001_liquid_trends(rows):
+    """With the liquid from physics every 001 trend misses for a physical reason: below
+    resonance the liquid raises the whirl, and the steady synchronous whirl does not depend on
+    viscosity (a liquid turning rigidly with the chamber: exactly 1.0)."""
     r = rows("001-fig3-6")
-    for k in ("all_regimes", "rises_toward_critical", "viscosity_at_optimum",
-              "viscosity_over_density", "overfill_worse"):
-        assert r[k]["ok"], k
-    assert not r["density_optimal_fill"]["ok"]
+    assert not any(x["ok"] for x in r.values())
     by_v, by_d = (float(x) for x in r["viscosity_over_density"]["computed"].split(" / "))
-    assert by_d == pytest.approx(1650 / 670, rel=0.02) and by_v > 90
+    assert by_v == 1.0 and by_d == pytest.approx(1.0, abs=0.05)
+    assert r["viscosity_at_optimum"]["computed"] == 1.0
+    assert float(r["all_regimes"]["computed"].split(" / ")[0]) < 1.0     # before resonance
 
 
 def test_rows_convention_keys_and_published_come_from_the_path():

@@ -10,7 +10,8 @@ computations and rows in :mod:`.kinetostatics` and :mod:`.trends`. 001's bench i
 from __future__ import annotations
 
 from ...validation.target import Target
-from ..p003.bench import BENCH_NOTE, QUICK
+from ..p003.bench import QUICK
+from ..p003.fig5_6 import PHYSICAL_NOTE
 from . import kinetostatics, trends
 from .published import ITEMS_001, PUBLISHED
 
@@ -34,8 +35,10 @@ TARGETS = [
     Target("001-fig3-6", "001", ("Fig. 3", "Fig. 4", "Fig. 5", "Fig. 6"),
            "Density and viscosity of the working liquid (experimental trends)",
            trends.run_fig3_6, PUBLISHED["001-fig3-6"],
-           notes=BENCH_NOTE + " 001's figure data did not survive extraction: the abstract's "
-                 "statements are compared, each liquid at its own optimal fill rho V R = D "
-                 "unless stated. Liquid properties lost in extraction are our choices "
-                 "(liquids_001.toml). Miss: optimal fill vs density.", quick=QUICK),
+           notes=PHYSICAL_NOTE + " 001's figure data did not survive extraction: the "
+                 "abstract's statements are compared, each liquid at the fill rho V R = D "
+                 "(001's sufficient volume) unless stated. Liquid properties lost in "
+                 "extraction are our choices (liquids_001.toml). The misses are physics: "
+                 "below resonance the liquid raises the whirl, and the steady whirl does not "
+                 "depend on viscosity.", quick=QUICK),
 ]

@@ -1,5 +1,5 @@
 """The bench of seed 003 as the reproductions of 003 and 001 use it: the ``bench_003`` preset,
-unit factors, grid sizes of the quick and full variants, and the model note the targets share.
+unit factors and the grid sizes of the quick and full variants.
 """
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import functools
 from ...liquid import Bench, load_bench
 from ...validation.target import Context
 
-__all__ = ["BENCH_NOTE", "FIG5_RATIOS", "G10", "GCM", "ML", "QUICK", "bench", "grid"]
+__all__ = ["FIG5_RATIOS", "G10", "GCM", "ML", "QUICK", "bench", "grid"]
 
 ML = 1e-6        # [m^3] per ml
 GCM = 1e-5       # [kg*m] per g*cm
@@ -16,11 +16,6 @@ G10 = 10.0       # [m/s^2]: the gravity 003's printed speeds imply
 #: 003's relative speeds omega/omega_r of Fig. 5 (and our choice for Fig. 6) [-].
 FIG5_RATIOS = (0.6, 0.8, 1.0, 1.2)
 
-#: The model behind every bench target (shown in the report).
-BENCH_NOTE = ("Model: reduced-order rotor + lumped liquid (docs/liquid.md §3), bench_003 preset: "
-              "M = 25 kg and zeta = 0.1 are our choices (003 gives neither), k set by omega_r = "
-              "54 1/s; the liquid acts from omega_0 (eq 6) with the full capacity rho V R at "
-              "1.5 omega_0 (calibrated on Fig. 7a-b) and settles at 001 eq 3 minus beta (eq 6).")
 #: What ``--quick`` changes in the liquid targets.
 QUICK = "coarser speed/radius grids in the figures and data; the rows are the same"
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ...validation.target import Target
 from . import closed_forms, fig5_6, fig7
-from .bench import BENCH_NOTE, QUICK
+from .bench import QUICK
 from .fig5_6 import PHYSICAL_NOTE
 from .published import ITEMS_003, PUBLISHED
 
@@ -48,7 +48,8 @@ TARGETS = [
                  "(Fig. 6 does not give them).", quick=QUICK),
     Target("003-fig7", "003", ("Fig. 7",), "Liquid states vs speed (video frames a-d)",
            fig7.run_fig7, PUBLISHED["003-fig7"],
-           notes=BENCH_NOTE + " Frames at 18, 30, 54, 80 1/s with 300 ml (k = 2 in the "
-                 "model); the onset of balancing near omega_r/2 is calibrated, not predicted.",
+           notes=PHYSICAL_NOTE + " Frames at 18, 30, 54, 80 1/s with 300 ml; the figure's "
+                 "run-up is the wall film coupled with the rotor from omega_0 (docs/liquid.md "
+                 "sec. 3c). Nothing is calibrated: the onset of balancing is predicted.",
            quick=QUICK),
 ]
