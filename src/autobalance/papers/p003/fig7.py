@@ -27,7 +27,7 @@ __all__ = ["FRAMES_RAD_S", "run_fig7"]
 FRAMES_RAD_S = (18.0, 30.0, 54.0, 80.0)
 
 
-def _frame_rows(rows: Rows, b: Bench, st: dict, k: float) -> None:
+def _frame_rows(rows: Rows, b: Bench, st: dict) -> None:
     """Rows of the frames a-d and of the surface shape at 80 1/s (300 ml)."""
     R, h, g, V = b.balancer.chamber.radius, b.balancer.chamber.height, b.model.g, b.video_volume
     ang, eff = np.abs(st["liquid_angle_deg"]), st["efficiency"]
@@ -121,7 +121,7 @@ def run_fig7(ctx: Context) -> Outcome:
     bal = b.balancer_with(V)
     k = bal.capacity / b.rotor.unbalance
     st = physical_steady_response(b.rotor, bal, FRAMES_RAD_S)
-    _frame_rows(rows, b, st, k)
+    _frame_rows(rows, b, st)
     _onset_rows(rows, b, _entrainment_rows(rows, b))
     w0 = entrainment_speed(V, R, h, g)
     ws = np.linspace(5.0, 100.0, grid(ctx, 96, 381))
@@ -146,7 +146,7 @@ def run_fig7(ctx: Context) -> Outcome:
                     coords={"volume_ml": [150.0, V / ML], "omega_rad_s": ws, "t_s": ru.t},
                     attrs={"source": "003 Fig. 7 (the liquid from physics; run-up: wall film "
                                      "coupled with the rotor from omega_0)",
-                           "omega_0_rad_s": w0, "k": k})
+                           "omega_0_rad_s": w0, "capacity_over_unbalance": k})
     return Outcome(rows, {"fig7": fig}, ds,
                    f"steady whirl on {ws.size} speeds (150 and 300 ml), film run-up "
                    f"{w0:.1f}-{b.omega_end:g} 1/s at {b.omega_end / b.duration:g} 1/s^2 "
