@@ -8,7 +8,10 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["netcdf_safe", "to_jsonable"]
 
@@ -55,7 +58,7 @@ def to_jsonable(obj: Any) -> Any:
     return str(obj)
 
 
-def netcdf_safe(ds):
+def netcdf_safe(ds: xr.Dataset) -> xr.Dataset:
     """A copy of an xarray Dataset that NetCDF accepts: list, tuple, dict and bool attributes
     become JSON text (:func:`to_jsonable`), None attributes are dropped and object-typed
     variables and coordinates become strings.

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 import os
 import re
+from typing import Any
 
 #: Imaginary-axis stability limit of DOPRI5 (Hairer-Wanner I, Fig. II.4.4: about 3.3).
 DOPRI5_STABILITY = 3.3
@@ -129,7 +130,7 @@ def fmt_seconds(s: float) -> str:
     return f"{s:.2g} s"
 
 
-def check_memory(field: str, value, nbytes: float, what: str = "results") -> None:
+def check_memory(field: str, value: object, nbytes: float, what: str = "results") -> None:
     """Refuse ``field = value`` if its ``nbytes`` [B] exceed the memory limit."""
     lim = max_memory()
     if not math.isfinite(nbytes) or nbytes > lim:
@@ -138,7 +139,7 @@ def check_memory(field: str, value, nbytes: float, what: str = "results") -> Non
             f"limit of {fmt_bytes(lim)} (set AUTOBALANCE_MAX_MEMORY to raise it)")
 
 
-def check_runtime(field: str, value, seconds: float, what: str = "run") -> None:
+def check_runtime(field: str, value: object, seconds: float, what: str = "run") -> None:
     """Refuse ``field = value`` if the estimated run time [s] exceeds the limit."""
     lim = max_hours() * 3600.0
     if not math.isfinite(seconds) or seconds > lim:
@@ -166,7 +167,7 @@ def _speed_integrals(spin) -> tuple[float, float, float]:
     return total, ramps, ramp_time
 
 
-def steps_estimate(system, spin, options) -> float:
+def steps_estimate(system: Any, spin: Any, options: Any) -> float:
     """Steps of one run integrated step by step (see the module docstring) [-]."""
     T = float(spin.duration)
     w_n = max(system.natural_frequencies)
@@ -175,7 +176,7 @@ def steps_estimate(system, spin, options) -> float:
     return max((total + w_n * T) / DOPRI5_STABILITY, T / h_max)
 
 
-def steps_lower_bound(system, spin, options) -> float:
+def steps_lower_bound(system: Any, spin: Any, options: Any) -> float:
     """A lower bound of the steps of one run: its speed ramps (never solved in closed form)
     at half the stability-limited step count [-]."""
     w_n = max(system.natural_frequencies)
@@ -188,7 +189,7 @@ def step_cost(n_balls: int) -> float:
     return STEP_COST_S + STEP_COST_PER_BALL_S * n_balls
 
 
-def check_run(system, spin, options, field: str = "profile.duration") -> float:
+def check_run(system: Any, spin: Any, options: Any, field: str = "profile.duration") -> float:
     """Refuse a run that cannot finish: its steps (lower bound) exceed the step budget, or its
     estimated time exceeds the run-time limit; returns the step estimate.
 

@@ -21,10 +21,13 @@ import functools
 import math
 import re
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .schema import PROFILE_KINDS, SECTIONS
 from .units import KINDS, TWO_PI, ConfigError, ureg
+
+if TYPE_CHECKING:
+    from .load import Config
 
 __all__ = ["DISPLAY_KINDS", "WRITTEN_KEYS", "DisplayUnits", "display_units", "written_unit"]
 
@@ -261,7 +264,7 @@ class DisplayUnits:
         return f"{self.to(value_si, kind):.{digits}g} {self.unit(kind)}"
 
 
-def display_units(cfg, choice: str | None = None) -> DisplayUnits:
+def display_units(cfg: Config | dict | None, choice: str | None = None) -> DisplayUnits:
     """The display units of a configuration: as written, or as ``choice`` says.
 
     Parameters

@@ -21,7 +21,7 @@ rolling resistance as left out, and the profile is a ``table`` (or ``motor``) pr
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 from ..models import (BallBalancer, InitialState, MotorDrive, ParameterError, SimOptions,
@@ -265,7 +265,8 @@ def _group(values) -> dict:
     return out
 
 
-def replace_values(config: Config, values) -> Config:
+def replace_values(config: Config,
+                   values: Mapping[str, Any] | Iterable[tuple[str, Any]]) -> Config:
     """A new Config with dotted paths set to values, validated like ``--set``.
 
     Parameters

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import tomllib
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -239,7 +240,7 @@ def _read(source: str | Path) -> tuple[dict, str, dict]:
     return raw, (src if is_path else path.stem), source_comments(text)
 
 
-def load_config(source: str | Path, overrides=()) -> Config:
+def load_config(source: str | Path, overrides: Iterable[str] = ()) -> Config:
     """Load a preset (by name) or a TOML file, apply overrides and validate.
 
     Parameters

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import copy
 import tomllib
+from collections.abc import Iterable
 from typing import Any
 
 from .schema import PROFILE_KINDS, SECTIONS, TOP_LEVEL
@@ -94,7 +95,7 @@ def parse_override(item: str | tuple) -> tuple[str, Any]:
     return path, _parse_value(text)
 
 
-def apply_overrides(raw: dict, overrides=()) -> dict:
+def apply_overrides(raw: dict, overrides: Iterable[str | tuple[str, Any]] = ()) -> dict:
     """Apply ``path=value`` overrides to a copy of a TOML dict.
 
     Parameters

@@ -23,14 +23,18 @@ from __future__ import annotations
 
 import cmath
 import math
+from typing import TYPE_CHECKING
 
 from .jit import kernel
 from .layout import (B_M, P_CX, P_KX, P_MT,
                      P_R)
 
+if TYPE_CHECKING:
+    import numpy as np
+
 
 @kernel
-def hold_roots(P, W):
+def hold_roots(P: np.ndarray, W: float) -> tuple[complex, complex, complex]:
     """Roots s1, s2 [1/s] and the static response factor 1/(k - M_t W^2 + i c W) [m/N]."""
     mt = P[P_MT]
     k = P[P_KX]
@@ -44,7 +48,8 @@ def hold_roots(P, W):
 
 
 @kernel
-def hold_coeffs(w0, wd0, wss, s1, s2):
+def hold_coeffs(w0: complex, wd0: complex, wss: complex, s1: complex,
+                s2: complex) -> tuple[complex, complex]:
     """C1, C2 of w - w_ss = C1 e^{s1 t} + C2 e^{s2 t} from w(0) = w0, w'(0) = wd0."""
     z0 = w0 - wss
     c1 = (wd0 - s2 * z0) / (s1 - s2)
@@ -52,7 +57,8 @@ def hold_coeffs(w0, wd0, wss, s1, s2):
 
 
 @kernel
-def hold_state(tau, wss, s1, s2, c1, c2):
+def hold_state(tau: float, wss: complex, s1: complex, s2: complex, c1: complex,
+               c2: complex) -> tuple[complex, complex]:
     """w(tau), w'(tau) [m, m/s]."""
     e1 = cmath.exp(s1 * tau)
     e2 = cmath.exp(s2 * tau)
@@ -60,7 +66,8 @@ def hold_state(tau, wss, s1, s2, c1, c2):
 
 
 @kernel
-def hold_transient_bound(W, s1, s2, c1, c2):
+def hold_transient_bound(W: float, s1: complex, s2: complex, c1: complex,
+                         c2: complex) -> float:
     """sum_j |(s_j^2 + 2 i W s_j - W^2) C_j|: bound of |X - X_ss| for tau >= 0 (eq H2) [m/s^2]."""
     p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
     p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
@@ -68,7 +75,8 @@ def hold_transient_bound(W, s1, s2, c1, c2):
 
 
 @kernel
-def ball_unbalance(y, B, N, R, rho, beta, U):
+def ball_unbalance(y: np.ndarray, B: np.ndarray, N: int, R: float, rho: float, beta: float,
+                   U: float) -> complex:
     """Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}) [kg*m] (eq H1)."""
     ut = complex(U, 0.0)
     for i in range(N):
@@ -78,7 +86,8 @@ def ball_unbalance(y, B, N, R, rho, beta, U):
 
 
 @kernel
-def hold_margin_ok(lam_ss, lim, N, B, R, bound):
+def hold_margin_ok(lam_ss: np.ndarray, lim: np.ndarray, N: int, B: np.ndarray, R: float,
+                   bound: float) -> bool:
     """(H2) for every ball with a relative margin of 1e-9."""
     for i in range(N):
         need = abs(lam_ss[i]) + B[i, B_M] * R * bound

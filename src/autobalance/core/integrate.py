@@ -191,8 +191,10 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
 
 
 @njit(cache=True)
-def integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y0, t_end, rtol, atol, h_max,
-              max_steps, out_t, out_y, stats):
+def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
+              unb_t: np.ndarray, unb_u: np.ndarray, y0: np.ndarray, t_end: float, rtol: float,
+              atol: np.ndarray, h_max: float, max_steps: int, out_t: np.ndarray,
+              out_y: np.ndarray, stats: np.ndarray) -> np.ndarray:
     """Integrate one run from t = 0 to t_end.
 
     Parameters

@@ -16,7 +16,9 @@ array as its exploded struct (7-9 words each).
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from numba import njit
 
@@ -54,12 +56,12 @@ except ImportError:                                   # pragma: no cover - other
     _NO_NRT = {}
 
 
-def kernel(fn):
+def kernel(fn: Callable[..., Any]) -> Any:
     """njit(cache=True) without the NRT (no allocation inside; see the module docstring). A
     numba without the option compiles with the NRT: slower, same results."""
     return njit(cache=True, **_NO_NRT)(fn)
 
 
-def inline_kernel(fn):
+def inline_kernel(fn: Callable[..., Any]) -> Any:
     """kernel, inlined into its compiled callers (see the module docstring)."""
     return njit(cache=True, inline="always", **_NO_NRT)(fn)

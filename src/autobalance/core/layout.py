@@ -7,6 +7,8 @@ State vector y (length 2*nq, nq = N + 3):
     y[nq + j]                         time derivative of y[j]
 Scalar parameter vector P: indices below. Ball table B[i, :]: columns below.
 """
+from __future__ import annotations
+
 import enum
 
 # --- scalar parameters P ------------------------------------------------------------------
@@ -98,7 +100,7 @@ class RunStatus(enum.IntEnum):
         return _MESSAGES[self]
 
     @classmethod
-    def of(cls, code) -> "RunStatus":
+    def of(cls, code: int | float) -> "RunStatus":
         """The status of a kernel code (UNKNOWN for any other value)."""
         try:
             return cls(int(code))

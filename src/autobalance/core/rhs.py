@@ -18,12 +18,16 @@ rule (the other is core/integrate.py::_integrate; see there).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .jit import kernel
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
                      P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
                      P_VSAT, P_WF, P_ISO)
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 #: |lambda| / (mu N R) is clipped to this below 1 in the creep law: at the limit the slow
@@ -32,7 +36,7 @@ CREEP_RATIO_MAX = 1.0 - 1e-12
 
 
 @kernel
-def creep_speed(lam, lim, vsat):
+def creep_speed(lam: float, lim: float, vsat: float) -> float:
     """Creep of a stuck ball on the tanh law's slow manifold, -v_sat atanh(lam / lim) [rad/s]
     (compiled twin of autobalance.physics.friction.creep_speed): lam the friction torque the
     ball needs [N*m], lim = mu N R [N*m], vsat [rad/s]."""
@@ -47,7 +51,8 @@ def creep_speed(lam, lim, vsat):
 
 
 @kernel
-def profile_eval(t, seg, prof_t, prof_w):
+def profile_eval(t: float, seg: int, prof_t: np.ndarray,
+                 prof_w: np.ndarray) -> tuple[float, float]:
     """Speed [rad/s] and acceleration [rad/s^2] of a piecewise-linear profile on segment seg."""
     n = prof_t.shape[0]
     if seg >= n - 1:
@@ -59,7 +64,7 @@ def profile_eval(t, seg, prof_t, prof_w):
 
 
 @kernel
-def profile_segment(t, prof_t):
+def profile_segment(t: float, prof_t: np.ndarray) -> int:
     """Index k of the segment with prof_t[k] <= t < prof_t[k+1] (last knot -> n-1)."""
     n = prof_t.shape[0]
     k = 0
@@ -69,7 +74,7 @@ def profile_segment(t, prof_t):
 
 
 @kernel
-def table_interp(t, tt, vv):
+def table_interp(t: float, tt: np.ndarray, vv: np.ndarray) -> float:
     """Linear interpolation in a short table, held constant outside."""
     n = tt.shape[0]
     if n == 1 or t <= tt[0]:
@@ -84,7 +89,7 @@ def table_interp(t, tt, vv):
 
 
 @kernel
-def motor_torque(law, t0, wf, w):
+def motor_torque(law: float, t0: float, wf: float, w: float) -> float:
     """000 Table 1 torque laws T_m(w) [N*m]: constant, linear T0(1 - w/w_f), harmonic."""
     if law == 0:
         return t0
@@ -94,7 +99,7 @@ def motor_torque(law, t0, wf, w):
 
 
 @kernel
-def neighbour_gap(y, i, N, delta):
+def neighbour_gap(y: np.ndarray, i: int, N: int, delta: float) -> tuple[int, float]:
     """Next ball j after ball i (cyclic order) and their free angular gap beyond the contact
     angle delta [rad]; negative = overlap (balls in one race keep their order)."""
     j = i + 1
@@ -106,7 +111,7 @@ def neighbour_gap(y, i, N, delta):
 
 
 @kernel
-def cholesky_solve(A, b, n):
+def cholesky_solve(A: np.ndarray, b: np.ndarray, n: int) -> bool:
     """Solve A x = b in place (x returned in b) for the leading n x n SPD block of A."""
     for j in range(n):
         s = A[j, j]
@@ -170,8 +175,11 @@ def _suspension_force(t, u, v, ud, vd, psi, psid, P):
 
 
 @kernel
-def rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-        dy, lam, Mm, fv, A, bb, idx, trig=None):
+def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
+        prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray,
+        stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray, lam: np.ndarray,
+        Mm: np.ndarray, fv: np.ndarray, A: np.ndarray, bb: np.ndarray, idx: np.ndarray,
+        trig: np.ndarray | None = None) -> bool:
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
 
     Parameters

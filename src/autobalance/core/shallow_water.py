@@ -29,9 +29,13 @@ space. All kernels work on preallocated arrays (core/jit.py).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .jit import kernel
 from .rhs import table_interp
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: Films thinner than this fraction of R are dry: no velocity, no friction [-].
 DRY_FRACTION = 1e-12
@@ -42,7 +46,8 @@ RE_TURBULENT = 2300.0
 
 
 @kernel
-def hll_flux(hl, ql, hr, qr, g, dry):
+def hll_flux(hl: float, ql: float, hr: float, qr: float, g: float,
+             dry: float) -> tuple[float, float]:
     """HLL flux (Harten, Lax & van Leer 1983) of the shallow-water equations between the states
     (hl, ql) and (hr, qr) [m, m^2/s], gravity g [m/s^2], dry threshold [m]: (F_eta, F_q)."""
     ul = ql / hl if hl > dry else 0.0
@@ -67,7 +72,7 @@ def hll_flux(hl, ql, hr, qr, g, dry):
 
 
 @kernel
-def friction_rate(h, v, nu, R):
+def friction_rate(h: float, v: float, nu: float, R: float) -> float:
     """Wall friction rate k [1/s] of a film of thickness h [m] moving at v [m/s] relative to the
     wall, kinematic viscosity nu [m^2/s]: the larger of the laminar film's 3 nu / h^2 (half
     Poiseuille profile) and the turbulent Blasius law lambda/(8 h) |v|, lambda = 0.3164 Re^-1/4,
@@ -84,7 +89,10 @@ def friction_rate(h, v, nu, R):
 
 
 @kernel
-def sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr):
+def sw_step(h: np.ndarray, q: np.ndarray, b: np.ndarray, a: np.ndarray, g: float, dx: float,
+            dt: float, nu: float, R: float, wall: np.ndarray, hn: np.ndarray, qn: np.ndarray,
+            fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray, hl: np.ndarray,
+            hr: np.ndarray) -> None:
     """One forward-Euler step dt [s] of the film (module docstring) on n periodic cells of width
     dx [m]: h, q the state [m, m^2/s]; b the wall height [m] and a the tangential acceleration
     [m/s^2] per cell; g [m/s^2]; nu [m^2/s]; R [m] (dry scale); wall[i] != 0 makes the interface
@@ -136,7 +144,7 @@ def sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr):
 
 
 @kernel
-def sw_max_speed(h, q, g, R):
+def sw_max_speed(h: np.ndarray, q: np.ndarray, g: float, R: float) -> float:
     """Largest |v| + sqrt(g h) over the cells [m/s] (the CFL speed)."""
     dry = DRY_FRACTION * R
     s = 0.0
@@ -149,7 +157,7 @@ def sw_max_speed(h, q, g, R):
 
 
 @kernel
-def wall_height(theta, cx, cy, b):
+def wall_height(theta: np.ndarray, cx: float, cy: float, b: np.ndarray) -> None:
     """b = -(cx cos theta + cy sin theta) [m]: the wall's height in the centrifugal potential of a
     chamber displaced by (cx, cy) [m] from the axis (first order in |c|/R)."""
     for i in range(theta.shape[0]):
@@ -157,21 +165,22 @@ def wall_height(theta, cx, cy, b):
 
 
 @kernel
-def gravity_rotor_frame(gp, gdir, psi):
+def gravity_rotor_frame(gp: float, gdir: float, psi: float) -> complex:
     """In-plane gravity g_p e^{i(gamma - psi)} [m/s^2] in the rotor frame turned by the spin
     angle psi [rad]; gp [m/s^2] at the inertial angle gdir = gamma [rad] (module docstring)."""
     return gp * complex(math.cos(gdir - psi), math.sin(gdir - psi))
 
 
 @kernel
-def gravity_offset(gp, gdir, psi, w):
+def gravity_offset(gp: float, gdir: float, psi: float, w: float) -> complex:
     """Rotor-frame shift [m] of the centre of the centrifugal-plus-gravity potential:
     g_p e^{i(gamma - psi)} / w^2 (module docstring), w [rad/s] > 0."""
     return gravity_rotor_frame(gp, gdir, psi) / (w * w)
 
 
 @kernel
-def frame_acceleration(theta, R, w, wd, cx, cy, vx, vy, ax, ay, a):
+def frame_acceleration(theta: np.ndarray, R: float, w: float, wd: float, cx: float, cy: float,
+                       vx: float, vy: float, ax: float, ay: float, a: np.ndarray) -> None:
     """Tangential inertial acceleration of the chamber frame at each wall cell [m/s^2]: the
     Euler term -w' R and -(c'' + 2 i w c' + i w' c) . e_theta of the chamber's motion c(t) in
     the rotor frame (w [rad/s], wd [rad/s^2], c [m], c' [m/s], c'' [m/s^2] as x, y parts);
@@ -197,8 +206,13 @@ def _emit(out_t, out_h, out_q, kout, t, h, q):
 
 
 @kernel
-def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax, tay,
-                 gp, gdir, wall, out_t, out_h, out_q, hn, qn, fh, fq, fqr, hl, hr, b, a):
+def sw_integrate(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, nu: float,
+                 t_end: float, tt: np.ndarray, tw: np.ndarray, twd: np.ndarray,
+                 tcx: np.ndarray, tcy: np.ndarray, tvx: np.ndarray, tvy: np.ndarray,
+                 tax: np.ndarray, tay: np.ndarray, gp: float, gdir: float, wall: np.ndarray,
+                 out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray, hn: np.ndarray,
+                 qn: np.ndarray, fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray,
+                 hl: np.ndarray, hr: np.ndarray, b: np.ndarray, a: np.ndarray) -> int:
     """Integrate the film from t = 0 to t_end [s] with the CFL time step, the forcing read from
     the tables tt [s] of spin w [rad/s], w' [rad/s^2] and the chamber's displacement c, c', c''
     ([m], [m/s], [m/s^2]; x and y parts), linearly interpolated; in-plane gravity gp [m/s^2] at
@@ -248,7 +262,8 @@ def sw_integrate(h, q, theta, R, nu, t_end, tt, tw, twd, tcx, tcy, tvx, tvy, tax
 
 
 @kernel
-def film_moment(h, q, theta, R, H, rho):
+def film_moment(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, H: float,
+                rho: float) -> tuple[complex, complex]:
     """The thin film's first moment about the chamber centre U = rho H R^2 sum(eta e^{i theta})
     dtheta [kg*m] and its rate U' = i rho H R sum(q e^{i theta}) dtheta [kg*m/s] (continuity,
     integrated by parts on the periodic wall)."""
@@ -282,8 +297,13 @@ def _gravity_force(Mt, gp, gdir, psi):
 
 
 @kernel
-def sw_coupled(h, q, theta, R, H, rho, nu, Mt, k, c, D, Z0, Y0, t_end, tt, tw, twd, gp, gdir,
-               wall, out_t, out_h, out_q, out_w, hn, qn, fh, fq, fqr, hl, hr, b, a):
+def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, H: float, rho: float,
+               nu: float, Mt: float, k: float, c: float, D: float, Z0: complex, Y0: complex,
+               t_end: float, tt: np.ndarray, tw: np.ndarray, twd: np.ndarray, gp: float,
+               gdir: float, wall: np.ndarray, out_t: np.ndarray, out_h: np.ndarray,
+               out_q: np.ndarray, out_w: np.ndarray, hn: np.ndarray, qn: np.ndarray,
+               fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray, hl: np.ndarray, hr: np.ndarray,
+               b: np.ndarray, a: np.ndarray) -> tuple[int, complex, complex]:
     """The film coupled two-way with an isotropic Jeffcott rotor (mass M_t = M + rho V with the
     liquid, stiffness k, damping c, unbalance D on the rotor frame's x axis) at the prescribed
     spin w(t) (tables tt [s], tw [rad/s], twd [rad/s^2]).

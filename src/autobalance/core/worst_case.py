@@ -10,8 +10,12 @@ from __future__ import annotations
 
 import cmath
 import math
+from typing import TYPE_CHECKING
 
 from .jit import kernel
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 #: Columns of the arc table: combination (a1, a2) index, centre C (re, im), radius, cos and sin of
@@ -40,7 +44,7 @@ def _put(tab, k, combo, C, r, centre, half):
 
 
 @kernel
-def arc_table(n, c1, c2, s1, s2, tab):
+def arc_table(n: int, c1: float, c2: float, s1: float, s2: float, tab: np.ndarray) -> int:
     """The arcs whose distances make the home's ``_arcs_distance`` (one ball: 2 arcs; two balls:
     per combination (a1, a2) in {0, pi}^2 the 4 boundary arcs and the fold's 0-2 arcs); the
     geometry is the same for every point, so it is computed once. Returns the row count."""
@@ -97,7 +101,8 @@ def _arc_row(P, tab, k):
 
 
 @kernel
-def arcs_distance(T, n, c1, c2, cs1, cs2, tab, nrow):
+def arcs_distance(T: complex, n: int, c1: float, c2: float, cs1: float, cs2: float,
+                  tab: np.ndarray, nrow: int) -> float:
     """Distance of T [kg*m] to the moments of n = 1 or 2 balls (moments c1, c2 [kg*m]; cs1, cs2
     the cosines of their half-widths s1, s2) with the arcs of :func:`arc_table` (the home's
     ``_arcs_distance`` for one point)."""
@@ -132,7 +137,8 @@ def arcs_distance(T, n, c1, c2, cs1, cs2, tab, nrow):
 
 
 @kernel
-def row_min_distance(t0, shift, n, c1, c2, s1, s2, tab, out):
+def row_min_distance(t0: np.ndarray, shift: complex, n: int, c1: float, c2: float, s1: float,
+                     s2: float, tab: np.ndarray, out: np.ndarray) -> None:
     """out[i] = min over j of the distance of t0[i, j] + shift [kg*m] to the balls' reachable
     moments (:func:`arcs_distance`), for a (rows, points) array t0 and a common complex shift
     [kg*m] (zeta / h of the circle test); tab: a work array (N_ARCS, 11)."""
@@ -149,7 +155,8 @@ def row_min_distance(t0, shift, n, c1, c2, s1, s2, tab, out):
 
 
 @kernel
-def rows_empty(t0, shift, n, c1, c2, s1, s2, margin, tab, out):
+def rows_empty(t0: np.ndarray, shift: complex, n: int, c1: float, c2: float, s1: float,
+               s2: float, margin: float, tab: np.ndarray, out: np.ndarray) -> None:
     """out[i] = 1 if every point of row i is farther than ``margin`` [kg*m] from the balls'
     reachable moments (the circle test's "no rest state on this circle", i.e. the row minimum of
     :func:`row_min_distance` minus the margin is > 0), else 0; a row stops at its first point

@@ -8,10 +8,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ._validate import ParameterError, finite, in_range, nonneg, positive
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 TWO_PI = 2.0 * math.pi
 
@@ -77,7 +81,7 @@ class SpeedProfile:
         """
         return np.asarray(self.times, float), np.asarray(self.speeds, float)
 
-    def speed(self, t):
+    def speed(self, t: float | npt.ArrayLike) -> float | np.ndarray:
         """Spin speed at time t (linear interpolation between the knots).
 
         Parameters
@@ -314,7 +318,7 @@ class MotorDrive:
 
     name = "motor"
 
-    def torque_at(self, w):
+    def torque_at(self, w: float | npt.ArrayLike) -> np.ndarray:
         """Motor torque [N*m] at spin speed w [rad/s] (000 Table 1 laws).
 
         Parameters

@@ -119,7 +119,7 @@ class Suspension:
         finite("suspension.base_phase_y", self.base_phase_y)
 
     @classmethod
-    def isotropic(cls, k: float, c: float = 0.0, **kw) -> "Suspension":
+    def isotropic(cls, k: float, c: float = 0.0, **kw: float) -> "Suspension":
         """Jeffcott support: kx = ky = k [N/m], cx = cy = c [N*s/m].
 
         Parameters

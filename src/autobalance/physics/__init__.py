@@ -2,6 +2,8 @@
 response, the seed-000 washer analysis (vibratory forces, equilibria, error bounds, tolerances)
 and 004's immobility and stick threshold. Nothing here integrates the model in time
 (:mod:`autobalance.simulate` and :mod:`autobalance.studies` do)."""
+from __future__ import annotations
+
 from .iso1940 import (GRADES, grade, grade_class, grade_value, permissible_eccentricity,
                       unbalance_for_grade, unbalance_value)
 from .unbalance import residual_unbalance

@@ -42,8 +42,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
-from ..models import ParameterError
+from ..models import ParameterError, System
 from ..models._validate import finite as _finite
 from .unbalance import residual_unbalance
 from .vibratory import _H, _speed, force_jacobian, gain_phase, vibratory_forces
@@ -117,7 +118,7 @@ class Equilibrium:
         }
 
 
-def ks_eigenvalues(system, speed, alpha) -> np.ndarray:
+def ks_eigenvalues(system: System, speed: float, alpha: npt.ArrayLike) -> np.ndarray:
     """Eigenvalues of the kinetic-static model linearised about alpha (000 eq 13, 52).
 
     I_eff,i d2(dalpha_i)/dt2 = R sum_j J_ij dalpha_j - D_i d(dalpha_i)/dt, with
@@ -167,7 +168,8 @@ def _newton(system, w, starts, iters=40):
     return a, np.abs(vibratory_forces(system, w, a)).max(axis=-1)
 
 
-def find_equilibria(system, speed, n_grid: int | None = None, tol: float | None = None) -> list:
+def find_equilibria(system: System, speed: float, n_grid: int | None = None,
+                    tol: float | None = None) -> list:
     """All equilibrium configurations F_i(alpha) = 0 of the balls (000 eq 10-12, 46).
 
     N <= 2: Newton's method on the analytic Jacobian from a regular grid of starts over the
@@ -253,7 +255,8 @@ def _make(system, w, alpha) -> Equilibrium:
     )
 
 
-def single_ball_stability(system, speeds, static_moment=None) -> dict:
+def single_ball_stability(system: System, speeds: npt.ArrayLike,
+                          static_moment: float | None = None) -> dict:
     """Stability of the compensating position alpha_f = pi of one ball with mR = Me (000 eq 12).
 
     dF/dalpha|_{pi} = -1/2 m w^2 [a_0x cos(pi + phi_x) + a_0y cos(pi + phi_y)]
@@ -289,7 +292,7 @@ def single_ball_stability(system, speeds, static_moment=None) -> dict:
             "stable": d < 0}
 
 
-def balancing_onset_speed(system) -> float:
+def balancing_onset_speed(system: System) -> float:
     """Lowest speed above which alpha_f = pi (one ball, mR = Me) is stable (000 eq 12) [rad/s].
 
     The root of g_x cos(phi_x) + g_y cos(phi_y) = 0 (sign change of eq 12's derivative); it lies
@@ -513,8 +516,8 @@ class EquilibriumSet:
                 "families": [f.as_dict() for f in self.families]}
 
 
-def find_equilibrium_set(system, speed, *, method: str = "auto", n_grid: int | None = None,
-                         tol: float | None = None, n_samples: int = 36,
+def find_equilibrium_set(system: System, speed: float, *, method: str = "auto",
+                         n_grid: int | None = None, tol: float | None = None, n_samples: int = 36,
                          step: float = 0.1) -> EquilibriumSet:
     """Every equilibrium of the balls at one speed: isolated ones and balanced families.
 

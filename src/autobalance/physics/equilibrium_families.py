@@ -10,12 +10,18 @@ from __future__ import annotations
 
 import itertools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models import ParameterError
 from .unbalance import residual_unbalance
 from .vibratory import _H, _angles, _speed
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["TWO_PI", "aligned_equilibria", "balanced_unbalance", "deflate", "family_tangent",
            "force_phasor"]
@@ -27,7 +33,7 @@ def _wrap(a):
     return np.mod(np.asarray(a, float) + math.pi, TWO_PI) - math.pi
 
 
-def force_phasor(system, speed, alpha) -> np.ndarray:
+def force_phasor(system: System, speed: float, alpha: npt.ArrayLike) -> np.ndarray:
     """Common phasor Q of the vibratory forces, F_i = -m_i w^2 Im(e^{i alpha_i} Q) [m].
 
     Q = 1/2 conj(W) H + rho e^{-i beta}: 000 eq (40)-(43) in the complex form of
@@ -55,7 +61,7 @@ def force_phasor(system, speed, alpha) -> np.ndarray:
     return 0.5 * np.conj(W) * _H(system, w) + b.eccentricity * np.exp(-1j * b.eccentricity_angle)
 
 
-def balanced_unbalance(system, speed) -> complex:
+def balanced_unbalance(system: System, speed: float) -> complex:
     """Residual unbalance W* on the balanced states, where the force on every ball vanishes [kg*m].
 
     Q = 0 in :func:`force_phasor` gives W* = -2 rho e^{i beta} / conj(H). Without race
@@ -107,7 +113,7 @@ def _mass_groups(b) -> list:
     return out
 
 
-def aligned_equilibria(system, speed, max_patterns: int = 65536) -> np.ndarray:
+def aligned_equilibria(system: System, speed: float, max_patterns: int = 65536) -> np.ndarray:
     """The isolated equilibria with Q != 0 in closed form: every ball on the line of Q.
 
     With alpha_i = phi (sigma_i = +1) or phi + pi (sigma_i = -1), s = sum sigma_i m_i R and
@@ -186,7 +192,7 @@ def _constraint_jacobian(system, alpha) -> np.ndarray:
     return np.stack([-mR * np.sin(a), mR * np.cos(a)], axis=-2)
 
 
-def family_tangent(system, alpha, rtol: float = 1e-8) -> np.ndarray:
+def family_tangent(system: System, alpha: npt.ArrayLike, rtol: float = 1e-8) -> np.ndarray:
     """Orthonormal basis of the tangent space of the balanced family through alpha [-].
 
     The family is W(alpha) = W* (two real conditions, :func:`balanced_unbalance`); its tangent
@@ -373,7 +379,7 @@ def _family_points(system, w: float, n_samples: int, step: float):
     return [(_wrap(np.array(chosen)), d, False, math.nan)]
 
 
-def deflate(A, E) -> dict:
+def deflate(A: npt.ArrayLike, E: npt.ArrayLike) -> dict:
     """Eigenvalues of A with the subspace spanned by E set aside (neutral directions).
 
     In an orthonormal basis [Q, C] with span Q = span E, A = [[Q'AQ, Q'AC], [C'AQ, C'AC]].

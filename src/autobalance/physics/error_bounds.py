@@ -13,6 +13,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +25,11 @@ from ..models._validate import positive as _positive
 from .equilibria import find_equilibria
 from .unbalance import residual_unbalance
 from .vibratory import _speed, force_jacobian, gain_phase
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = [
     "ball_natural_frequencies", "ball_natural_frequency_approx", "ball_natural_frequency_single",
@@ -39,7 +45,8 @@ def _out(a):
 
 
 # -- rolling resistance ------------------------------------------------------------------------
-def rolling_resistance_force(ball_mass, race_radius, speed, f_r):
+def rolling_resistance_force(ball_mass: float | npt.ArrayLike, race_radius: float,
+                             speed: float | npt.ArrayLike, f_r: float | npt.ArrayLike):
     """Rolling resistance of a ball F_ir = m R w^2 f/r [N] (000 eq 20).
 
     Parameters
@@ -60,7 +67,8 @@ def rolling_resistance_force(ball_mass, race_radius, speed, f_r):
     return _out(m * R * w * w * fr)
 
 
-def rolling_deadband_single(system, speed, f_r, static_moment=None):
+def rolling_deadband_single(system: System, speed: float | npt.ArrayLike, f_r: float,
+                            static_moment: float | None = None):
     """Largest position error of one ball from rolling resistance (000 eq 24, Fig. 12) [rad].
 
     |Delta alpha_r| <= 2 R (f/r) / |a_x cos(phi_x) + a_y cos(phi_y)|, with a_x, a_y the drum
@@ -93,7 +101,7 @@ def rolling_deadband_single(system, speed, f_r, static_moment=None):
         return _out(np.where(den > 0, 2.0 * R * fr / den, np.inf))
 
 
-def symmetric_rolling_deviation(race_radius, eccentricity, f_r) -> float:
+def symmetric_rolling_deviation(race_radius: float, eccentricity: float, f_r: float) -> float:
     """Symmetric deviation of two balls at +-120 deg, 000 eq (32): 2 (R/e)(f/r) [rad].
 
     Eq (30)-(31) are |d1 - d2/2| <= (R/e)(f/r) and |d2 - d1/2| <= (R/e)(f/r) (w >> w_x, w_y,
@@ -113,7 +121,8 @@ def symmetric_rolling_deviation(race_radius, eccentricity, f_r) -> float:
     return 2.0 * R / e * _nonneg("f_r", f_r)
 
 
-def rolling_deadband(system, speed, f_r, alpha_eq=None) -> dict:
+def rolling_deadband(system: System, speed: float, f_r: float,
+                     alpha_eq: npt.ArrayLike | None = None) -> dict:
     """Dead band of N balls about their equilibrium from rolling resistance (000 eq 21-22, 27-31).
 
     Linearising F_i about the equilibrium, |sum_j J_ij d_j| <= m_i R w^2 f/r for every ball
@@ -199,7 +208,7 @@ def _transverse_deadband(system, J, Fr, alpha, neutral: int, n_dir: int = 72) ->
 
 
 # -- eccentricity ------------------------------------------------------------------------------
-def eccentricity_deviation_single(eccentricity, rho, beta):
+def eccentricity_deviation_single(eccentricity: float, rho: float, beta: float | npt.ArrayLike):
     """Deviation of one ball from alpha_f = pi caused by a race eccentricity, 000 eq (45) [rad].
 
     Delta alpha_rho = -rho sin(beta) / (e + rho cos(beta))  (w >> w_x, w_y, rho << R).
@@ -221,7 +230,8 @@ def eccentricity_deviation_single(eccentricity, rho, beta):
     return _out(-r * np.sin(b) / (e + r * np.cos(b)))
 
 
-def eccentricity_deviation_exact(system, speed, rho, betas) -> np.ndarray:
+def eccentricity_deviation_exact(system: System, speed: float, rho: float,
+                                 betas: npt.ArrayLike) -> np.ndarray:
     """Deviation of one ball from alpha_f = pi for a race eccentricity: the exact root of 000
     eq (44) [rad], the counterpart of eq (45) (000 Fig. 15).
 
@@ -261,7 +271,7 @@ def eccentricity_deviation_exact(system, speed, rho, betas) -> np.ndarray:
     return out
 
 
-def eccentricity_equilibrium(system, speed) -> dict:
+def eccentricity_equilibrium(system: System, speed: float) -> dict:
     """Ball positions with a race eccentricity, 000 eq (46), and the residual unbalance (eq 47).
 
     Solves F_i(alpha) = 0 with rho, beta of the balancer (:func:`find_equilibria`) and takes the
@@ -299,7 +309,8 @@ def eccentricity_equilibrium(system, speed) -> dict:
             "amplitude_y_m": best.residual_unbalance * gy}
 
 
-def eccentricity_residual_linear(static_moments, alpha_f, deviation) -> float:
+def eccentricity_residual_linear(static_moments: npt.ArrayLike, alpha_f: npt.ArrayLike,
+                                 deviation: npt.ArrayLike) -> float:
     """Residual unbalance from small ball deviations, 000 eq (47) [kg*m].
 
     dMe_x = -sum m_i R sin(alpha_if) d_i, dMe_y = sum m_i R cos(alpha_if) d_i; returns |dMe|.
@@ -322,7 +333,8 @@ def eccentricity_residual_linear(static_moments, alpha_f, deviation) -> float:
 
 
 # -- suspension dry friction -------------------------------------------------------------------
-def suspension_friction_deviation(friction_force, angle, unbalance, speed, alpha_f=2 * math.pi / 3):
+def suspension_friction_deviation(friction_force: float, angle: float, unbalance: float,
+                                  speed: float | npt.ArrayLike, alpha_f: float = 2 * math.pi / 3):
     """Largest ball error that the suspension dry friction can hold, 000 eq (48)-(49) [rad].
 
     Two balls of mR = Me near +-alpha_f: w^2 |Me + 2 m R cos(alpha_f + d)| <= 2 F cos(gamma)
@@ -352,7 +364,8 @@ def suspension_friction_deviation(friction_force, angle, unbalance, speed, alpha
     return _out(F * math.cos(g) / (U * abs(s) * w * w))
 
 
-def friction_force_for_deviation(deviation, angle, unbalance, speed, alpha_f=2 * math.pi / 3) -> float:
+def friction_force_for_deviation(deviation: float, angle: float, unbalance: float, speed: float,
+                                 alpha_f: float = 2 * math.pi / 3) -> float:
     """Inverse of eq (49): the damper force F [N] that holds a ball error d [rad] (000 eq 64-66).
 
     Parameters
@@ -377,7 +390,8 @@ def friction_force_for_deviation(deviation, angle, unbalance, speed, alpha_f=2 *
         * _positive("speed", speed) ** 2 / abs(c)
 
 
-def suspension_is_stuck(residual_x, speed, friction_force, angle) -> bool:
+def suspension_is_stuck(residual_x: float, speed: float, friction_force: float,
+                        angle: float) -> bool:
     """000 eq (48): the tub cannot move along x when w^2 |dMe_x| <= 2 F cos(gamma).
 
     Parameters
@@ -396,7 +410,8 @@ def suspension_is_stuck(residual_x, speed, friction_force, angle) -> bool:
 
 
 # -- ball natural frequency --------------------------------------------------------------------
-def ball_natural_frequency_single(system, speed, static_moment=None) -> float:
+def ball_natural_frequency_single(system: System, speed: float,
+                                  static_moment: float | None = None) -> float:
     """Natural frequency of one ball about alpha = pi, 000 eq (53)-(54) [rad/s].
 
     w_alpha = w sqrt((-a_0x cos(phi_x) - a_0y cos(phi_y)) / (2 R)); NaN when the radicand is
@@ -418,7 +433,7 @@ def ball_natural_frequency_single(system, speed, static_moment=None) -> float:
     return w * math.sqrt(rad) if rad >= 0 else math.nan
 
 
-def ball_natural_frequency_approx(speed, eccentricity, race_radius) -> float:
+def ball_natural_frequency_approx(speed: float, eccentricity: float, race_radius: float) -> float:
     """000 eq (55): w_alpha ~ w sqrt(e/R) for w >> w_x, w_y [rad/s].
 
     Parameters
@@ -434,7 +449,7 @@ def ball_natural_frequency_approx(speed, eccentricity, race_radius) -> float:
                                                  / _positive("race_radius", race_radius))
 
 
-def ball_natural_frequencies(system, speed, alpha) -> np.ndarray:
+def ball_natural_frequencies(system: System, speed: float, alpha: npt.ArrayLike) -> np.ndarray:
     """Natural frequencies of N balls about an equilibrium, 000 eq (52) with m_z [rad/s].
 
     Undamped: I_eff d'' = R J d with I_eff = m R^2 + I (R/r)^2; for each eigenvalue lambda of

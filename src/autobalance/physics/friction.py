@@ -16,14 +16,19 @@ v_sat -> 0. docs/numerics.md sec. "The tanh law's slow manifold" gives the accur
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..core.rhs import CREEP_RATIO_MAX
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
 __all__ = ["CREEP_RATIO_MAX", "creep_speed"]
 
 
-def creep_speed(required_torque, kinetic_limit, v_sat):
+def creep_speed(required_torque: npt.ArrayLike, kinetic_limit: npt.ArrayLike, v_sat: float):
     """Creep speed of a ball held by 004's tanh friction law on its slow manifold [rad/s]:
     phi_dot = -v_sat atanh(lambda / (mu N R)) (004 eq 10 with tanh(phi_dot/v_sat) solved for
     phi_dot; module docstring).

@@ -8,17 +8,24 @@ The compiled kernel's stuck-ball friction agrees (tests/test_tsr_004.py, via
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .response import axis_response, synchronous_orbit
 from .unbalance import residual_unbalance
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["IMMOBILITY_BYTES", "IMMOBILITY_BYTES_PER_BALL", "IMMOBILITY_COST_S", "check_immobility",
            "immobile_mask", "immobility", "steady_deflection", "stick_threshold_grade",
            "tangential_force"]
 
 
-def steady_deflection(system, speed, alpha):
+def steady_deflection(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
     """Rotor-frame deflection w = u + i v [m] on the steady orbit with the balls at rest.
 
     Jeffcott rotor at constant speed (004 eq 8-9 with all time derivatives zero in the rotor
@@ -45,7 +52,7 @@ def steady_deflection(system, speed, alpha):
         raise ValueError("steady_deflection: needs an isotropic (Jeffcott) suspension")
     return synchronous_orbit(system, np.asarray(speed, float), residual_unbalance(system, alpha))[0]
 
-def tangential_force(system, speed, alpha):
+def tangential_force(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
     """Tangential vibratory force on each ball at rest [N], 004 eq (1): F_t = m z Omega^2 sin(gamma).
 
     z e^{i gamma} = w e^{-i alpha_i} is the deflection seen from ball i (gamma measured from the
@@ -74,7 +81,7 @@ def tangential_force(system, speed, alpha):
     m = system.balancer.masses
     return m * (W * W)[..., None] * np.imag(w[..., None] * np.exp(-1j * a))
 
-def immobile_mask(system, speed, alpha):
+def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
     """True where every ball at rest stays stuck: |F_t| <= mu_s N with N = m R Omega^2 (004 eq 1
     against Coulomb friction mu F_n, 004 sec. 3.1; normal force of a ball at rest on the race).
 
@@ -111,7 +118,7 @@ IMMOBILITY_BYTES = 64
 IMMOBILITY_COST_S = 0.15e-6
 
 
-def check_immobility(n_conf, n_balls: int, n_speeds: int = 1, n_sets: int = 1,
+def check_immobility(n_conf: int, n_balls: int, n_speeds: int = 1, n_sets: int = 1,
                      field: str = "n_conf") -> None:
     """Refuse (ResourceError naming ``field``) an immobility grid of ``n_conf`` ** ``n_balls``
     configurations [-] whose memory or run time over ``n_speeds`` x ``n_sets`` evaluations
@@ -146,7 +153,7 @@ def check_immobility(n_conf, n_balls: int, n_speeds: int = 1, n_sets: int = 1,
     check_runtime(field, n_conf, k * n_balls * n_speeds * n_sets * IMMOBILITY_COST_S,
                   f"immobility grid ({k:.3g} configurations x {n_speeds * n_sets} speeds)")
 
-def immobility(system, speeds, n_conf: int = 100):
+def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100):
     """004 sec. 4.4 immobility: share [-] of ball configurations (n_conf equispaced positions per
     ball, full product = uniform on the torus) in which no ball can move, at each speed [rad/s].
 
@@ -178,7 +185,7 @@ def immobility(system, speeds, n_conf: int = 100):
         out[j] = immobile_mask(system, float(w), alpha).mean()
     return out
 
-def stick_threshold_grade(system, speed, nominal_speed):
+def stick_threshold_grade(system: System, speed: npt.ArrayLike, nominal_speed: float):
     """Residual grade G* [mm/s] below which every ball configuration at rest is immobile.
 
     From :func:`immobile_mask` (004 eq 1 against mu_s m R Omega^2): ball i sticks iff

@@ -10,9 +10,14 @@ Check (004 Table 1 footnote): e = 19.3 um at 167 Hz gives G = 0.0193 * 2 pi 167 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..models._validate import array as _array
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["GRADES", "grade", "grade_class", "grade_value", "permissible_eccentricity", "unbalance_for_grade",
            "unbalance_value"]
@@ -29,7 +34,8 @@ def _out(a):
     return float(a) if np.ndim(a) == 0 else a
 
 
-def grade_value(residual_unbalance, mass, nominal_speed):
+def grade_value(residual_unbalance: float | npt.ArrayLike, mass: float | npt.ArrayLike,
+                nominal_speed: float | npt.ArrayLike):
     """G = 1000 (U / m) Omega [mm/s], unchecked (NaN in, NaN out): the one home of the formula.
 
     Parameters
@@ -49,7 +55,8 @@ def grade_value(residual_unbalance, mass, nominal_speed):
     return np.asarray(residual_unbalance) / mass * _M_TO_MM * nominal_speed
 
 
-def unbalance_value(G, mass, nominal_speed):
+def unbalance_value(G: float | npt.ArrayLike, mass: float | npt.ArrayLike,
+                    nominal_speed: float | npt.ArrayLike):
     """U = m G / (1000 Omega) [kg*m], unchecked: the inverse of :func:`grade_value`.
 
     Parameters
@@ -69,7 +76,8 @@ def unbalance_value(G, mass, nominal_speed):
     return np.asarray(G, float) * mass / (_M_TO_MM * nominal_speed)
 
 
-def grade(residual_unbalance, mass, nominal_speed):
+def grade(residual_unbalance: float | npt.ArrayLike, mass: float | npt.ArrayLike,
+          nominal_speed: float | npt.ArrayLike):
     """Balance quality grade G = e_per[mm] * Omega[rad/s] (004 section 4, ISO 1940-1).
 
     Parameters
@@ -97,7 +105,8 @@ def grade(residual_unbalance, mass, nominal_speed):
     return _out(grade_value(u, m, w))
 
 
-def unbalance_for_grade(G, mass, nominal_speed):
+def unbalance_for_grade(G: float | npt.ArrayLike, mass: float | npt.ArrayLike,
+                        nominal_speed: float | npt.ArrayLike):
     """Static unbalance U [kg*m] that corresponds to grade G (inverse of :func:`grade`).
 
     Parameters
@@ -120,7 +129,7 @@ def unbalance_for_grade(G, mass, nominal_speed):
     return _out(unbalance_value(g, m, w))
 
 
-def permissible_eccentricity(G, nominal_speed):
+def permissible_eccentricity(G: float | npt.ArrayLike, nominal_speed: float | npt.ArrayLike):
     """Permissible mass-centre eccentricity e_per = G / Omega [m] for grade G [mm/s].
 
     Parameters
@@ -135,7 +144,7 @@ def permissible_eccentricity(G, nominal_speed):
     return _out(g / (_M_TO_MM * w))
 
 
-def grade_class(G):
+def grade_class(G: float | npt.ArrayLike):
     """Smallest standard grade of :data:`GRADES` that G [mm/s] satisfies (G <= class).
 
     Parameters

@@ -26,11 +26,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models import ParameterError
 from ..models._validate import array as _array
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["displacement_from_acceleration", "steady_orbit_start", "dynamic_stiffness", "synchronous_orbit", 
     "BallInfluence", "HarmonicResponse", "axis_response", "ball_influence", "damped_peak_speeds",
@@ -48,7 +56,8 @@ def _out(a: np.ndarray):
 
 
 # -- one axis ----------------------------------------------------------------------------------
-def dynamic_stiffness(mass, k, c, speed):
+def dynamic_stiffness(mass: float | npt.ArrayLike, k: float | npt.ArrayLike,
+                      c: float | npt.ArrayLike, speed: float | npt.ArrayLike):
     """Complex dynamic stiffness k - M w^2 + i c w [N/m] of one suspension axis (Jeffcott rotor,
     000 eq 6-7, 004 eq 8-9): the one home of the denominator of every synchronous response.
 
@@ -71,7 +80,8 @@ def dynamic_stiffness(mass, k, c, speed):
     return k - mass * speed * speed + 1j * c * speed
 
 
-def synchronous_orbit(system, speed, unbalance):
+def synchronous_orbit(system: System, speed: float | npt.ArrayLike,
+                      unbalance: complex | npt.ArrayLike):
     """Complex amplitudes (X, Y) [m] of the steady synchronous orbit x = Re(X e^{i w t}),
     y = Re(Y e^{i w t}) of the rotor under the rotating unbalance W (000 eq 6-7 with the balls
     fixed; each axis a 1-DOF oscillator): X = w^2 W / D_x, Y = -i w^2 W / D_y with
@@ -114,7 +124,7 @@ def _transfer(mass, k, c, speed):
     return gain, phase
 
 
-def axis_response(mass, k, c, unbalance, speed):
+def axis_response(mass: float, k: float, c: float, unbalance: float, speed: float | npt.ArrayLike):
     """Steady response of one suspension axis to the rotating unbalance force U w^2.
 
     Implements 000 eq (2) (or (3)) with the balls fixed and its solution in the form of
@@ -190,7 +200,8 @@ class HarmonicResponse:
         return {k: getattr(self, k) for k in ("speed", "unbalance", "a_x", "a_y", "phi_x", "phi_y")}
 
 
-def harmonic_response(system, speed, unbalance=None) -> HarmonicResponse:
+def harmonic_response(system: System, speed: float | npt.ArrayLike,
+                      unbalance: float | None = None) -> HarmonicResponse:
     """Steady response of the drum to its static unbalance with the balls fixed.
 
     000 eq (2)-(3) without the ball terms, solved in the form of 000 eq (6)-(7) (a_ox, a_oy,
@@ -219,7 +230,7 @@ def harmonic_response(system, speed, unbalance=None) -> HarmonicResponse:
     return HarmonicResponse(_out(w), float(u), _out(u * gx), _out(u * gy), _out(px), _out(py))
 
 
-def natural_frequencies(system) -> tuple[float, float]:
+def natural_frequencies(system: System) -> tuple[float, float]:
     """Undamped natural frequencies w_x = sqrt(k_x/M_t), w_y = sqrt(k_y/M_t) [rad/s].
 
     Parameters
@@ -235,7 +246,7 @@ def natural_frequencies(system) -> tuple[float, float]:
     return system.natural_frequencies          # the one home: models/system.py
 
 
-def damping_ratios(system) -> tuple[float, float]:
+def damping_ratios(system: System) -> tuple[float, float]:
     """Damping ratios zeta = c / (2 sqrt(k M_t)) per axis [-].
 
     Parameters
@@ -247,7 +258,7 @@ def damping_ratios(system) -> tuple[float, float]:
     return s.cx / (2.0 * math.sqrt(s.kx * mt)), s.cy / (2.0 * math.sqrt(s.ky * mt))
 
 
-def damped_peak_speeds(system) -> tuple[float, float]:
+def damped_peak_speeds(system: System) -> tuple[float, float]:
     """Spin speeds of maximum unbalance response amplitude per axis [rad/s].
 
     For the rotating-unbalance force U w^2 the amplitude a(w) above peaks at
@@ -276,7 +287,7 @@ def _floats(a) -> list:
     return [float(v) if math.isfinite(v) else None for v in np.atleast_1d(a).tolist()]
 
 
-def response_table(system, speeds) -> dict:
+def response_table(system: System, speeds: npt.ArrayLike) -> dict:
     """Unbalance response over a speed grid as a JSON-serialisable dict (CLI ``response``).
 
     Parameters
@@ -342,7 +353,7 @@ class BallInfluence:
         return getattr(self, key)
 
 
-def ball_influence(system, speed) -> BallInfluence:
+def ball_influence(system: System, speed: float | npt.ArrayLike) -> BallInfluence:
     """Amplitudes a_ix, a_iy that ball i (static moment m_i R) adds to the drum motion.
 
     000 eq (6)-(7): a ball at angle alpha_i acts as an unbalance m_i R rotated by alpha_i, so it
@@ -370,7 +381,8 @@ def ball_influence(system, speed) -> BallInfluence:
     return BallInfluence(_out(w), _out(gx), _out(gy), ax, ay, _out(px), _out(py))
 
 
-def steady_displacement(system, speed, t, ball_angles=()):
+def steady_displacement(system: System, speed: float, t: npt.ArrayLike,
+                        ball_angles: Sequence[float] = ()):
     """Quasi-steady drum displacement of 000 eq (6)-(7) for fixed ball angles.
 
     x = a_ox cos(w t - phi_x) + sum_i a_ix cos(w t + alpha_i - phi_x),
@@ -410,7 +422,8 @@ def steady_displacement(system, speed, t, ball_angles=()):
     return x, y
 
 
-def steady_orbit_start(system, w: float, alpha) -> tuple[float, float, float, float]:
+def steady_orbit_start(system: System, w: float,
+                       alpha: npt.ArrayLike) -> tuple[float, float, float, float]:
     """x, y [m] and vx, vy [m/s] at psi = 0 on the steady orbit of the rotor spinning at w
     [rad/s] with the balls fixed at alpha [rad] (000 eq 6-7; each axis a 1-DOF oscillator)::
 
@@ -445,7 +458,7 @@ def steady_orbit_start(system, w: float, alpha) -> tuple[float, float, float, fl
     return fx.real, fy.real, (1j * w * fx).real, (1j * w * fy).real
 
 
-def displacement_from_acceleration(acceleration, n_rpm):
+def displacement_from_acceleration(acceleration: float | np.ndarray, n_rpm: float | np.ndarray):
     """Harmonic displacement amplitude A = a / w^2 [m] (000 p. 3, below Fig. 3: A = a_x / (pi n /
     30)^2).
 

@@ -11,7 +11,7 @@ from ..models import MotorDrive, ParameterError
 __all__ = ["runup_fraction_closed_form", "runup_time_closed_form"]
 
 
-def runup_time_closed_form(law: str, fraction, tau):
+def runup_time_closed_form(law: str, fraction: float | np.ndarray, tau: float):
     """Time [s] for the unloaded drum to reach ``fraction`` of w_f under a 000 Table 1 torque law.
 
     000 eq (15) without the unbalance and ball terms, B_z w' = T(w), tau = B_z w_f / T0 [s]:
@@ -41,7 +41,7 @@ def runup_time_closed_form(law: str, fraction, tau):
 
 
 
-def runup_fraction_closed_form(law: str, time, tau):
+def runup_fraction_closed_form(law: str, time: float | np.ndarray, tau: float):
     """Fraction of w_f [-] that the unloaded drum reaches at ``time``: the inverse of
     :func:`runup_time_closed_form` (000 eq 15, Table 1 laws).
 

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +34,9 @@ from .error_bounds import (eccentricity_equilibrium, rolling_deadband, suspensio
 from .iso1940 import grade_value, unbalance_value
 from .worst_case import ASSUMPTIONS, residual_bound
 from .vibratory import gain_phase
+
+if TYPE_CHECKING:
+    from ..models import System
 
 __all__ = ["DEFAULT_SPLIT", "TOLERANCE_CAUSES", "design_tolerances", "predict_residual",
            "tolerances_000", "tolerances_for_grade", "worst_case_prediction"]
@@ -58,9 +62,10 @@ def _split(split) -> dict:
     return out
 
 
-def design_tolerances(unbalance, mass, race_radius, speed, residual_fraction=0.1,
-                      split=None, friction_angle=math.radians(61.0), rolling_credit=2.0,
-                      friction_credit=0.5) -> dict:
+def design_tolerances(unbalance: float, mass: float, race_radius: float, speed: float,
+                      residual_fraction: float = 0.1, split: dict[str, float] | None = None,
+                      friction_angle: float = math.radians(61.0), rolling_credit: float = 2.0,
+                      friction_credit: float = 0.5) -> dict:
     """Maximum eccentricity, rolling resistance and suspension friction for a required balance.
 
     000 eq (56)-(66) for balls with m R = Me, w >> w_x, w_y, e = Me/M:
@@ -124,8 +129,9 @@ def design_tolerances(unbalance, mass, race_radius, speed, residual_fraction=0.1
             "eccentricity_m": e}
 
 
-def predict_residual(system, speed, f_r=None, friction_force=None, friction_angle=None,
-                     rolling_credit=2.0) -> dict:
+def predict_residual(system: System, speed: float, f_r: float | None = None,
+                     friction_force: float | None = None, friction_angle: float | None = None,
+                     rolling_credit: float = 2.0) -> dict:
     """Residual unbalance and efficiency RMe predicted from the tolerances (reverse of eq 56-66).
 
     Causes (each evaluated alone, then summed as 000 eq 57):
@@ -235,8 +241,9 @@ def _check_grade(grade) -> float:
     return G
 
 
-def tolerances_for_grade(system, speed, grade: float = 16.0, *, nominal_speed: float | None = None,
-                         split: dict | None = None, eccentricity_angle=None) -> dict:
+def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
+                         nominal_speed: float | None = None, split: dict | None = None,
+                         eccentricity_angle: float | None = None) -> dict:
     """Largest race eccentricity, rolling resistance and suspension friction of a machine that
     keep its worst-case residual unbalance within a target ISO 1940 grade (000 eq 56-66 for any
     balancer).
@@ -343,8 +350,8 @@ def tolerances_for_grade(system, speed, grade: float = 16.0, *, nominal_speed: f
             "design_meets_target": bool(both["separated"] and both["worst_residual_kg_m"] <= u_g)}
 
 
-def tolerances_000(system, speed, residual_fraction: float, *, nominal_speed: float | None = None,
-                   split: dict | None = None) -> dict:
+def tolerances_000(system: System, speed: float, residual_fraction: float, *,
+                   nominal_speed: float | None = None, split: dict | None = None) -> dict:
     """000's own tolerance design (:func:`design_tolerances`, eq 56-66 with one ball of
     m R = Me, e = Me/M and w >> w_x, w_y) for a machine, in the keys of
     :func:`tolerances_for_grade`, with the true bound of the machine built with all three
@@ -395,9 +402,9 @@ def tolerances_000(system, speed, residual_fraction: float, *, nominal_speed: fl
             "paper_000": d}
 
 
-def worst_case_prediction(system, speed, *, nominal_speed: float | None = None,
-                          eccentricity_angle=None, rolling_credit: float = 2.0,
-                          friction_credit: float = 2.0) -> dict:
+def worst_case_prediction(system: System, speed: float, *, nominal_speed: float | None = None,
+                          eccentricity_angle: float | str | None = None,
+                          rolling_credit: float = 2.0, friction_credit: float = 2.0) -> dict:
     """Worst-case and expected residual unbalance of a machine with its own tolerances
     (the reverse of :func:`tolerances_for_grade`; 000 Tables 3-4's RMe for any balancer).
 

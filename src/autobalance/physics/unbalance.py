@@ -11,12 +11,20 @@ The compiled twin inside the kernel (core/hold.py ``ball_unbalance``) is tested 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["residual_unbalance"]
 
 
-def residual_unbalance(system, alpha, unbalance=None):
+def residual_unbalance(system: System, alpha: npt.ArrayLike,
+                       unbalance: float | npt.ArrayLike | None = None):
     """Complex residual unbalance W = U + sum_i m_i (R e^{i alpha_i} + rho e^{i beta}) [kg*m].
 
     Parameters

@@ -31,6 +31,7 @@ pure numpy function of SI floats/arrays; angles in [rad], speeds in [rad/s].
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -39,6 +40,11 @@ from ..models._validate import array as _array
 from ..models._validate import finite as _finite
 from .response import _transfer
 from .unbalance import residual_unbalance
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = [
     "DrumResponse", "SPEED_REGIMES", "drum_response", "force_extreme_ratio", "force_jacobian",
@@ -72,7 +78,7 @@ def _angles(system, ball_angles) -> np.ndarray:
     return a
 
 
-def gain_phase(system, speed):
+def gain_phase(system: System, speed: float | npt.ArrayLike):
     """Axis gains and phase lags of the drum at spin speed w (000 eq 6-7).
 
     Parameters
@@ -149,7 +155,7 @@ class DrumResponse:
         }
 
 
-def drum_response(system, speed, ball_angles) -> DrumResponse:
+def drum_response(system: System, speed: float, ball_angles: npt.ArrayLike) -> DrumResponse:
     """Harmonic response of the drum to the unbalance, each ball and the race eccentricity.
 
     000 eq (6)-(7) (and (37)-(38) with the eccentricity rho, beta of the balancer): every source
@@ -185,7 +191,7 @@ def drum_response(system, speed, ball_angles) -> DrumResponse:
 
 
 # -- vibratory forces --------------------------------------------------------------------------
-def vibratory_components(system, speed, ball_angles) -> dict:
+def vibratory_components(system: System, speed: float, ball_angles: npt.ArrayLike) -> dict:
     """Vibratory force on each ball split by axis and by source (000 eq 9-10, 40-42).
 
     Parameters
@@ -228,7 +234,7 @@ def vibratory_components(system, speed, ball_angles) -> dict:
     return out
 
 
-def vibratory_forces(system, speed, ball_angles) -> np.ndarray:
+def vibratory_forces(system: System, speed: float, ball_angles: npt.ArrayLike) -> np.ndarray:
     """Vibratory forces F_i(alpha_1..alpha_N) on the balls [N] (000 eq 8, 10-11, 39-43).
 
     F_i = -1/2 m_i w^2 Im(e^{i alpha_i} conj(W) H) - m_i rho w^2 sin(alpha_i - beta), with W the
@@ -259,7 +265,7 @@ def vibratory_forces(system, speed, ball_angles) -> np.ndarray:
             - m * b.eccentricity * w * w * np.sin(a - b.eccentricity_angle))
 
 
-def force_jacobian(system, speed, ball_angles) -> np.ndarray:
+def force_jacobian(system: System, speed: float, ball_angles: npt.ArrayLike) -> np.ndarray:
     """Derivatives dF_i/d alpha_j of the vibratory forces [N/rad] (000 eq 12, 52).
 
     From F_i above: dF_i/dalpha_j = -1/2 m_i w^2 [delta_ij Re(e^{i alpha_i} conj(W) H)
@@ -297,7 +303,8 @@ def force_jacobian(system, speed, ball_angles) -> np.ndarray:
     return J
 
 
-def single_ball_force(system, speed, alphas, static_moment=None, damping_scale=1.0) -> dict:
+def single_ball_force(system: System, speed: float, alphas: npt.ArrayLike,
+                      static_moment: float | None = None, damping_scale: float = 1.0) -> dict:
     """Normalised vibratory force on one ball, F/(m R w^2), versus its angle (000 eq 11, Fig. 6-7).
 
     One ball of static moment S = m R (default S = Me, as in 000 Fig. 6) on the drum of
@@ -346,7 +353,7 @@ def single_ball_force(system, speed, alphas, static_moment=None, damping_scale=1
     return {"alpha_rad": alphas, "Fx_norm": fx, "Fy_norm": fy, "F_norm": fx + fy}
 
 
-def force_extreme_ratio(system, speeds, n_alpha: int = 721) -> np.ndarray:
+def force_extreme_ratio(system: System, speeds: npt.ArrayLike, n_alpha: int = 721) -> np.ndarray:
     """Ratio of the negative to the positive extreme of the one-ball vibratory force, 000 Fig. 6.
 
     -min F_1 / max F_1 over the ball angle, F_1 of 000 eq (11) (:func:`single_ball_force`, one
@@ -376,7 +383,7 @@ def force_extreme_ratio(system, speeds, n_alpha: int = 721) -> np.ndarray:
     return out
 
 
-def speed_regime(system, speed) -> str:
+def speed_regime(system: System, speed: float) -> str:
     """Which of the three speed ranges of 000 Fig. 6-7 the speed lies in.
 
     Parameters

@@ -50,6 +50,7 @@ this speed (they last moved at this speed, which is above the balancing onset, 0
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -59,6 +60,11 @@ from ..models._validate import nonneg as _nonneg
 from .response import dynamic_stiffness
 
 from .reachable_set import _Circle, _separating_radius
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["ASSUMPTIONS", "attained_residual", "friction_displacement", "residual_bound",
            "rest_limits", "synchronous_gain"]
@@ -75,7 +81,7 @@ ASSUMPTIONS = (
 )
 
 
-def synchronous_gain(system, speed) -> complex:
+def synchronous_gain(system: System, speed: float) -> complex:
     """h = (w^2/2)(1/D_x + 1/D_y) [m/(kg*m)]: the forward whirl of the rotor per unit rotating
     unbalance (000 eq 6-7; conj(H)/2 of :mod:`.vibratory`).
 
@@ -97,7 +103,8 @@ def synchronous_gain(system, speed) -> complex:
                                   + 1.0 / dynamic_stiffness(mt, s.ky, s.cy, w)))
 
 
-def rest_limits(system, speed, rolling_resistance=None) -> np.ndarray:
+def rest_limits(system: System, speed: float,
+                rolling_resistance: float | npt.ArrayLike | None = None) -> np.ndarray:
     """a_i = mu_i (R + g/w^2) [m]: ball i rests while the tangential part of the race-centre
     whirl z on it is at most a_i (000 eq 20-21 divided by m_i w^2).
 
@@ -125,7 +132,8 @@ def rest_limits(system, speed, rolling_resistance=None) -> np.ndarray:
     return mu * (b.race_radius + system.gravity.g / (w * w))
 
 
-def friction_displacement(system, speed, friction_force=None, friction_angle=None) -> float:
+def friction_displacement(system: System, speed: float, friction_force: float | None = None,
+                          friction_angle: float | None = None) -> float:
     """e_f [m]: the largest shift of the race-centre whirl z by the suspension dry friction.
 
     Two dampers along (cos g, +-sin g), each a force of magnitude <= F (000 eq 48); the first
@@ -173,8 +181,11 @@ def _balanced_exists(c, V: complex, tol: float) -> bool:
     return inner - tol <= abs(V) <= total + tol
 
 
-def residual_bound(system, speed, *, rolling_resistance=None, eccentricity=None,
-                   eccentricity_angle="system", friction_force=None, friction_angle=None,
+def residual_bound(system: System, speed: float, *,
+                   rolling_resistance: float | npt.ArrayLike | None = None,
+                   eccentricity: float | None = None,
+                   eccentricity_angle: float | str | None = "system",
+                   friction_force: float | None = None, friction_angle: float | None = None,
                    n_theta: int = 1024, n_beta: int = 24) -> dict:
     """A true upper bound on the residual unbalance |W| of any rest state of the balls near
     their balanced state (module docstring: the circle test), for N balls, with rolling
@@ -265,9 +276,12 @@ def residual_bound(system, speed, *, rolling_resistance=None, eccentricity=None,
     return out
 
 
-def attained_residual(system, speed, *, rolling_resistance=None, eccentricity=None,
-                      eccentricity_angle="system", friction_force=None, friction_angle=None,
-                      zeta_max=None, n_starts: int = 16, seed: int = 0) -> dict:
+def attained_residual(system: System, speed: float, *,
+                      rolling_resistance: float | npt.ArrayLike | None = None,
+                      eccentricity: float | None = None,
+                      eccentricity_angle: float | str | None = "system",
+                      friction_force: float | None = None, friction_angle: float | None = None,
+                      zeta_max: float | None = None, n_starts: int = 16, seed: int = 0) -> dict:
     """The largest residual unbalance of a rest state found by optimisation (a lower bound on the
     true worst case; :func:`residual_bound` is the upper one).
 

@@ -3,16 +3,21 @@ and draws; no physics here. Top: spin speed against time per case. Bottom: whirl
 the balls (solid) and without (dashed), the balancing threshold dotted."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from .speed_map import _per_unit
 
+if TYPE_CHECKING:
+    import xarray as xr
+
 __all__ = ["plot_runup"]
 
 
-def plot_runup(ds, speed_unit: str = "rad/s", title: str = "") -> Figure:
+def plot_runup(ds: xr.Dataset, speed_unit: str = "rad/s", title: str = "") -> Figure:
     """Speed and whirl amplitude against time, per case (module docstring).
 
     Parameters

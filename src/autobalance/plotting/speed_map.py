@@ -7,12 +7,17 @@ state's stability over suspension-damping factor x speed.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 
 from ..config.units import parse_quantity
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["plot_speed_map"]
 
@@ -22,7 +27,7 @@ def _per_unit(speed_unit: str) -> float:
     return parse_quantity(f"1 {speed_unit}", "speed", field="speed_unit")
 
 
-def plot_speed_map(ds, speed_unit: str = "rad/s") -> Figure:
+def plot_speed_map(ds: xr.Dataset, speed_unit: str = "rad/s") -> Figure:
     """The speed map's two panels (module docstring).
 
     Parameters

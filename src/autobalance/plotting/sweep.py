@@ -7,12 +7,17 @@
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+if TYPE_CHECKING:
+    import xarray as xr
 
-def plot_sweep(ds, grade: float = 16.0) -> Figure:
+
+def plot_sweep(ds: xr.Dataset, grade: float = 16.0) -> Figure:
     """Figure summarising a sweep; ``grade`` [mm/s] is drawn as the acceptance limit."""
     ok = (ds["status"] == 0).values
     G = ds["grade_G"]

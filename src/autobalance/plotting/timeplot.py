@@ -80,8 +80,8 @@ def _note(ax, text: str):
 
 
 # -- simulation figure -------------------------------------------------------------------------
-def plot_simulation(sim, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
-                    max_points: int = MAX_POINTS, figsize=(15.0, 10.0),
+def plot_simulation(sim: object, *, speed_unit: str = "rpm", grade_limit: float = 16.0,
+                    max_points: int = MAX_POINTS, figsize: tuple[float, float] = (15.0, 10.0),
                     speed_factor: float | None = None,
                     grade_label: str | None = None) -> Figure:
     """Time histories, ball positions and COG location of one run (cf. 004 Fig. 4).
@@ -278,7 +278,8 @@ def _draw_cog(ax_cog, grade, ang, idx, n, grade_limit, label):
 
 
 # -- response figure ---------------------------------------------------------------------------
-def plot_response(table: dict, *, log_amplitude: bool = False, figsize=(10.0, 7.0)) -> Figure:
+def plot_response(table: dict, *, log_amplitude: bool = False,
+                  figsize: tuple[float, float] = (10.0, 7.0)) -> Figure:
     """Amplitude and phase lag of the unbalance response versus spin speed, per axis.
 
     Parameters

@@ -14,9 +14,14 @@ study datasets, compute no physics. Each function returns a matplotlib Figure on
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 G_LIMIT = 16.0
 
@@ -29,7 +34,7 @@ def _fig(n, w=5.0, h=4.2, polar=()):
     return fig, axes
 
 
-def plot_single(ds) -> Figure:
+def plot_single(ds: xr.Dataset) -> Figure:
     """004 Fig. 4 from :func:`compute_single`."""
     fig, (a1, a2, a3) = _fig(3, polar=(1, 2))
     t = ds["time"].values
@@ -59,7 +64,7 @@ def plot_single(ds) -> Figure:
     return fig
 
 
-def plot_monte_carlo(ds) -> Figure:
+def plot_monte_carlo(ds: xr.Dataset) -> Figure:
     """004 Fig. 5-6 from :func:`compute_monte_carlo`."""
     fig, (a1, a2) = _fig(2)
     ok = ds["status"].values == 0
@@ -100,7 +105,7 @@ def plot_monte_carlo(ds) -> Figure:
     return fig
 
 
-def plot_unbalance(ds, grade: float = G_LIMIT, title: str | None = None) -> Figure:
+def plot_unbalance(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = None) -> Figure:
     """004 Fig. 7 (and 11-12 per case) from :func:`compute_unbalance`: the 5 and 95 % isolines of
     the first and last read-outs (004: STD and TSR) against G_ini, the operating boundaries and
     the target ``grade`` [mm/s]."""
@@ -127,7 +132,7 @@ def plot_unbalance(ds, grade: float = G_LIMIT, title: str | None = None) -> Figu
     return fig
 
 
-def plot_profile(ds) -> Figure:
+def plot_profile(ds: xr.Dataset) -> Figure:
     """004 Fig. 9 from :func:`compute_profile`."""
     fig, (ax,) = _fig(1, w=6.0)
     G = ds["G_ini"].values
@@ -144,7 +149,7 @@ def plot_profile(ds) -> Figure:
     return fig
 
 
-def plot_immobility(ds, title: str | None = None, stick: bool = False,
+def plot_immobility(ds: xr.Dataset, title: str | None = None, stick: bool = False,
                     speed_unit: str = "Hz") -> Figure:
     """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1 (or the
     first c_r), the profile's speeds dashed, the natural frequency dotted and, with ``stick``,
@@ -178,7 +183,7 @@ def plot_immobility(ds, title: str | None = None, stick: bool = False,
     return fig
 
 
-def plot_plateau(ds, grade: float = G_LIMIT, title: str | None = None) -> Figure:
+def plot_plateau(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = None) -> Figure:
     """004 Fig. 14-16 from :func:`compute_plateau`: upper row the map (Fig. 14-15), lower row
     the 95 % residual grade against the plateau for each G_ini (Fig. 16 is such a slice), the
     target ``grade`` [mm/s] dotted."""
@@ -209,7 +214,7 @@ def plot_plateau(ds, grade: float = G_LIMIT, title: str | None = None) -> Figure
     return fig
 
 
-def plot_descent(ds) -> Figure:
+def plot_descent(ds: xr.Dataset) -> Figure:
     """004 Fig. 13 from :func:`compute_descent`: percentiles of the residual grade against the
     speed ratio along the descent (read right to left), the stick threshold G*(Omega), the
     standard plateau and the balancer's operating boundary G_ini + G_balls."""
@@ -239,7 +244,7 @@ def plot_descent(ds) -> Figure:
     return fig
 
 
-def plot_speed_profile(ds) -> Figure:
+def plot_speed_profile(ds: xr.Dataset) -> Figure:
     """004 Fig. 3 from :func:`autobalance.papers.p004.tsr.compute_table1`: speed [Hz] against
     time [s] with the STD and TSR read-outs."""
     fig, (ax,) = _fig(1, w=7.0, h=3.6)
@@ -256,7 +261,7 @@ def plot_speed_profile(ds) -> Figure:
     return fig
 
 
-def plot_start_positions(ds, title: str | None = None) -> Figure:
+def plot_start_positions(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The start-position study of any machine
     (:func:`autobalance.studies.start_positions.compute_start_positions`, no grid): the density
     of the grade at each read-out with its share at or below the target, and each run's last
@@ -293,7 +298,7 @@ def plot_start_positions(ds, title: str | None = None) -> Figure:
     return fig
 
 
-def plot_design(ds, title: str | None = None) -> Figure:
+def plot_design(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The design search (:func:`autobalance.studies.design.compute_design`): each design's worst
     quantile of the final grade against its total ball mass, by profile, the Pareto front
     joined and the target grade dotted; and each design's quantile against the initial grade."""

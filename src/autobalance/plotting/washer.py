@@ -10,10 +10,16 @@ compute their data in :mod:`autobalance.papers.p000` and call the ``*_figure`` f
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Mapping, Sequence
+
+    from numpy.typing import ArrayLike
 
 __all__ = ["ball_forces_figure", "residual_bound_figure", "eccentricity_deviation_figure", "force_extreme_ratio_figure", "plot_ks_comparison", "plot_measured_vibration", "plot_published_vs_computed", "plot_runups", "plot_time_histories", "rolling_deviation_figure", "speed_title", "vibratory_force_damping_figure", "vibratory_force_figure"]
 
@@ -40,7 +46,8 @@ def _angle_panel(ax, title: str, xlabel: str) -> None:
     ax.set_xticks(range(0, 361, 90))
 
 
-def vibratory_force_figure(alpha, forces, titles) -> Figure:
+def vibratory_force_figure(alpha: ArrayLike, forces: Sequence[Mapping[str, Any]],
+                           titles: Sequence[str]) -> Figure:
     """000 Fig. 6: F_x, F_y and F = F_x + F_y over m R w^2 versus the ball angle, one panel per
     speed.
 
@@ -68,7 +75,8 @@ def vibratory_force_figure(alpha, forces, titles) -> Figure:
     return fig
 
 
-def ball_forces_figure(alpha, panels, titles, name: str = "") -> Figure:
+def ball_forces_figure(alpha: ArrayLike, panels: Sequence[Sequence[Mapping[str, Any]]],
+                       titles: Sequence[str], name: str = "") -> Figure:
     """Vibratory force on each ball of a balancer versus its own angle, the other balls held at
     theirs, over m_i R w^2, with each ball's rest band +-f/r (000 eq 8, 20-21), one panel per
     speed.
@@ -103,7 +111,10 @@ def ball_forces_figure(alpha, panels, titles, name: str = "") -> Figure:
     return fig
 
 
-def residual_bound_figure(speeds, curves, natural_frequencies, levels=None, title="") -> Figure:
+def residual_bound_figure(speeds: ArrayLike, curves: Mapping[str, ArrayLike],
+                          natural_frequencies: tuple[float, float],
+                          levels: Mapping[str, float] | None = None,
+                          title: str = "") -> Figure:
     """Worst-case residual unbalance of balls at rest versus spin speed, by cause, with
     horizontal reference levels (e.g. the rotor's unbalance and the balls' capacity).
 
@@ -138,7 +149,9 @@ def residual_bound_figure(speeds, curves, natural_frequencies, levels=None, titl
     return fig
 
 
-def vibratory_force_damping_figure(alpha, panels, titles) -> Figure:
+def vibratory_force_damping_figure(alpha: ArrayLike,
+                                   panels: Sequence[Sequence[tuple[float, ArrayLike]]],
+                                   titles: Sequence[str]) -> Figure:
     """000 Fig. 7: F/(m R w^2) of one ball for several suspension damping factors, per speed.
 
     Parameters
@@ -165,7 +178,8 @@ def vibratory_force_damping_figure(alpha, panels, titles) -> Figure:
     return fig
 
 
-def rolling_deviation_figure(speeds, deviations, natural_frequencies) -> Figure:
+def rolling_deviation_figure(speeds: ArrayLike, deviations: Mapping[float, ArrayLike],
+                             natural_frequencies: tuple[float, float]) -> Figure:
     """000 Fig. 12: largest position error of one ball (eq 24) versus spin speed.
 
     Parameters
@@ -192,7 +206,9 @@ def rolling_deviation_figure(speeds, deviations, natural_frequencies) -> Figure:
     return fig
 
 
-def eccentricity_deviation_figure(betas, eq45, exact=None) -> Figure:
+def eccentricity_deviation_figure(
+        betas: ArrayLike, eq45: Mapping[float, ArrayLike],
+        exact: Mapping[float, tuple[ArrayLike, ArrayLike]] | None = None) -> Figure:
     """000 Fig. 15: deviation of one ball from alpha = pi versus beta (eq 45) for several rho,
     optionally with the exact kinetic-static root of eq 44 (dots).
 
@@ -225,7 +241,9 @@ def eccentricity_deviation_figure(betas, eq45, exact=None) -> Figure:
     return fig
 
 
-def force_extreme_ratio_figure(speeds, ratio, natural_frequencies, published=None) -> Figure:
+def force_extreme_ratio_figure(speeds: ArrayLike, ratio: ArrayLike,
+                               natural_frequencies: tuple[float, float],
+                               published: float | None = None) -> Figure:
     """000 Fig. 6: -min F / max F of the one-ball vibratory force versus the spin speed, the
     range between the natural frequencies shaded and the published ratio as a dashed line.
 
@@ -261,7 +279,7 @@ def force_extreme_ratio_figure(speeds, ratio, natural_frequencies, published=Non
 # -- autobalance.cli.washer_figures and drawn by the *_figure functions above)
 
 
-def speed_title(speed, regime) -> str:
+def speed_title(speed: float, regime: str) -> str:
     """Panel title of a speed: "w = ... rad/s (regime)".
 
     Parameters
@@ -300,7 +318,7 @@ def _ideal_lines(ax, alpha_deg, ideal_deg):
         ax.axhline(ideal + 360.0 * round((a_end - ideal) / 360.0), color="0.5", ls="--", lw=0.8)
 
 
-def plot_time_histories(runs, title) -> Figure:
+def plot_time_histories(runs: Sequence[Mapping[str, Any]], title: str) -> Figure:
     """Constant-speed runs in the style of 000 Fig. 5, 13, 16, 18, 19: drum displacement x, y [mm]
     and ball angles alpha [deg] versus w t [rad], one column per run.
 
@@ -329,7 +347,8 @@ def plot_time_histories(runs, title) -> Figure:
     return fig
 
 
-def plot_runups(panels, title, envelope=False) -> Figure:
+def plot_runups(panels: Sequence[tuple[str, Sequence[Mapping[str, Any]]]], title: str,
+                envelope: bool = False) -> Figure:
     """Run-ups in the style of 000 Fig. 10-11 (and the runs of Tables 1-2): spin speed n [rpm],
     drum x and y [mm] (or, with ``envelope``, the whirl amplitude |x + i y| [mm]) and the ball
     angles relative to the drum [rev] versus t [s], one column per panel and one line style per run.
@@ -363,7 +382,8 @@ def plot_runups(panels, title, envelope=False) -> Figure:
     return fig
 
 
-def plot_published_vs_computed(panels, title, ncols=None) -> Figure:
+def plot_published_vs_computed(panels: Sequence[Mapping[str, Any]], title: str,
+                               ncols: int | None = None) -> Figure:
     """Published numbers (black circles) against ours (red crosses), with each row's acceptance
     interval as a grey bar; one axes per panel (000 Tables 1-4).
 
@@ -394,7 +414,8 @@ def plot_published_vs_computed(panels, title, ncols=None) -> Figure:
     return fig
 
 
-def plot_measured_vibration(points, speeds_rpm, model_amplitude_m, model_label) -> Figure:
+def plot_measured_vibration(points: Iterable[tuple[float, float, str]], speeds_rpm: ArrayLike,
+                            model_amplitude_m: ArrayLike, model_label: str) -> Figure:
     """000 Fig. 3: tub vibration amplitudes converted from the measured accelerations (points)
     and a model curve, amplitude [mm] versus the spin speed n [rpm].
 

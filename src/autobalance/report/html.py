@@ -58,7 +58,7 @@ SCRIPT = """
 """
 
 
-def fmt_value(v) -> str:
+def fmt_value(v: object) -> str:
     """A published/computed/tolerance value as text."""
     if v is None:
         return "-"

@@ -7,6 +7,7 @@ of its seed(s). :func:`coverage` checks that each item is covered by exactly one
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable, Sequence
 
 from ..config import ConfigError
 from ..validation.target import Target
@@ -58,7 +59,7 @@ def seed_items() -> dict:
     return {p: tuple(v) for p, v in items.items()}
 
 
-def coverage(targets=None) -> dict:
+def coverage(targets: Sequence[Target] | None = None) -> dict:
     """Paper -> {"missing": items no target covers, "twice": items covered more than once}."""
     targets = all_targets() if targets is None else targets
     out = {}
@@ -73,7 +74,7 @@ def coverage(targets=None) -> dict:
 _ID = re.compile(r"^[a-z0-9][a-z0-9.-]*$")
 
 
-def select(names) -> list:
+def select(names: Iterable[str] | None) -> list:
     """Targets named by ``names``: ``all``, a paper (``000``, ``001``, ``003``, ``004``), a group
     (``liquid`` = 001 + 003, ``balls`` = 000 + 004) or target ids; order of the report, no
     duplicates. Unknown names raise ConfigError (one line, with what is allowed)."""
@@ -96,7 +97,7 @@ def select(names) -> list:
     return [t for t in targets if t.id in chosen]
 
 
-def check_ids(targets) -> None:
+def check_ids(targets: Iterable[Target]) -> None:
     """Target ids and aliases are unique and well formed (lower case, digits, '-', '.') and none
     is a paper or group name."""
     seen = set(PAPERS) | set(GROUPS)

@@ -11,11 +11,12 @@ from __future__ import annotations
 import json
 import time
 import traceback
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Callable, Optional
 
 from ..jsonable import netcdf_safe
-from ..validation.target import Context, claims, status
+from ..validation.target import Context, Target, claims, status
 from .summary import counts as _counts  # noqa: F401  (re-exported for the CLI)
 from .summary import summarize, summary_lines
 
@@ -84,7 +85,8 @@ def _run_one(target, ctx: Context) -> dict:
     return rec
 
 
-def run_targets(targets, ctx: Context, progress: Optional[Callable[[int, int, dict], None]] = None) -> dict:
+def run_targets(targets: Sequence[Target], ctx: Context,
+                progress: Optional[Callable[[int, int, dict], None]] = None) -> dict:
     """Run ``targets`` in order and return the report dict (nothing written)."""
     from .. import __version__
 

@@ -2,12 +2,14 @@
 markdown table and the CLI)."""
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from .registry import PAPERS
 
 __all__ = ["counts", "summarize", "summary_lines"]
 
 
-def counts(recs) -> dict:
+def counts(recs: Sequence[dict]) -> dict:
     """Counts of targets, published claims, pass, miss, not computed, unreported and errors of
     target records (the runner's dicts)."""
     c = {"targets": len(recs), "published": 0, "pass": 0, "miss": 0, "not computed": 0,
@@ -22,7 +24,7 @@ def counts(recs) -> dict:
     return c
 
 
-def summarize(recs) -> dict:
+def summarize(recs: Sequence[dict]) -> dict:
     """Counts per paper and in total: published claims, pass, miss, not computed, unreported."""
     papers = {p: counts([r for r in recs if r["paper"] == p]) for p in PAPERS
               if any(r["paper"] == p for r in recs)}

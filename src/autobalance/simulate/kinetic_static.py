@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numba as nb
 import numpy as np
@@ -32,6 +33,11 @@ from ..models import ParameterError
 from ..models._validate import finite as _finite
 from ..physics.unbalance import residual_unbalance
 from ..physics.vibratory import _angles, _speed, gain_phase
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["KineticStaticResult", "compare_with_full", "simulate_kinetic_static"]
 
@@ -163,7 +169,9 @@ class KineticStaticResult:
     residual_unbalance: np.ndarray
 
 
-def simulate_kinetic_static(system, speed, ball_angles, duration, f_r=None, drum_state=None,
+def simulate_kinetic_static(system: System, speed: float, ball_angles: npt.ArrayLike,
+                            duration: float, f_r: float | None = None,
+                            drum_state: npt.ArrayLike | None = None,
                             steps_per_rev: int = 200, save_every: int = 10) -> KineticStaticResult:
     """Integrate the kinetic-static model (000 eq 13 with the drum by eq 2-3, 34-35).
 
@@ -236,7 +244,8 @@ def simulate_kinetic_static(system, speed, ball_angles, duration, f_r=None, drum
     return KineticStaticResult(t, out[:, 0], out[:, 1], al, out[:, 4 + n:], np.abs(W))
 
 
-def compare_with_full(system, speed, ball_angles, duration=6.0, steps_per_rev: int = 200) -> dict:
+def compare_with_full(system: System, speed: float, ball_angles: npt.ArrayLike,
+                      duration: float = 6.0, steps_per_rev: int = 200) -> dict:
     """Differences between the full model and the kinetic-static model (000 Fig. 9).
 
     Both start from the same state (balls at rest at ``ball_angles``, drum on its harmonic orbit)

@@ -218,7 +218,7 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
     return y, order
 
 
-def atol_vector(system: System, spin, options: SimOptions) -> np.ndarray:
+def atol_vector(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> np.ndarray:
     """Absolute tolerances: atol_scale times a length, an angle and their rates.
 
     The length scale is the larger of the rotor's and the balls' eccentricity

@@ -2,12 +2,20 @@
 the kernel (e.g. 004's immobility in :mod:`autobalance.physics.immobility`)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["kernel_required_friction", "rotor_frame_derivative"]
 
 
-def kernel_required_friction(system, speed, alpha):
+def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
+                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Friction torque [N m] each stuck ball needs and its static limit mu_s N R [N m], from the
     compiled kernel (core/rhs.py, exact stick-slip branch) with both balls stuck, the rotor on its
     steady orbit (physics/response.steady_orbit_start) at constant speed. Also returns the rotor-frame
@@ -62,7 +70,7 @@ def kernel_required_friction(system, speed, alpha):
     return lam[:N][inv], lam[N:2 * N][inv], dy[nq:nq + 2]
 
 
-def rotor_frame_derivative(system, speed, states) -> np.ndarray:
+def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike) -> np.ndarray:
     """Time derivative of rotor-frame states at constant spin speed, from the compiled kernel
     (core/rhs.py, every ball free to roll): the right-hand side whose Jacobian is the linearised
     full model about a steady state (autobalance.studies.equilibria).

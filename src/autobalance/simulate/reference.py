@@ -6,6 +6,8 @@ Python with the friction law forced to 004's tanh law (F = mu N R tanh(alpha_dot
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from scipy.integrate import solve_ivp
 
@@ -13,6 +15,9 @@ from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..core.layout import P_FLAW, P_VSAT, n_q
 from .pack import initial_vector, pack_params, spin_arrays
 from ..core.rhs import profile_segment, rhs
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 
 def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-6,
@@ -67,7 +72,8 @@ def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-
 def solve_reference(system: System, spin: SpeedProfile | MotorDrive, t_end: float, *,
                     initial: InitialState | None = None, v_sat: float = 1e-6,
                     method: str = "Radau", rtol: float = 1e-6, atol: float = 1e-9,
-                    t_eval=None, normal_force: str = "ball", equations: str = "kernel"):
+                    t_eval: npt.ArrayLike | None = None, normal_force: str = "ball",
+                    equations: str = "kernel"):
     """solve_ivp on the tanh-law equations from t = 0 to t_end [s].
 
     ``equations="kernel"`` uses the compiled right-hand side of `rhs.py`; ``"paper"`` the NumPy

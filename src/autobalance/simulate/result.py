@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -10,9 +11,14 @@ from .. import __version__
 from ..core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
                           S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus, alpha_dot_slice,
                           alpha_slice, psi_index, speed_index)
-from ..models import MotorDrive
+from ..models import MotorDrive, System
 from ..physics.iso1940 import grade_class, grade_value
 from ..physics.unbalance import residual_unbalance
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    import numpy.typing as npt
 
 
 
@@ -20,7 +26,7 @@ class SimulationError(RuntimeError):
     """A numerical failure of a run (raised only when throw=True)."""
 
 
-def residual_unbalance_history(system, alpha, t):
+def residual_unbalance_history(system: System, alpha: np.ndarray, t: np.ndarray) -> np.ndarray:
     """Complex residual unbalance [kg*m] at the times ``t`` [s] of a run: the rotor's U(t)
     (``Rotor.unbalance_table``) with :func:`autobalance.physics.unbalance.residual_unbalance`.
 
@@ -43,7 +49,7 @@ def residual_unbalance_history(system, alpha, t):
     return residual_unbalance(system, alpha, U)
 
 
-def wrap_degrees(angles):
+def wrap_degrees(angles: float | npt.ArrayLike) -> np.ndarray:
     """Angles [deg] wrapped to (-180, 180] (the unwrapped history stays in ``alpha``).
 
     Parameters
@@ -204,7 +210,7 @@ class Simulation:
             out["time_to_final_speed_s"] = float(st[S_THOLD]) if st[S_THOLD] >= 0 else None
         return out
 
-    def to_netcdf(self, path) -> None:
+    def to_netcdf(self, path: str | Path) -> None:
         """Write :meth:`to_xarray` to a NetCDF-4 file with zlib-compressed variables.
 
         Parameters

@@ -5,6 +5,8 @@ Both refuse, before allocating or integrating, a run that cannot fit the limits 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..core.batch import integrate_batch
@@ -14,6 +16,9 @@ from .pack import atol_vector, initial_vector, pack_params, spin_arrays
 from ..limits import check_memory, check_run
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 
 def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
@@ -95,7 +100,7 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
 
 def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
                    initials: list[InitialState] | None = None, *, options: SimOptions | None = None,
-                   out_times=None) -> BatchResult:
+                   out_times: npt.ArrayLike | None = None) -> BatchResult:
     """Run many parameter / initial-condition sets of the same ball count in one compiled call.
 
     All runs share the spin profile; everything else (parameters, unbalance schedule, initial

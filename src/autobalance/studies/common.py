@@ -10,15 +10,21 @@ from __future__ import annotations
 
 import math
 import tempfile
+from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..config import Config
+    from ..models import MotorDrive, SpeedProfile
 
 __all__ = ["case_sets", "checkpoint_labels", "default_starts", "load", "run_start_grid",
            "starts_for_runs", "store_path"]
 
 
-def load(base, sets=()):
+def load(base: str | Path | Config, sets: Sequence[str] = ()) -> Config:
     """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied;
     every study here is of a ball balancer, so the machine must have one.
 
@@ -50,7 +56,7 @@ def load(base, sets=()):
     return cfg
 
 
-def case_sets(base, mu_r: float, c_r: float) -> list:
+def case_sets(base: str | Path | Config, mu_r: float, c_r: float) -> list:
     """Overrides scaling the base machine's rolling resistance by ``mu_r`` [-] and its suspension
     damping by ``c_r`` [-] (004 sec. 4.5 varies mu and c around its Table 1 values).
 
@@ -76,7 +82,7 @@ def case_sets(base, mu_r: float, c_r: float) -> list:
             f"suspension.cy={s.suspension.cy * c_r!r}"]
 
 
-def store_path(store_dir, name):
+def store_path(store_dir: str | Path | None, name: str) -> Path | None:
     """``store_dir / name`` (a resumable sweep store) or None (a temporary store).
 
     Parameters
@@ -93,8 +99,11 @@ def store_path(store_dir, name):
     return None if store_dir is None else Path(store_dir) / name
 
 
-def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", workers=None,
-                   scheduler=None, history_dt: float = 0.0, samples: int | None = None,
+def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
+                   grid: dict[str, list], n: int, *, store: str | Path | None = None,
+                   executor: str = "local", workers: int | None = None,
+                   scheduler: str | None = None, history_dt: float = 0.0,
+                   samples: int | None = None,
                    seed: int = 0, progress: bool = False):
     """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2: n x n equispaced start
     positions of two identical balls, n(n+1)/2 runs) of the machine ``base`` with ``sets``
@@ -174,7 +183,7 @@ def run_start_grid(base, name, sets, grid, n, *, store=None, executor="local", w
                  resume=True, progress=progress).load()
 
 
-def checkpoint_labels(spin) -> list:
+def checkpoint_labels(spin: SpeedProfile | MotorDrive) -> list:
     """Names of a profile's read-outs: "STD" and "TSR" for 004's temporary speed reduction
     (Fig. 3), otherwise "t=<time> s".
 

@@ -25,12 +25,20 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models import ParameterError
 from ..physics.iso1940 import grade_value
 from .common import load, run_start_grid, store_path
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    import xarray as xr
+
+    from ..config import Config
 
 __all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary",
            "profile_variants"]
@@ -66,7 +74,7 @@ class DesignSpace:
         return cls(n_balls=(2, 3), capacity_ratios=(1.2, 1.8), profiles=("std", "tsr"))
 
 
-def profile_variants(cfg, plateau_ratio: float = PLATEAU_RATIO,
+def profile_variants(cfg: Config, plateau_ratio: float = PLATEAU_RATIO,
                      natural_frequency: float | None = None) -> dict:
     """The speed profiles a design may use, as ``--set`` overrides of the machine's profile
     (004 sec. 4.4: the standard run-up, a 3x slower run-up; 004 sec. 3.2: a temporary speed
@@ -115,7 +123,8 @@ def profile_variants(cfg, plateau_ratio: float = PLATEAU_RATIO,
     return out
 
 
-def candidate_designs(cfg, space: DesignSpace, U_max: float, variants: dict | None = None) -> list:
+def candidate_designs(cfg: Config, space: DesignSpace, U_max: float,
+                      variants: dict | None = None) -> list:
     """Every candidate of ``space`` for a largest expected unbalance ``U_max`` [kg*m].
 
     Parameters
@@ -187,12 +196,13 @@ def _candidate(cfg, N, m, R, ratio, prof, ball_sets, variants, plateau_ratio) ->
             "ball_sets": list(ball_sets), "sets": sets, "config": cand}
 
 
-def compute_design(base, *, grade: float = 16.0, confidence: float = 0.95,
+def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence: float = 0.95,
                    unbalance_range: tuple | None = None, n_unbalance: int = 4, starts: int = 20,
                    space: DesignSpace | None = None, quick: bool = False, seed: int = 0,
-                   store_dir=None, executor="local", workers=None, scheduler=None,
+                   store_dir: str | Path | None = None, executor: str = "local",
+                   workers: int | None = None, scheduler: str | None = None,
                    progress: bool = False, refine_plateau: bool = True,
-                   tolerances: bool = True):
+                   tolerances: bool = True) -> xr.Dataset:
     """Search ball count, ball mass, race radius and speed profile for designs that meet a target
     grade over a range of initial unbalances (module docstring).
 
@@ -396,7 +406,7 @@ def _design_tolerances(config, grade: float) -> dict:
     return out
 
 
-def design_summary(ds, top: int = 5) -> dict:
+def design_summary(ds: xr.Dataset, top: int = 5) -> dict:
     """JSON-ready summary of a :func:`compute_design` result: the designs in rank order (the
     first ``top`` in full), the Pareto front and the counts.
 

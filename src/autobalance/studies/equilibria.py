@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +34,11 @@ from ..models import ParameterError
 from ..models._validate import finite as _finite
 from ..physics.equilibria import TWO_PI, _wrap
 from ..physics.vibratory import _speed
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import SimOptions, System
 
 __all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "SHOOTING_TOL", "SLOW_ANGLE_TOL", "SLOW_RATIO",
            "STABLE_MARGIN", "floquet_full", "full_stability",
@@ -62,7 +68,7 @@ def _ideal(system):
     return dataclasses.replace(system, balancer=bal, suspension=sus)
 
 
-def steady_rotor_frame(system) -> bool:
+def steady_rotor_frame(system: System) -> bool:
     """Whether the ideal machine has a steady rotor frame at constant speed: isotropic
     suspension, no base motion, no gravity (``simulate.pack.fast_paths``' ``symmetric``) and a
     constant unbalance. Then an equilibrium is a fixed point of the rotor-frame equations.
@@ -162,7 +168,8 @@ def _period_map(system, w, z, options):
     return np.concatenate([[x, y, vx, vy], a, sim.alpha_dot[-1]])
 
 
-def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, family: bool = False) -> dict:
+def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int = 6,
+                 rtol: float = 1e-11, family: bool = False) -> dict:
     """Floquet multipliers of the full model about an equilibrium (linearised full model).
 
     The full model (our ``simulate``: 000 eq 2-4 with ball inertia, gravity, eccentricity) at
@@ -266,7 +273,8 @@ def floquet_full(system, speed, alpha, iters: int = 6, rtol: float = 1e-11, fami
     return out
 
 
-def linearised_full(system, speed, alpha, family: bool = False) -> dict:
+def linearised_full(system: System, speed: float, alpha: npt.ArrayLike,
+                    family: bool = False) -> dict:
     """Eigenvalues of the full model linearised about an equilibrium in the steady rotor frame.
 
     Valid when :func:`steady_rotor_frame` holds (isotropic suspension, no gravity: 004 eq 8-10
@@ -343,7 +351,8 @@ def linearised_full(system, speed, alpha, family: bool = False) -> dict:
     return out
 
 
-def full_stability(system, speed, alpha, family: bool = False, method: str = "auto") -> dict:
+def full_stability(system: System, speed: float, alpha: npt.ArrayLike, family: bool = False,
+                   method: str = "auto") -> dict:
     """Stability of an equilibrium in the linearised full model by the right route.
 
     ``auto``: :func:`linearised_full` (eigenvalues) when :func:`steady_rotor_frame` holds,
@@ -376,8 +385,9 @@ def full_stability(system, speed, alpha, family: bool = False, method: str = "au
     return floquet_full(system, speed, alpha, family=family)
 
 
-def verify_by_simulation(system, speed, alpha, perturbation: float = 0.05, duration: float = 20.0,
-                         options=None) -> dict:
+def verify_by_simulation(system: System, speed: float, alpha: npt.ArrayLike,
+                         perturbation: float = 0.05, duration: float = 20.0,
+                         options: SimOptions | None = None) -> dict:
     """Run the full nonlinear model from a perturbed equilibrium and report where the balls go.
 
     Parameters

@@ -3,6 +3,7 @@ the closed form of :mod:`autobalance.physics.immobility` over (friction, damping
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -11,11 +12,20 @@ from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .common import load
 from .statistics import plateau_speed
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    import xarray as xr
+
 __all__ = ["compute_immobility"]
 
 
-def compute_immobility(base, *, G_ini: float = 20.0, mu_r=(1.0,), c_r=(1.0,), speeds_hz=None,
-                       n_conf: int = 100, quick: bool = False, field: str = "n_conf"):
+def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[float] = (1.0,),
+                       c_r: Sequence[float] = (1.0,), speeds_hz: npt.ArrayLike | None = None,
+                       n_conf: int = 100, quick: bool = False,
+                       field: str = "n_conf") -> xr.Dataset:
     """004 Fig. 8/10: immobility [-] against speed for the mu_r x c_r factors [-] on the machine's
     rolling resistance and damping, at G_ini [mm/s]
     (closed form :func:`immobility`; no time integration). ``n_conf`` positions per ball [-];

@@ -4,6 +4,7 @@ ideal plateau) and a gradual descent read along the speed (004 Fig. 13)."""
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,14 @@ from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .common import case_sets, load, run_start_grid, starts_for_runs, store_path
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    import numpy.typing as npt
+    import xarray as xr
+
+    from ..models import BallBalancer
+
 __all__ = ["DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", "default_grid",
            "default_plateau_starts", "plateau_summary"]
 
@@ -21,7 +30,7 @@ __all__ = ["DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", 
 PLATEAU_RUNS = (210, 36)
 
 
-def default_plateau_starts(balancer, quick: bool) -> int:
+def default_plateau_starts(balancer: BallBalancer, quick: bool) -> int:
     """Start positions per ball of the plateau map: the most whose grid stays within
     :data:`PLATEAU_RUNS` per cell (n = 20 / 8 for two balls, 9 / 5 for three), so that a map of
     153 cells costs about the same for any ball count.
@@ -73,10 +82,13 @@ DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
 
-def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int | None = None,
-                    quick: bool = False,
-                    store_dir=None, executor="local", workers=None, scheduler=None,
-                    g_range: float | None = None, prefix: str = "study", progress: bool = False):
+def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | None = None, *,
+                    ratios: npt.ArrayLike | None = None, G: npt.ArrayLike | None = None,
+                    n: int | None = None, quick: bool = False,
+                    store_dir: str | Path | None = None, executor: str = "local",
+                    workers: int | None = None, scheduler: str | None = None,
+                    g_range: float | None = None, prefix: str = "study",
+                    progress: bool = False) -> xr.Dataset:
     """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
     95th percentile of G_TSR (90 s); ideal plateau = argmin of its mean over G_ini <= ``g_range``
     [mm/s] (004: G34). ``cases``: name -> (mu_r, c_r) factors (None: {"nominal": (1, 1)}).
@@ -158,9 +170,11 @@ def compute_plateau(base, cases=None, *, ratios=None, G=None, n: int | None = No
     return ds
 
 
-def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
-                    down_time: float = 60.0, history_dt: float = 0.25, store_dir=None,
-                    executor="local", workers=None, scheduler=None, prefix: str = "study"):
+def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
+                    down_time: float = 60.0, history_dt: float = 0.25,
+                    store_dir: str | Path | None = None, executor: str = "local",
+                    workers: int | None = None, scheduler: str | None = None,
+                    prefix: str = "study") -> xr.Dataset:
     """004 sec. 4.6, Fig. 13: after the standard run-up (18 s to 167 Hz), a slow linear descent
     to ``ratio_end`` Omega_n in ``down_time`` [s]; the residual grade G [mm/s] of every start is
     read every ``history_dt`` [s] and its percentiles over the n(n+1)/2 starts are returned
@@ -241,7 +255,7 @@ def compute_descent(base, *, G_ini: float = 5.0, n: int = 50, ratio_end: float =
     return ds
 
 
-def plateau_summary(ds, case: str | None = None, near: float = 1.0) -> dict:
+def plateau_summary(ds: xr.Dataset, case: str | None = None, near: float = 1.0) -> dict:
     """The recommended plateau of a :func:`compute_plateau` map by 004 sec. 4.6's criterion (the
     ratio with the least mean 95th percentile over G_ini <= g_range) and how sharp that optimum
     is: the mean 95th percentile at the neighbouring ratios and the band of ratios whose mean is

@@ -16,12 +16,22 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models import MotorDrive, ParameterError
 from ..physics.runup import runup_time_closed_form
 from .common import load
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    import xarray as xr
+
+    from ..config import Config
 
 __all__ = ["BALANCING_FRACTION", "balancing_time", "compute_runup", "runup_summary"]
 
@@ -33,7 +43,8 @@ BALANCING_FRACTION = 0.05
 SAMPLES_PER_REV = 20
 
 
-def balancing_time(t, amplitude, eccentricity: float, fraction: float = BALANCING_FRACTION) -> float:
+def balancing_time(t: npt.ArrayLike, amplitude: npt.ArrayLike, eccentricity: float,
+                   fraction: float = BALANCING_FRACTION) -> float:
     """Last time [s] at which the whirl amplitude exceeds ``fraction`` of the rotor's
     eccentricity e = U/M_t (000 Fig. 5: "balanced in just 1.5 seconds"; the amplitude of the
     unbalanced rotor far above resonance is e, 000 eq 6-7); 0 if it never does.
@@ -86,8 +97,10 @@ def _cases(cfg, laws):
     return {getattr(spin, "name", "") or "profile": spin}
 
 
-def compute_runup(base, *, laws=None, sets=(), bare: bool = True,
-                  fraction: float = BALANCING_FRACTION, save_dt: float | None = None):
+def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = None,
+                  sets: Sequence[str] = (), bare: bool = True,
+                  fraction: float = BALANCING_FRACTION,
+                  save_dt: float | None = None) -> xr.Dataset:
     """Simulate the machine's run-up per case, with and without its balls.
 
     Parameters
@@ -178,7 +191,7 @@ def compute_runup(base, *, laws=None, sets=(), bare: bool = True,
     return ds
 
 
-def runup_summary(ds) -> dict:
+def runup_summary(ds: xr.Dataset) -> dict:
     """JSON-ready summary of :func:`compute_runup`: per case the scalars (SI, unit-suffixed keys).
 
     Parameters

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,6 +22,13 @@ from ..physics.iso1940 import grade_value
 from .common import load
 from .start_positions import compute_start_positions
 from .statistics import TIE_MM_S, mode_value, regions
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    import xarray as xr
+
+    from ..config import Config
 
 __all__ = ["QUANTITIES", "compute_sensitivity", "default_variants", "quantities",
            "sensitivity_summary"]
@@ -32,7 +40,7 @@ QUANTITIES = ("mode_first", "mode_last", "median_first", "median_last", "p95_las
               "region_III", "region_IV")
 
 
-def quantities(g_first, g_last, g_ini: float, grade: float) -> dict:
+def quantities(g_first: np.ndarray, g_last: np.ndarray, g_ini: float, grade: float) -> dict:
     """The results a sensitivity study follows, from the grades [mm/s] of one set of runs at
     the first and last read-outs: modes (1 mm/s bins), medians and the last 95th percentile
     [mm/s], the shares at or below ``grade`` [-] and 004 Table 2's regions with ties within
@@ -61,7 +69,7 @@ def quantities(g_first, g_last, g_ini: float, grade: float) -> dict:
     return out
 
 
-def default_variants(base) -> dict:
+def default_variants(base: str | Path | Config) -> dict:
     """The modelling choices a machine's results are tested against, one change each, as
     "path=value" overrides (SI numbers) named by what they change: 004's point masses
     (contact none), ball damping x0.5 and x2, rolling resistance (and stiction) x0.5 and x2,
@@ -107,10 +115,12 @@ def default_variants(base) -> dict:
     return out
 
 
-def compute_sensitivity(base, variants: dict | None = None, *, n: int | None = None,
-                        samples: int | None = None, seed: int = 0, grade: float = 16.0,
-                        quick: bool = False, n_boot: int = 200, store_dir=None,
-                        executor="local", workers=None, scheduler=None, progress: bool = False):
+def compute_sensitivity(base: str | Path | Config, variants: dict | None = None, *,
+                        n: int | None = None, samples: int | None = None, seed: int = 0,
+                        grade: float = 16.0, quick: bool = False, n_boot: int = 200,
+                        store_dir: str | Path | None = None, executor: str = "local",
+                        workers: int | None = None, scheduler: str | None = None,
+                        progress: bool = False) -> xr.Dataset:
     """The start-position Monte Carlo of the machine and of each variant over the same starts,
     and each variant's effect on :data:`QUANTITIES` with its bootstrap standard error.
 
@@ -212,7 +222,7 @@ def compute_sensitivity(base, variants: dict | None = None, *, n: int | None = N
     return out
 
 
-def sensitivity_summary(ds, z: float = 2.0) -> dict:
+def sensitivity_summary(ds: xr.Dataset, z: float = 2.0) -> dict:
     """JSON-ready summary of :func:`compute_sensitivity`: the base's quantities, and per
     variant every effect with its SE and whether it exceeds ``z`` standard errors.
 

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Callable, Optional
+from typing import TYPE_CHECKING, Callable, Optional
 
 import numpy as np
 
@@ -40,6 +40,15 @@ from ..physics.equilibria import find_equilibrium_set
 from ..physics.iso1940 import grade_value
 from .equilibria import full_stability, steady_rotor_frame
 from .common import load
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    import xarray as xr
+
+    from ..config import Config
 
 __all__ = ["compute_speed_map", "speed_map_summary"]
 
@@ -175,8 +184,10 @@ def _default_speeds(cfg, quick: bool) -> np.ndarray:
     return np.geomspace(lo, hi, N_SPEEDS_QUICK if quick else N_SPEEDS)
 
 
-def compute_speed_map(base, *, speeds=None, damping_factors=None, quick: bool = False,
-                      full: bool = True, progress: Optional[Callable[[int, int], None]] = None):
+def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None = None,
+                      damping_factors: Sequence[float] | None = None, quick: bool = False,
+                      full: bool = True,
+                      progress: Optional[Callable[[int, int], None]] = None) -> xr.Dataset:
     """Equilibria of the balls and their stability over speed and suspension damping.
 
     Parameters
@@ -331,7 +342,7 @@ def _pairs(flat) -> list:
     return [[float(a[i]), float(a[i + 1])] for i in range(0, a.size - 1, 2)]
 
 
-def speed_map_summary(ds) -> dict:
+def speed_map_summary(ds: xr.Dataset) -> dict:
     """JSON-ready summary of a :func:`compute_speed_map` dataset (SI, unit-suffixed keys).
 
     Parameters

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,11 +22,21 @@ from .statistics import (REGION_NAMES, TIE_MM_S, mode_value, plateau_speed, prof
 
 from .common import checkpoint_labels, default_starts, load, run_start_grid, store_path
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    import xarray as xr
+
+    from ..config import Config
+    from ..models import System
+
 __all__ = ["compute_machine", "compute_monte_carlo", "compute_single", "compute_start_positions",
            "start_family", "start_positions_summary"]
 
 
-def start_family(G_start: float, system, nominal_speed: float, n: int = 24) -> np.ndarray:
+def start_family(G_start: float, system: System, nominal_speed: float,
+                 n: int = 24) -> np.ndarray:
     """Ball start angles (n, 2) [rad] with the grade G_start [mm/s] at rest: ball 1 at
     alpha_1 = 2 pi k / n, ball 2 on |U + m R (e^{i alpha_1} + e^{i alpha_2})| = U(G_start)
     (law of cosines; the branch with alpha_2 - arg c > 0). Rows without a solution or with
@@ -62,8 +73,8 @@ def start_family(G_start: float, system, nominal_speed: float, n: int = 24) -> n
     return np.array(out)
 
 
-def compute_single(base, save_dt: float = 0.01, G_start: float | None = 14.0, n_family: int = 24,
-                   limit: float = 16.0):
+def compute_single(base: str | Path, save_dt: float = 0.01, G_start: float | None = 14.0,
+                   n_family: int = 24, limit: float = 16.0) -> xr.Dataset:
     """004 Fig. 4: one TSR run with the balancer and the same run without it, plus the family
     of starts with the same initial grade.
 
@@ -157,11 +168,13 @@ def compute_single(base, save_dt: float = 0.01, G_start: float | None = 14.0, n_
     return ds
 
 
-def compute_start_positions(base, *, n: int | None = None, samples: int | None = None,
-                            seed: int = 0, grid: dict | None = None, sets=(),
+def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
+                            samples: int | None = None, seed: int = 0,
+                            grid: dict | None = None, sets: Sequence[str] = (),
                             grade: float = 16.0, quick: bool = False, name: str = "starts",
-                            store=None, executor="local", workers=None, scheduler=None,
-                            progress: bool = False):
+                            store: str | Path | None = None, executor: str = "local",
+                            workers: int | None = None, scheduler: str | None = None,
+                            progress: bool = False) -> xr.Dataset:
     """The start-position Monte Carlo of any machine (004 sec. 4.2 generalised): the grade at
     every read-out of the profile from many ball start positions (004's equispaced grid or
     uniform random angles), per cell of an optional grid, with its percentiles, mode, share
@@ -300,7 +313,7 @@ def _region_rows(ds, sel: dict) -> dict:
             for key, var in (("regions", "region_share"), ("regions_tied", "region_share_tied"))}
 
 
-def start_positions_summary(ds) -> dict:
+def start_positions_summary(ds: xr.Dataset) -> dict:
     """JSON-ready summary of a :func:`compute_start_positions` result: per checkpoint its
     label, time [s], p5/p50/p95 and mode [mm/s] and share at or below the target grade; the
     region shares (004 Table 2). With a grid, the same per cell under "cells" (each with its
@@ -356,9 +369,10 @@ def start_positions_summary(ds) -> dict:
     return out
 
 
-def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None, store_dir=None,
-                        executor="local", workers=None, scheduler=None, limit: float = 16.0,
-                        prefix: str = "study"):
+def compute_monte_carlo(base: str | Path, n: int = 50, *, plateau_ratio: float | None = None,
+                        store_dir: str | Path | None = None, executor: str = "local",
+                        workers: int | None = None, scheduler: str | None = None,
+                        limit: float = 16.0, prefix: str = "study") -> xr.Dataset:
     """004 sec. 4.2: n x n equispaced start positions, identical balls -> n(n+1)/2 runs
     (1275 for n = 50), G at the STD (18 s) and TSR (90 s) read-outs.
 
@@ -422,7 +436,7 @@ def compute_monte_carlo(base, n: int = 50, *, plateau_ratio: float | None = None
     return ds
 
 
-def compute_machine(base):
+def compute_machine(base: str | Path) -> xr.Dataset:
     """The machine's derived numbers (004 Table 1): resonance f_n = sqrt(k/M_t)/2pi [Hz] (Jeffcott), the rotor's
     grade G_ini and the balls' grade 2 m R / M_t Omega_nom [mm/s] (004 sec. 4), and the profile
     (004 Fig. 3, our reading: docs/model.md sec. 5) sampled every 0.1 s.

@@ -4,8 +4,14 @@ sample with its bootstrap error, the shares at or below a grade, valid initial-u
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import SpeedProfile
 
 __all__ = ["REGION_NAMES", "TIE_MM_S", "half_drop", "mode", "mode_value", "plateau_speed", "profile_text",
            "regions", "rise_after_min", "start_position_stats", "valid_ranges"]
@@ -20,7 +26,7 @@ REGION_NAMES = ("I.A", "I.B", "II", "III", "IV")
 TIE_MM_S = 0.02
 
 
-def regions(g_std, g_tsr, g_ini, tie: float = 0.0):
+def regions(g_std: npt.ArrayLike, g_tsr: npt.ArrayLike, g_ini: float, tie: float = 0.0):
     """004 Table 2 regions: shares [-] of I.A, I.B, II, III, IV (every run in exactly one).
 
     I.A G_STD < G_TSR <= G_INI; I.B G_TSR <= G_STD <= G_INI; II G_TSR <= G_INI < G_STD (004:
@@ -59,7 +65,8 @@ def regions(g_std, g_tsr, g_ini, tie: float = 0.0):
     return {k: float(v.mean()) for k, v in m.items()}
 
 
-def mode(g, width=1.0, n_boot=200, seed=0):
+def mode(g: npt.ArrayLike, width: float = 1.0, n_boot: int = 200,
+         seed: int = 0) -> tuple[float, float]:
     """Mode of a sample [mm/s] (centre of the fullest 1 mm/s bin, 004 Fig. 5 reads integer G) and
     its bootstrap standard error [mm/s].
 
@@ -87,7 +94,7 @@ def mode(g, width=1.0, n_boot=200, seed=0):
     return mode_value(g, width), float(np.std(boots))
 
 
-def mode_value(g, width: float = 1.0, top: float | None = None) -> float:
+def mode_value(g: npt.ArrayLike, width: float = 1.0, top: float | None = None) -> float:
     """Centre of the fullest ``width`` bin of a sample [mm/s] (bins start at 0; the first of
     equally full bins).
 
@@ -112,7 +119,8 @@ def mode_value(g, width: float = 1.0, top: float | None = None) -> float:
     return float(edges[np.argmax(h)] + width / 2)
 
 
-def valid_ranges(G_ini, p95, limit=16.0, span=50.0):
+def valid_ranges(G_ini: npt.ArrayLike, p95: npt.ArrayLike, limit: float = 16.0,
+                 span: float = 50.0):
     """Valid initial-unbalance ranges (004 sec. 4.3): where the 95th percentile of the residual
     grade is <= limit. Boundaries by linear interpolation between grid points.
 
@@ -150,7 +158,8 @@ def valid_ranges(G_ini, p95, limit=16.0, span=50.0):
     return ranges, float(eff)
 
 
-def start_position_stats(s, t, g_ini, limit: float = 16.0) -> dict:
+def start_position_stats(s: np.ndarray, t: np.ndarray, g_ini: float,
+                         limit: float = 16.0) -> dict:
     """Mode (1 mm/s bins, bootstrap SE), median, shares at or below ``limit`` [mm/s] and G_ini
     and 004 Table 2 regions of the grades [mm/s] at a first (s, 004: STD) and a second (t, 004:
     TSR) read-out over start positions. The ``share_G16_*`` keys keep 004's name whatever the
@@ -182,7 +191,7 @@ def start_position_stats(s, t, g_ini, limit: float = 16.0) -> dict:
             **{f"region_tied_{k}": v for k, v in regions(s, t, g_ini, TIE_MM_S).items()}}
 
 
-def half_drop(ratio, g) -> float:
+def half_drop(ratio: np.ndarray, g: np.ndarray) -> float:
     """Speed ratio [-] at which g, followed from the start of the descent (highest speed), first
     falls halfway from its start value to its minimum over ratio >= 1 (linear interpolation
     between samples); NaN if it never drops.
@@ -211,7 +220,7 @@ def half_drop(ratio, g) -> float:
     return float(ratio[j - 1] + f * (ratio[j] - ratio[j - 1]))
 
 
-def rise_after_min(ratio, g, rise: float = 1.0) -> dict:
+def rise_after_min(ratio: np.ndarray, g: np.ndarray, rise: float = 1.0) -> dict:
     """Where g [mm/s], after its minimum over ratio >= 1, first exceeds that minimum by more than
     ``rise`` later in the descent: {"p95_min", "p95_min_ratio", "p95_rise_ratio" (NaN if never),
     "p95_max_after"}.
@@ -238,7 +247,7 @@ def rise_after_min(ratio, g, rise: float = 1.0) -> dict:
             "p95_max_after": float(g[j:].max())}
 
 
-def plateau_speed(spin) -> float:
+def plateau_speed(spin: SpeedProfile) -> float:
     """Lowest speed [rad/s] of a profile after its first read-out: the TSR plateau (Fig. 3).
 
     Parameters
@@ -254,7 +263,7 @@ def plateau_speed(spin) -> float:
     return min(w for t, w in zip(spin.times, spin.speeds) if t > spin.checkpoints[0])
 
 
-def profile_text(spin) -> str:
+def profile_text(spin: SpeedProfile) -> str:
     """The profile's knots as "t s: f Hz; ..." for reports.
 
     Parameters

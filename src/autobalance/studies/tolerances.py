@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +23,12 @@ from ..physics.iso1940 import unbalance_value
 from ..physics.tolerance import tolerances_000, tolerances_for_grade, worst_case_prediction
 from .common import load
 from .statistics import plateau_speed
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from ..config import Config
+    from ..models import System
 
 __all__ = ["check_tolerances_by_simulation", "collinear_residuals", "compute_tolerances",
            "machine_with_tolerances"]
@@ -46,7 +53,8 @@ def _settle_speed(cfg, speed):
     return w, "given"
 
 
-def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
+def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
+                       speed: float | None = None,
                        split: dict | None = None, residual_fraction: float | None = None,
                        method: str = "bound") -> dict:
     """Allowed race eccentricity, rolling resistance and suspension friction of a machine for a
@@ -168,7 +176,7 @@ def compute_tolerances(base, *, grade: float = 16.0, speed: float | None = None,
     return out
 
 
-def collinear_residuals(system, max_balls: int = 12) -> list:
+def collinear_residuals(system: System, max_balls: int = 12) -> list:
     """Residual unbalances |U + sum_j s_j m_j R| [kg*m], s_j = +-1, of the collinear
     equilibria (every ball on the unbalance's line, with it or against it; no eccentricity),
     sorted: where balls that stop outside the balanced region end (friction and ball contact
@@ -198,7 +206,8 @@ def collinear_residuals(system, max_balls: int = 12) -> list:
     return [float(v) for v in vals]
 
 
-def machine_with_tolerances(system, tolerances: dict, eccentricity_angle: float = 0.0):
+def machine_with_tolerances(system: System, tolerances: dict,
+                            eccentricity_angle: float = 0.0) -> System:
     """The machine with its balancer and suspension at the tolerances' limits.
 
     Parameters
@@ -244,8 +253,9 @@ def _random_starts(rng, balancer, n: int) -> list:
     return out
 
 
-def check_tolerances_by_simulation(base, tolerances: dict, *, n: int = 20, seed: int = 0,
-                                   duration=None) -> dict:
+def check_tolerances_by_simulation(base: str | Path | Config, tolerances: dict, *, n: int = 20,
+                                   seed: int = 0,
+                                   duration: float | str | None = None) -> dict:
     """Monte Carlo of full simulations of the machine built with the tolerances at their limits
     (eccentricity at a random angle, every ball's f/r, the damper friction), from random ball
     start angles through the machine's own speed profile, against the worst-case bound.

@@ -4,6 +4,7 @@ against a second speed profile (004 Fig. 9)."""
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -11,6 +12,13 @@ from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .common import case_sets, checkpoint_labels, load, run_start_grid, store_path
 from .statistics import profile_text, valid_ranges
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+    from pathlib import Path
+
+    import numpy.typing as npt
+    import xarray as xr
 
 __all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
            "unbalance_summary"]
@@ -36,9 +44,11 @@ def default_grades(G_balls: float, quick: bool) -> np.ndarray:
     return np.linspace(0.0, 1.5 * G_balls, 11 if quick else 26)
 
 
-def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = False,
-                      store_dir=None, executor="local", workers=None, scheduler=None,
-                      prefix: str = "study", progress: bool = False):
+def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | None = None, *,
+                      G: npt.ArrayLike | None = None, n: int = 50, quick: bool = False,
+                      store_dir: str | Path | None = None, executor: str = "local",
+                      workers: int | None = None, scheduler: str | None = None,
+                      prefix: str = "study", progress: bool = False) -> xr.Dataset:
     """004 sec. 4.3-4.5: G_ini over [G0, G50] x the start grid for each (mu_r, c_r) case;
     5/50/95 % of G_STD (18 s) and G_TSR (90 s), valid ranges for G16 and efficiencies.
 
@@ -115,9 +125,12 @@ def compute_unbalance(base, cases=None, *, G=None, n: int = 50, quick: bool = Fa
     return ds
 
 
-def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = False, store_dir=None,
-                    executor="local", workers=None, scheduler=None, unbalance_ds=None,
-                    prefix: str = "study", other_text: str = ""):
+def compute_profile(base: str | Path, other_sets: Iterable[str], *,
+                    G: npt.ArrayLike | None = None, n: int = 50, quick: bool = False,
+                    store_dir: str | Path | None = None, executor: str = "local",
+                    workers: int | None = None, scheduler: str | None = None,
+                    unbalance_ds: xr.Dataset | None = None, prefix: str = "study",
+                    other_text: str = "") -> xr.Dataset:
     """004 sec. 4.4, Fig. 9: 95 % isolines of the STD (18 s), TSR (90 s) and a 3x slower run-up
     (0 -> 167 Hz in 54 s, hold to 90 s, read at 90 s) against G_ini (nominal mu, c).
 
@@ -184,7 +197,8 @@ def compute_profile(base, other_sets, *, G=None, n: int = 50, quick: bool = Fals
     return ds
 
 
-def operating_boundaries(G_ini, G_balls: float):
+def operating_boundaries(G_ini: npt.ArrayLike,
+                         G_balls: float) -> tuple[np.ndarray, np.ndarray]:
     """The residual grades between which a ball balancer operates (004 sec. 4.3, Fig. 7's dashed
     lines): every ball opposite the unbalance, |G_ini - G_balls|, and every ball with it,
     G_ini + G_balls [mm/s] (ISO 1940 grades are linear in the unbalance).
@@ -205,7 +219,7 @@ def operating_boundaries(G_ini, G_balls: float):
     return np.abs(g - G_balls), g + G_balls
 
 
-def unbalance_summary(ds, grade: float = 16.0) -> dict:
+def unbalance_summary(ds: xr.Dataset, grade: float = 16.0) -> dict:
     """The valid initial-unbalance ranges and efficiency of each case and read-out (004 sec. 4.3:
     where the 95th percentile is <= ``grade``; efficiency = their length over the studied
     span of G_ini) of a :func:`compute_unbalance` result, JSON-ready.

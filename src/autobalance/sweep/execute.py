@@ -15,12 +15,16 @@ import sys
 import threading
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, TextIO
 
-from ..models import SimOptions, System
+from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .plan import Plan, make_plan, run_task, task_payload
 from .spec import SweepError, SweepSpec, as_spec, load_spec
 from .store import (StoreLock, assemble, check_identity, check_store_path, covered_runs,
                     init_store, scan_tasks, write_result, write_task)
+
+if TYPE_CHECKING:
+    from ..config import Config
 
 EXECUTORS = ("serial", "local", "dask")
 
@@ -28,7 +32,8 @@ EXECUTORS = ("serial", "local", "dask")
 class Progress:
     """A one-line progress bar with rate and ETA on stderr (a line per 10 % when not a tty)."""
 
-    def __init__(self, total_runs: int, done_runs: int = 0, enabled: bool = True, stream=None):
+    def __init__(self, total_runs: int, done_runs: int = 0, enabled: bool = True,
+                 stream: TextIO | None = None):
         self.total = total_runs
         self.start_done = done_runs
         self.done = done_runs
@@ -258,8 +263,10 @@ def _estimate_line(plan: Plan, n_todo: int, workers: int) -> str:
             f"{fmt_seconds(sec / max(workers, 1))} on {workers} worker(s) (estimate)")
 
 
-def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *, base=None, spin=None,
-          initial=None, executor: str | None = None,
+def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
+          base: Config | System | None = None,
+          spin: SpeedProfile | MotorDrive | dict | None = None,
+          initial: InitialState | None = None, executor: str | None = None,
           workers: int | None = None, scheduler: str | None = None, resume: bool = False,
           progress: bool = True, options: SimOptions | None = None, assemble_result: bool = True):
     """Run a sweep into a durable store and return the assembled xarray.Dataset.

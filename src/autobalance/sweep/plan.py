@@ -27,7 +27,7 @@ from ..config import SECTIONS, ConfigError, _read, apply_overrides, from_dict, r
 from ..config.overrides import parse_override
 from ..config.schema import check_value
 from ..core.layout import RunStatus
-from ..models import InitialState, SimOptions
+from ..models import BallBalancer, InitialState, SimOptions
 from .spec import SweepError, SweepSpec
 
 
@@ -213,7 +213,7 @@ def _chunk(groups, todo: np.ndarray, batch_size: int) -> list:
     return tasks
 
 
-def identical_balls(balancer) -> bool:
+def identical_balls(balancer: BallBalancer) -> bool:
     """Whether swapping two balls changes nothing (equal per-ball values: mass, damping,
     rolling resistance, stiction): the start grid then keeps one of each permutation
     (:func:`start_grid`)."""

@@ -41,7 +41,7 @@ import numpy as np
 
 from ..config import (PROFILE_KINDS, SECTIONS, Config, ConfigError, from_models,
                       parse_quantity)
-from ..models import System
+from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 
 MC_KINDS = ("start_grid", "random", "none")
 _TOP = ("sweep", "grid", "monte_carlo", "outputs")
@@ -313,7 +313,9 @@ def load_spec(path: str | Path, *, base: Config | None = None) -> SweepSpec:
 
 
 def as_spec(spec: SweepSpec | dict | str | Path, base: Config | System | None = None,
-            spin=None, initial=None, options=None) -> SweepSpec:
+            spin: SpeedProfile | MotorDrive | dict | None = None,
+            initial: InitialState | None = None,
+            options: SimOptions | None = None) -> SweepSpec:
     """The SweepSpec of what :func:`autobalance.sweep` was given.
 
     Parameters

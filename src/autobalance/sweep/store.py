@@ -32,6 +32,7 @@ import shutil
 import socket
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -40,6 +41,9 @@ from ..core.layout import RunStatus
 from ..config import UNIT_LABEL
 from .plan import Plan
 from .spec import SweepError
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 STATUS_NAMES = ", ".join(f"{int(s)} {s.label}" for s in RunStatus if s <= RunStatus.NON_FINITE)
 _TASK_RE = re.compile(r"r(\d{9})-(\d{9})\.npz")
@@ -258,7 +262,8 @@ def _check_task(path: Path, first: int, count: int, names, shapes: dict) -> None
                 raise ValueError(f"{name} has shape {a.shape}")
 
 
-def scan_tasks(store: Path, plan: Plan, *, on_corrupt=None) -> list:
+def scan_tasks(store: Path, plan: Plan, *,
+               on_corrupt: Callable[[Path, str], object] | None = None) -> list:
     """The finished task files as (first, count, path), checked against the plan.
 
     A file whose name is not a range of this plan's runs, or overlaps another, is *corrupt*.
@@ -435,7 +440,7 @@ def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | N
     return ds
 
 
-def write_result(ds, store: Path) -> Path:
+def write_result(ds: xr.Dataset, store: Path) -> Path:
     """Write the assembled dataset as Zarr, replacing an older assembly: written to a
     temporary directory first, then swapped in (the old one is removed only after the swap)."""
     path = Path(store) / "result.zarr"

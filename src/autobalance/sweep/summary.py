@@ -6,10 +6,17 @@ cell and pooled.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 
+if TYPE_CHECKING:
+    import xarray as xr
 
-def percentiles(ds, var: str = "grade_G", q=(5, 50, 95), dim: str | tuple = "sample"):
+
+def percentiles(ds: xr.Dataset, var: str = "grade_G", q: Sequence[float] = (5, 50, 95),
+                dim: str | tuple = "sample") -> xr.DataArray:
     """Percentiles of ``var`` over ``dim`` (default the Monte-Carlo samples) as a DataArray
     with a leading ``percentile`` dimension; failed runs (status != 0) are excluded."""
     da = ds[var].where(ds["status"] == 0)
@@ -19,14 +26,16 @@ def percentiles(ds, var: str = "grade_G", q=(5, 50, 95), dim: str | tuple = "sam
     return out
 
 
-def share_below(ds, grade: float, var: str = "grade_G", dim: str | tuple = "sample"):
+def share_below(ds: xr.Dataset, grade: float, var: str = "grade_G",
+                dim: str | tuple = "sample") -> xr.DataArray:
     """Share [-] of the runs with ``var`` <= ``grade`` (004: share qualifying G16)."""
     ok = ds["status"] == 0
     hit = (ds[var] <= grade) & ok
     return hit.sum(dim) / ok.sum(dim)
 
 
-def reduce_over(ds, keep: str, var: str = "grade_G", q=(5, 50, 95)):
+def reduce_over(ds: xr.Dataset, keep: str, var: str = "grade_G",
+                q: Sequence[float] = (5, 50, 95)) -> xr.DataArray:
     """Percentiles of ``var`` over every dimension except ``keep`` (and checkpoint/ball)."""
     dims = [d for d in ds[var].dims if d not in (keep, "checkpoint", "ball", "history_time")]
     return percentiles(ds, var, q, dim=tuple(dims))
@@ -72,7 +81,7 @@ def _checkpoint_rows(cps, p: np.ndarray, share: np.ndarray) -> list:
     return rows
 
 
-def grid_axes(ds) -> list:
+def grid_axes(ds: xr.Dataset) -> list:
     """The sweep's grid axes as JSON-able dicts: path, dimension, units, SI values and the
     values as written in the description.
 
@@ -105,7 +114,7 @@ def grid_axes(ds) -> list:
     return out
 
 
-def summary_dict(ds, grade: float = 16.0) -> dict:
+def summary_dict(ds: xr.Dataset, grade: float = 16.0) -> dict:
     """JSON-able summary: per checkpoint, the 5/50/95 % grades, the ISO 1940 class of the 95 %
     grade and the share below ``grade`` over all runs (``checkpoints``, the pooled line), the
     same per grid cell (``cells``, C order over the grid axes, each with its coordinates);

@@ -126,14 +126,15 @@ def claims(target: Target) -> list:
 NOT_COMPUTED = "not computed in this variant (run with --full)"
 
 
-def row(key: str, quantity: str, published, computed, tolerance, ok: bool, note: str = "") -> dict:
+def row(key: str, quantity: str, published: Any, computed: Any, tolerance: float | str, ok: bool,
+        note: str = "") -> dict:
     """A comparison row. ``key``: the claim it answers (see :func:`claims`); ``quantity``: label
     with units in brackets; ``tolerance``: a number or a short text (e.g. ``"+-0.5"``)."""
     return {"key": key, "quantity": quantity, "published": published, "computed": computed,
             "tolerance": tolerance, "ok": bool(ok), "note": note}
 
 
-def not_computed(key: str, quantity: str, published, why: str = NOT_COMPUTED) -> dict:
+def not_computed(key: str, quantity: str, published: Any, why: str = NOT_COMPUTED) -> dict:
     """A row for a published number whose case this variant does not run."""
     return row(key, quantity, published, None, "-", False, why)
 
@@ -196,8 +197,8 @@ class Rows(list):
             node = node[p]
         return node
 
-    def add(self, path: str, quantity: str, computed, tolerance, ok, note: str = "", *,
-            shown=_LEAF) -> dict:
+    def add(self, path: str, quantity: str, computed: Any, tolerance: float | str, ok: bool,
+            note: str = "", *, shown: Any = _LEAF) -> dict:
         """Append and return the row answering the published number at ``path``.
 
         Parameters
@@ -224,7 +225,8 @@ class Rows(list):
         self.append(r)
         return r
 
-    def missing(self, path: str, quantity: str, why: str = NOT_COMPUTED, *, shown=_LEAF) -> dict:
+    def missing(self, path: str, quantity: str, why: str = NOT_COMPUTED, *,
+                shown: Any = _LEAF) -> dict:
         """Append and return the :func:`not_computed` row of the published number at ``path``
         (``shown`` as in :meth:`add`)."""
         r = not_computed(f"{self.prefix}/{path}", quantity, self._published_shown(path, shown), why)

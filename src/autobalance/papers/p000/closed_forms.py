@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ...physics.response import displacement_from_acceleration
-from ...validation.target import Outcome
+from ...validation.target import Context, Outcome
 from .data import dataset
 from .published import rows as rows_of
 from .washer import W1000, washer
@@ -27,7 +27,7 @@ RPM = 2 * math.pi / 60
 SENSITIVITY = 0.24
 
 
-def run_fig3(ctx) -> Outcome:
+def run_fig3(ctx: Context) -> Outcome:
     """000 Fig. 3: the published accelerations [m/s^2] converted to amplitudes [mm], and the drum
     model's amplitude vs speed [rpm].
 
@@ -90,7 +90,7 @@ def _stable_one_ball(system, w) -> float:
     return float(np.mod(np.degrees(st[0].alpha[0]), 360.0)) if st else float("nan")
 
 
-def run_fig6_7(ctx) -> Outcome:
+def run_fig6_7(ctx: Context) -> Outcome:
     """000 Fig. 6-7: the stable position of one ball [deg], the extremes of the vibratory force
     [-] and its change with the suspension damping.
 
@@ -153,7 +153,7 @@ def run_fig6_7(ctx) -> Outcome:
 
 
 # -- Fig. 9 ------------------------------------------------------------------------------------
-def run_fig9(ctx) -> Outcome:
+def run_fig9(ctx: Context) -> Outcome:
     """000 Fig. 9: full model minus kinetic-static model, D_x, D_y [um] and D_alpha [rad].
 
     Parameters
@@ -182,7 +182,7 @@ def run_fig9(ctx) -> Outcome:
 
 
 # -- Fig. 12, eq 30-32 -------------------------------------------------------------------------
-def run_fig12_eq32(ctx) -> Outcome:
+def run_fig12_eq32(ctx: Context) -> Outcome:
     """000 Fig. 12, eq 30-32: coefficients of the rolling-resistance bounds [-] and the largest
     position error [deg].
 
@@ -226,7 +226,7 @@ def run_fig12_eq32(ctx) -> Outcome:
 
 
 # -- Fig. 15 -----------------------------------------------------------------------------------
-def run_fig15(ctx) -> Outcome:
+def run_fig15(ctx: Context) -> Outcome:
     """000 Fig. 15: the ring-eccentricity angle beta [deg] of the largest ball deviation.
 
     Parameters
@@ -263,7 +263,7 @@ def run_fig15(ctx) -> Outcome:
 
 
 # -- eq 56-66 ----------------------------------------------------------------------------------
-def run_tolerance(ctx) -> Outcome:
+def run_tolerance(ctx: Context) -> Outcome:
     """000 eq 56-66: the residual-unbalance budget, rho_max [um], f/r max [-] and the damper
     friction F max [N].
 

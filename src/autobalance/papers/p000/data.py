@@ -3,8 +3,12 @@ the time-history figures take."""
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["dataset", "histories", "run_dict"]
 
@@ -14,7 +18,7 @@ def _name(s: str) -> str:
     return re.sub(r"[^A-Za-z0-9_]", "_", s)
 
 
-def dataset(variables: dict, **attrs):
+def dataset(variables: dict, **attrs: object) -> xr.Dataset:
     """xarray.Dataset from {name: (dims, values, units)}; attrs: str / numbers only.
 
     Parameters
@@ -32,7 +36,7 @@ def dataset(variables: dict, **attrs):
     return ds
 
 
-def histories(runs: dict, **attrs):
+def histories(runs: dict, **attrs: object) -> xr.Dataset:
     """Time histories of constant-speed or run-up runs {name: run dict}, one time axis per run.
 
     Parameters
@@ -57,7 +61,7 @@ def histories(runs: dict, **attrs):
     return dataset(v, **attrs)
 
 
-def run_dict(d: dict, label: str, ideal=(120.0, -120.0)) -> dict:
+def run_dict(d: dict, label: str, ideal: tuple[float, float] = (120.0, -120.0)) -> dict:
     """A run dict labelled for :func:`autobalance.plotting.washer.plot_time_histories`.
 
     Parameters

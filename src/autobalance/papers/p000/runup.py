@@ -25,6 +25,7 @@ wobble ~0.13 deg); the balancing time against the paper's own bound t < 250/w.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +34,10 @@ from ...physics.runup import runup_fraction_closed_form, runup_time_closed_form
 from ...studies.runup import balancing_time as _balancing_time
 from ...validation.target import Rows
 from .washer import W1000, washer
+
+if TYPE_CHECKING:
+    from ...models import System
+    from ...simulate.result import Simulation
 
 __all__ = ["B_Z", "LAWS", "PUBLISHED", "T0", "balancing_time", "compare_fig10_11", "compare_fig5",
            "compare_tables", "compute_fig10_11", "compute_fig5", "compute_tables", "runup",
@@ -82,7 +87,7 @@ PUBLISHED = {
 
 
 # -- simulations -------------------------------------------------------------------------------
-def balancing_time(sim, fraction=0.05) -> float:
+def balancing_time(sim: Simulation, fraction: float = 0.05) -> float:
     """Last time [s] at which the whirl amplitude exceeds ``fraction`` of the unbalanced drum's
     amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e); the run-up study's
     :func:`autobalance.studies.runup.balancing_time` on a Simulation.
@@ -98,7 +103,7 @@ def balancing_time(sim, fraction=0.05) -> float:
     return _balancing_time(sim.t, sim.amplitude, s.rotor.unbalance / s.total_mass, fraction)
 
 
-def settle(c_i=2.0, duration=10.0):
+def settle(c_i: float = 2.0, duration: float = 10.0) -> tuple[System, Simulation, float]:
     """000 Fig. 5: two balls with mR = Me = 0.025 kg m at 1000 rpm from (90, 150) deg, gravity on.
 
     Parameters
@@ -124,7 +129,7 @@ def settle(c_i=2.0, duration=10.0):
     return s, sim, balancing_time(sim)
 
 
-def runup(Me, law, balls=True, duration=25.0):
+def runup(Me: float, law: str, balls: bool = True, duration: float = 25.0) -> Simulation:
     """000 Tables 1-2 run-up: T0 = 25 N m to n_f = 1000 rpm under ``law`` (000 eq 15-18), two balls
     of mR = Me starting together at the bottom (or without balls).
 
@@ -164,7 +169,7 @@ def _history(sim) -> dict:
             "speed_rad_s": sim.speed, "amplitude_m": sim.amplitude}
 
 
-def compute_fig5(duration=10.0) -> dict:
+def compute_fig5(duration: float = 10.0) -> dict:
     """000 Fig. 5 with the preset c_i = 2 1/s and with c_i = 7.1 1/s: {case: run dict}.
 
     Parameters
@@ -190,7 +195,7 @@ def _summary(sim) -> dict:
             "final_grade_G_mm_s": S["final"]["grade_G_mm_s"]}
 
 
-def compute_tables(histories=False) -> dict:
+def compute_tables(histories: bool = False) -> dict:
     """000 Tables 1-2: {(table, law): summary dict} for the six run-ups.
 
     Parameters
@@ -215,7 +220,7 @@ def compute_fig10_11() -> dict:
 
 
 # -- comparisons -------------------------------------------------------------------------------
-def compare_fig5(data=None, prefix="000-fig5") -> list:
+def compare_fig5(data: dict | None = None, prefix: str = "000-fig5") -> list:
     """Rows of 000 Fig. 5: final ball angles [deg], balancing times [s], settling [w t].
 
     Parameters
@@ -249,7 +254,7 @@ def compare_fig5(data=None, prefix="000-fig5") -> list:
     return rows
 
 
-def compare_tables(data=None, prefix="000-table1-2") -> list:
+def compare_tables(data: dict | None = None, prefix: str = "000-table1-2") -> list:
     """Rows of 000 Tables 1-2: t_f [s], x_max and y_max [mm], ball revolutions [-] per table and law.
 
     Parameters
@@ -294,7 +299,7 @@ def compare_tables(data=None, prefix="000-table1-2") -> list:
     return rows
 
 
-def compare_fig10_11(data=None, prefix="000-fig10-11") -> list:
+def compare_fig10_11(data: dict | None = None, prefix: str = "000-fig10-11") -> list:
     """Rows of 000 Fig. 10-11: ball direction, revolutions [-], amplitude with vs without balls [%].
 
     Parameters

@@ -6,20 +6,24 @@ The runs and their rows are in :mod:`.runup` and :mod:`.washer`, the figures in
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...validation.target import Outcome
+from ...validation.target import Context, Outcome
 from . import runup as runup_000, washer as washer_000
 from .data import dataset, histories, run_dict
 from .published import SECTIONS
 from .washer import RHOS_M
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
 __all__ = ["constant_speed_target", "run_fig10_11", "run_fig5", "run_table1_2", "run_table3_4"]
 
 
 # -- Fig. 5 ------------------------------------------------------------------------------------
-def run_fig5(ctx) -> Outcome:
+def run_fig5(ctx: Context) -> Outcome:
     """000 Fig. 5: two balls balancing the drum at 1000 rpm (c_i = 2 and 7.1 1/s).
 
     Parameters
@@ -39,7 +43,7 @@ def run_fig5(ctx) -> Outcome:
     return Outcome(rows, {"fig5": fig}, data, "10 s at 1000 rpm from (90, 150) deg, c_i = 2 and 7.1 1/s.")
 
 # -- Tables 1-2, Fig. 10-11 --------------------------------------------------------------------
-def run_table1_2(ctx) -> Outcome:
+def run_table1_2(ctx: Context) -> Outcome:
     """000 Tables 1-2: six run-ups to 1000 rpm (t_f [s], x_max, y_max [mm], revolutions).
 
     Parameters
@@ -83,7 +87,7 @@ def run_table1_2(ctx) -> Outcome:
     return Outcome(rows, figs, data, "Six run-ups of 25 s (000 eq 15-18), balls together at the bottom.")
 
 
-def run_fig10_11(ctx) -> Outcome:
+def run_fig10_11(ctx: Context) -> Outcome:
     """000 Fig. 10-11: run-ups under constant and linear torque, with and without the balls.
 
     Parameters
@@ -105,7 +109,9 @@ def run_fig10_11(ctx) -> Outcome:
                    "Constant and linear torque (T0 = 25 N m), Me = 0.025 kg m, with and without the balls.")
 
 # -- Fig. 13, 16, 18 ---------------------------------------------------------------------------
-def constant_speed_target(target_id, compute, compare, label, title, note):
+def constant_speed_target(target_id: str, compute: Callable[[], dict],
+                          compare: Callable[..., list], label: str, title: str,
+                          note: str) -> Callable[[Context], Outcome]:
     """The run of a constant-speed target (000 Fig. 13, 16, 18): compute, compare, one time-history
     figure and its data.
 
@@ -124,7 +130,7 @@ def constant_speed_target(target_id, compute, compare, label, title, note):
     note : str
         What the run did (the outcome's notes).
     """
-    def run(ctx) -> Outcome:
+    def run(ctx: Context) -> Outcome:
         from ...plotting.washer import plot_time_histories
 
         d = compute()
@@ -137,7 +143,7 @@ def constant_speed_target(target_id, compute, compare, label, title, note):
     return run
 
 # -- Tables 3-4, Fig. 19 -----------------------------------------------------------------------
-def run_table3_4(ctx) -> Outcome:
+def run_table3_4(ctx: Context) -> Outcome:
     """000 Tables 3-4 and Fig. 19: eccentricity and rolling resistance together at 100 rad/s.
 
     Parameters

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,6 +35,11 @@ from ...physics.equilibria import find_equilibria
 from ...physics.error_bounds import rolling_deadband, suspension_friction_deviation
 from ...physics.vibratory import gain_phase
 from ...validation.target import Rows
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from ...models import System
 
 __all__ = ["PUBLISHED", "RHOS_M", "START_DEG", "acceptance", "compare", "rho_key", "compare_fig13", "compare_fig16", "compare_fig18",
            "compare_table", "compute_fig13", "compute_fig16", "compute_fig18", "compute_table",
@@ -48,7 +54,7 @@ START_DEG = (90.0, 150.0)
 RHOS_M = (0.0, 0.05e-3, 0.1e-3, 0.5e-3, 1e-3)
 
 
-def rho_key(rho) -> str:
+def rho_key(rho: float) -> str:
     """Key of a Table 3-4 row: rho [m] -> "rho_0.05mm".
 
     Parameters
@@ -85,8 +91,9 @@ PUBLISHED = {
 _IDEAL = np.radians([120.0, -120.0])
 
 
-def washer(Me=0.05, f_r=0.0, rho=0.0, beta=math.pi / 2, g=0.0, c_i=2.0, friction_force=0.0,
-           friction_angle=math.radians(61.0), n=2):
+def washer(Me: float = 0.05, f_r: float = 0.0, rho: float = 0.0, beta: float = math.pi / 2,
+           g: float = 0.0, c_i: float = 2.0, friction_force: float = 0.0,
+           friction_angle: float = math.radians(61.0), n: int = 2) -> System:
     """The washer_000 preset with n balls of m R = Me and the given imperfections.
 
     Parameters
@@ -171,7 +178,7 @@ def _band(system, w, f_r):
 
 
 # -- computations ------------------------------------------------------------------------------
-def compute_fig13(duration=10.0) -> dict:
+def compute_fig13(duration: float = 10.0) -> dict:
     """000 Fig. 13: Me = 0.05 kg m, 1000 rpm, f/r = 1e-3, no gravity.
 
     Parameters
@@ -185,7 +192,7 @@ def compute_fig13(duration=10.0) -> dict:
     return out
 
 
-def compute_fig16(duration=15.0) -> dict:
+def compute_fig16(duration: float = 15.0) -> dict:
     """000 Fig. 16: rho = 1 mm, beta = pi/2, 1000 rpm, Me = 0.05 kg m, f/r = 0, no gravity.
 
     Parameters
@@ -199,7 +206,7 @@ def compute_fig16(duration=15.0) -> dict:
     return out
 
 
-def compute_fig18(duration=10.0) -> dict:
+def compute_fig18(duration: float = 10.0) -> dict:
     """000 Fig. 18: damper friction 2F = 140 N at gamma = 61 deg, 1000 rpm, Me = 0.05 kg m.
 
     Parameters
@@ -213,7 +220,8 @@ def compute_fig18(duration=10.0) -> dict:
     return out
 
 
-def compute_table(which: int, duration=12.0, speed=100.0, histories=False) -> dict:
+def compute_table(which: int, duration: float = 12.0, speed: float = 100.0,
+                  histories: bool = False) -> dict:
     """000 Table 3 (f = 1e-3 r) or Table 4 (f = 1e-4 r): rho = 0..1 mm, beta = pi/2, Me = mR =
     0.05 kg m, gravity on.
 
@@ -255,7 +263,7 @@ def compute_table(which: int, duration=12.0, speed=100.0, histories=False) -> di
 TOL_DETERMINISTIC_DEG = 1.2
 
 
-def acceptance(band, unbalance=0.05) -> dict:
+def acceptance(band: dict, unbalance: float = 0.05) -> dict:
     """Where a published Table 3-4 / Fig. 13 number counts as reproduced, from our equilibrium and
     the rolling dead band about it (000 eq 21-22, 27-31).
 
@@ -302,7 +310,7 @@ def _angle_rows(rows, path, label, sim_dev, band) -> list:
     return out
 
 
-def compare_fig13(data=None, prefix="000-fig13") -> list:
+def compare_fig13(data: dict | None = None, prefix: str = "000-fig13") -> list:
     """Rows of 000 Fig. 13: ball deviations [deg] in our dead band, first impact [w t].
 
     Parameters
@@ -327,7 +335,7 @@ def compare_fig13(data=None, prefix="000-fig13") -> list:
     return rows
 
 
-def compare_fig16(data=None, prefix="000-fig16") -> list:
+def compare_fig16(data: dict | None = None, prefix: str = "000-fig16") -> list:
     """Rows of 000 Fig. 16: ball deviations [deg] and residual amplitude [mm].
 
     Parameters
@@ -356,7 +364,7 @@ def compare_fig16(data=None, prefix="000-fig16") -> list:
     return rows
 
 
-def compare_fig18(data=None, prefix="000-fig18") -> list:
+def compare_fig18(data: dict | None = None, prefix: str = "000-fig18") -> list:
     """Rows of 000 Fig. 18 and eq 49: the eq 49 bound and the ball deviations [rad].
 
     Parameters
@@ -382,7 +390,7 @@ def compare_fig18(data=None, prefix="000-fig18") -> list:
     return rows
 
 
-def compare_table(which: int, data=None, prefix=None) -> list:
+def compare_table(which: int, data: dict | None = None, prefix: str | None = None) -> list:
     """Rows of 000 Table 3 or 4: deviations [deg], RMe [%] and A [mm] for each rho.
 
     Parameters
@@ -416,7 +424,7 @@ def compare_table(which: int, data=None, prefix=None) -> list:
     return rows
 
 
-def compare(which=("fig13", "fig16", "fig18", "table3", "table4")) -> list:
+def compare(which: Sequence[str] = ("fig13", "fig16", "fig18", "table3", "table4")) -> list:
     """All comparison rows of the requested studies (``autobalance analyze washer-study``).
 
     Parameters

@@ -4,12 +4,16 @@ not reproduce is a row with ``ok = False`` and its reason)."""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...studies.statistics import TIE_MM_S, valid_ranges
 from ...validation.target import Rows
 from .published import G_LIMIT, G_SPAN, PLATEAU_CASES, PUBLISHED, UNBALANCE_CASES
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "compare_descent",
@@ -42,7 +46,7 @@ def _boundaries(r):
     return [v for lo, hi in r for v in (lo, hi) if 0.0 < v < G_SPAN]
 
 
-def compare_single(ds=None) -> list:
+def compare_single(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Fig. 4 (the single run) against :data:`PUBLISHED`.
 
     Parameters
@@ -113,7 +117,7 @@ def compare_single(ds=None) -> list:
     return rows
 
 
-def compare_monte_carlo(ds=None) -> list:
+def compare_monte_carlo(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 sec. 4.2, Fig. 5-6, Table 2 (start positions) against :data:`PUBLISHED`.
 
     Parameters
@@ -183,7 +187,7 @@ def compare_monte_carlo(ds=None) -> list:
     return rows
 
 
-def compare_unbalance(ds=None) -> list:
+def compare_unbalance(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Tables 3-4 (valid ranges, efficiencies) against :data:`PUBLISHED`.
 
     Parameters
@@ -242,7 +246,7 @@ def compare_unbalance(ds=None) -> list:
     return rows
 
 
-def compare_profile(ds=None) -> list:
+def compare_profile(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Fig. 9 (speed profiles) against :data:`PUBLISHED`.
 
     Parameters
@@ -290,7 +294,7 @@ def compare_profile(ds=None) -> list:
     return rows
 
 
-def compare_immobility(ds=None) -> list:
+def compare_immobility(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Fig. 8/10 (immobility) against :data:`PUBLISHED`.
 
     Parameters
@@ -357,7 +361,7 @@ def compare_immobility(ds=None) -> list:
     return rows
 
 
-def compare_plateau(ds=None) -> list:
+def compare_plateau(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Fig. 14-15 (ideal plateau) against :data:`PUBLISHED`.
 
     Parameters
@@ -398,7 +402,7 @@ def compare_plateau(ds=None) -> list:
     return rows
 
 
-def compare_descent(ds=None) -> list:
+def compare_descent(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Fig. 13 (gradual descent) against :data:`PUBLISHED`.
 
     Parameters
@@ -439,7 +443,7 @@ def compare_descent(ds=None) -> list:
     return rows
 
 
-def compare_table1(ds=None) -> list:
+def compare_table1(ds: xr.Dataset | None = None) -> list:
     """Rows of 004 Table 1 (derived numbers) against :data:`PUBLISHED`.
 
     Parameters

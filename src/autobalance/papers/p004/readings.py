@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +25,12 @@ from ...studies.common import load
 from ...studies.statistics import start_position_stats
 from .compare import compare_monte_carlo
 from .published import G_LIMIT, PRESET, PUBLISHED
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    import xarray as xr
 
 __all__ = ["READINGS", "compute_readings", "reading_rows", "readings_markdown"]
 
@@ -52,8 +59,9 @@ def _readings() -> dict:
 READINGS = _readings()
 
 
-def compute_readings(n: int = 50, *, readings: dict | None = None, store_dir=None,
-                     executor="local", workers=None, scheduler=None):
+def compute_readings(n: int = 50, *, readings: dict | None = None,
+                     store_dir: str | Path | None = None, executor: str = "local",
+                     workers: int | None = None, scheduler: str | None = None) -> xr.Dataset:
     """The start-position Monte Carlo of 004's machine under our model ("base") and each reading.
 
     Parameters
@@ -80,7 +88,7 @@ def compute_readings(n: int = 50, *, readings: dict | None = None, store_dir=Non
     return ds
 
 
-def reading_rows(ds) -> list:
+def reading_rows(ds: xr.Dataset) -> list:
     """Per reading: the published Monte-Carlo quantities it reproduces under the report's
     tolerances, with Table 2's regions strict and tie-aware.
 
@@ -122,7 +130,7 @@ class _AttrsOnly:
         self.attrs = attrs
 
 
-def readings_markdown(ds) -> str:
+def readings_markdown(ds: xr.Dataset) -> str:
     """The readings as a markdown table: 004's published values, then each reading's values and
     its count of reproduced quantities (report tolerances; regions strict / tie-aware).
 
@@ -159,7 +167,7 @@ def readings_markdown(ds) -> str:
     return "\n".join(lines)
 
 
-def main(argv=None) -> None:
+def main(argv: Sequence[str] | None = None) -> None:
     """Command line: run the readings and print the table (``--help``)."""
     ap = argparse.ArgumentParser(prog="python -m autobalance.papers.p004.readings",
                                  description=__doc__.split("\n\n")[0])
