@@ -21,8 +21,8 @@ import time
 import numpy as np
 
 from autobalance.config import load_config
-from autobalance.liquid import load_bench, run_up
-from autobalance.liquid.simulate import simulate_liquid
+from autobalance.liquid import LiquidModel, run_up
+from autobalance.liquid.simulate import liquid_parts, simulate_liquid
 from autobalance.liquid.steady import physical_fill_sweep
 from autobalance.sweep import spec_from_dict, sweep
 
@@ -37,8 +37,8 @@ def main() -> dict:
                                       "profile.duration=16 s"])
     simulate_liquid(cfg.system, cfg.spin)                                  # compile
     t_e, sim = timed(lambda: simulate_liquid(cfg.system, cfg.spin), repeat=3)
-    b = load_bench("bench_003")
-    t_l, ru = timed(lambda: run_up(b.rotor, b.balancer, b.model, 80.0, 16.0), repeat=3)
+    rotor, bal = liquid_parts(cfg.system)
+    t_l, ru = timed(lambda: run_up(rotor, bal, LiquidModel(), 80.0, 16.0), repeat=3)
     s = sim.summary()
     res["E_runup_0_80"] = {"film_s": t_e, "lumped_s": t_l, "film_steps": s["film_steps"],
                            "peak_mm": 1e3 * s["max_amplitude_m"],
@@ -53,7 +53,7 @@ def main() -> dict:
     vols = np.array(FILLS_ML) * 1e-6
 
     def qs_map():
-        return np.array([physical_fill_sweep(b.rotor, b.balancer, vols, w)["amplitude_m"]
+        return np.array([physical_fill_sweep(rotor, bal, vols, w)["amplitude_m"]
                          for w in speeds])
 
     t_f, amap = timed(qs_map, repeat=1)

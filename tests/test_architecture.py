@@ -334,3 +334,44 @@ def test_no_module_over_600_lines_and_no_function_body_over_100():
             if n > MAX_FUNCTION_LINES and name not in allowed:
                 too_long.append(f"{rel}::{name}: {n} lines without its docstring")
     assert not too_long, "split these (docs/architecture.md):\n" + "\n".join(too_long)
+
+
+# -- type hints: every public parameter is annotated (issue 13) --------------------------------
+def public_parameters(tree) -> list:
+    """(function, parameter, annotated) for every parameter but self/cls of every public function
+    and method (names not starting with ``_``, ``__init__`` included) of public classes."""
+    out = []
+
+    def visit(body, owner=""):
+        for n in body:
+            if isinstance(n, ast.ClassDef) and not n.name.startswith("_"):
+                visit(n.body, f"{owner}{n.name}.")
+            elif isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and (
+                    not n.name.startswith("_") or n.name == "__init__"):
+                a = n.args
+                for p in (a.posonlyargs + a.args + a.kwonlyargs
+                          + [x for x in (a.vararg, a.kwarg) if x is not None]):
+                    if p.arg not in ("self", "cls"):
+                        out.append((f"{owner}{n.name}", p.arg, p.annotation is not None))
+
+    visit(tree.body)
+    return out
+
+
+def test_every_public_parameter_is_annotated():
+    """Public modules (no path part starting with ``_`` but ``__init__``/``__main__``)."""
+    missing = []
+    for path in sorted((SRC / ROOT).rglob("*.py")):
+        rel = path.relative_to(SRC)
+        if any(p.startswith("_") and p not in ("__init__.py", "__main__.py") for p in rel.parts):
+            continue
+        missing += [f"{rel.as_posix()}: {f}({p})" for f, p, ok in
+                    public_parameters(ast.parse(path.read_text())) if not ok]
+    assert not missing, f"{len(missing)} unannotated public parameters:\n" + "\n".join(missing[:40])
+
+
+def test_annotation_check_can_fail():
+    tree = ast.parse("def f(a, b: int, *c, d=1, **e): ...\nclass C:\n    def g(self, x): ...\n"
+                     "    def _h(self, y): ...\ndef _p(z): ...")
+    assert [(f, p) for f, p, ok in public_parameters(tree) if not ok] == \
+        [("f", "a"), ("f", "d"), ("f", "c"), ("f", "e"), ("C.g", "x")]

@@ -10,10 +10,11 @@ from autobalance.liquid import (WATER, Chamber, Liquid, LiquidBalancer, LiquidMo
                                 VerticalRotor, alpha0, alpha0_residual, balancing_efficiency,
                                 bottom_touch_speed, eccentricity_ratio, entrainment_speed,
                                 fill_sweep, free_surface, friction_angle, friction_force,
-                                jeffcott_phase, lid_touch_speed, liquid_volume, load_bench,
-                                load_liquids, motion_mode, residual_lambda0,
+                                jeffcott_phase, lid_touch_speed, liquid_volume,
+                                motion_mode, residual_lambda0,
                                 run_up, steady_response)
 from autobalance.models import ParameterError
+from autobalance.papers.p001.liquids import liquids_001 as load_liquids
 
 G = 9.80665
 R, H = 0.2, 0.05
@@ -112,9 +113,11 @@ def test_001_alpha0_solves_eq2_and_limits():
 
 
 def test_001_friction_density_cancels():
-    """001 eq 6: sin(beta) = 8 pi^2 mu R xi / (180 m omega); with mu = rho nu, m = rho V the
-    density cancels, viscosity does not."""
-    V, w, xi = 150 * ML, 30.0, 180.0
+    """001 eq 6: sin(beta) = 8 pi^2 mu R xi / (180 m omega) (xi in degrees; ours takes xi in
+    rad); with mu = rho nu, m = rho V the density cancels, viscosity does not."""
+    V, w, xi = 150 * ML, 30.0, math.pi
+    assert math.sin(friction_angle(1e-3, R, xi, 0.15, w)) == pytest.approx(
+        8 * math.pi ** 2 * 1e-3 * R * 180.0 / (180 * 0.15 * w), rel=1e-12)   # 001's form
     b = [friction_angle(rho * 1e-5, R, xi, rho * V, w) for rho in (670.0, 1000.0, 1650.0)]
     assert np.allclose(b, b[0], rtol=1e-12)
     assert friction_angle(1e-3 * 96.97, R, xi, 1000 * V, w) > 50 * friction_angle(1e-3 * 1.01, R,
@@ -165,19 +168,26 @@ def test_scalar_liquid_angle_is_alpha0_minus_beta(d, k, mu, w):
     """The integrator's scalar alpha0 - beta (kinetostatic.liquid_angle_scalar) is the same
     formula as the vectorised alpha0 (001 eq 3) and friction_angle (001 eq 6)."""
     from autobalance.liquid.kinetostatic import liquid_angle_scalar
-    a = liquid_angle_scalar(d, k, mu, 0.2, 180.0, 0.15, w)
-    beta = 0.5 * math.pi if w <= 0 else float(friction_angle(mu, 0.2, 180.0, 0.15, w))
+    a = liquid_angle_scalar(d, k, mu, 0.2, math.pi, 0.15, w)
+    beta = 0.5 * math.pi if w <= 0 else float(friction_angle(mu, 0.2, math.pi, 0.15, w))
     assert isinstance(a, float) and a == pytest.approx(float(alpha0(d, k)) - beta, abs=1e-12)
 
 
 # -- dynamics: bench behaviour (003) and 001 trends --------------------------------------------
+MODEL = LiquidModel()   # the lumped model's defaults (docs/liquid.md sec. 3)
+
+
 @pytest.fixture(scope="module")
 def bench():
-    return load_bench("bench_003")
+    from autobalance.papers.p003.bench import bench
+    return bench()
 
 
 def test_bench_preset(bench):
+    """003's bench (papers/p003/bench.py) is the leblanc_003 machine through liquid_parts."""
     assert bench.rotor.natural_frequency(bench.balancer.mass) == pytest.approx(54.0)
+    assert bench.balancer.arc == pytest.approx(math.pi) and bench.balancer.liquid.name == "water"
+    assert (bench.omega_end, bench.duration) == (100.0, 20.0)
     assert bench.balancer.capacity == pytest.approx(bench.rotor.unbalance)  # 150 ml x 0.2 m
     assert set(load_liquids()) >= {"water", "light_670", "heavy_1650", "viscous_97"}
 
@@ -190,10 +200,10 @@ def test_entrainment_and_subcritical_onset(bench):
     the chain, not an independent prediction (docs/liquid.md).
     """
     wr = 54.0
-    r = steady_response(bench.rotor, bench.balancer, [wr / 3, wr / 2, 0.6 * wr], bench.model)
+    r = steady_response(bench.rotor, bench.balancer, [wr / 3, wr / 2, 0.6 * wr], MODEL)
     assert r["efficiency"][0] == pytest.approx(1.0, abs=0.02)
     assert r["efficiency"][1] > 1.3 and r["efficiency"][2] > 10
-    r300 = steady_response(bench.rotor, replace_volume(bench, 300 * ML), [30.0], bench.model)
+    r300 = steady_response(bench.rotor, replace_volume(bench, 300 * ML), [30.0], MODEL)
     assert abs(r300["liquid_angle_deg"][0]) > 150  # 003 Fig. 7b: "almost opposite" at 30 1/s
 
 
@@ -206,7 +216,7 @@ def test_optimum_fill_and_overfill(bench):
     """003 sec. 5.3: optimum ~150 ml (R = 0.2 m, 3000 g*cm); over-filling worsens (001, 003)."""
     vols = np.array(bench.sweep_volumes)
     for f in (0.8, 1.0, 1.2):
-        s = fill_sweep(bench.rotor, bench.balancer, vols, f * 54.0, bench.model)
+        s = fill_sweep(bench.rotor, bench.balancer, vols, f * 54.0, MODEL)
         assert s["optimum_volume_m3"] == pytest.approx(150 * ML)
         amp = dict(zip(np.round(vols / ML), s["amplitude_m"]))
         assert amp[300] > 3 * amp[150] and amp[350] > amp[250]
@@ -216,7 +226,7 @@ def test_larger_chamber_balances_better(bench):
     """003 sec. 5.3, Fig. 6: R = 0.2 m more effective than 0.15 and 0.1 m (same 150 ml)."""
     from dataclasses import replace
     amps = [steady_response(bench.rotor, replace(bench.balancer, chamber=Chamber(r, H)), [54.0],
-                            bench.model)["amplitude_m"][0] for r in (0.1, 0.15, 0.2)]
+                            MODEL)["amplitude_m"][0] for r in (0.1, 0.15, 0.2)]
     assert amps[0] > amps[1] > amps[2]
 
 
@@ -232,7 +242,7 @@ def test_001_viscosity_matters_more_than_density(bench):
     for name, L in load_liquids().items():
         V = bench.rotor.unbalance / (L.density * R)  # optimum fill (k = 1) for this liquid
         b = replace(bench.balancer, liquid=L, volume=V)
-        out[name] = steady_response(bench.rotor, b, [50.0], bench.model)["efficiency"][0]
+        out[name] = steady_response(bench.rotor, b, [50.0], MODEL)["efficiency"][0]
     by_density = out["light_670"] / out["heavy_1650"]
     by_viscosity = out["water"] / out["viscous_97"]
     assert by_density == pytest.approx(1650 / 670, rel=0.02)
@@ -245,7 +255,7 @@ def test_001_efficiency_rises_toward_critical(bench):
     from dataclasses import replace
     L = load_liquids()["viscous_97"]
     b = replace(bench.balancer, liquid=L, volume=bench.rotor.unbalance / (L.density * R))
-    e = steady_response(bench.rotor, b, [35.0, 42.0, 50.0], bench.model)["efficiency"]
+    e = steady_response(bench.rotor, b, [35.0, 42.0, 50.0], MODEL)["efficiency"]
     assert e[0] < e[1] < e[2]
 
 
@@ -271,7 +281,7 @@ def test_classical_law_gives_no_subcritical_balancing(bench):
 @pytest.mark.slow
 def test_run_up_through_resonance(bench):
     """Run-up 0 -> 100 1/s in 20 s: the liquid removes the resonance peak (efficiency > 5)."""
-    ru = run_up(bench.rotor, bench.balancer, bench.model, 100.0, 20.0, n_out=400)
+    ru = run_up(bench.rotor, bench.balancer, MODEL, 100.0, 20.0, n_out=400)
     s = ru.summary()
     assert s["peak_amplitude_dry_m"] > 5 * s["peak_amplitude_m"]
     assert 45.0 < s["peak_speed_dry_rad_s"] < 65.0
@@ -287,7 +297,7 @@ def test_run_up_through_resonance(bench):
     lambda: Liquid(1000.0, 0.0),                      # viscosity <= 0
     lambda: Liquid(1000.0, -1e-6),
     lambda: LiquidBalancer(Chamber(0.1, 0.05), WATER, 2e-3),
-    lambda: friction_angle(0.0, R, 180.0, 0.15, 30.0),
+    lambda: friction_angle(0.0, R, math.pi, 0.15, 30.0),
     lambda: alpha0(0.3, -1.0),
     lambda: VerticalRotor(-1.0, 1e5, 10.0, 0.03),
     lambda: LiquidModel(placement="magic"),

@@ -47,10 +47,12 @@ def test_modes_and_kinetostatic_json():
 @pytest.mark.slow
 def test_simulate_json_and_plots(tmp_path):
     png = tmp_path / "r.png"
-    d = _json(["simulate", "--omega", "10:90 1/s:9", "--plot", str(png)])
+    d = _json(["simulate", "--model", "lumped", "--omega", "10:90 1/s:9", "--plot", str(png)])
     assert d["k"] == pytest.approx(1.0) and len(d["amplitude_m"]) == 9
+    assert d["machine"] == "leblanc_003" and d["placement"] == "drach"
     assert png.stat().st_size > 10_000
-    f = _json(["simulate", "--omega", "54 1/s", "--fill-sweep", "--plot", str(tmp_path / "f.png")])
+    f = _json(["simulate", "--model", "lumped", "--omega", "54 1/s", "--fill-sweep",
+               "--plot", str(tmp_path / "f.png")])
     assert all(s["optimum_volume_m3"] == pytest.approx(150e-6) for s in f["fill_sweep"][1:])
 
 
@@ -64,9 +66,9 @@ def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
                "--plot", str(png)])
     assert d["model"] == "physical" and d["placement"] is None
     amp, dry, w = d["amplitude_m"], d["amplitude_dry_m"], d["omega_rad_s"]
-    from autobalance.liquid import load_bench
     from autobalance.liquid.steady import pool_response
-    b = load_bench("bench_003")
+    from autobalance.papers.p003.bench import bench
+    b = bench()
     below = [(a, x) for a, x in zip(amp, w) if x < d["omega_0_rad_s"]]
     assert below and all(a == pytest.approx(abs(pool_response(b.rotor, b.balancer.volume, 1000.0, x)))
                          for a, x in below)
@@ -79,6 +81,19 @@ def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
     assert len(f["fill_sweep"]) == 4 and f["fill_sweep"][3]["optimum_volume_m3"] >= 150e-6
 
 
+def test_simulate_takes_any_liquid_machine_and_its_overrides():
+    """``liquid simulate`` takes a System: the shortcuts are overrides of the machine's keys, so
+    ``--volume`` and ``--set liquid.volume`` give the same run, and 001's liquids set the
+    density and viscosity; the suspension keeps its values (k of 003's bench)."""
+    a = _json(["simulate", "--omega", "40, 60 1/s", "--volume", "200 ml"])
+    b = _json(["simulate", "leblanc_003", "--omega", "40, 60 1/s", "--set", "liquid.volume=200 ml"])
+    assert a["amplitude_m"] == b["amplitude_m"] and a["volume_m3"] == pytest.approx(2e-4)
+    c = _json(["simulate", "--omega", "60 1/s", "--liquid", "heavy_1650"])
+    assert c["liquid"] == "heavy_1650" and c["capacity_kg_m"] == pytest.approx(1650 * 150e-6 * 0.2)
+    d = _json(["simulate", "--omega", "60 1/s"])
+    assert d["omega_n_rad_s"] == pytest.approx(54.0) and c["omega_n_rad_s"] < 54.0  # same k
+
+
 @pytest.mark.parametrize("args, exc", [
     (["simulate", "--model", "exact"], ConfigError),
     (["surface", "--volume", "7 l"], ParameterError),          # larger than the chamber
@@ -87,6 +102,11 @@ def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
     (["kinetostatic", "--k", "-1"], ParameterError),
     (["simulate", "--liquid", "honey"], ConfigError),
     (["simulate", "--placement", "magic"], ParameterError),
+    (["simulate", "leblanc_washer"], ParameterError),                      # horizontal axis
+    (["simulate", "vub_jeffcott_004"], ConfigError),                       # no [liquid]
+    (["simulate", "--set", "liquid.partitions=4"], ParameterError),        # not in this model
+    (["simulate", "--set", "suspension.ky=1e5"], ParameterError),          # anisotropic
+    (["simulate", "--volume", "7 l"], ConfigError),                        # over the chamber
 ])
 def test_bad_input_raises_one_line(args, exc):
     r = runner.invoke(app, args)

@@ -14,7 +14,6 @@ import xarray as xr
 
 from autobalance.config import ConfigError, describe, from_dict, from_models, load_config, \
     replace_values
-from autobalance.liquid.config import load_bench
 from autobalance.liquid.free_surface import entrainment_speed
 from autobalance.liquid.models import VerticalRotor
 from autobalance.liquid.film import film_run
@@ -31,20 +30,25 @@ def bench(*sets):
 
 # -- the section -------------------------------------------------------------------------------
 def test_preset_is_003s_bench():
-    """leblanc_003 is bench_003 (k and c from 003's omega_r = 54 1/s and our damping ratio
-    0.1) at the 150 ml fill, to the 6 digits the preset writes."""
-    cfg, b = bench(), load_bench("bench_003")
-    s, L = cfg.system, cfg.system.liquid
-    assert s.rotor.mass == b.rotor.mass and s.rotor.unbalance == pytest.approx(b.rotor.unbalance)
-    assert s.suspension.kx == pytest.approx(b.rotor.stiffness, rel=1e-6)
-    assert s.suspension.cx == pytest.approx(b.rotor.damping, rel=1e-5)
-    assert (L.chamber_radius, L.chamber_height) == (b.balancer.chamber.radius,
-                                                    b.balancer.chamber.height)
-    assert L.volume == pytest.approx(b.balancer.volume)
-    assert L.density == b.balancer.liquid.density
-    assert L.kinematic_viscosity == pytest.approx(b.balancer.liquid.kinematic_viscosity)
+    """leblanc_003 is 003's bench (sec. 4.2-5.3): R = 0.2 m, h = 0.05 m, 150 ml water,
+    D = 3000 g*cm, k set by omega_r = 54 1/s with the liquid, our damping ratio 0.1; the papers'
+    bench is that machine through the one adapter (liquid_parts)."""
+    from autobalance.liquid.simulate import liquid_parts
+    from autobalance.papers.p003.bench import bench as paper_bench
+
+    s = bench().system
+    L = s.liquid
+    assert (L.chamber_radius, L.chamber_height) == (0.2, 0.05)
+    assert L.volume == pytest.approx(150e-6) and L.density == 1000.0
+    assert s.rotor.unbalance == pytest.approx(0.03)
     assert s.total_mass == pytest.approx(25.15)
-    assert s.natural_frequencies[0] == pytest.approx(54.0, rel=1e-6)
+    assert s.natural_frequencies[0] == pytest.approx(54.0, rel=1e-12)
+    assert s.suspension.cx / (2 * math.sqrt(s.suspension.kx * s.total_mass)) == \
+        pytest.approx(0.1, rel=1e-12)
+    rotor, bal = liquid_parts(s)
+    b = paper_bench()
+    assert b.rotor == rotor and b.balancer.volume == bal.volume
+    assert b.balancer.chamber == bal.chamber and b.balancer.arc == L.friction_arc
 
 
 def test_units_and_describe():

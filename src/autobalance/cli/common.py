@@ -195,7 +195,8 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
 
 
 # -- checks before the work ---------------------------------------------------------------------
-def check_output_file(path, what: str, example: str = "out.nc", suffixes=()) -> None:
+def check_output_file(path: str | Path | None, what: str, example: str = "out.nc",
+                      suffixes: tuple[str, ...] = ()) -> None:
     """Refuse, before any work, an output file the command could not write at the end.
 
     Parameters
@@ -233,7 +234,7 @@ def check_output_file(path, what: str, example: str = "out.nc", suffixes=()) -> 
         raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} is not writable")
 
 
-def check_plot(path, suffixes: tuple = (".png",), what: str = "--plot",
+def check_plot(path: str | Path | None, suffixes: tuple = (".png",), what: str = "--plot",
                example: str = "plot.png") -> None:
     """Refuse, before any work, a figure file that could not be written (a directory, a missing
     or read-only directory, a suffix not in ``suffixes``): :func:`check_output_file`.

@@ -24,7 +24,7 @@ import typer
 from ..config import ConfigError
 from ..jsonable import to_jsonable
 from ..models import ParameterError
-from .common import JsonOpt, PlotOpt, check_plot, print_json
+from .common import JsonOpt, PlotOpt, SetOpt, check_plot, load_machine, print_json
 
 app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
@@ -92,12 +92,15 @@ def _check_plot(plot: Optional[str]) -> None:
 
 
 def _liquid(name: str):
-    """A liquid of liquids_001 by name; ConfigError naming the known ones."""
-    from ..liquid import load_liquids
+    """A liquid of 001's table (papers/p001/liquids_001.toml) by name; ConfigError naming the
+    known ones."""
+    from ..papers.p001.liquids import liquids_001
 
-    lq = load_liquids()
+    lq = liquids_001()
     if name not in lq:
-        raise ConfigError(f"liquid = {name!r}: one of {', '.join(lq)}")
+        raise ConfigError(f"--liquid = {name!r}: one of {', '.join(lq)} (001's liquids), or "
+                          "give the machine's with --set liquid.density=... "
+                          "--set liquid.kinematic_viscosity=...")
     return lq[name]
 
 
@@ -221,7 +224,7 @@ def kinetostatic(delta: Annotated[str, typer.Option(help="Rotor phase angle(s)."
     L = _liquid(liquid)
     V, R = _q(volume, "volume", "volume"), _q(radius, "length", "radius")
     w = _q(omega, "speed", "omega")
-    xi = math.degrees(_q(arc, "angle", "arc"))
+    xi = _q(arc, "angle", "arc")
     a0 = alpha0(ds, k)
     beta = float(friction_angle(L.dynamic_viscosity, R, xi, L.density * V, w))
     _out({"k": k, "delta_deg": np.degrees(ds), "alpha0_deg": np.degrees(a0),
@@ -235,23 +238,36 @@ def kinetostatic(delta: Annotated[str, typer.Option(help="Rotor phase angle(s)."
           "efficiency_with_friction": balancing_efficiency(k, ds, beta)}, as_json)
 
 
-def _bench(preset, radius, liquid, volume, unbalance, placement):
-    """The bench preset with the command line's changes: (bench, balancer, rotor, model)."""
-    from ..liquid import load_bench
+def _machine(source, sets, radius, liquid, volume, unbalance):
+    """The machine of ``liquid simulate`` with its ``--set`` and the shortcut options: (config,
+    rotor, balancer). The shortcuts are overrides of the machine's own keys (``--volume`` is
+    ``liquid.volume``, ``--radius`` ``liquid.chamber_radius``, ``--unbalance``
+    ``rotor.unbalance``; ``--liquid`` sets 001's density and viscosity); the suspension keeps
+    its values."""
+    from ..liquid.simulate import liquid_parts
 
-    b = load_bench(preset)
-    bal, rot, model = b.balancer, b.rotor, b.model
-    if radius:
-        bal = replace(bal, chamber=replace(bal.chamber, radius=_q(radius, "length", "radius")))
+    sets = list(sets or [])
+    for key, value in (("liquid.volume", volume), ("liquid.chamber_radius", radius),
+                       ("rotor.unbalance", unbalance)):
+        if value:
+            sets.append(f"{key}={value}")
     if liquid:
-        bal = replace(bal, liquid=_liquid(liquid))
-    if volume:
-        bal = replace(bal, volume=_q(volume, "volume", "volume"))
-    if unbalance:
-        rot = replace(rot, unbalance=_q(unbalance, "unbalance", "unbalance"))
-    if placement:
-        model = replace(model, placement=placement)
-    return b, bal, rot, model
+        L = _liquid(liquid)
+        sets += [f"liquid.density={L.density!r}",
+                 f"liquid.kinematic_viscosity={L.kinematic_viscosity!r}"]
+    cfg = load_machine(source, sets, balls="liquid")
+    s = cfg.system
+    if s.liquid.axis != "vertical":
+        raise ParameterError("liquid.axis", s.liquid.axis, "liquid simulate analyses a "
+                             "vertical axis (003's bench); a horizontal machine runs with "
+                             "autobalance simulate (the film model with gravity)")
+    if s.balancer.n_balls:
+        raise ParameterError("balancer.n_balls", s.balancer.n_balls, "must be 0: liquid "
+                             "simulate analyses the liquid balancer alone")
+    rot, bal = liquid_parts(s)
+    if liquid:
+        bal = replace(bal, liquid=replace(bal.liquid, name=liquid))
+    return cfg, rot, bal
 
 
 def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model, label=None) -> None:
@@ -277,47 +293,67 @@ def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model, label=None) -> None:
 
 
 @app.command()
-def simulate(preset: Annotated[str, typer.Argument(help="Bench preset or .toml.")] = "bench_003",
-             volume: Annotated[Optional[str], typer.Option("--volume", "-V")] = None,
-             radius: Annotated[Optional[str], typer.Option("--radius", "-R")] = None,
-             unbalance: Annotated[Optional[str], typer.Option(help="e.g. '2000 g*cm'.")] = None,
-             liquid: Annotated[Optional[str], typer.Option(help="Liquid of liquids_001.")] = None,
-             placement: Annotated[Optional[str], typer.Option(help="drach | deflection")] = None,
+def simulate(source: Annotated[str, typer.Argument(
+                 metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
+                 "axis).")] = "leblanc_003",
+             sets: SetOpt = None,
+             volume: Annotated[Optional[str], typer.Option(
+                 "--volume", "-V", help="Shortcut for --set liquid.volume=...")] = None,
+             radius: Annotated[Optional[str], typer.Option(
+                 "--radius", "-R", help="Shortcut for --set liquid.chamber_radius=...")] = None,
+             unbalance: Annotated[Optional[str], typer.Option(
+                 help="Shortcut for --set rotor.unbalance=..., e.g. '2000 g*cm'.")] = None,
+             liquid: Annotated[Optional[str], typer.Option(
+                 help="One of 001's liquids (sets density and viscosity).")] = None,
+             placement: Annotated[Optional[str], typer.Option(
+                 help="drach | deflection (the lumped model's law)")] = None,
              omega: Annotated[str, typer.Option(help="Steady speeds.")] = "5:100 1/s:96",
              run: Annotated[bool, typer.Option("--run-up/--no-run-up",
                                                help="Also integrate the run-up.")] = False,
              fill: Annotated[bool, typer.Option("--fill-sweep", help="Amplitude vs fill at "
-                                                "0.6, 0.8, 1, 1.2 omega_r (003 Fig. 5).")] = False,
+                                                "0.6, 0.8, 1, 1.2 omega_n (003 Fig. 5).")] = False,
              model_kind: Annotated[str, typer.Option(
-                 "--model", help="lumped (calibrated engagement, the report's) or physical (the "
-                                 "liquid in the displaced chamber; the run-up couples the wall "
-                                 "film and starts at omega_0).")] = "lumped",
+                 "--model", help="physical (the liquid in the displaced chamber; the run-up "
+                                 "couples the wall film and starts at omega_0) or lumped (the "
+                                 "calibrated engagement of the first release).")] = "physical",
              as_json: JsonOpt = False, plot: PlotOpt = None):
-    """Rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
+    """A machine's rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
+
+    The machine is any config with a ``[liquid]`` section on a vertical axis (default the
+    ``leblanc_003`` preset, 003's bench); ``autobalance simulate`` runs it through its own
+    profile with the coupled film instead.
 
     Parameters
     ----------
-    preset : str
-        Bench preset name or .toml file.
-    volume, radius, unbalance, liquid, placement : str
-        Changes to the preset: volume [m^3], chamber radius [m], rotor unbalance [kg m] (with
-        units or bare SI), a liquid of liquids_001, drach or deflection; default the preset's.
+    source : str
+        Preset name or .toml file of the machine.
+    sets : list of str
+        ``PATH=VALUE`` overrides (``--set``).
+    volume, radius, unbalance, liquid : str
+        Shortcuts for overrides: the liquid volume [m^3], chamber radius [m], rotor unbalance
+        [kg m] (with units or bare SI), one of 001's liquids; default the machine's.
+    placement : str
+        The lumped model's placement law, drach or deflection (default drach).
     omega, as_json
         The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` lists the steady speeds.
     run : bool
-        Also integrate the run-up.
+        Also integrate a linear run-up from rest to the profile's nominal speed over its
+        duration (leblanc_003: 0 -> 100 1/s in 20 s).
     fill : bool
-        Amplitude vs fill at 0.6, 0.8, 1, 1.2 omega_r (003 Fig. 5).
+        Amplitude vs fill at 0.6, 0.8, 1, 1.2 omega_n (003 Fig. 5), over the fill map's default
+        fills (:func:`autobalance.studies.fill_map.default_fills`).
     model_kind : str
-        "lumped" (docs/liquid.md sec. 3) or "physical" (sec. 3b-3d).
+        "physical" (docs/liquid.md sec. 3b-3d) or "lumped" (sec. 3).
     plot : str
         Figure (.png, .pdf, .svg): the response, or the fill sweep with ``--fill-sweep``.
     """
-    from ..liquid import entrainment_speed, fill_sweep, run_up, steady_response
+    from ..liquid import LiquidModel, entrainment_speed, fill_sweep, run_up, steady_response
+    from ..studies.fill_map import default_fills
 
     if model_kind not in ("lumped", "physical"):
-        raise ConfigError(f"--model = {model_kind!r}: must be 'lumped' or 'physical'")
-    b, bal, rot, model = _bench(preset, radius, liquid, volume, unbalance, placement)
+        raise ConfigError(f"--model = {model_kind!r}: must be 'physical' or 'lumped'")
+    model = LiquidModel(**({"placement": placement} if placement else {}))
+    cfg, rot, bal = _machine(source, sets, radius, liquid, volume, unbalance)
     _check_plot(plot)
     ws = _list(omega, "speed", "omega")
     physical = model_kind == "physical"
@@ -332,19 +368,22 @@ def simulate(preset: Annotated[str, typer.Argument(help="Bench preset or .toml."
         st = steady_response(rot, bal, ws, model)
     w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g)
     wn = rot.natural_frequency(bal.mass)
-    out = {"preset": preset, "model": model_kind, "volume_m3": bal.volume, "radius_m": bal.chamber.radius,
+    w_end, t_end = float(cfg.spin.nominal_speed), float(cfg.spin.duration)
+    out = {"machine": cfg.name, "model": model_kind, "volume_m3": bal.volume,
+           "radius_m": bal.chamber.radius,
            "liquid": bal.liquid.name, "unbalance_kg_m": rot.unbalance,
            "capacity_kg_m": bal.capacity, "k": bal.capacity / rot.unbalance
            if rot.unbalance else None, "placement": None if physical else model.placement,
            "omega_0_rad_s": w0, "omega_n_rad_s": wn, **st}
     ru = sw = None
     if run:
-        ru = (run_up(rot, bal, b.omega_end, b.duration, model.g) if physical
-              else run_up(rot, bal, model, b.omega_end, b.duration, n_out=1500))
+        ru = (run_up(rot, bal, w_end, t_end, model.g) if physical
+              else run_up(rot, bal, model, w_end, t_end, n_out=1500))
         out["run_up"] = ru.summary()
     if fill:
-        sw = [physical_fill_sweep(rot, bal, b.sweep_volumes, f * wn, model.g) if physical
-              else fill_sweep(rot, bal, b.sweep_volumes, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
+        vols = default_fills(cfg.system.liquid)
+        sw = [physical_fill_sweep(rot, bal, vols, f * wn, model.g) if physical
+              else fill_sweep(rot, bal, vols, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
         out["fill_sweep"] = [{"omega_rad_s": s["omega_rad_s"], "volume_m3": s["volume_m3"],
                               "amplitude_m": s["amplitude_m"],
                               "optimum_volume_m3": s["optimum_volume_m3"]} for s in sw]

@@ -13,13 +13,18 @@ configuration's nominal speed.
 from __future__ import annotations
 
 import math
-from typing import Annotated, Optional
+from typing import TYPE_CHECKING, Annotated, Optional
 
 import typer
 
 from ..config import ConfigError, parse_quantity
 from .common import (JsonOpt, ProfileOpt, SetOpt, SourceArg, echo_fields, guard, load_machine,
                      print_json)
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from ..config import Config
 
 SpeedOpt = Annotated[Optional[str], typer.Option(
     "--speed", help="Spin speed, e.g. '1000 rpm' (bare number: rad/s); default the preset's.")]
@@ -58,7 +63,7 @@ def parse_speed(text: str, field: str) -> float:
     return parse_quantity(text, "speed", field)
 
 
-def speed_at(cfg, spec: Optional[str]) -> float:
+def speed_at(cfg: Config, spec: Optional[str]) -> float:
     """``--speed``: one spin speed, default the configuration's nominal speed.
 
     Parameters
@@ -143,7 +148,7 @@ def speed_grid(spec: Optional[str], nominal: float):
     return np.linspace(lo, hi, n)
 
 
-def ball_angles(cfg, spec: Optional[str]):
+def ball_angles(cfg: Config, spec: Optional[str]) -> np.ndarray:
     """``--angles``: one angle per ball, default the configuration's initial ball angles.
 
     Parameters

@@ -5,13 +5,19 @@ from __future__ import annotations
 import math
 import time
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import TYPE_CHECKING, Annotated, Any, Optional
 
 import typer
 
 from .common import (DEFAULT_GRADE, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg,
                      UnitsOpt, check_grade, check_output_file, check_plot, class_text,
                      grade_text, guard, load_machine, print_json)
+
+if TYPE_CHECKING:
+    from ..config import Config
+    from ..config.display import DisplayUnits
+    from ..liquid.simulate import LiquidSimulation
+    from ..simulate import Simulation
 
 #: Figure formats of ``simulate --plot``.
 PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
@@ -51,7 +57,8 @@ def _number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
-def shown(key: str, value: Any, units, grade: float | None = None) -> tuple[str, Any]:
+def shown(key: str, value: Any, units: DisplayUnits,
+          grade: float | None = None) -> tuple[str, Any]:
     """A JSON summary entry (SI, unit-suffixed key) as the terminal shows it: the key without
     its suffix and the value in the display unit of its kind, e.g. ``("nominal_speed_rad_s",
     418.9)`` -> ``("nominal_speed", "4000 rpm")``; a grade with its ISO 1940 class and, given
@@ -93,7 +100,8 @@ def shown(key: str, value: Any, units, grade: float | None = None) -> tuple[str,
     return key, value
 
 
-def echo_tree(key: str, value: Any, level: int, units=None, grade: float | None = None) -> None:
+def echo_tree(key: str, value: Any, level: int, units: DisplayUnits | None = None,
+              grade: float | None = None) -> None:
     """Print a (nested) summary entry as indented ``key  value`` lines.
 
     Parameters
@@ -124,7 +132,7 @@ def echo_tree(key: str, value: Any, level: int, units=None, grade: float | None 
         typer.echo(f"{pad}{key:<{max(34 - 2 * level, 1)}} {fmt_value(value)}")
 
 
-def run_config(cfg):
+def run_config(cfg: Config) -> tuple[Simulation | LiquidSimulation, float]:
     """Simulate one configuration.
 
     Parameters
@@ -152,7 +160,8 @@ def run_config(cfg):
     return sim, time.perf_counter() - t0
 
 
-def write_outputs(sim, out: Optional[Path], plot, units=None,
+def write_outputs(sim: Simulation | LiquidSimulation, out: Optional[Path],
+                  plot: str | Path | None, units: DisplayUnits | None = None,
                   grade: float = DEFAULT_GRADE) -> dict:
     """Write a run's NetCDF file (SI; ball angles unwrapped) and its figure.
 

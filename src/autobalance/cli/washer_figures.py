@@ -5,6 +5,7 @@ draws). Used by ``autobalance analyze``; the seed-000 targets compute their data
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -12,6 +13,13 @@ from matplotlib.figure import Figure
 from ..plotting.washer import (ball_forces_figure, eccentricity_deviation_figure, force_extreme_ratio_figure,
                                residual_bound_figure, rolling_deviation_figure, speed_title,
                                vibratory_force_damping_figure, vibratory_force_figure)
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import numpy.typing as npt
+
+    from ..models import System
 
 __all__ = ["plot_ball_forces", "plot_residual_bound", "plot_vibratory_force",
            "plot_vibratory_force_damping", "plot_rolling_deviation", "plot_eccentricity_deviation",
@@ -27,7 +35,8 @@ def _titles(system, speeds) -> list:
 
 
 
-def plot_vibratory_force(system, speeds, labels=None) -> Figure:
+def plot_vibratory_force(system: System, speeds: npt.ArrayLike,
+                         labels: Sequence[str] | None = None) -> Figure:
     """:func:`vibratory_force_figure` of ``system`` at ``speeds`` [rad/s] (one ball, mR = Me);
     ``labels`` replace the panel titles."""
     from ..physics.vibratory import single_ball_force
@@ -38,7 +47,7 @@ def plot_vibratory_force(system, speeds, labels=None) -> Figure:
 
 
 
-def plot_ball_forces(system, speeds, angles) -> Figure:
+def plot_ball_forces(system: System, speeds: npt.ArrayLike, angles: npt.ArrayLike) -> Figure:
     """:func:`ball_forces_figure` of the machine's own balancer at ``speeds`` [rad/s]: each
     ball's vibratory force (000 eq 8, 39-42: its masses, R, rho, beta) against its own angle
     with the others at ``angles`` [rad], and its rest band +-f/r (its stiction)."""
@@ -60,7 +69,8 @@ def plot_ball_forces(system, speeds, angles) -> Figure:
     return ball_forces_figure(_ALPHA, panels, _titles(system, speeds), system.name)
 
 
-def plot_residual_bound(system, speeds, f_r=None) -> Figure:
+def plot_residual_bound(system: System, speeds: npt.ArrayLike,
+                        f_r: float | npt.ArrayLike | None = None) -> Figure:
     """:func:`residual_bound_figure` of the machine's own balancer: the true worst-case residual
     of its balls at rest (:func:`autobalance.physics.worst_case.residual_bound`, with its
     f/r or ``f_r`` [-], its rho, beta and damper friction) against ``speeds`` [rad/s], and each
@@ -88,7 +98,8 @@ def plot_residual_bound(system, speeds, f_r=None) -> Figure:
                                  f"{b.n_balls} balls, f/r = {mu_txt}")
 
 
-def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0)) -> Figure:
+def plot_vibratory_force_damping(system: System, speeds: npt.ArrayLike,
+                                 damping_scales: Sequence[float] = (0.5, 1.0, 2.0)) -> Figure:
     """:func:`vibratory_force_damping_figure` of ``system`` at ``speeds`` [rad/s] for the
     suspension damping factors ``damping_scales`` [-]."""
     from ..physics.vibratory import single_ball_force
@@ -101,7 +112,8 @@ def plot_vibratory_force_damping(system, speeds, damping_scales=(0.5, 1.0, 2.0))
 
 
 
-def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
+def plot_rolling_deviation(system: System, speeds: npt.ArrayLike,
+                           f_r_values: Sequence[float] = (1e-3, 2e-3)) -> Figure:
     """:func:`rolling_deviation_figure` of ``system`` (eq 24) at ``speeds`` [rad/s] for the
     rolling resistances ``f_r_values`` [-]."""
     from ..physics.error_bounds import rolling_deadband_single
@@ -112,7 +124,9 @@ def plot_rolling_deviation(system, speeds, f_r_values=(1e-3, 2e-3)) -> Figure:
 
 
 
-def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, speed=None) -> Figure:
+def plot_eccentricity_deviation(eccentricity: float, rhos: Sequence[float],
+                                betas: npt.ArrayLike | None = None, system: System | None = None,
+                                speed: float | None = None) -> Figure:
     """:func:`eccentricity_deviation_figure` of eq 45 for the eccentricity e [m] and ring
     eccentricities ``rhos`` [m] over ``betas`` [rad]; with ``system`` and ``speed`` [rad/s] also
     the exact root of eq 44 on every tenth beta."""
@@ -128,7 +142,8 @@ def plot_eccentricity_deviation(eccentricity, rhos, betas=None, system=None, spe
 
 
 
-def plot_force_extreme_ratio(system, speeds, published=None) -> Figure:
+def plot_force_extreme_ratio(system: System, speeds: npt.ArrayLike,
+                             published: float | None = None) -> Figure:
     """:func:`force_extreme_ratio_figure` of ``system`` at ``speeds`` [rad/s]."""
     from ..physics.vibratory import force_extreme_ratio
 

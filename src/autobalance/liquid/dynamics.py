@@ -17,6 +17,7 @@ from __future__ import annotations
 import cmath
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -25,6 +26,9 @@ from ..models._validate import ParameterError, nonneg, positive
 from .free_surface import entrainment_speed
 from .kinetostatic import liquid_angle_scalar
 from .models import LiquidBalancer, LiquidModel, VerticalRotor
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["RunUp", "engagement", "run_up", "steady_response", "fill_sweep"]
 
@@ -35,7 +39,8 @@ def _wrap(a: float) -> float:
     return (a + math.pi) % TWO_PI - math.pi
 
 
-def engagement(omega, omega0: float, ratio: float):
+def engagement(omega: float | npt.ArrayLike, omega0: float,
+               ratio: float) -> float | np.ndarray:
     """Fraction chi in [0, 1] of the liquid's unbalance capacity that is active [-].
 
     Smoothstep from 0 at omega_0 (003 eq 6, start of mode 4) to 1 at ratio*omega_0 (our
@@ -68,7 +73,7 @@ def _target(theta: float, W: complex, ut: complex, D: float, D0: float,
     delta = _wrap(cmath.phase(W) - cmath.phase(ut))
     k = max(D0 / D, 1e-12)
     a = liquid_angle_scalar(delta, k, bal.liquid.dynamic_viscosity, bal.chamber.radius,
-                            bal.arc_deg, bal.mass, omega)
+                            bal.arc, bal.mass, omega)
     side = math.copysign(1.0, ut.imag) if ut.imag != 0.0 else -1.0
     return side * a
 
@@ -179,7 +184,7 @@ def run_up(rotor: VerticalRotor, bal: LiquidBalancer, model: LiquidModel = Liqui
                  amplitude_dry=np.hypot(dry.y[0], dry.y[1]))
 
 
-def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas,
+def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas: npt.ArrayLike,
                     model: LiquidModel = LiquidModel(), iterations: int = 400) -> dict:
     """Steady synchronous whirl at constant speeds, with and without liquid.
 
@@ -235,7 +240,7 @@ def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas,
             "phase_deg": np.array(ph)}
 
 
-def fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes, omega: float,
+def fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.ArrayLike, omega: float,
                model: LiquidModel = LiquidModel()) -> dict:
     """Steady amplitude [m] at one speed for several fill volumes [m^3] (003 Fig. 5).
 

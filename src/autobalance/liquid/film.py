@@ -13,12 +13,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..core.shallow_water import sw_integrate, wall_height
 from ..models._validate import ParameterError, finite, nonneg, positive
-from .models import G_STANDARD
+from .models import G_STANDARD, LiquidBalancer, VerticalRotor
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from .dynamics import RunUp
 
 __all__ = ["CoupledRun", "FilmRun", "coupled_run", "film_equilibrium", "film_run", "film_unbalance",
            "film_wave_speed", "physical_run_up"]
@@ -28,7 +34,8 @@ def _theta(n: int) -> np.ndarray:
     return (np.arange(n) + 0.5) * (2 * np.pi / n)
 
 
-def film_unbalance(thickness, radius: float, height: float, density: float) -> complex:
+def film_unbalance(thickness: npt.ArrayLike, radius: float, height: float,
+                   density: float) -> complex:
     """First moment of a thin film about the chamber centre [kg*m]: rho H R^2 sum(eta e^{i
     theta}) dtheta over the cells (thin film: the liquid at radius R).
 
@@ -194,9 +201,12 @@ def _table(value, t_end, name):
     return np.array([0.0, t_end]), np.full(2, complex(value))
 
 
-def film_run(radius: float, height: float, volume: float, speed, t_end: float, *,
-             deflection=0j, density: float = 1000.0, viscosity: float = 1.0e-6,
-             n_cells: int = 256, save_dt: float | None = None, initial=None,
+def film_run(radius: float, height: float, volume: float,
+             speed: float | tuple[npt.ArrayLike, npt.ArrayLike], t_end: float, *,
+             deflection: complex | tuple[npt.ArrayLike, npt.ArrayLike] = 0j,
+             density: float = 1000.0, viscosity: float = 1.0e-6, n_cells: int = 256,
+             save_dt: float | None = None,
+             initial: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
              gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi,
              partitions: int = 0) -> FilmRun:
     """Integrate the film (module docstring) from t = 0 to ``t_end``.
@@ -304,7 +314,8 @@ class CoupledRun:
     steps: int
 
 
-def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end: float, *,
+def coupled_run(rotor: VerticalRotor, radius: float, height: float, volume: float,
+                speed: float | tuple[npt.ArrayLike, npt.ArrayLike], t_end: float, *,
                 density: float = 1000.0, viscosity: float = 1.0e-6, n_cells: int = 256,
                 save_dt: float | None = None, deflection: complex = 0j, velocity: complex = 0j,
                 gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi,
@@ -391,8 +402,8 @@ def coupled_run(rotor, radius: float, height: float, volume: float, speed, t_end
     return CoupledRun(out_t, out_w, film, int(steps))
 
 
-def physical_run_up(rotor, bal, omega_end: float, duration: float, g: float = G_STANDARD,
-                    n_cells: int = 256, n_out: int = 1500):
+def physical_run_up(rotor: VerticalRotor, bal: LiquidBalancer, omega_end: float, duration: float,
+                    g: float = G_STANDARD, n_cells: int = 256, n_out: int = 1500) -> RunUp:
     """A run-up with the wall film coupled to the rotor (:func:`coupled_run`), as the lumped
     model's :class:`autobalance.liquid.RunUp`: linear in speed from the entrainment speed omega_0
     (003 eq 6; below it the liquid is not a ring on the wall and the film model does not apply)

@@ -21,11 +21,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models._validate import ParameterError, finite, nonneg, positive
 from .models import G_STANDARD
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import numpy.typing as npt
 
 __all__ = ["FreeSurface", "MODE_NAMES", "bottom_touch_speed", "entrainment_speed",
            "free_surface", "gravity_mode_speed", "lid_touch_speed", "liquid_volume",
@@ -110,7 +116,7 @@ class FreeSurface:
     r_lid: float
     h0: float
 
-    def depth(self, r) -> np.ndarray:
+    def depth(self, r: float | npt.ArrayLike) -> np.ndarray:
         """Liquid depth clip(z_* + omega^2 r^2/(2g), 0, h) [m] at radii r [m] (003 eq 3).
 
         Parameters
@@ -355,8 +361,8 @@ def free_surface(omega: float, volume: float, radius: float, height: float,
                        h0=V / (math.pi * R * R))
 
 
-def surface_height(r, omega: float, volume: float, radius: float, height: float,
-                   g: float = G_STANDARD) -> np.ndarray:
+def surface_height(r: float | npt.ArrayLike, omega: float, volume: float, radius: float,
+                   height: float, g: float = G_STANDARD) -> np.ndarray:
     """Liquid depth [m] at radii r (vectorised :meth:`FreeSurface.depth`).
 
     Parameters
@@ -377,8 +383,8 @@ def surface_height(r, omega: float, volume: float, radius: float, height: float,
     return free_surface(omega, volume, radius, height, g).depth(r)
 
 
-def surface_profiles(omegas, volume: float, radius: float, height: float, g: float = G_STANDARD,
-                     n: int = 1201, wall_zoom: float = 0.1) -> dict:
+def surface_profiles(omegas: Sequence[float], volume: float, radius: float, height: float,
+                     g: float = G_STANDARD, n: int = 1201, wall_zoom: float = 0.1) -> dict:
     """Liquid depth z(r) [m] at several speeds on one radial grid, for a figure (003 eq 3-5).
 
     The grid has ``n`` points over the whole radius and ``n`` more over the last ``wall_zoom``

@@ -15,10 +15,14 @@ from __future__ import annotations
 
 import math
 from types import SimpleNamespace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models._validate import ParameterError, positive
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["alpha0", "alpha0_residual", "balancing_efficiency", "eccentricity_ratio",
            "friction_angle", "friction_force", "friction_tan_bound", "jeffcott_phase",
@@ -41,9 +45,10 @@ def _alpha0(sin2_delta, k, ops=_NUMPY):
     return math.pi - ops.arccos(ops.clip((s2 + root) / k, -1.0, 1.0))
 
 
-def _sin_beta(mu, radius, arc_deg, liquid_mass, omega):
-    """001 eq 6 before clipping: sin(beta) = 8 pi^2 mu R xi / (180 m omega) [-]. No validation."""
-    return 8.0 * math.pi ** 2 * mu * radius * arc_deg / (180.0 * liquid_mass * omega)
+def _sin_beta(mu, radius, arc, liquid_mass, omega):
+    """001 eq 6 before clipping: sin(beta) = 8 pi mu R xi / (m omega), xi in rad (001 writes
+    8 pi^2 mu R xi / (180 m omega) with xi in degrees) [-]. No validation."""
+    return 8.0 * math.pi * mu * radius * arc / liquid_mass / omega
 
 
 def _beta(sin_beta, ops=_NUMPY):
@@ -59,7 +64,8 @@ def _k(k):
     return k
 
 
-def eccentricity_ratio(k, alpha):
+def eccentricity_ratio(k: float | npt.ArrayLike,
+                       alpha: float | npt.ArrayLike) -> float | np.ndarray:
     """e_c / e = sqrt(1 + 2 k cos(alpha) + k^2) [-] (001, formula before eq 1).
 
     Parameters
@@ -73,7 +79,7 @@ def eccentricity_ratio(k, alpha):
     return np.sqrt(np.maximum(1.0 + 2.0 * k * np.cos(alpha) + k * k, 0.0))
 
 
-def alpha0(delta, k):
+def alpha0(delta: float | npt.ArrayLike, k: float | npt.ArrayLike) -> float | np.ndarray:
     """Liquid equilibrium angle alpha0 [rad] in (pi/2, pi] (001 eq 3).
 
     alpha0 = pi - arccos((sin^2 d + sqrt((sin^2 d - 1)(sin^2 d - k^2))) / k), the root of
@@ -92,7 +98,8 @@ def alpha0(delta, k):
     return _alpha0(np.sin(delta) ** 2, _k(k))
 
 
-def alpha0_residual(alpha, delta, k):
+def alpha0_residual(alpha: float | npt.ArrayLike, delta: float | npt.ArrayLike,
+                    k: float | npt.ArrayLike) -> float | np.ndarray:
     """Residual of 001 eq 2: sin(alpha) - sin(delta) sqrt(1 + 2k cos(alpha) + k^2)/k [-].
 
     Parameters
@@ -108,7 +115,7 @@ def alpha0_residual(alpha, delta, k):
     return np.sin(alpha) - np.sin(delta) * eccentricity_ratio(k, alpha) / k
 
 
-def residual_lambda0(k, alpha):
+def residual_lambda0(k: float | npt.ArrayLike, alpha: float | npt.ArrayLike) -> float | np.ndarray:
     """lambda0 = k / sqrt(1 + 2 k cos(alpha0) + k^2) = D0/D_c [-] (001 eq 4).
 
     Infinite (complete balance) at k = 1, alpha0 = pi (001, after eq 4).
@@ -125,7 +132,9 @@ def residual_lambda0(k, alpha):
         return k / eccentricity_ratio(k, alpha)
 
 
-def laminar_pipe_force(mu, density, speed, length, diameter):
+def laminar_pipe_force(mu: float | npt.ArrayLike, density: float | npt.ArrayLike,
+                       speed: float | npt.ArrayLike, length: float | npt.ArrayLike,
+                       diameter: float | npt.ArrayLike) -> float | np.ndarray:
     """Laminar friction force F_T = pi/4 dP d^2 [N] in 001's first form of eq 5.
 
     dP = rho lambda (l/d) v^2/2 with the Hagen-Poiseuille lambda = 64/Re, Re = v rho d/mu; 001
@@ -149,11 +158,13 @@ def laminar_pipe_force(mu, density, speed, length, diameter):
             * speed ** 2 / 2)
 
 
-def friction_force(mu, radius, arc_deg, omega, offset):
+def friction_force(mu: float, radius: float, arc: float, omega: float,
+                   offset: float) -> float | np.ndarray:
     """Laminar viscous friction force F_T [N] on the liquid (001 eq 5).
 
-    F_T = 8 pi mu l v with l = pi R xi/180 (wetted arc) and v = omega |O1C| (Hagen-Poiseuille,
-    lambda = 64/Re, as 001 derives it): F_T = 8 pi^2 mu R xi omega |O1C| / 180.
+    F_T = 8 pi mu l v with l = R xi (wetted arc; 001 writes pi R xi / 180 with xi in degrees)
+    and v = omega |O1C| (Hagen-Poiseuille, lambda = 64/Re, as 001 derives it):
+    F_T = 8 pi mu R xi omega |O1C|.
 
     Parameters
     ----------
@@ -161,8 +172,8 @@ def friction_force(mu, radius, arc_deg, omega, offset):
         Dynamic viscosity [Pa*s] > 0.
     radius : float
         Chamber radius R [m].
-    arc_deg : float
-        Arc xi occupied by the liquid [deg].
+    arc : float
+        Arc xi occupied by the liquid [rad].
     omega : float
         Rotation speed [rad/s].
     offset : float
@@ -170,13 +181,14 @@ def friction_force(mu, radius, arc_deg, omega, offset):
     """
     if np.any(np.asarray(mu) <= 0):
         raise ParameterError("mu", mu, "viscosity must be > 0")
-    return 8.0 * math.pi ** 2 * np.asarray(mu) * radius * arc_deg * omega * offset / 180.0
+    return 8.0 * math.pi * np.asarray(mu) * radius * arc * omega * offset
 
 
-def friction_angle(mu, radius, arc_deg, liquid_mass, omega):
+def friction_angle(mu: float | npt.ArrayLike, radius: float, arc: float, liquid_mass: float,
+                   omega: float | npt.ArrayLike) -> float | np.ndarray:
     """Friction angle beta [rad] of the liquid, sin(beta) = F_T / F (001 eq 6).
 
-    sin(beta) = 8 pi^2 mu R xi / (180 m omega), with F = m omega^2 |O1C| the centrifugal force
+    sin(beta) = 8 pi mu R xi / (m omega) (xi in rad), with F = m omega^2 |O1C| the centrifugal force
     (|O1C| cancels). With mu = rho nu and m = rho V the density cancels: beta depends on the
     kinematic viscosity only -- 001's "viscosity matters more than density". Where
     sin(beta) >= 1 friction holds the liquid and beta = pi/2 (our clip).
@@ -187,8 +199,8 @@ def friction_angle(mu, radius, arc_deg, liquid_mass, omega):
         Dynamic viscosity [Pa*s] > 0.
     radius : float
         R [m].
-    arc_deg : float
-        xi [deg].
+    arc : float
+        xi [rad].
     liquid_mass : float
         m = rho V [kg] > 0.
     omega : float or array
@@ -197,10 +209,10 @@ def friction_angle(mu, radius, arc_deg, liquid_mass, omega):
     if np.any(np.asarray(mu) <= 0):
         raise ParameterError("mu", mu, "viscosity must be > 0")
     positive("liquid_mass", liquid_mass)
-    return _beta(_sin_beta(np.asarray(mu), radius, arc_deg, liquid_mass, np.asarray(omega, float)))
+    return _beta(_sin_beta(np.asarray(mu), radius, arc, liquid_mass, np.asarray(omega, float)))
 
 
-def liquid_angle_scalar(delta: float, k: float, mu: float, radius: float, arc_deg: float,
+def liquid_angle_scalar(delta: float, k: float, mu: float, radius: float, arc: float,
                         liquid_mass: float, omega: float) -> float:
     """The liquid's equilibrium angle alpha0(delta, k) - beta(omega) [rad] (001 eq 3 and 6) for
     floats, without validation: the same formulas as :func:`alpha0` and
@@ -217,19 +229,20 @@ def liquid_angle_scalar(delta: float, k: float, mu: float, radius: float, arc_de
         Dynamic viscosity [Pa*s] > 0.
     radius : float
         Chamber radius R [m].
-    arc_deg : float
-        Arc xi occupied by the liquid [deg].
+    arc : float
+        Arc xi occupied by the liquid [rad].
     liquid_mass : float
         m = rho V [kg] > 0.
     omega : float
         Rotation speed [rad/s].
     """
     beta = (0.5 * math.pi if omega <= 0.0 else
-            _beta(_sin_beta(mu, radius, arc_deg, liquid_mass, omega), _MATH))
+            _beta(_sin_beta(mu, radius, arc, liquid_mass, omega), _MATH))
     return _alpha0(math.sin(delta) ** 2, k, _MATH) - beta
 
 
-def friction_tan_bound(mu, radius, arc_deg, liquid_mass, omega):
+def friction_tan_bound(mu: float | npt.ArrayLike, radius: float, arc: float,
+                       liquid_mass: float, omega: float | npt.ArrayLike) -> float | np.ndarray:
     """|tan(beta)| bound of 001 eq 7: s / sqrt(1 - s^2), s = sin(beta) of eq 6 [-].
 
     Parameters
@@ -238,17 +251,17 @@ def friction_tan_bound(mu, radius, arc_deg, liquid_mass, omega):
         Dynamic viscosity [Pa*s] > 0.
     radius : float
         Chamber radius R [m].
-    arc_deg : float
-        Arc xi occupied by the liquid [deg].
+    arc : float
+        Arc xi occupied by the liquid [rad].
     liquid_mass : float
         m = rho V [kg] > 0.
     omega : float or array
         Rotation speed [rad/s] > 0.
     """
-    return np.tan(friction_angle(mu, radius, arc_deg, liquid_mass, omega))
+    return np.tan(friction_angle(mu, radius, arc, liquid_mass, omega))
 
 
-def jeffcott_phase(ratio, zeta):
+def jeffcott_phase(ratio: float | npt.ArrayLike, zeta: float | npt.ArrayLike) -> float | np.ndarray:
     """Phase angle delta [rad] of a damped rotor, tan d = 2 zeta r / (1 - r^2) (textbook).
 
     Parameters
@@ -262,7 +275,8 @@ def jeffcott_phase(ratio, zeta):
     return np.arctan2(2.0 * np.asarray(zeta) * r, 1.0 - r * r)
 
 
-def balancing_efficiency(k, delta, beta=0.0):
+def balancing_efficiency(k: float | npt.ArrayLike, delta: float | npt.ArrayLike,
+                         beta: float | npt.ArrayLike = 0.0) -> float | np.ndarray:
     """e / e_c for the liquid at alpha0(delta, k) - beta (001 eq 3 and 6) [-].
 
     The ratio of the eccentricity without and with the liquid, i.e. 003's empirical efficiency

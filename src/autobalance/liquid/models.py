@@ -7,10 +7,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models._validate import ParameterError, finite, nonneg, positive
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models.liquid import LiquidDevice
 
 #: Standard gravity [m/s^2] (CGPM 1901). 003's printed speeds follow from g = 10 m/s^2.
 G_STANDARD = 9.80665
@@ -93,7 +99,8 @@ WATER = Liquid(1000.0, 1.01e-6, "water")  # 003 sec. 4.2: fresh water at 20 C
 
 @dataclass(frozen=True)
 class LiquidBalancer:
-    """A chamber partly filled with a liquid.
+    """A chamber partly filled with a liquid: the liquid analyses' view of a System's
+    ``[liquid]`` section (:meth:`of`).
 
     Parameters
     ----------
@@ -103,21 +110,40 @@ class LiquidBalancer:
         Working liquid.
     volume : float
         Liquid volume V [m^3], 0 < V < pi*R^2*h.
-    arc_deg : float
-        Arc xi [deg] the gathered liquid occupies along the wall, for the friction force of
-        001 eq 5-6 (001 leaves it open; our default 180 deg: a crescent over half the wall).
+    arc : float
+        Arc xi [rad] the gathered liquid occupies along the wall, for the friction force of
+        001 eq 5-6 (001 leaves it open; our default pi: a crescent over half the wall).
     """
 
     chamber: Chamber
     liquid: Liquid
     volume: float
-    arc_deg: float = 180.0
+    arc: float = math.pi
 
     def __post_init__(self):
         self.chamber.check_fill(self.volume, "balancer.volume")
-        v = positive("balancer.arc_deg", self.arc_deg)
-        if v > 360.0:
-            raise ParameterError("balancer.arc_deg", self.arc_deg, "must be in (0, 360] deg")
+        v = positive("balancer.arc", self.arc)
+        if v > 2.0 * math.pi * (1.0 + 1e-12):
+            raise ParameterError("balancer.arc", self.arc, "must be in (0, 2 pi] rad")
+
+    @classmethod
+    def of(cls, device: LiquidDevice) -> "LiquidBalancer":
+        """The balancer of a System's ``[liquid]`` section.
+
+        Parameters
+        ----------
+        device : autobalance.models.LiquidDevice
+            The section (SI); ParameterError (one line) with partitions, which the analyses
+            taking a LiquidBalancer (quasi-static, lumped) do not model (the film model of
+            ``simulate`` does).
+        """
+        if device.partitions:
+            raise ParameterError("liquid.partitions", device.partitions, "must be 0 for this "
+                                 "analysis (the quasi-static liquid has no partitions; "
+                                 "autobalance simulate has)")
+        return cls(Chamber(device.chamber_radius, device.chamber_height),
+                   Liquid(device.density, device.kinematic_viscosity), device.volume,
+                   device.friction_arc)
 
     @property
     def mass(self) -> float:
@@ -193,7 +219,8 @@ class VerticalRotor:
         """
         return self.damping / (2.0 * math.sqrt(self.stiffness * (self.mass + added_mass)))
 
-    def support_force(self, amplitude, omega):
+    def support_force(self, amplitude: float | npt.ArrayLike,
+                      omega: float | npt.ArrayLike) -> np.ndarray:
         """Dynamic force on the supports |u| |k + i c omega| [N] of a synchronous whirl.
 
         Parameters

@@ -15,19 +15,25 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..models import MotorDrive, ParameterError, SpeedProfile, System
+from ..models import LiquidDevice, MotorDrive, ParameterError, SpeedProfile, System
 from ..physics.iso1940 import grade_value
 from .film import coupled_run
 from ..models._validate import positive
 from .free_surface import entrainment_speed
-from .models import G_STANDARD, VerticalRotor
+from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 from .steady import pool_response
 
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    import numpy.typing as npt
+
 __all__ = ["LiquidSimulation", "check_liquid_run", "film_rotor", "film_start_speed",
-           "revolution_average", "run_seconds_estimate", "simulate_liquid"]
+           "liquid_parts", "revolution_average", "run_seconds_estimate", "simulate_liquid"]
 
 #: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
 #: for the film model (first order in g/(Omega^2 R), core/shallow_water.py) [-]; our criterion.
@@ -115,7 +121,7 @@ class LiquidSimulation:
         w = np.linspace(0.0, self.film_start_speed, 2001)
         return float(np.max(np.abs(pool_response(film_rotor(self.system), L.volume, L.density, w))))
 
-    def at(self, times) -> dict:
+    def at(self, times: npt.ArrayLike) -> dict:
         """Grade [mm/s] and residual unbalance [kg*m] at ``times`` [s]: the run's, linearly
         interpolated; before the film forms the liquid is a centred pool (U = 0).
 
@@ -185,7 +191,7 @@ class LiquidSimulation:
                  "system": json.dumps({"name": self.system.name})}
         return xr.Dataset(data, coords={"time": ("time", self.t, {"units": "s"})}, attrs=attrs)
 
-    def to_netcdf(self, path) -> None:
+    def to_netcdf(self, path: str | Path) -> None:
         """Write :meth:`to_xarray` to a NetCDF file.
 
         Parameters
@@ -213,6 +219,32 @@ def film_rotor(system: System) -> VerticalRotor:
     """
     r, s = system.rotor, system.suspension
     return VerticalRotor(r.mass, s.kx, s.cx, r.unbalance)
+
+
+def liquid_parts(system: System) -> tuple[VerticalRotor, LiquidBalancer]:
+    """The liquid analyses' view of a machine with a ``[liquid]`` section: its rotor
+    (:func:`film_rotor`) and its balancer (:meth:`LiquidBalancer.of`). The one adapter from a
+    System to the liquid package's analyses (papers, studies and the CLI use it).
+
+    Parameters
+    ----------
+    system : System
+        The machine; ParameterError (one line) without a ``[liquid]`` section, with an
+        anisotropic suspension or with partitions (:meth:`LiquidBalancer.of`).
+
+    Returns
+    -------
+    tuple
+        (VerticalRotor, LiquidBalancer).
+    """
+    if system.liquid is None:
+        raise ParameterError("liquid", None, "needs a [liquid] section (e.g. the preset "
+                             "leblanc_003)")
+    s = system.suspension
+    if s.kx != s.ky or s.cx != s.cy:
+        raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the liquid "
+                             "models' rotor is isotropic")
+    return film_rotor(system), LiquidBalancer.of(system.liquid)
 
 
 def _check(system: System, spin) -> None:
@@ -245,7 +277,7 @@ def _check(system: System, spin) -> None:
                              "speed profile (constant, ramp, table, std or tsr)")
 
 
-def revolution_average(psi, values):
+def revolution_average(psi: npt.ArrayLike, values: npt.ArrayLike) -> np.ndarray:
     """The mean of ``values`` over one revolution of the spin angle around each sample,
     (1/2 pi) integral over [psi - pi, psi + pi] of values d(psi) (trapezoid rule); within half
     a revolution of either end of the run the window is the first or last whole revolution (the
@@ -278,7 +310,8 @@ def revolution_average(psi, values):
     return (cum(hi) - cum(lo)) / max(span, 1e-300)
 
 
-def film_start_speed(device, g_plane: float = 0.0, g_axial: float = G_STANDARD) -> float:
+def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
+                     g_axial: float = G_STANDARD) -> float:
     """Speed from which the wall-film model holds [rad/s]: on a vertical axis the entrainment
     speed omega_0 of 003 eq 6 (the liquid spans bottom to lid); on a horizontal one
     sqrt(g / (f R)) with f = :data:`GRAVITY_OFFSET_MAX`, where gravity's offset g/Omega^2 of the
@@ -324,7 +357,7 @@ def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.nd
     return float(t0), tt - t0, ww
 
 
-def check_liquid_run(system: System, spin, g_axial: float = G_STANDARD) -> float:
+def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) -> float:
     """Refuse, before any work, a machine or profile outside the film model; return its start
     speed (:func:`film_start_speed`).
 
@@ -353,7 +386,7 @@ def check_liquid_run(system: System, spin, g_axial: float = G_STANDARD) -> float
     return w0
 
 
-def run_seconds_estimate(system: System, spin, n_cells: int = 256) -> float:
+def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256) -> float:
     """Estimated wall time of :func:`simulate_liquid` [s]: film steps from the CFL condition
     on the uniform film (wave speed Omega sqrt(R eta), cell 2 pi R / n) over the profile from
     omega_0, times the measured cost of a step.

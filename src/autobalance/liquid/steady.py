@@ -24,13 +24,17 @@ above resonance: Kollmann 1962; Ehrich 1992).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.optimize import fsolve
 
 from ..models._validate import ParameterError, positive
-from .models import G_STANDARD
+from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 from .quasistatic import quasi_static
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["physical_fill_sweep", "physical_steady_response", "pool_response", "response_curve",
            "ring_response", "synchronous_deflection"]
@@ -43,7 +47,7 @@ def _G(w, rotor, Wsp, chamber, volume, density, g, axis):
     return dyn * w - Wsp ** 2 * (rotor.unbalance + q.unbalance)
 
 
-def ring_response(rotor, chamber_volume: float, volume: float, density: float,
+def ring_response(rotor: VerticalRotor, chamber_volume: float, volume: float, density: float,
                   speed: float) -> complex:
     """Deflection [m] while the liquid is an intact ring: Omega^2 D / (k - (M + rho V_c)
     Omega^2 + i c Omega) (module docstring; a full chamber's mass, no balancing).
@@ -64,9 +68,10 @@ def ring_response(rotor, chamber_volume: float, volume: float, density: float,
     return complex(pool_response(rotor, chamber_volume, density, speed))
 
 
-def synchronous_deflection(rotor, radius: float, height: float, volume: float, density: float,
-                           speed: float, *, inner_radius: float = 0.0, g: float = G_STANDARD,
-                           axis: str = "vertical", guess: complex | None = None) -> complex:
+def synchronous_deflection(rotor: VerticalRotor, radius: float, height: float, volume: float,
+                           density: float, speed: float, *, inner_radius: float = 0.0,
+                           g: float = G_STANDARD, axis: str = "vertical",
+                           guess: complex | None = None) -> complex:
     """A root w [m] of G(w) = 0 (module docstring) near ``guess``.
 
     Parameters
@@ -114,8 +119,10 @@ def synchronous_deflection(rotor, radius: float, height: float, volume: float, d
     return w
 
 
-def response_curve(rotor, radius: float, height: float, volume: float, density: float, speeds,
-                   *, inner_radius: float = 0.0, g: float = G_STANDARD, axis: str = "vertical"):
+def response_curve(rotor: VerticalRotor, radius: float, height: float, volume: float,
+                   density: float, speeds: npt.ArrayLike, *, inner_radius: float = 0.0,
+                   g: float = G_STANDARD,
+                   axis: str = "vertical") -> tuple[np.ndarray, np.ndarray]:
     """Synchronous deflections [m] over ``speeds``, followed by continuation upwards and downwards
     (two branches; they differ where the response jumps).
 
@@ -160,7 +167,8 @@ def response_curve(rotor, radius: float, height: float, volume: float, density: 
     return sweep(range(w.size)), sweep(range(w.size - 1, -1, -1))
 
 
-def pool_response(rotor, volume: float, density: float, speed):
+def pool_response(rotor: VerticalRotor, volume: float, density: float,
+                  speed: float | npt.ArrayLike) -> complex | np.ndarray:
     """Deflection [m] of the rotor carrying its liquid as a centred pool, below the entrainment
     speed (003 eq 6: the liquid is not yet a ring on the wall): a rigid mass that translates with
     the chamber and balances nothing, w = Omega^2 D / (k - (M + rho V) Omega^2 + i c Omega)
@@ -184,7 +192,8 @@ def pool_response(rotor, volume: float, density: float, speed):
                                                        rotor.stiffness, rotor.damping, W)
 
 
-def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
+def physical_steady_response(rotor: VerticalRotor, bal: LiquidBalancer, speeds: npt.ArrayLike,
+                             g: float = G_STANDARD) -> dict:
     """The bench's steady whirl over ``speeds`` with the quasi-static liquid (:func:`response_curve`,
     upward sweep), in the keys of :func:`autobalance.liquid.steady_response` (the lumped model),
     so that the CLI and the figures take either. Below the entrainment speed omega_0 (003 eq 6)
@@ -233,7 +242,8 @@ def physical_steady_response(rotor, bal, speeds, g: float = G_STANDARD) -> dict:
             "phase_deg": np.degrees(np.angle(w))}
 
 
-def physical_fill_sweep(rotor, bal, volumes, omega: float, g: float = G_STANDARD) -> dict:
+def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.ArrayLike,
+                        omega: float, g: float = G_STANDARD) -> dict:
     """Steady amplitude [m] at one speed for several fills with the quasi-static liquid, in the
     keys of :func:`autobalance.liquid.fill_sweep` (003 Fig. 5); a fill whose entrainment speed
     (003 eq 6) is above ``omega`` is a centred pool (:func:`pool_response`).

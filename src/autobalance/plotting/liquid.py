@@ -9,12 +9,24 @@ Every function takes computed data (SI units, angles in radians) and returns a m
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 
 from ..liquid.free_surface import MODE_NAMES
 from .timeplot import _new_figure
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import numpy.typing as npt
+    import xarray as xr
+    from matplotlib.axes import Axes
+
+    from ..liquid.dynamics import RunUp
+    from ..liquid.simulate import LiquidSimulation
 
 __all__ = ["bars_figure", "curves_figure", "efficiency_bars_figure", "fill_figure",
            "fill_panels_figure", "fill_vs_radius_figure", "friction_angle_figure",
@@ -71,7 +83,8 @@ def surface_figure(profiles: dict, title: str = "") -> Figure:
     return fig
 
 
-def response_figure(steady: dict, omega0: float, omega_r: float, run=None, title="") -> Figure:
+def response_figure(steady: dict, omega0: float, omega_r: float, run: RunUp | None = None,
+                    title: str = "") -> Figure:
     """Amplitude [mm] vs speed, with and without liquid; efficiency below.
 
     Parameters
@@ -111,7 +124,8 @@ def response_figure(steady: dict, omega0: float, omega_r: float, run=None, title
     return fig
 
 
-def fill_figure(sweeps: list[dict], labels: list[str], title="", ax=None) -> Figure:
+def fill_figure(sweeps: list[dict], labels: list[str], title: str = "",
+                ax: Axes | None = None) -> Figure:
     """Steady amplitude [mm] vs fill volume [ml] (003 Fig. 5), one curve per sweep.
 
     Parameters
@@ -138,7 +152,7 @@ def fill_figure(sweeps: list[dict], labels: list[str], title="", ax=None) -> Fig
     return fig
 
 
-def fill_panels_figure(panels: list[tuple], suptitle="") -> Figure:
+def fill_panels_figure(panels: list[tuple], suptitle: str = "") -> Figure:
     """Several :func:`fill_figure` panels side by side (003 Fig. 5 a-c).
 
     Parameters
@@ -157,7 +171,8 @@ def fill_panels_figure(panels: list[tuple], suptitle="") -> Figure:
     return fig
 
 
-def curves_figure(panels: list[dict], suptitle="", size=None) -> Figure:
+def curves_figure(panels: list[dict], suptitle: str = "",
+                  size: tuple[float, float] | None = None) -> Figure:
     """Families of curves, one panel each.
 
     Parameters
@@ -194,7 +209,7 @@ def curves_figure(panels: list[dict], suptitle="", size=None) -> Figure:
     return fig
 
 
-def bars_figure(panels: list[dict], suptitle="") -> Figure:
+def bars_figure(panels: list[dict], suptitle: str = "") -> Figure:
     """Grouped bar charts, one panel each (003 Fig. 6 style).
 
     Parameters
@@ -228,8 +243,10 @@ def bars_figure(panels: list[dict], suptitle="") -> Figure:
 
 
 # -- figures of the 003 and 001 targets ----------------------------------------------------------
-def mode_speeds_figure(volumes, g_values, omega_b, omega_0, printed_b, printed_0,
-                       suptitle="") -> Figure:
+def mode_speeds_figure(volumes: npt.ArrayLike, g_values: Sequence[float], omega_b: np.ndarray,
+                       omega_0: np.ndarray, printed_b: tuple[npt.ArrayLike, npt.ArrayLike],
+                       printed_0: tuple[npt.ArrayLike, npt.ArrayLike],
+                       suptitle: str = "") -> Figure:
     """Bottom-touch and entrainment speeds vs fill (003 eq 4, eq 6), with the printed values.
 
     Parameters
@@ -254,7 +271,8 @@ def mode_speeds_figure(volumes, g_values, omega_b, omega_0, printed_b, printed_0
     return curves_figure(panels, suptitle)
 
 
-def fill_vs_radius_figure(volumes, amplitude, radii, ratios, suptitle="") -> Figure:
+def fill_vs_radius_figure(volumes: np.ndarray, amplitude: np.ndarray, radii: Sequence[float],
+                          ratios: Sequence[float], suptitle: str = "") -> Figure:
     """Amplitude vs fill, one panel per chamber radius, one curve per relative speed (003 Fig. 5).
 
     Parameters
@@ -276,7 +294,9 @@ def fill_vs_radius_figure(volumes, amplitude, radii, ratios, suptitle="") -> Fig
          for i, (R, tag) in enumerate(zip(radii, "abc"))], suptitle)
 
 
-def efficiency_bars_figure(efficiency, unbalances, fills, radii, ratios, suptitle="") -> Figure:
+def efficiency_bars_figure(efficiency: npt.ArrayLike, unbalances: Sequence[float],
+                           fills: Sequence[float], radii: Sequence[float],
+                           ratios: Sequence[float], suptitle: str = "") -> Figure:
     """Efficiency A(no liquid)/A(liquid) vs chamber radius, one panel per unbalance (003 Fig. 6).
 
     Parameters
@@ -304,8 +324,10 @@ def efficiency_bars_figure(efficiency, unbalances, fills, radii, ratios, suptitl
                        suptitle)
 
 
-def liquid_states_figure(steady: dict, omega0: float, omega_r: float, run, frames,
-                         frame_angles, reference=None, title="") -> Figure:
+def liquid_states_figure(steady: dict, omega0: float, omega_r: float, run: RunUp | None,
+                         frames: Sequence[float], frame_angles: Sequence[float],
+                         reference: tuple[str, npt.ArrayLike, npt.ArrayLike] | None = None,
+                         title: str = "") -> Figure:
     """:func:`response_figure` with the speeds of video frames marked (003 Fig. 7 a-d).
 
     Parameters
@@ -333,7 +355,8 @@ def liquid_states_figure(steady: dict, omega0: float, omega_r: float, run, frame
     return fig
 
 
-def kinetostatic_figure(delta, ks, alpha0, efficiency, suptitle="") -> Figure:
+def kinetostatic_figure(delta: npt.ArrayLike, ks: Sequence[float], alpha0: npt.ArrayLike,
+                        efficiency: np.ndarray, suptitle: str = "") -> Figure:
     """Liquid angle alpha0 and efficiency e/e_c vs the rotor phase angle, one curve per k
     (001 eq 3-4).
 
@@ -360,7 +383,8 @@ def kinetostatic_figure(delta, ks, alpha0, efficiency, suptitle="") -> Figure:
                      for i, k in enumerate(ks)]}], suptitle)
 
 
-def friction_angle_figure(omegas, names, beta, title="", suptitle="") -> Figure:
+def friction_angle_figure(omegas: npt.ArrayLike, names: Sequence[str], beta: npt.ArrayLike,
+                          title: str = "", suptitle: str = "") -> Figure:
     """Friction angle beta vs speed, one curve per liquid (001 eq 6).
 
     Parameters
@@ -381,8 +405,9 @@ def friction_angle_figure(omegas, names, beta, title="", suptitle="") -> Figure:
                          suptitle, size=(7.5, 4.6))
 
 
-def speed_series_figure(omegas, curves, omega_r, ylabel, title="", suptitle="",
-                        floor=None) -> Figure:
+def speed_series_figure(omegas: npt.ArrayLike, curves: list[tuple[str, npt.ArrayLike, str]],
+                        omega_r: float, ylabel: str, title: str = "", suptitle: str = "",
+                        floor: tuple[float, float] | None = None) -> Figure:
     """A family of curves vs rotor speed with the resonance marked, log axis (001 Fig. 3-6).
 
     Parameters
@@ -406,8 +431,8 @@ def speed_series_figure(omegas, curves, omega_r, ylabel, title="", suptitle="",
                            "curves": cs}], suptitle, size=(7.5, 4.6))
 
 
-def liquid_run_figure(sim, grade_limit: float = 16.0, grade_label: str | None = None,
-                      time_unit: str = "s") -> Figure:
+def liquid_run_figure(sim: LiquidSimulation, grade_limit: float = 16.0,
+                      grade_label: str | None = None, time_unit: str = "s") -> Figure:
     """One liquid-balancer run over time: the whirl amplitude with and without the liquid, the
     liquid's moment and angle from the unbalance, and the ISO grade.
 
@@ -442,7 +467,7 @@ def liquid_run_figure(sim, grade_limit: float = 16.0, grade_label: str | None = 
     return fig
 
 
-def fill_map_figure(ds, speed_unit: str = "rad/s", speed_factor: float = 1.0,
+def fill_map_figure(ds: xr.Dataset, speed_unit: str = "rad/s", speed_factor: float = 1.0,
                     title: str = "") -> Figure:
     """The fill map (:func:`autobalance.studies.fill_map.compute_fill_map`): the steady whirl
     vs speed for each fill beside the rotor without liquid, and the efficiency A(no liquid) /

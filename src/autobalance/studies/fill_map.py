@@ -8,12 +8,23 @@ resonance moves. docs/liquid.md sec. 3f.
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..models import ParameterError
 
-__all__ = ["compute_fill_map", "compute_stability_map", "dynamic_speeds", "fill_map_summary"]
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    import xarray as xr
+
+    from ..config import Config
+    from ..models import LiquidDevice
+
+__all__ = ["compute_fill_map", "compute_stability_map", "default_fills", "dynamic_speeds",
+           "fill_map_summary"]
 
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
 SPEED_RATIOS = (0.3, 2.0)
@@ -22,7 +33,26 @@ SPEED_RATIOS = (0.3, 2.0)
 TIE = 0.01
 
 
-def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets=()):
+def default_fills(device: LiquidDevice) -> np.ndarray:
+    """The default fills of a liquid balancer's maps and sweeps: 10 fills from 0.25 to 2.5 times
+    its own, each at most 0.9 of the chamber.
+
+    Parameters
+    ----------
+    device : autobalance.models.LiquidDevice
+        The ``[liquid]`` section (volume V and chamber volume [m^3]).
+
+    Returns
+    -------
+    ndarray
+        Fills [m^3].
+    """
+    return np.minimum(np.linspace(0.25, 2.5, 10) * device.volume, 0.9 * device.chamber_volume)
+
+
+def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None = None,
+                     speeds: Sequence[float] | None = None, quick: bool = False,
+                     sets: Sequence[str] = ()) -> xr.Dataset:
     """Steady whirl amplitude over fill x speed for a liquid-balancer machine.
 
     Parameters
@@ -30,8 +60,7 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
     base : str, Path or Config
         The machine (a ``[liquid]`` section; its volume is replaced by each fill).
     fills : sequence of float or None
-        Fills [m^3], > 0 and below the chamber volume; None: 10 fills from 0.25 to 2.5 times
-        the machine's (at most 0.9 of the chamber).
+        Fills [m^3], > 0 and below the chamber volume; None: :func:`default_fills`.
     speeds : sequence of float or None
         Increasing speeds [rad/s]; None: from 0.3 times the natural frequency with the
         machine's liquid as rigid mass to 2 times it or the nominal speed if higher, 36 speeds
@@ -54,8 +83,7 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
     from ..config import Config, load_config, replace_values
     from ..config.overrides import parse_override
     from ..liquid.free_surface import entrainment_speed
-    from ..liquid.models import Chamber, Liquid, LiquidBalancer
-    from ..liquid.simulate import film_rotor
+    from ..liquid.simulate import liquid_parts
     from ..liquid.steady import physical_fill_sweep, pool_response
 
     t0 = time.perf_counter()
@@ -73,18 +101,8 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
         raise ParameterError("liquid.axis", L.axis, "the fill map covers a vertical axis (003's "
                              "entrainment and pool); a horizontal machine runs with simulate "
                              "or sweep (the film model with gravity)")
-    if L.partitions:
-        raise ParameterError("liquid.partitions", L.partitions, "must be 0 for the fill map "
-                             "(the quasi-static liquid has no partitions; simulate has)")
-    if s.suspension.kx != s.suspension.ky or s.suspension.cx != s.suspension.cy:
-        raise ParameterError("suspension.ky", s.suspension.ky, "must equal kx (and cy cx): the "
-                             "liquid model's rotor is isotropic")
-    rotor = film_rotor(s)
-    bal = LiquidBalancer(Chamber(L.chamber_radius, L.chamber_height),
-                         Liquid(L.density, L.kinematic_viscosity), L.volume,
-                         float(np.degrees(L.friction_arc)))
-    V = np.asarray(np.minimum(np.linspace(0.25, 2.5, 10) * L.volume, 0.9 * L.chamber_volume)
-                   if fills is None else fills, float)
+    rotor, bal = liquid_parts(s)
+    V = np.asarray(default_fills(L) if fills is None else fills, float)
     if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= L.chamber_volume):
         raise ParameterError("fills", [float(x) for x in np.atleast_1d(V)], f"must be volumes in (0, "
                              f"{L.chamber_volume:.4g}) m^3 (the chamber)")
@@ -115,7 +133,7 @@ def compute_fill_map(base, *, fills=None, speeds=None, quick: bool = False, sets
     return ds
 
 
-def fill_map_summary(ds) -> dict:
+def fill_map_summary(ds: xr.Dataset) -> dict:
     """The fill map's answers (SI): per fill its resonance, the speeds where it balances
     (efficiency > 1) and its efficiency at the nominal speed; the fills within :data:`TIE` of
     the best efficiency at the nominal speed and the least of them (the design's fill: no more
@@ -162,9 +180,10 @@ def fill_map_summary(ds) -> dict:
 SPREAD_MAX = 0.05
 
 
-def compute_stability_map(base, *, fills, speeds, duration: float = 6.0, store=None,
-                          executor: str | None = None, workers: int | None = None,
-                          progress: bool = False):
+def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
+                          speeds: Sequence[float], duration: float = 6.0,
+                          store: str | Path | None = None, executor: str | None = None,
+                          workers: int | None = None, progress: bool = False) -> xr.Dataset:
     """Whether the steady synchronous whirl is reached, over fill x speed: the wall film
     coupled with the rotor (:func:`autobalance.liquid.simulate.simulate_liquid`) at each
     constant speed for ``duration``, as one sweep (resumable with ``store``). Partly filled
@@ -234,7 +253,7 @@ def compute_stability_map(base, *, fills, speeds, duration: float = 6.0, store=N
     return out
 
 
-def dynamic_speeds(ds, n: int) -> np.ndarray:
+def dynamic_speeds(ds: xr.Dataset, n: int) -> np.ndarray:
     """Up to ``n`` speeds of a fill map for its stability map [rad/s]: those above every fill's
     entrainment speed (by 2 %), evenly picked.
 

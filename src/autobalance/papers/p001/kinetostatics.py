@@ -10,10 +10,11 @@ import xarray as xr
 
 from ...liquid import (alpha0, alpha0_residual, balancing_efficiency, friction_angle,
                        friction_force, friction_tan_bound, jeffcott_phase, laminar_pipe_force,
-                       load_liquids, residual_lambda0)
+                       residual_lambda0)
 from ...plotting import liquid as lp
 from ...validation.target import Context, Outcome
 from ..p003.bench import ML, bench, grid
+from .liquids import liquids_001
 from .published import rows as rows_of
 
 __all__ = ["run_eq3_4", "run_eq5_7"]
@@ -67,8 +68,9 @@ def run_eq3_4(ctx: Context) -> Outcome:
 
 
 def run_eq5_7(ctx: Context) -> Outcome:
-    """001 eq 5: F_T = 8 pi^2 mu R xi omega |O1C|/180 [N]; eq 6: sin beta = F_T/F [-]; eq 7:
-    |tan beta| bound [-]; mu [Pa*s], R [m], xi [deg], omega [rad/s], m [kg].
+    """001 eq 5: F_T = 8 pi^2 mu R xi omega |O1C|/180 [N] (xi [deg] as 001 writes it; ours
+    takes xi [rad]); eq 6: sin beta = F_T/F [-]; eq 7: |tan beta| bound [-]; mu [Pa*s], R [m],
+    omega [rad/s], m [kg].
 
     Parameters
     ----------
@@ -82,9 +84,10 @@ def run_eq5_7(ctx: Context) -> Outcome:
                           ((1e-4, 0.2), (600, 1700), (0.01, 5), (0.01, 1), (1e-3, 0.1)))
     e1 = float(np.abs(laminar_pipe_force(mu, rho, v, ll, dd) / (8 * math.pi * mu * ll * v)
                       - 1).max())
-    R, xi, w, off = 0.2, 180.0, 30.0, np.array([1e-3, 1e-2, 0.1])
+    R, xi_deg, w, off = 0.2, 180.0, 30.0, np.array([1e-3, 1e-2, 0.1])
+    xi = math.radians(xi_deg)
     e2 = float(np.abs(friction_force(1e-3, R, xi, w, off)
-                      / (8 * math.pi * 1e-3 * (math.pi * R * xi / 180) * w * off) - 1).max())
+                      / (8 * math.pi * 1e-3 * (math.pi * R * xi_deg / 180) * w * off) - 1).max())
     rows.add("eq5_laminar", "relative difference of pi/4 dP d^2 (lambda = 64/Re) and "
              "8 pi mu l v; eq 5 with l = pi R xi/180, v = omega |O1C|", f"{max(e1, e2):.1e}",
              "1e-12", max(e1, e2) < 1e-12,
@@ -94,10 +97,10 @@ def run_eq5_7(ctx: Context) -> Outcome:
     e3 = float(np.abs(friction_force(1e-3, R, xi, w, off) / (m * w * w * off) / sb - 1).max())
     rows.add("eq6_offset_cancels", "relative spread of F_T/F over |O1C| = 1, 10, 100 mm",
              f"{e3:.1e}", "1e-12", e3 < 1e-12)
-    liquids = load_liquids()
+    liquids = liquids_001()
     ws = np.linspace(5.0, 100.0, grid(ctx, 96, 381))
     names = list(liquids)
-    arc, V = b.balancer.arc_deg, b.balancer.volume
+    arc, V = b.balancer.arc, b.balancer.volume
     beta_rad = np.array([friction_angle(L.dynamic_viscosity, R, arc, L.density * V, ws)
                          for L in liquids.values()])
     beta = np.degrees(beta_rad)
@@ -112,9 +115,11 @@ def run_eq5_7(ctx: Context) -> Outcome:
              f"{int(held.sum())} (viscous liquids at low speed) eq 6 gives sin(beta) >= 1 and "
              "eq 7 has no bound")
     fig = lp.friction_angle_figure(ws, names, beta_rad,
-                                   f"R = {R:g} m, V = {V / ML:.0f} ml, ξ = {arc:g}°",
+                                   f"R = {R:g} m, V = {V / ML:.0f} ml, "
+                                   f"ξ = {math.degrees(arc):g}°",
                                    "001 eq 6: friction angle of the 001 liquids")
     ds = xr.Dataset({"beta_deg": (("liquid", "omega_rad_s"), beta)},
                     coords={"liquid": np.array(names, dtype="U"), "omega_rad_s": ws},
-                    attrs={"source": "001 eq 6", "radius_m": R, "arc_deg": arc, "volume_m3": V})
+                    attrs={"source": "001 eq 6", "radius_m": R, "arc_deg": math.degrees(arc),
+                           "volume_m3": V})
     return Outcome(rows, {"eq6": fig}, ds, "closed forms; random algebra check")

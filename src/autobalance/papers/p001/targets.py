@@ -21,7 +21,7 @@ TARGETS = [
     Target("001-fig1-2", "001", ("Fig. 1", "Fig. 2"), "Unbalance scheme and bench schematic",
            None, PUBLISHED["001-fig1-2"],
            notes="Schematics: nothing to compute. Fig. 1's vectors are the notation of 001 eq "
-                 "1-4 (001-eq3-4); Fig. 2's bench is modelled by the bench_003 preset."),
+                 "1-4 (001-eq3-4); Fig. 2's bench is modelled by the leblanc_003 preset."),
     Target("001-eq3-4", "001", ("eq 3", "eq 4"), "Kinetostatic liquid angle and residual",
            kinetostatics.run_eq3_4, PUBLISHED["001-eq3-4"],
            notes="001 eq 3 as published (the root of eq 2 that 001 selects); where k < sin "

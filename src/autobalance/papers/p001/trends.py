@@ -8,26 +8,32 @@ reached (docs/liquid.md sec. 3f, the stability map).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import xarray as xr
 
-from ...liquid import Bench, Liquid, load_liquids, sufficient_volume
+from ...liquid import Liquid, sufficient_volume
 from ...liquid.steady import physical_fill_sweep, physical_steady_response
 from ...plotting import liquid as lp
 from ...validation.target import Context, Outcome, Rows
-from ..p003.bench import ML, bench, grid
+from ..p003.bench import ML, Bench, bench, grid
 from ..p003.fig5_6 import TIE
 from ..p003.published import BALANCING
+from .liquids import liquids_001
 from .published import rows as rows_of
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 __all__ = ["DENSITY_SERIES", "VISCOSITY_SERIES", "at_optimal_fill", "run_fig3_6"]
 
-#: Liquids of liquids_001 in 001's density series (Fig. 3-5) and viscosity series (Fig. 6).
+#: Liquids of liquids_001.toml in 001's density series (Fig. 3-5) and viscosity series (Fig. 6).
 DENSITY_SERIES = ("light_670", "water", "dense_1230", "dense_1370", "heavy_1650")
 VISCOSITY_SERIES = ("water", "viscous_14", "viscous_97")
 
 
-def at_optimal_fill(b: Bench, liquid: Liquid, omegas) -> dict:
+def at_optimal_fill(b: Bench, liquid: Liquid, omegas: Sequence[float]) -> dict:
     """Steady response with ``liquid`` at its own sufficient fill rho V R = D (k = 1).
 
     Parameters
@@ -129,7 +135,7 @@ def run_fig3_6(ctx: Context) -> Outcome:
     b = bench()
     R, D, wr = b.balancer.chamber.radius, b.rotor.unbalance, b.omega_r
     rows = rows_of("001-fig3-6")
-    liquids = load_liquids()
+    liquids = liquids_001()
     _regime_rows(rows, b, liquids)
     opt = _fill_rows(rows, b, liquids)
     _viscosity_rows(rows, b, liquids)
@@ -158,7 +164,7 @@ def run_fig3_6(ctx: Context) -> Outcome:
                                               for n in names]),
                      "optimal_fill_ml": ("liquid", [float(opt.get(n, np.nan)) for n in names])},
                     coords={"liquid": np.array(names, dtype="U"), "omega_rad_s": ws},
-                    attrs={"source": "001 Fig. 3-6 (the liquid from physics, bench_003)",
+                    attrs={"source": "001 Fig. 3-6 (the liquid from physics, leblanc_003)",
                            "unbalance_kg_m": D, "radius_m": R})
     return Outcome(rows, {"fig3_5": f35, "fig6": f6}, ds,
                    f"steady response of {len(names)} liquids on {ws.size} speeds")

@@ -139,7 +139,7 @@ def run_fig4(ctx: Context) -> Outcome:
     """
     b = bench()
     R, h = b.balancer.chamber.radius, b.balancer.chamber.height
-    g = b.model.g
+    g = b.g
     rows = rows_of("003-fig4")
     vols = (100 * ML, 200 * ML, 300 * ML)
     _mode_rows(rows, vols, R, h, g)

@@ -8,16 +8,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
-from ...liquid import Bench
 from ...liquid.steady import physical_fill_sweep, physical_steady_response
 from ...plotting import liquid as lp
 from ...validation.target import Context, Outcome, Rows
-from .bench import FIG5_RATIOS, GCM, ML, bench
+from .bench import FIG5_RATIOS, GCM, ML, Bench, bench
 from .published import BALANCING, rows as rows_of
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 __all__ = ["PHYSICAL_NOTE", "TIE", "fill_grid", "resonance_speeds", "run_fig5", "run_fig6"]
 
@@ -28,7 +31,7 @@ TIE = 0.01
 PHYSICAL_NOTE = ("Model: the liquid from physics (docs/liquid.md sec. 3b, 3d): Newton's bucket "
                  "about the rotation axis in the chamber displaced by the whirl, the rotor's "
                  "synchronous balance solved for the deflection; below the entrainment speed "
-                 "(eq 6) the liquid is a centred pool. Nothing calibrated; bench_003 preset: "
+                 "(eq 6) the liquid is a centred pool. Nothing calibrated; leblanc_003 preset: "
                  "M = 25 kg and zeta = 0.1 are our choices, k set by omega_r = 54 1/s with "
                  "150 ml.")
 
@@ -129,7 +132,7 @@ def _off_optimum_rows(rows: Rows, b: Bench, g: dict) -> None:
              f"{FIG5_RATIOS[worst[1]]} omega_r: below resonance the liquid raises the whirl")
 
 
-def resonance_speeds(b: Bench, volumes_ml, lo: float = 35.0, hi: float = 75.0,
+def resonance_speeds(b: Bench, volumes_ml: Sequence[float], lo: float = 35.0, hi: float = 75.0,
                      step: float = 0.5) -> np.ndarray:
     """Speed of the largest steady whirl [rad/s] for each fill in the bench's R = 0.2 m chamber
     (the physical model's resonance; the empty rotor for 0 ml).

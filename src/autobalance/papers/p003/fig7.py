@@ -12,13 +12,13 @@ import math
 import numpy as np
 import xarray as xr
 
-from ...liquid import Bench, entrainment_speed, free_surface, motion_mode
+from ...liquid import entrainment_speed, free_surface, motion_mode
 from ...liquid.film import physical_run_up
 from ...liquid.quasistatic import quasi_static
 from ...liquid.steady import physical_steady_response
 from ...plotting import liquid as lp
 from ...validation.target import Context, Outcome, Rows
-from .bench import G10, GCM, ML, bench, grid
+from .bench import G10, GCM, ML, Bench, bench, grid
 from .published import BALANCING, OPPOSITE_DEG, rows as rows_of
 
 __all__ = ["FRAMES_RAD_S", "run_fig7"]
@@ -29,7 +29,7 @@ FRAMES_RAD_S = (18.0, 30.0, 54.0, 80.0)
 
 def _frame_rows(rows: Rows, b: Bench, st: dict) -> None:
     """Rows of the frames a-d and of the surface shape at 80 1/s (300 ml)."""
-    R, h, g, V = b.balancer.chamber.radius, b.balancer.chamber.height, b.model.g, b.video_volume
+    R, h, g, V = b.balancer.chamber.radius, b.balancer.chamber.height, b.g, b.video_volume
     ang, eff = np.abs(st["liquid_angle_deg"]), st["efficiency"]
     w0 = entrainment_speed(V, R, h, g)
     rows.add("a_entrained_rad_s", "omega_0 of eq 6 (300 ml) [1/s]; mode at 18 1/s",
@@ -66,7 +66,7 @@ def _frame_rows(rows: Rows, b: Bench, st: dict) -> None:
 def _entrainment_rows(rows: Rows, b: Bench) -> dict:
     """Rows of the entrainment speed vs fill and unbalance (003 eq 6); returns omega_0 [rad/s]
     by fill [ml]."""
-    R, h, g = b.balancer.chamber.radius, b.balancer.chamber.height, b.model.g
+    R, h, g = b.balancer.chamber.radius, b.balancer.chamber.height, b.g
     w0s = {v: entrainment_speed(v * ML, R, h, g) for v in (100, 150, 200, 300, 350)}
     ok = all(15.0 <= w0s[v] <= 21.0 for v in (200, 300))
     rows.add("entrainment_observed_rad_s", "omega_0 of eq 6 at 200 and 300 ml [1/s]",
@@ -87,7 +87,7 @@ def _entrainment_rows(rows: Rows, b: Bench) -> dict:
 def _onset_rows(rows: Rows, b: Bench, w0s: dict) -> None:
     """Rows of the lower limit of the balancing range (150 ml): omega_0/omega_r, no balancing
     below it, onset near omega_r/2."""
-    R, h, g, wr = b.balancer.chamber.radius, b.balancer.chamber.height, b.model.g, b.omega_r
+    R, h, g, wr = b.balancer.chamber.radius, b.balancer.chamber.height, b.g, b.omega_r
     q = entrainment_speed(b.video_volume, R, h, g) / wr
     rows.add("omega0_over_omega_r", "omega_0(300 ml)/omega_r [-]", round(q, 3),
              "15/54-21/54 (003's observed spread)", 15 / 54 <= q <= 21 / 54)
@@ -115,7 +115,7 @@ def run_fig7(ctx: Context) -> Outcome:
         Variant (quick: coarser speed grid and run-up output for the figure and data).
     """
     b = bench()
-    R, h, g = b.balancer.chamber.radius, b.balancer.chamber.height, b.model.g
+    R, h, g = b.balancer.chamber.radius, b.balancer.chamber.height, b.g
     rows = rows_of("003-fig7")
     V = b.video_volume
     bal = b.balancer_with(V)

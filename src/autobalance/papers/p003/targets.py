@@ -21,7 +21,7 @@ TARGETS = [
     Target("003-fig1-3", "003", ("Fig. 1", "Fig. 2", "Fig. 3"),
            "Bench photo, balancer sample and video set-up", None, PUBLISHED["003-fig1-3"],
            notes="Photographs and a schematic: nothing to compute. Their parameters are the "
-                 "bench_003 preset; the suspension frequency and the resonance range are "
+                 "leblanc_003 preset; the suspension frequency and the resonance range are "
                  "compared in 003-fig5."),
     Target("003-eq4-6", "003", ("eq 4", "eq 6"), "Bottom-touch and entrainment speeds",
            closed_forms.run_eq4_6, PUBLISHED["003-eq4-6"],
