@@ -17,9 +17,13 @@ from autobalance.models import ParameterError
 from autobalance.studies.fill_map import compute_fill_map, fill_map_summary
 
 
+#: 003's bench as a cylinder (its chamber is an annulus 0.15-0.2 m): room for a 3 l fill.
+CYLINDER = ["liquid.inner_radius=0 m"]
+
+
 @pytest.fixture(scope="module")
 def fmap():
-    return compute_fill_map("leblanc_003", fills=np.array([50, 150, 3000]) * 1e-6,
+    return compute_fill_map("leblanc_003", fills=np.array([50, 150, 3000]) * 1e-6, sets=CYLINDER,
                             speeds=np.linspace(20.0, 100.0, 33))
 
 
@@ -32,7 +36,7 @@ def test_limits_pool_and_intact_ring(fmap):
     """Below a fill's entrainment speed (003 eq 6) the liquid is a centred pool (its mass only);
     a large fill stays an intact ring and adds a full chamber's mass, balancing nothing
     (liquid/steady.py ring_response): both closed forms to round-off."""
-    cfg = load_config("leblanc_003")
+    cfg = load_config("leblanc_003", CYLINDER)
     rot, L = rotor_of(cfg), cfg.system.liquid
     W = fmap["speed"].values
     for i, v in enumerate(fmap["fill"].values):

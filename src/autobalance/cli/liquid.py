@@ -366,7 +366,8 @@ def simulate(source: Annotated[str, typer.Argument(
         st = physical_steady_response(rot, bal, ws, model.g)
     else:
         st = steady_response(rot, bal, ws, model)
-    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g)
+    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g,
+                           bal.chamber.inner_radius)
     wn = rot.natural_frequency(bal.mass)
     w_end, t_end = float(cfg.spin.nominal_speed), float(cfg.spin.duration)
     out = {"machine": cfg.name, "model": model_kind, "volume_m3": bal.volume,

@@ -17,7 +17,8 @@ File layout (sections and their keys: :data:`SECTIONS` and :data:`PROFILE_KINDS`
     [balancer]    n_balls, ball_mass, race_radius, ball_radius, element, damping, ...
     [gravity]     g, direction
     [liquid]      chamber_radius, chamber_height, volume, density, kinematic_viscosity,
-                  partitions, friction_arc, axis  (a Leblanc liquid balancer)
+                  partitions, friction_arc, axis, inner_radius  (a Leblanc liquid
+                  balancer)
     [profile]     kind = constant | ramp | table | std | tsr | motor, and the kind's keys
     [initial]     ball_angles, ball_speeds, x, y, vx, vy, steady_state
     [options]     friction_law, v_sat, normal_force, rtol, atol_scale, max_step, save_dt, max_steps

@@ -89,7 +89,7 @@ SECTIONS: dict[str, dict[str, F]] = {
     "liquid": _fields_of(
         LiquidDevice, chamber_radius=F("length"), chamber_height=F("length"), volume=F("volume"),
         density=F("density"), kinematic_viscosity=F("kin_viscosity"), partitions=F("int"),
-        friction_arc=F("angle"), axis=F("text", choices=AXES)),
+        friction_arc=F("angle"), axis=F("text", choices=AXES), inner_radius=F("length")),
     "initial": _fields_of(
         InitialState, ball_angles=F("angle", "list"), ball_speeds=F("speed", "list"),
         x=F("length"), y=F("length"), vx=F("velocity"), vy=F("velocity"),

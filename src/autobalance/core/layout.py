@@ -87,6 +87,7 @@ class RunStatus(enum.IntEnum):
     STEP_SIZE_UNDERFLOW = 2
     NON_FINITE = 3
     RUNNING = 4
+    OUTSIDE_MODEL = 5
     UNKNOWN = 9
 
     @property
@@ -119,6 +120,8 @@ _MESSAGES = {
     RunStatus.STEP_SIZE_UNDERFLOW: "step size underflow (stiff or chattering dynamics)",
     RunStatus.NON_FINITE: "the state became non-finite (NaN/inf)",
     RunStatus.RUNNING: "running",
+    RunStatus.OUTSIDE_MODEL: "the run left the model's domain (the liquid film reached the "
+                             "chamber's inner wall)",
     RunStatus.UNKNOWN: "unknown",
 }
 

@@ -144,7 +144,8 @@ def run_up(rotor: VerticalRotor, bal: LiquidBalancer, model: LiquidModel = Liqui
         raise ParameterError("n_out", n_out, "must be >= 2")
     acc = omega_end / T
     D, cap, k_s, c = rotor.unbalance, bal.capacity, rotor.stiffness, rotor.damping
-    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g)
+    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g,
+                           bal.chamber.inner_radius)
     tau = model.lag_time
 
     def rhs_wet(t, y):
@@ -215,7 +216,8 @@ def steady_response(rotor: VerticalRotor, bal: LiquidBalancer, omegas: npt.Array
     om = np.atleast_1d(np.asarray(omegas, dtype=float))
     for w in om:
         nonneg("omega", w)
-    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g)
+    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g,
+                           bal.chamber.inner_radius)
     D, Mt = rotor.unbalance, rotor.mass + bal.mass
     amp, dry, ang, d0s, ph = [], [], [], [], []
     for w in om:

@@ -189,6 +189,21 @@ class FilmRun:
         """The film's first moment about the chamber centre at each output time [kg*m]."""
         return film_unbalance(self.thickness, self.radius, self.height, self.density)
 
+    def inner_wall_time(self, inner_radius: float) -> float | None:
+        """First output time [s] at which the film is as thick as the annulus' gap R - r_i (it
+        reaches the inner wall, where the wall-film model no longer holds); None if never or
+        for a cylinder (r_i = 0).
+
+        Parameters
+        ----------
+        inner_radius : float
+            Inner wall r_i [m].
+        """
+        if inner_radius <= 0.0:
+            return None
+        hit = np.nonzero(self.thickness.max(axis=-1) >= self.radius - inner_radius)[0]
+        return float(self.t[hit[0]]) if hit.size else None
+
 
 def _table(value, t_end, name):
     """(times, values) of a constant or of a (times, values) pair, values as complex."""
@@ -436,8 +451,8 @@ def physical_run_up(rotor: VerticalRotor, bal: LiquidBalancer, omega_end: float,
     from .dynamics import RunUp
     from .free_surface import entrainment_speed
 
-    R, h, V = bal.chamber.radius, bal.chamber.height, bal.volume
-    w0 = entrainment_speed(V, R, h, g)
+    R, h, V, ri = bal.chamber.radius, bal.chamber.height, bal.volume, bal.chamber.inner_radius
+    w0 = entrainment_speed(V, R, h, g, inner_radius=ri)
     if not w0 < omega_end:
         raise ParameterError("omega_end", omega_end, f"must exceed the entrainment speed {w0:.4g} 1/s")
     T = duration * (omega_end - w0) / omega_end
@@ -445,6 +460,11 @@ def physical_run_up(rotor: VerticalRotor, bal: LiquidBalancer, omega_end: float,
     dt = T / (n_out - 1)
     wet = coupled_run(rotor, R, h, V, table, T, density=bal.liquid.density,
                       viscosity=bal.liquid.kinematic_viscosity, n_cells=n_cells, save_dt=dt)
+    touch = wet.film.inner_wall_time(ri)
+    if touch is not None:
+        raise ParameterError("chamber.inner_radius", ri, f"the film reaches the inner wall at "
+                             f"{touch:.3g} s of the run-up (thicker than R - r_i = "
+                             f"{R - ri:.4g} m): the wall-film model does not cover it")
     dry = coupled_run(rotor, R, h, 1e-12, table, T, n_cells=16, save_dt=dt)
     U = wet.film.unbalance
     return RunUp(t=wet.t, omega=np.interp(wet.t, table[0], table[1]),

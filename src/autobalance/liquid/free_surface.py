@@ -42,16 +42,19 @@ MODE_NAMES = {1: "full priority of gravity", 2: "partial priority of gravity",
               3: "partial priority of centrifugal forces", 4: "full priority of centrifugal forces"}
 
 
-def _check(volume, radius, height, g, omega=0.0):
+def _check(volume, radius, height, g, omega=0.0, inner_radius=0.0):
     R = positive("radius", radius)
     h = positive("height", height)
     V = positive("volume", volume)
     positive("g", g)
     nonneg("omega", omega)
-    vc = math.pi * R * R * h
+    ri = nonneg("inner_radius", inner_radius)
+    if ri >= R:
+        raise ParameterError("inner_radius", inner_radius, f"must be < the radius {R!r} m")
+    vc = math.pi * (R * R - ri * ri) * h
     if V >= vc:
-        raise ParameterError("volume", volume, f"must be < the chamber volume pi*R^2*h = "
-                             f"{vc:.6g} m^3 ({vc * 1e6:.6g} ml)")
+        raise ParameterError("volume", volume, f"must be < the chamber volume pi (R^2 - r_i^2) h "
+                             f"= {vc:.6g} m^3 ({vc * 1e6:.6g} ml)")
     return V, R, h
 
 
@@ -243,11 +246,15 @@ def lid_touch_speed(volume: float, radius: float, height: float, g: float = G_ST
 
 
 def entrainment_speed(volume: float, radius: float, height: float,
-                      g: float = G_STANDARD) -> float:
+                      g: float = G_STANDARD, inner_radius: float = 0.0) -> float:
     """Start of mode 4, the liquid spans bottom to lid (003 eq 6) [rad/s].
 
     omega_0 = sqrt(pi g h^2 / V) for V <= V_c/2 (003 eq 6). For V > V_c/2 the same balance on the
     empty volume gives sqrt(pi g h^2 / (V_c - V)) (our extension: regime C -> D at z_* = 0).
+    In an annulus (inner wall r_i) the surface r^2 = r_b^2 + 2 g z / omega^2 spans bottom to lid
+    inside the chamber (r_b >= r_i, r_t <= R) holding V = pi h (R^2 - r_b^2) - pi g h^2/omega^2
+    from omega^2 = pi g h^2 / min(V, V_c - V) on, with V_c = pi (R^2 - r_i^2) h: the same formula
+    with the annulus' volume (our derivation; 003 writes the cylinder).
 
     Parameters
     ----------
@@ -259,9 +266,11 @@ def entrainment_speed(volume: float, radius: float, height: float,
         Chamber height h [m].
     g : float
         Gravity [m/s^2].
+    inner_radius : float
+        Inner wall r_i [m], 0 <= r_i < R (0: 003's cylinder).
     """
-    V, R, h = _check(volume, radius, height, g)
-    vc = math.pi * R * R * h
+    V, R, h = _check(volume, radius, height, g, inner_radius=inner_radius)
+    vc = math.pi * (R * R - inner_radius * inner_radius) * h
     return math.sqrt(math.pi * g * h * h / min(V, vc - V))
 
 

@@ -27,27 +27,33 @@ PLACEMENT_LAWS = ("drach", "deflection")
 
 @dataclass(frozen=True)
 class Chamber:
-    """Closed cylindrical balancer chamber, coaxial with the rotor (003 Fig. 4).
+    """Closed cylindrical or annular balancer chamber, coaxial with the rotor (003 Fig. 4).
 
     Parameters
     ----------
     radius : float
-        Inner radius R [m] (003 bench: 0.1, 0.15, 0.2 m).
+        Outer wall radius R [m] (003 bench: 0.1, 0.15, 0.2 m).
     height : float
         Inner height h [m] (003 bench: 0.05 m).
+    inner_radius : float
+        Inner wall radius r_i [m], 0 <= r_i < R (0: a cylinder).
     """
 
     radius: float
     height: float
+    inner_radius: float = 0.0
 
     def __post_init__(self):
-        positive("chamber.radius", self.radius)
+        R = positive("chamber.radius", self.radius)
         positive("chamber.height", self.height)
+        if nonneg("chamber.inner_radius", self.inner_radius) >= R:
+            raise ParameterError("chamber.inner_radius", self.inner_radius,
+                                 f"must be >= 0 and < the radius {R!r} m")
 
     @property
     def volume(self) -> float:
-        """Inner volume pi*R^2*h [m^3]."""
-        return math.pi * self.radius ** 2 * self.height
+        """Inner volume pi (R^2 - r_i^2) h [m^3]."""
+        return math.pi * (self.radius ** 2 - self.inner_radius ** 2) * self.height
 
     def check_fill(self, volume: float, field: str = "volume") -> float:
         """Validate a liquid volume 0 < V < pi*R^2*h for this chamber; return it.
@@ -62,7 +68,8 @@ class Chamber:
         v = positive(field, volume)
         if v >= self.volume:
             raise ParameterError(field, volume, f"must be < the chamber volume "
-                                 f"pi*R^2*h = {self.volume:.6g} m^3 ({self.volume * 1e6:.6g} ml)")
+                                 f"pi (R^2 - r_i^2) h = {self.volume:.6g} m^3 "
+                                 f"({self.volume * 1e6:.6g} ml)")
         return v
 
 
@@ -141,7 +148,7 @@ class LiquidBalancer:
             raise ParameterError("liquid.partitions", device.partitions, "must be 0 for this "
                                  "analysis (the quasi-static liquid has no partitions; "
                                  "autobalance simulate has)")
-        return cls(Chamber(device.chamber_radius, device.chamber_height),
+        return cls(Chamber(device.chamber_radius, device.chamber_height, device.inner_radius),
                    Liquid(device.density, device.kinematic_viscosity), device.volume,
                    device.friction_arc)
 

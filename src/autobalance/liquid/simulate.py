@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.layout import RunStatus
 from ..models import LiquidDevice, MotorDrive, ParameterError, SpeedProfile, System
 from ..physics.iso1940 import grade_value
 from .film import coupled_run
@@ -329,7 +330,8 @@ def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
     if device.axis == "horizontal":
         return float(np.sqrt(positive("gravity.g", g_plane)
                              / (GRAVITY_OFFSET_MAX * device.chamber_radius)))
-    return entrainment_speed(device.volume, device.chamber_radius, device.chamber_height, g_axial)
+    return entrainment_speed(device.volume, device.chamber_radius, device.chamber_height, g_axial,
+                             device.inner_radius)
 
 
 def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.ndarray]:
@@ -470,6 +472,11 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     psi = psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
     whirl = run.deflection - sag * np.exp(-1j * psi)
     U = run.film.unbalance
+    touch = run.film.inner_wall_time(liq.inner_radius)
+    status, message = ("ok", "") if touch is None else (
+        RunStatus.OUTSIDE_MODEL.label,
+        f"the film reaches the inner wall (r_i = {liq.inner_radius:.4g} m) at t = "
+        f"{t0 + touch:.4g} s: the wall-film model does not hold from there")
     return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), whirl, U,
                             revolution_average(psi, U), t0, w0, float(spin.nominal_speed),
-                            run.steps)
+                            run.steps, status, message)

@@ -221,12 +221,14 @@ def physical_steady_response(rotor: VerticalRotor, bal: LiquidBalancer, speeds: 
 
     om = np.asarray(speeds, float)
     R, h, rho, V = bal.chamber.radius, bal.chamber.height, bal.liquid.density, bal.volume
-    w0 = entrainment_speed(V, R, h, g)
+    ri = bal.chamber.inner_radius
+    w0 = entrainment_speed(V, R, h, g, inner_radius=ri)
     ok = om >= w0
     w = np.full(om.size, complex(math.nan, math.nan))
     if ok.any():
-        w[ok], _ = response_curve(rotor, R, h, V, rho, om[ok], g=g)
-    U = np.array([quasi_static(R, h, V, rho, W, x, g=g).unbalance if np.isfinite(x) else
+        w[ok], _ = response_curve(rotor, R, h, V, rho, om[ok], inner_radius=ri, g=g)
+    U = np.array([quasi_static(R, h, V, rho, W, x, inner_radius=ri, g=g).unbalance
+                  if np.isfinite(x) else
                   complex(math.nan, math.nan) for W, x in zip(om, w)])
     if (~ok).any():
         w[~ok] = pool_response(rotor, V, rho, om[~ok])
@@ -268,12 +270,14 @@ def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.
     """
     vols = np.asarray(volumes, float)
     R, h, rho = bal.chamber.radius, bal.chamber.height, bal.liquid.density
+    ri = bal.chamber.inner_radius
     dry = float(np.abs(pool_response(rotor, 0.0, rho, omega)))   # the empty chamber
     from .free_surface import entrainment_speed
 
     amps = np.array([dry if V <= 0 else abs(pool_response(rotor, V, rho, omega))
-                     if omega < entrainment_speed(V, R, h, g)
-                     else abs(synchronous_deflection(rotor, R, h, V, rho, omega, g=g))
+                     if omega < entrainment_speed(V, R, h, g, inner_radius=ri)
+                     else abs(synchronous_deflection(rotor, R, h, V, rho, omega, inner_radius=ri,
+                                                     g=g))
                      for V in vols])
     return {"volume_m3": vols, "amplitude_m": amps, "efficiency": dry / amps,
             "optimum_volume_m3": float(vols[int(np.nanargmin(amps))]), "omega_rad_s": float(omega)}

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ._validate import ParameterError, count, positive
+from ._validate import ParameterError, count, nonneg, positive
 
 #: Directions of the rotation axis: "vertical" (003's bench: gravity along the axis, the free
 #: surface a paraboloid) or "horizontal" (a washer's Leblanc ring: gravity in the plane).
@@ -20,9 +20,10 @@ MAX_PARTITIONS = 64
 
 @dataclass(frozen=True)
 class LiquidDevice:
-    """A closed cylindrical chamber, coaxial with the rotor, partly filled with a liquid (003
-    Fig. 4; 001 Fig. 1), with optional radial partitions. Annular chambers and several
-    concentric chambers are not modelled yet (docs/liquid.md sec. 3e).
+    """A closed cylindrical or annular chamber, coaxial with the rotor, partly filled with a
+    liquid (003 Fig. 4; 001 Fig. 1), with optional radial partitions. Several concentric
+    chambers in one machine are not modelled yet (docs/liquid.md sec. 3e): one chamber of such a
+    device is an annulus (``inner_radius``).
 
     Parameters
     ----------
@@ -43,6 +44,9 @@ class LiquidDevice:
         5-6 leave it open; default pi, half the wall) [rad].
     axis : str
         Direction of the rotation axis, one of :data:`AXES`.
+    inner_radius : float
+        Inner wall radius r_i [m], 0 <= r_i < R (0: a cylinder; 003's concentric chambers: the
+        next chamber's radius).
     """
 
     chamber_radius: float
@@ -53,14 +57,18 @@ class LiquidDevice:
     partitions: int = 0
     friction_arc: float = math.pi
     axis: str = "vertical"
+    inner_radius: float = 0.0
 
     def __post_init__(self):
-        positive("liquid.chamber_radius", self.chamber_radius)
+        R = positive("liquid.chamber_radius", self.chamber_radius)
         positive("liquid.chamber_height", self.chamber_height)
+        if nonneg("liquid.inner_radius", self.inner_radius) >= R:
+            raise ParameterError("liquid.inner_radius", self.inner_radius,
+                                 f"must be >= 0 and < chamber_radius {R!r} m")
         v = positive("liquid.volume", self.volume)
         if v >= self.chamber_volume:
             raise ParameterError("liquid.volume", self.volume, "must be < the chamber volume "
-                                 f"pi R^2 h = {self.chamber_volume:.6g} m^3 "
+                                 f"pi (R^2 - r_i^2) h = {self.chamber_volume:.6g} m^3 "
                                  f"({self.chamber_volume * 1e6:.6g} ml)")
         positive("liquid.density", self.density)
         positive("liquid.kinematic_viscosity", self.kinematic_viscosity)
@@ -77,8 +85,8 @@ class LiquidDevice:
 
     @property
     def chamber_volume(self) -> float:
-        """Inner volume pi R^2 h [m^3]."""
-        return math.pi * self.chamber_radius ** 2 * self.chamber_height
+        """Inner volume pi (R^2 - r_i^2) h [m^3]."""
+        return math.pi * (self.chamber_radius ** 2 - self.inner_radius ** 2) * self.chamber_height
 
     @property
     def mass(self) -> float:

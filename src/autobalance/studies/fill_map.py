@@ -115,7 +115,8 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
                              "speeds > 0 [rad/s]")
     amp = np.array([physical_fill_sweep(rotor, bal, V, w)["amplitude_m"] for w in W]).T
     dry = np.abs(pool_response(rotor, 0.0, L.density, W))
-    w0 = np.array([entrainment_speed(v, L.chamber_radius, L.chamber_height) for v in V])
+    w0 = np.array([entrainment_speed(v, L.chamber_radius, L.chamber_height,
+                                     inner_radius=L.inner_radius) for v in V])
     ds = xr.Dataset(
         {"amplitude": (("fill", "speed"), amp, {"units": "m", "long_name": "steady whirl"}),
          "amplitude_without_liquid": ("speed", dry, {"units": "m"}),
@@ -213,7 +214,9 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
         ``spread`` (fill, speed) [-]: (max - min) / mean of the whirl amplitude over the last
         quarter; ``steady`` (spread < :data:`SPREAD_MAX`: the synchronous whirl is reached
         within ``duration``; not reached is an asynchronous whirl or a transient slower than
-        ``duration``, which a longer run separates); ``mean_amplitude`` [m] over it.
+        ``duration``, which a longer run separates; and the run in the model); ``in_model``
+        (the run's status is ok: the film did not reach an annulus' inner wall);
+        ``mean_amplitude`` [m] over the last quarter.
     """
     import tempfile
     from pathlib import Path
@@ -243,8 +246,11 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
     late = amp.where(ds["history_time"] >= 0.75 * T, drop=True)
     mean = late.mean("history_time")
     spread = (late.max("history_time") - late.min("history_time")) / mean
+    in_model = ds["status"].isel(sample=0).values == 0     # e.g. the film off the inner wall
     out = xr.Dataset({"spread": (("fill", "speed"), spread.values, {"units": "1"}),
-                      "steady": (("fill", "speed"), spread.values < SPREAD_MAX),
+                      "steady": (("fill", "speed"), (spread.values < SPREAD_MAX) & in_model),
+                      "in_model": (("fill", "speed"), in_model,
+                                   {"long_name": "run status ok (the wall-film model holds)"}),
                       "mean_amplitude": (("fill", "speed"), mean.values, {"units": "m"})},
                      coords={"fill": ("fill", np.asarray(fills, float), {"units": "m^3"}),
                              "speed": ("speed", np.asarray(speeds, float), {"units": "rad/s"})},

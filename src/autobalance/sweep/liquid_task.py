@@ -9,6 +9,7 @@ def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
     """:func:`autobalance.sweep.plan.run_task` for liquid balancers: one wall-film run per system
     (:func:`autobalance.liquid.simulate.simulate_liquid`), read at the checkpoints and history
     times as the ball runs are; no balls (``ball_angle`` all NaN), no stick-slip events."""
+    from ..core.layout import RunStatus
     from ..liquid.simulate import simulate_liquid
     from ..physics.iso1940 import grade_value
 
@@ -30,6 +31,7 @@ def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
         out["grade_G"][i], out["residual_unbalance"][i] = at["grade_G"], at["residual_unbalance"]
         out["max_amplitude"][i] = max(float(np.max(sim.amplitude)), sim.max_amplitude_before_film)
         out["steps"][i] = sim.steps
+        out["status"][i] = int(RunStatus.from_label(sim.status))
         if hist.size:
             film = hist >= sim.film_start
             out["grade_G_history"][i] = sim.at(hist)["grade_G"]

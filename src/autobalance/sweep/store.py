@@ -45,7 +45,8 @@ from .spec import SweepError
 if TYPE_CHECKING:
     import xarray as xr
 
-STATUS_NAMES = ", ".join(f"{int(s)} {s.label}" for s in RunStatus if s <= RunStatus.NON_FINITE)
+STATUS_NAMES = ", ".join(f"{int(s)} {s.label}" for s in RunStatus
+                         if s <= RunStatus.NON_FINITE or s is RunStatus.OUTSIDE_MODEL)
 _TASK_RE = re.compile(r"r(\d{9})-(\d{9})\.npz")
 
 
