@@ -323,6 +323,7 @@ runner = CliRunner()
     (["kinetic-static", "washer_000", "--set", "gravity.g=0", "--duration", "2 s"], "max_D_x_m"),
     (["washer-study", "fig16"], "rows"),
 ])
+@pytest.mark.slow
 def test_cli_json(args, key):
     r = runner.invoke(app, args + ["--json"])
     assert r.exit_code == 0, r.output

@@ -247,6 +247,7 @@ def run_module(*args):
                           capture_output=True, text=True, timeout=600)
 
 
+@pytest.mark.slow
 def test_python_m_autobalance_help():
     r = run_module("--help")
     assert r.returncode == 0 and r.stderr == ""
@@ -257,6 +258,7 @@ def test_python_m_autobalance_help():
     assert "Parameters" not in r.stdout     # the docstrings' numpydoc part stays out of --help
 
 
+@pytest.mark.slow
 def test_python_m_autobalance_end_to_end():
     """Same output as the typer app in this process, same one-line errors as the script."""
     args = ("response", "washer_000", "--speeds", "0:2000 rpm:11", "--json")
@@ -268,6 +270,7 @@ def test_python_m_autobalance_end_to_end():
     assert_one_line_error(r.stderr, "suspension.kx")
 
 
+@pytest.mark.slow
 def test_library_does_not_import_the_cli():
     code = ("import sys, autobalance, autobalance.report.runner, autobalance.jsonable; "
             "print([m for m in sys.modules if m.startswith('autobalance.cli')])")

@@ -60,6 +60,7 @@ def test_split_coincident_spreads_only_coincident_balls_symmetrically():
     assert np.array_equal(split_coincident([0.3, 2.0]), [0.3, 2.0])
 
 
+@pytest.mark.slow
 def test_an_unstable_coincident_pair_splits_in_the_sweep_and_a_stable_one_does_not():
     """At a 1.02 Omega_n plateau the coincident state is unstable: started exactly together the
     stick kernel keeps the two points together (its arithmetic is symmetric), 1e-9 rad apart

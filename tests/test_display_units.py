@@ -222,6 +222,7 @@ def test_simulate_units_choice_in_text():
     assert "nominal_speed                    418.9 rad/s" in r.stdout
 
 
+@pytest.mark.slow
 def test_simulate_plot_speed_axis_and_grade_line(tmp_path, monkeypatch):
     """--plot draws the spin speed in the written unit and the grade line at --grade with its
     class: the figure the command saved is inspected."""

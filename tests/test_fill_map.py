@@ -71,6 +71,7 @@ def test_refusals_are_one_line():
         compute_fill_map("leblanc_003", speeds=[50.0, 40.0])
 
 
+@pytest.mark.slow
 def test_cli_end_to_end(tmp_path):
     nc, png = tmp_path / "fm.nc", tmp_path / "fm.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "study", "fill-map", "leblanc_003",
@@ -89,6 +90,7 @@ def test_cli_end_to_end(tmp_path):
         len(r.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.slow
 def test_stability_map_tells_steady_from_asynchronous_whirl():
     """The coupled film at constant speed (one sweep, local processes): 75 ml at 45 1/s settles
     on the synchronous whirl; 300 ml of water at 80 1/s (1.5 omega_r) keeps whirling
@@ -104,6 +106,7 @@ def test_stability_map_tells_steady_from_asynchronous_whirl():
     assert (st["mean_amplitude"] > 0).all()
 
 
+@pytest.mark.slow
 def test_example_top_loader_ring_reaches_its_nominal_speed():
     """examples/toploader-ring.toml (make run's liquid design study): the default speeds reach
     the nominal 800 rpm, and there the liquid balances."""

@@ -56,6 +56,7 @@ def test_simulate_json_and_plots(tmp_path):
     assert all(s["optimum_volume_m3"] == pytest.approx(150e-6) for s in f["fill_sweep"][1:])
 
 
+@pytest.mark.slow
 def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
     """``--model physical``: the quasi-static liquid's steady whirl (below omega_0 the liquid is a
     centred pool: the rotor with its mass, pool_response), the coupled film's run-up from

@@ -55,6 +55,7 @@ def test_the_roots_solve_the_rotor_balance(W):
     assert abs(G) <= 1e-8 * K * abs(w)
 
 
+@pytest.mark.slow
 def test_the_liquid_helps_only_above_resonance():
     """003's bench with 150 ml: the liquid lowers the resonance and the whirl above it, and
     raises the whirl below it (measured: peak 54.5 -> 50.5 1/s; at 0.8 omega_r 1.92 -> 2.87 mm,

@@ -174,6 +174,7 @@ def run_cli(*args, cwd=None):
                           text=True, timeout=600, cwd=cwd)
 
 
+@pytest.mark.slow
 def test_cli_simulate_show_and_refusals(tmp_path):
     nc, png = tmp_path / "run.nc", tmp_path / "run.png"
     r = run_cli("simulate", "leblanc_003", "--set", "profile.duration=8 s",
@@ -256,6 +257,7 @@ def test_horizontal_rotor_sags_statically_under_its_liquid():
 SHORT = ["profile.duration=8 s", "profile.ramp_time=8 s"]
 
 
+@pytest.mark.slow
 def test_liquid_sweep_equals_its_single_runs(tmp_path):
     """A grid over the fill: each cell's stored grade and residual equal simulate_liquid's own
     (read at the checkpoint); the history is NaN before the film forms; resume adds nothing."""

@@ -17,6 +17,7 @@ def small():
     return compute_readings(3, readings=two, executor="serial")
 
 
+@pytest.mark.slow
 def test_counts_are_the_report_rows_that_pass(small):
     rows = reading_rows(small)
     assert [r["name"] for r in rows] == ["base", "004's equations",
@@ -36,6 +37,7 @@ def test_counts_are_the_report_rows_that_pass(small):
     assert set(EQUATIONS_004) <= set(READINGS["004's equations, 14 s run-up"][0])
 
 
+@pytest.mark.slow
 def test_the_table_shows_the_published_values_and_bolds_what_is_reproduced(small):
     md = readings_markdown(small)
     lines = md.splitlines()
@@ -46,6 +48,7 @@ def test_the_table_shows_the_published_values_and_bolds_what_is_reproduced(small
     assert "(changes a stated parameter)" in lines[-1]
 
 
+@pytest.mark.slow
 def test_command_line_prints_the_table(capsys, tmp_path):
     main(["--n", "2", "--executor", "serial", "--netcdf", str(tmp_path / "r.nc")])
     out = capsys.readouterr().out

@@ -77,6 +77,7 @@ def test_a_prescribed_profile_runs_as_it_is():
     assert e.value.field == "laws" and "motor" in str(e.value)
 
 
+@pytest.mark.slow
 def test_cli_text_json_netcdf_and_plot(tmp_path):
     out, png = tmp_path / "r.nc", tmp_path / "r.png"
     args = ["study", "runup", "washer_000", *[x for s in MOTOR for x in ("--set", s)]]

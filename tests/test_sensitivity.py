@@ -74,6 +74,7 @@ def test_default_variants_follow_the_machine():
     assert "contact none" not in one                      # one ball: nothing to touch
 
 
+@pytest.mark.slow
 def test_cli_json_netcdf_and_bad_input(tmp_path):
     r = runner.invoke(app, ["study", "sensitivity", CENTRIFUGE, "--random", "4", "--executor",
                             "serial", "--vary", "balancer.contact=none", "--json",

@@ -327,6 +327,7 @@ def test_speed_map_capacity_short_reports_the_balls_in_contact():
     assert ds["residual_unbalance"].values == pytest.approx([2.5 * cap, 0.5 * cap], rel=1e-5)
 
 
+@pytest.mark.slow
 def test_speed_map_three_balls_netcdf_round_trip_and_figure(tmp_path):
     """The top-loader map (families) survives NetCDF unchanged (no bool or object attributes),
     its summary is JSON, and the figure converts the speed axis with the unit registry."""

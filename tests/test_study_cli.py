@@ -39,6 +39,7 @@ def one_line_error(r, field: str):
 
 
 # -- start positions ----------------------------------------------------------------------------
+@pytest.mark.slow
 def test_start_positions_json_matches_its_netcdf(tmp_path):
     out = tmp_path / "sp.nc"
     d = run_json("start-positions", CENTRIFUGE, "--n", 4, "--out", out)
@@ -74,6 +75,7 @@ def test_start_positions_store_resumes_and_a_changed_machine_gets_its_own(tmp_pa
     assert len(list(store.iterdir())) == 2 and c["runs"] == a["runs"]
 
 
+@pytest.mark.slow
 def test_start_positions_grid_reports_each_cell_as_its_own_run(tmp_path):
     """--grid repeats the Monte Carlo per cell: each cell's percentiles equal a run of the
     machine with that value set, and the pooled line pools the cells' runs."""
@@ -192,6 +194,7 @@ def test_immobility_figure_speaks_the_configs_speed_unit(tmp_path):
 
 
 # -- speed map ----------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
     d = run_json("speed-map", TOPLOADER, "--quick", "--damping", "1", "--out", tmp_path / "m.nc")
     assert d["counts"]["max_families"] == 1 and d["counts"]["max_isolated"] <= 4
@@ -205,6 +208,7 @@ def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
 
 
 # -- tolerances ---------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_tolerances_cli_and_its_simulation_check():
     d = run_json("tolerances", CENTRIFUGE, "--check", 3)
     assert d["feasible"] and d["max_eccentricity_m"] > 0 and d["max_rolling_resistance"] > 0
@@ -258,6 +262,7 @@ def test_out_to_a_directory_is_refused_before_work(tmp_path):
 
 
 # -- design -------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_design_ranks_cheapest_meeting_design_first_and_marks_the_pareto_front():
     d = run_json("design", CENTRIFUGE, "--balls", "2,3", "--capacity", "1.3,1.8", "--profiles",
                  "std", "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 4, "--n-unbalance", 2,
@@ -283,6 +288,7 @@ def test_design_ranks_cheapest_meeting_design_first_and_marks_the_pareto_front()
         assert r["pareto"] == (not dominated), r["name"]
 
 
+@pytest.mark.slow
 def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys(tmp_path):
     """The plateau study runs on the best TSR candidate; its recommended plateau (the argmin of
     its mean 95th percentiles) joins as a candidate judged like the others, and its --set

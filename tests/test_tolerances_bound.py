@@ -99,6 +99,7 @@ def test_eccentricity_tolerance_reduces_to_000_eq60():
     assert ours == pytest.approx(paper["rho_max_m"], rel=2e-4)
 
 
+@pytest.mark.slow
 def test_rolling_bound_reduces_to_000_eq61_one_ball():
     """One ball with m R = Me at w = 100 w_n: the dead band leaves m R Delta alpha = M_t R f/r
     (000 eq 61); the bound is at or above it (true bound) and within the circle test's margin
@@ -179,6 +180,7 @@ def test_sampled_rest_states_obey_the_bound(top):
     assert np.abs(W[inner]).max() <= r["worst_residual_kg_m"]
 
 
+@pytest.mark.slow
 @settings(max_examples=8, deadline=None)
 @given(st.floats(1e-5, 5e-4), st.floats(0.0, 1e-4), st.floats(0.0, 5.0), st.floats(0, 2 * math.pi))
 def test_optimised_rest_state_below_bound_and_monotone(mu, rho, F, beta):
@@ -197,6 +199,7 @@ def test_optimised_rest_state_below_bound_and_monotone(mu, rho, F, beta):
 
 
 # ============================ tier 3: real simulations =======================================
+@pytest.mark.slow
 def test_bound_holds_monte_carlo_toploader_designed(top_tol):
     """The top-loader built with its G16 tolerances (eccentricity at a random angle, f/r, damper
     friction), 20 random starts through its own 40 s run-up: no run above the bound except at a
@@ -222,6 +225,7 @@ def test_bound_holds_monte_carlo_toploader_own(top):
     assert mc["bound_kg_m"] < 0.3 * top.system.balancer.capacity
 
 
+@pytest.mark.slow
 def test_bound_holds_monte_carlo_centrifuge_designed(cen_tol):
     """The centrifuge built with its G16 tolerances, 8 random starts through its TSR profile."""
     mc = check_tolerances_by_simulation(CEN, cen_tol, n=8, seed=1)
@@ -267,6 +271,7 @@ def test_forward_and_reverse_agree(top):
         one["budget_kg_m"]["rolling"], rel=1e-8)
 
 
+@pytest.mark.slow
 def test_study_result_keys_and_designed_rme(top_tol, top):
     t = top_tol
     for k in ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N",
@@ -282,6 +287,7 @@ def test_study_result_keys_and_designed_rme(top_tol, top):
     assert p["rme_worst"] >= 1 - t["target_unbalance_kg_m"] / top.system.rotor.unbalance > 0
 
 
+@pytest.mark.slow
 def test_rme_never_below_the_physical_floor(cen_tol):
     """The centrifuge's own f/r = 0.002 at 4000 rpm: the balls can rest anywhere (no dead-band
     gap, a warning), the worst case is U + sum m R and RMe = -sum m R / U, never lower (the old
@@ -305,6 +311,7 @@ def test_analyze_bounds_three_balls_no_blow_up():
     assert out["worst_residual_kg_m"] < out["capacity_kg_m"]
 
 
+@pytest.mark.slow
 def test_analyze_tolerance_text_and_json():
     r = runner.invoke(app, ["tolerance", TOP, "--grade", "6.3", "--fraction", "0.1"])
     assert r.exit_code == 0, r.output
@@ -314,6 +321,7 @@ def test_analyze_tolerance_text_and_json():
     assert out["target_grade_G_mm_s"] == 16.0 and "design" in out
 
 
+@pytest.mark.slow
 def test_study_with_000s_method_is_000_eq60_63_66_and_its_true_bound_beside_it():
     """``method="000"`` (the path 000's reproduction takes): eq 60 rho_max = p_rho q Me/M,
     eq 63 f/r = 2 p_r q e/R, eq 65 F = (1/2) p_f q Me^2 sin(2pi/3) w^2/(2 Me cos gamma) with
