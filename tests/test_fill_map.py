@@ -62,9 +62,13 @@ def test_the_liquid_helps_only_above_resonance(fmap):
 
 
 def test_refusals_are_one_line():
-    for base, field in (("vub_jeffcott_004", "liquid"), ("leblanc_washer", "liquid.axis")):
-        with pytest.raises(ParameterError, match=f"^{field}"):
-            compute_fill_map(base)
+    with pytest.raises(ParameterError, match="^liquid"):
+        compute_fill_map("vub_jeffcott_004")
+    with pytest.raises(ParameterError, match="^gravity.g"):          # horizontal needs gravity
+        compute_fill_map("leblanc_washer", sets=["gravity.g=0"])
+    from autobalance.studies.fill_map import compute_stability_map
+    with pytest.raises(ParameterError, match="^liquid.axis"):        # not a criterion there yet
+        compute_stability_map("leblanc_washer", fills=[1e-3], speeds=[100.0])
     with pytest.raises(ParameterError, match="^fills"):
         compute_fill_map("leblanc_003", fills=[0.0])
     with pytest.raises(ParameterError, match="^speeds"):
@@ -115,3 +119,27 @@ def test_example_top_loader_ring_reaches_its_nominal_speed():
     d = fill_map_summary(ds)
     assert d["speed_on_grid_rad_s"] == pytest.approx(800 * 2 * np.pi / 60)
     assert d["best_efficiency_at_nominal"] > 1.0
+
+
+def test_horizontal_axis_puddle_below_the_ring_and_planar_ring_above():
+    """A washer's Leblanc ring (horizontal axis): below the ring's start speed sqrt(g/(R/10))
+    the liquid is a puddle held by gravity, a mass without unbalance (pool_response); above it
+    the planar quasi-static liquid, whose intact ring adds the mass of the full chamber and
+    balances nothing (ring_response); both closed forms to round-off."""
+    cfg = load_config("leblanc_washer")
+    s, L = cfg.system, cfg.system.liquid
+    rot = rotor_of(cfg)
+    W = np.linspace(10.0, 150.0, 29)
+    V = np.array([0.5e-3, 5.5e-3])
+    ds = compute_fill_map("leblanc_washer", fills=V, speeds=W)
+    w_ring = np.sqrt(s.gravity.g / (0.1 * L.chamber_radius))
+    assert ds.attrs["axis"] == "horizontal"
+    np.testing.assert_allclose(ds["entrainment_speed"].values, w_ring, rtol=1e-14)
+    below = W < w_ring
+    assert below.any() and (~below).any()
+    for i, v in enumerate(V):
+        np.testing.assert_allclose(ds["amplitude"].values[i][below],
+                                   np.abs(pool_response(rot, v, L.density, W[below])), rtol=1e-12)
+    vc = np.pi * L.chamber_radius ** 2 * L.chamber_height           # 6.4 l: 5.5 l stays a ring
+    ring = np.abs([ring_response(rot, vc, V[1], L.density, w) for w in W[~below]])
+    np.testing.assert_allclose(ds["amplitude"].values[1][~below], ring, rtol=1e-6)

@@ -53,8 +53,8 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         The sweep's processes (:mod:`autobalance.cli.common`).
     """
     from ..config import parse_quantity
-    from ..studies.fill_map import (compute_fill_map, compute_stability_map, dynamic_speeds,
-                                    fill_map_summary)
+    from ..studies.fill_map import (check_stability_map, compute_fill_map,
+                                    compute_stability_map, dynamic_speeds, fill_map_summary)
     from .liquid import _list
 
     t0 = time.perf_counter()
@@ -64,6 +64,8 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         T = parse_quantity(duration, "time", "--duration")
         V = None if fills is None else _list(fills, "volume", "--fills")
         W = None if speeds is None else _list(speeds, "speed", "--speeds")
+        if dynamic:
+            check_stability_map(cfg.system.liquid)      # before the fill map's work
         ds = compute_fill_map(cfg, fills=V, speeds=W, quick=quick)
         stab = None
         if dynamic:
@@ -86,10 +88,11 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         return
     typer.echo(f"{cfg.name}: fill map, {ds['fill'].size} fills x {ds['speed'].size} speeds "
                f"(resonance without liquid {du.fmt(res['resonance_without_liquid_rad_s'], 'speed')})")
+    ring = "entrained" if ds.attrs.get("axis", "vertical") == "vertical" else "a ring"
     for f in res["fills"]:
         b = f["balances_from_rad_s"]
         typer.echo(f"  {f['fill_m3'] * 1e6:7.1f} ml: resonance {du.fmt(f['resonance_rad_s'], 'speed')}, "
-                   f"entrained from {du.fmt(f['entrainment_speed_rad_s'], 'speed')}, balances "
+                   f"{ring} from {du.fmt(f['entrainment_speed_rad_s'], 'speed')}, balances "
                    + ("nowhere on the grid" if b is None else f"from {du.fmt(b, 'speed')}")
                    + f"; efficiency {f['efficiency_at_nominal']:.3g} at the nominal speed")
     if "not_steady" in res:

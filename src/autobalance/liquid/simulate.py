@@ -23,10 +23,8 @@ from ..core.layout import RunStatus
 from ..models import LiquidDevice, MotorDrive, ParameterError, SpeedProfile, System
 from ..physics.iso1940 import grade_value
 from .film import coupled_run
-from ..models._validate import positive
-from .free_surface import entrainment_speed
 from .models import G_STANDARD, LiquidBalancer, VerticalRotor
-from .steady import pool_response
+from .steady import pool_response, start_speed
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -36,9 +34,6 @@ if TYPE_CHECKING:
 __all__ = ["LiquidSimulation", "check_liquid_run", "film_rotor", "film_start_speed",
            "liquid_parts", "revolution_average", "run_seconds_estimate", "simulate_liquid"]
 
-#: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
-#: for the film model (first order in g/(Omega^2 R), core/shallow_water.py) [-]; our criterion.
-GRAVITY_OFFSET_MAX = 0.1
 
 #: Wall time of one film step on 256 cells with its 4 rotor sub-steps [s] (measured on the
 #: 2-core machine of docs/numerics.md: 15232 steps of the leblanc_003 run-up in 1.0 s).
@@ -313,10 +308,9 @@ def revolution_average(psi: npt.ArrayLike, values: npt.ArrayLike) -> np.ndarray:
 
 def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
                      g_axial: float = G_STANDARD) -> float:
-    """Speed from which the wall-film model holds [rad/s]: on a vertical axis the entrainment
-    speed omega_0 of 003 eq 6 (the liquid spans bottom to lid); on a horizontal one
-    sqrt(g / (f R)) with f = :data:`GRAVITY_OFFSET_MAX`, where gravity's offset g/Omega^2 of the
-    potential is f R (our criterion: the model is first order in it).
+    """Speed from which the wall-film model holds [rad/s]: :func:`.steady.start_speed` of the
+    machine's chamber, fill and axis (vertical: 003 eq 6's entrainment speed; horizontal: where
+    gravity's offset g/Omega^2 of the potential is R/10).
 
     Parameters
     ----------
@@ -327,11 +321,9 @@ def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
     g_axial : float
         Gravity along a vertical axis [m/s^2].
     """
-    if device.axis == "horizontal":
-        return float(np.sqrt(positive("gravity.g", g_plane)
-                             / (GRAVITY_OFFSET_MAX * device.chamber_radius)))
-    return entrainment_speed(device.volume, device.chamber_radius, device.chamber_height, g_axial,
-                             device.inner_radius)
+    return start_speed(device.volume, device.chamber_radius, device.chamber_height,
+                       g_plane if device.axis == "horizontal" else g_axial, axis=device.axis,
+                       inner_radius=device.inner_radius)
 
 
 def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.ndarray]:

@@ -36,8 +36,43 @@ from .quasistatic import quasi_static
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-__all__ = ["physical_fill_sweep", "physical_steady_response", "pool_response", "response_curve",
-           "ring_response", "synchronous_deflection"]
+__all__ = ["GRAVITY_OFFSET_MAX", "physical_fill_sweep", "physical_steady_response",
+           "pool_response", "response_curve", "ring_response", "start_speed",
+           "synchronous_deflection"]
+
+#: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
+#: for the liquid models on a horizontal axis (first order in g/(Omega^2 R), core/shallow_water.py)
+#: [-]; our criterion.
+GRAVITY_OFFSET_MAX = 0.1
+
+
+def start_speed(volume: float, radius: float, height: float, g: float = G_STANDARD, *,
+                axis: str = "vertical", inner_radius: float = 0.0) -> float:
+    """Speed from which the liquid is a ring on the wall and the ring models hold [rad/s]: on a
+    vertical axis the entrainment speed omega_0 (003 eq 6, :func:`.free_surface.
+    entrainment_speed`); on a horizontal one sqrt(g / (f R)), f = :data:`GRAVITY_OFFSET_MAX`,
+    where gravity's offset g/Omega^2 of the centrifugal potential is f R (our criterion: the
+    models are first order in it). Below it the liquid is a pool (vertical) or a puddle held by
+    gravity (horizontal): a mass that translates with the chamber and balances nothing.
+
+    Parameters
+    ----------
+    volume : float
+        Liquid volume V [m^3].
+    radius, height : float
+        Chamber R, h [m].
+    g : float
+        Gravity [m/s^2]: along a vertical axis, in the plane of a horizontal one.
+    axis : str
+        "vertical" or "horizontal".
+    inner_radius : float
+        Inner wall r_i [m] (0: a cylinder).
+    """
+    if axis == "horizontal":
+        return math.sqrt(positive("gravity.g", g) / (GRAVITY_OFFSET_MAX * radius))
+    from .free_surface import entrainment_speed
+
+    return entrainment_speed(volume, radius, height, g, inner_radius=inner_radius)
 
 
 def _G(w, rotor, Wsp, chamber, volume, density, g, axis):
@@ -245,10 +280,13 @@ def physical_steady_response(rotor: VerticalRotor, bal: LiquidBalancer, speeds: 
 
 
 def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.ArrayLike,
-                        omega: float, g: float = G_STANDARD) -> dict:
+                        omega: float, g: float = G_STANDARD, axis: str = "vertical") -> dict:
     """Steady amplitude [m] at one speed for several fills with the quasi-static liquid, in the
-    keys of :func:`autobalance.liquid.fill_sweep` (003 Fig. 5); a fill whose entrainment speed
-    (003 eq 6) is above ``omega`` is a centred pool (:func:`pool_response`).
+    keys of :func:`autobalance.liquid.fill_sweep` (003 Fig. 5); a fill whose start speed
+    (:func:`start_speed`) is above ``omega`` is a mass without unbalance (:func:`pool_response`).
+    On a horizontal axis the ring is the planar quasi-static liquid (gravity's offset of the
+    potential, below R/10 there, is left out: the steady synchronous whirl exists in that limit
+    only; the film model of ``simulate`` keeps it).
 
     Parameters
     ----------
@@ -261,7 +299,9 @@ def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.
     omega : float
         Speed [rad/s].
     g : float
-        Gravity [m/s^2].
+        Gravity [m/s^2] (along a vertical axis, in the plane of a horizontal one).
+    axis : str
+        "vertical" or "horizontal".
 
     Returns
     -------
@@ -272,12 +312,13 @@ def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.
     R, h, rho = bal.chamber.radius, bal.chamber.height, bal.liquid.density
     ri = bal.chamber.inner_radius
     dry = float(np.abs(pool_response(rotor, 0.0, rho, omega)))   # the empty chamber
-    from .free_surface import entrainment_speed
-
+    if axis not in ("vertical", "horizontal"):
+        raise ParameterError("axis", axis, "must be 'vertical' or 'horizontal'")
+    qs_axis = "planar" if axis == "horizontal" else "vertical"
     amps = np.array([dry if V <= 0 else abs(pool_response(rotor, V, rho, omega))
-                     if omega < entrainment_speed(V, R, h, g, inner_radius=ri)
+                     if omega < start_speed(V, R, h, g, axis=axis, inner_radius=ri)
                      else abs(synchronous_deflection(rotor, R, h, V, rho, omega, inner_radius=ri,
-                                                     g=g))
+                                                     g=g, axis=qs_axis))
                      for V in vols])
     return {"volume_m3": vols, "amplitude_m": amps, "efficiency": dry / amps,
             "optimum_volume_m3": float(vols[int(np.nanargmin(amps))]), "omega_rad_s": float(omega)}

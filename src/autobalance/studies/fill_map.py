@@ -1,7 +1,8 @@
 """The fill map of a liquid balancer (any machine with a ``[liquid]`` section): the steady whirl
 over fill x speed with the liquid from physics (the quasi-static liquid in the displaced
-chamber, :func:`autobalance.liquid.steady.physical_fill_sweep`; a centred pool below each
-fill's entrainment speed), beside the rotor without liquid. It answers the design questions of
+chamber, :func:`autobalance.liquid.steady.physical_fill_sweep`; below each fill's start speed
+a centred pool on a vertical axis, a puddle held by gravity on a horizontal one), beside the
+rotor without liquid. It answers the design questions of
 003 Fig. 5-6 for any machine: which fill balances at which speed, how much, and where the
 resonance moves. docs/liquid.md sec. 3f.
 """
@@ -23,7 +24,8 @@ if TYPE_CHECKING:
     from ..config import Config
     from ..models import LiquidDevice
 
-__all__ = ["compute_fill_map", "compute_stability_map", "default_fills", "dynamic_speeds",
+__all__ = ["check_stability_map", "compute_fill_map", "compute_stability_map", "default_fills",
+           "dynamic_speeds",
            "fill_map_summary"]
 
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
@@ -75,16 +77,18 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
     xarray.Dataset
         ``amplitude`` (fill, speed) [m], ``amplitude_without_liquid`` (speed) [m], ``efficiency``
         (fill, speed) [-] (> 1: the liquid lowers the whirl), ``entrained`` (fill, speed) (the
-        speed is above the fill's entrainment speed, 003 eq 6), ``resonance`` (fill) [rad/s]
-        (the speed of the largest whirl on the grid).
+        speed is above the fill's ``entrainment_speed`` [rad/s]: 003 eq 6 on a vertical axis,
+        the ring's start g/Omega^2 = R/10 on a horizontal one, :func:`autobalance.liquid.steady.
+        start_speed`), ``resonance`` (fill) [rad/s] (the speed of the largest whirl on the
+        grid). On a horizontal axis the ring is the planar quasi-static liquid.
     """
     import xarray as xr
 
     from ..config import Config, load_config, replace_values
     from ..config.overrides import parse_override
-    from ..liquid.free_surface import entrainment_speed
+    from ..liquid.models import G_STANDARD
     from ..liquid.simulate import liquid_parts
-    from ..liquid.steady import physical_fill_sweep, pool_response
+    from ..liquid.steady import physical_fill_sweep, pool_response, start_speed
 
     t0 = time.perf_counter()
     cfg = (replace_values(base, dict(parse_override(s) for s in sets)) if sets else base) \
@@ -97,10 +101,11 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
         raise ParameterError("balancer.n_balls", s.balancer.n_balls, "must be 0: the fill map "
                              "is of a liquid balancer alone")
     L = s.liquid
-    if L.axis != "vertical":
-        raise ParameterError("liquid.axis", L.axis, "the fill map covers a vertical axis (003's "
-                             "entrainment and pool); a horizontal machine runs with simulate "
-                             "or sweep (the film model with gravity)")
+    g = s.gravity.g if L.axis == "horizontal" else G_STANDARD
+    if L.axis == "horizontal" and not g > 0.0:
+        raise ParameterError("gravity.g", g, "must be > 0 with a horizontal-axis liquid "
+                             "balancer ([gravity] in the plane holds the puddle below the "
+                             "ring's start speed)")
     rotor, bal = liquid_parts(s)
     V = np.asarray(default_fills(L) if fills is None else fills, float)
     if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= L.chamber_volume):
@@ -113,21 +118,28 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
     if W.ndim != 1 or W.size < 2 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
         raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)], "must be >= 2 increasing "
                              "speeds > 0 [rad/s]")
-    amp = np.array([physical_fill_sweep(rotor, bal, V, w)["amplitude_m"] for w in W]).T
+    amp = np.array([physical_fill_sweep(rotor, bal, V, w, g, axis=L.axis)["amplitude_m"]
+                    for w in W]).T
     dry = np.abs(pool_response(rotor, 0.0, L.density, W))
-    w0 = np.array([entrainment_speed(v, L.chamber_radius, L.chamber_height,
-                                     inner_radius=L.inner_radius) for v in V])
+    w0 = np.array([start_speed(v, L.chamber_radius, L.chamber_height, g, axis=L.axis,
+                               inner_radius=L.inner_radius) for v in V])
+    vertical = L.axis == "vertical"
     ds = xr.Dataset(
         {"amplitude": (("fill", "speed"), amp, {"units": "m", "long_name": "steady whirl"}),
          "amplitude_without_liquid": ("speed", dry, {"units": "m"}),
          "efficiency": (("fill", "speed"), dry[None, :] / amp,
                         {"units": "1", "long_name": "A(no liquid) / A(liquid)"}),
          "entrained": (("fill", "speed"), W[None, :] >= w0[:, None]),
-         "entrainment_speed": ("fill", w0, {"units": "rad/s", "long_name": "003 eq 6"}),
+         "entrainment_speed": ("fill", w0, {"units": "rad/s", "long_name": "003 eq 6" if vertical
+                                            else "ring start: g/Omega^2 = R/10"}),
          "resonance": ("fill", W[np.argmax(amp, axis=1)], {"units": "rad/s"})},
         coords={"fill": ("fill", V, {"units": "m^3"}), "speed": ("speed", W, {"units": "rad/s"})},
-        attrs={"machine": cfg.name, "model": "quasi-static liquid in the displaced chamber "
-               "(vertical axis); a centred pool below the entrainment speed",
+        attrs={"machine": cfg.name, "axis": L.axis,
+               "model": "quasi-static liquid in the displaced chamber (vertical axis); a centred "
+               "pool below the entrainment speed" if vertical else "quasi-static liquid in the "
+               "displaced chamber, planar (horizontal axis; gravity's offset g/Omega^2 <= R/10 "
+               "left out); a puddle held by gravity (a mass, no unbalance) below the ring's "
+               "start speed",
                "nominal_speed_rad_s": float(cfg.spin.nominal_speed),
                "resonance_without_liquid_rad_s": float(W[np.argmax(dry)]),
                "wall_time_s": time.perf_counter() - t0})
@@ -181,6 +193,23 @@ def fill_map_summary(ds: xr.Dataset) -> dict:
 SPREAD_MAX = 0.05
 
 
+def check_stability_map(device: LiquidDevice | None) -> None:
+    """Refuse, in one line, a machine the stability map does not cover: a horizontal axis,
+    where gravity's puddle makes the whirl about the sag wobble once per revolution and the
+    spread criterion would read it as unsteadiness (a criterion on the revolution-averaged
+    whirl is not built yet; the fill map itself covers both axes).
+
+    Parameters
+    ----------
+    device : autobalance.models.LiquidDevice or None
+        The machine's ``[liquid]`` section.
+    """
+    if device is not None and device.axis == "horizontal":
+        raise ParameterError("liquid.axis", device.axis, "the stability map (--dynamic) covers a "
+                             "vertical axis: on a horizontal one gravity makes the whirl wobble "
+                             "once per revolution (not a criterion yet); the fill map covers both")
+
+
 def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
                           speeds: Sequence[float], duration: float = 6.0,
                           store: str | Path | None = None, executor: str | None = None,
@@ -225,6 +254,9 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
 
     from ..sweep import spec_from_dict, sweep
 
+    from ..config import load_config
+
+    check_stability_map((base if hasattr(base, "system") else load_config(base)).system.liquid)
     T = float(duration)
     if not (np.isfinite(T) and T > 0):
         raise ParameterError("duration", duration, "must be > 0 [s]")
