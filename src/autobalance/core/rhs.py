@@ -11,16 +11,20 @@ or exact stick with stuck balls creeping along the tanh law's slow manifold (P_F
 
 Units: SI throughout ([m], [kg], [rad], [s], [N], [N*m]).
 
-Size: ``rhs`` (~290 lines) assembles the mass matrix, the force vector and the constraint rows of
-one evaluation into preallocated work arrays. It is the second compiled exception to the 100-line
-rule (the other is core/integrate.py::_integrate; see there).
+Size: ``rhs`` assembles the mass matrix, the force vector and the constraint rows of one
+evaluation into preallocated work arrays, in parts inlined into it at numba IR level
+(:func:`autobalance.core.jit.inline_kernel`: no call, no exploded array structs): the balls'
+rows (``_ball_rows``), their contacts (``_contacts``) and the solve for a prescribed or a
+motor-driven spin (``_solve_prescribed``, ``_solve_driven``). The split changed no bit of any
+result (nine runs' full histories compared: TSR with stick, tanh and creep, three balls,
+motor drive with gravity, the washer with dry friction, the examples).
 """
 from __future__ import annotations
 
 import math
 from typing import TYPE_CHECKING
 
-from .jit import kernel
+from .jit import inline_kernel, kernel
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
                      P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
@@ -225,8 +229,6 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     Mt = P[P_MT]
     rho = P[P_RHO]
     beta = P[P_BETA]
-    g = P[P_G]
-    gdir = P[P_GDIR]
     U = table_interp(t, unb_t, unb_u)
 
     mode = spin[0]
@@ -252,23 +254,64 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
         cb = math.cos(beta)
         sb = math.sin(beta)
     driven = mode == 1.0
-    has_g = g > 0.0
     for i in range(nq):
         fv[i] = 0.0
     for i in range(N):       # ball-ball entries of the mass matrix are zero
         for j in range(N):
             Mm[2 + i, 2 + j] = 0.0
 
-    Sm = 0.0
-    SmS = 0.0
-    SmC = 0.0
-    cent_u = 0.0
-    cent_v = 0.0
     a_u = 2.0 * psid * vd + psid * psid * u       # -(Re of velocity part of rotated accel.)
     a_v = 2.0 * psid * ud - psid * psid * v       # +(Im of velocity part of rotated accel.)
     # psi row, old (inertial) form: accumulated below
     Mpp = P[P_BZ] + U * u
     fpp = -U * a_v
+    Sm, SmS, SmC, cent_u, cent_v, Mpp, fpp = _ball_rows(y, P, B, N, stuck, sgn, lam, Mm, fv,
+                                                        trig, psi, psid, a_u, a_v, cb, sb,
+                                                        driven, Mpp, fpp)
+    _contacts(y, P, B, N, fv)
+
+    # translational rows (000 eq 2-3/16-17/34-35, 004 eq 8-9 in the rotor frame)
+    Mm[0, 0] = Mt
+    Mm[1, 1] = Mt
+    for i in range(N):
+        Mm[0, 2 + i] = Mm[2 + i, 0]
+        Mm[1, 2 + i] = Mm[2 + i, 1]
+    Mm[0, ip] = -Mt * v - Sm * rho * sb - R * SmS
+    Mm[1, ip] = Mt * u + U + Sm * rho * cb + R * SmC
+    fv[0] = Fu + Mt * a_u + U * psid * psid + Sm * rho * psid * psid * cb + R * cent_u
+    fv[1] = Fv - Mt * a_v + Sm * rho * psid * psid * sb + R * cent_v
+
+    if not driven:
+        return _solve_prescribed(y, P, N, stuck, Mm, fv, dy, lam, bb, B, psid, psidd)
+    return _solve_driven(y, P, B, N, stuck, Mm, fv, dy, lam, bb, A, idx, psid, U, Sm, SmS, SmC,
+                         cb, sb, Mpp, fpp)
+
+
+@inline_kernel
+def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.ndarray,
+               sgn: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray,
+               trig: np.ndarray | None, psi: float, psid: float, a_u: float, a_v: float,
+               cb: float, sb: float, driven: bool, Mpp: float,
+               fpp: float) -> tuple[float, float, float, float, float, float, float]:
+    """The balls' rows of M and f (Lagrange in alpha_i), their normal forces and friction
+    limits into lam, and (motor-driven spin) their share of the psi row; returns the sums
+    (sum m, sum m sin a, sum m cos a, centrifugal u and v sums, M_psipsi, f_psi) the rotor's
+    rows need. Part of :func:`rhs` (inlined; see there for the arguments)."""
+    nq = N + 3
+    ip = nq - 1
+    u = y[0]
+    v = y[1]
+    R = P[P_R]
+    rho = P[P_RHO]
+    beta = P[P_BETA]
+    g = P[P_G]
+    gdir = P[P_GDIR]
+    has_g = g > 0.0
+    Sm = 0.0
+    SmS = 0.0
+    SmC = 0.0
+    cent_u = 0.0
+    cent_v = 0.0
     for i in range(N):
         a = y[2 + i]
         ad = y[nq + 2 + i]
@@ -339,7 +382,13 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
             fpp -= m * (rho * (tb - R * thd * thd * sab) + R * (ta + rho * psid * psid * sab))
             if has_g:
                 fpp -= m * g * (rho * math.sin(psi + beta - gdir) + R * sthg)
+    return Sm, SmS, SmC, cent_u, cent_v, Mpp, fpp
 
+
+@inline_kernel
+def _contacts(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, fv: np.ndarray) -> None:
+    """Ball-ball contact forces into fv. Part of :func:`rhs` (inlined)."""
+    nq = N + 3
     # ball-ball contact: compliant spring-dashpot between neighbours (order preserved)
     if N > 1:
         for i in range(N):
@@ -351,76 +400,95 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
                     fv[2 + j] += fc
                     fv[2 + i] -= fc
 
-    # translational rows (000 eq 2-3/16-17/34-35, 004 eq 8-9 in the rotor frame)
-    Mm[0, 0] = Mt
-    Mm[1, 1] = Mt
-    for i in range(N):
-        Mm[0, 2 + i] = Mm[2 + i, 0]
-        Mm[1, 2 + i] = Mm[2 + i, 1]
-    Mm[0, ip] = -Mt * v - Sm * rho * sb - R * SmS
-    Mm[1, ip] = Mt * u + U + Sm * rho * cb + R * SmC
-    fv[0] = Fu + Mt * a_u + U * psid * psid + Sm * rho * psid * psid * cb + R * cent_u
-    fv[1] = Fv - Mt * a_v + Sm * rho * psid * psid * sb + R * cent_v
 
-    if not driven:
-        # Prescribed spin (psi'' = psidd known). The balls couple only to the rotor: ball row
-        # k = 2 + i reads b_i . (u'', v'') + J_i alpha_i'' = g_i, b_i = (M[k,0], M[k,1]),
-        # J_i = M[k,k] (constant), g_i = f_k - M[k,psi] psidd. Eliminating the free balls'
-        # alpha_i'' leaves the 2x2 Schur complement S = M_t I - sum b_i b_i^T / J_i for
-        # x = (u'', v''); then alpha_i'' = (g_i - b_i . x) / J_i. The reduced mass matrix is
-        # positive definite iff every J_i > 0 and S is (ok). bb holds 1/J_i.
-        fric = P[P_FLAW] == 1.0
-        creep = P[P_FLAW] == 2.0
-        s00 = Mt
-        s11 = Mt
-        s01 = 0.0
-        r0 = fv[0] - Mm[0, ip] * psidd
-        r1 = fv[1] - Mm[1, ip] * psidd
-        ok = Mt > 0.0
-        for i in range(N):
-            if fric or stuck[i] == 0:
-                k = 2 + i
-                J = Mm[k, k]
-                if J <= 0.0:
-                    ok = False
-                    continue
-                iJ = 1.0 / J
-                bb[i] = iJ
-                b0 = Mm[k, 0]
-                b1 = Mm[k, 1]
-                gJ = (fv[k] - Mm[k, ip] * psidd) * iJ
-                s00 -= b0 * b0 * iJ
-                s11 -= b1 * b1 * iJ
-                s01 -= b0 * b1 * iJ
-                r0 -= b0 * gJ
-                r1 -= b1 * gJ
-        det = s00 * s11 - s01 * s01
-        if not ok or s00 <= 0.0 or det <= 0.0:
-            ok = False
-            x0 = math.nan
-            x1 = math.nan
-        else:
-            idet = 1.0 / det
-            x0 = (s11 * r0 - s01 * r1) * idet
-            x1 = (s00 * r1 - s01 * r0) * idet
-        for j in range(nq):
-            dy[j] = y[nq + j]
-        dy[nq] = x0
-        dy[nq + 1] = x1
-        for i in range(N):
+@inline_kernel
+def _solve_prescribed(y: np.ndarray, P: np.ndarray, N: int, stuck: np.ndarray, Mm: np.ndarray,
+                      fv: np.ndarray, dy: np.ndarray, lam: np.ndarray, bb: np.ndarray,
+                      B: np.ndarray, psid: float, psidd: float) -> bool:
+    """dy for a prescribed spin (the 2x2 Schur complement below); lam of the stuck balls.
+    Part of :func:`rhs` (inlined)."""
+    nq = N + 3
+    ip = nq - 1
+    R = P[P_R]
+    Mt = P[P_MT]
+    # Prescribed spin (psi'' = psidd known). The balls couple only to the rotor: ball row
+    # k = 2 + i reads b_i . (u'', v'') + J_i alpha_i'' = g_i, b_i = (M[k,0], M[k,1]),
+    # J_i = M[k,k] (constant), g_i = f_k - M[k,psi] psidd. Eliminating the free balls'
+    # alpha_i'' leaves the 2x2 Schur complement S = M_t I - sum b_i b_i^T / J_i for
+    # x = (u'', v''); then alpha_i'' = (g_i - b_i . x) / J_i. The reduced mass matrix is
+    # positive definite iff every J_i > 0 and S is (ok). bb holds 1/J_i.
+    fric = P[P_FLAW] == 1.0
+    creep = P[P_FLAW] == 2.0
+    s00 = Mt
+    s11 = Mt
+    s01 = 0.0
+    r0 = fv[0] - Mm[0, ip] * psidd
+    r1 = fv[1] - Mm[1, ip] * psidd
+    ok = Mt > 0.0
+    for i in range(N):
+        if fric or stuck[i] == 0:
             k = 2 + i
-            if fric or stuck[i] == 0:
-                dy[nq + k] = (fv[k] - Mm[k, ip] * psidd - Mm[k, 0] * x0 - Mm[k, 1] * x1) * bb[i]
-            else:
-                # required friction of a stuck ball: lam_i = M[k,:] q'' - f_k
-                lam[i] = -fv[k] + Mm[k, 0] * x0 + Mm[k, 1] * x1 + Mm[k, ip] * psidd
-                dy[k] = 0.0
-                if creep:
-                    dy[k] = creep_speed(lam[i], B[i, B_MU] * lam[2 * N + i] * R, P[P_VSAT])
-                dy[nq + k] = 0.0
-        dy[nq + ip] = psidd
-        dy[ip] = psid
-        return ok
+            J = Mm[k, k]
+            if J <= 0.0:
+                ok = False
+                continue
+            iJ = 1.0 / J
+            bb[i] = iJ
+            b0 = Mm[k, 0]
+            b1 = Mm[k, 1]
+            gJ = (fv[k] - Mm[k, ip] * psidd) * iJ
+            s00 -= b0 * b0 * iJ
+            s11 -= b1 * b1 * iJ
+            s01 -= b0 * b1 * iJ
+            r0 -= b0 * gJ
+            r1 -= b1 * gJ
+    det = s00 * s11 - s01 * s01
+    if not ok or s00 <= 0.0 or det <= 0.0:
+        ok = False
+        x0 = math.nan
+        x1 = math.nan
+    else:
+        idet = 1.0 / det
+        x0 = (s11 * r0 - s01 * r1) * idet
+        x1 = (s00 * r1 - s01 * r0) * idet
+    for j in range(nq):
+        dy[j] = y[nq + j]
+    dy[nq] = x0
+    dy[nq + 1] = x1
+    for i in range(N):
+        k = 2 + i
+        if fric or stuck[i] == 0:
+            dy[nq + k] = (fv[k] - Mm[k, ip] * psidd - Mm[k, 0] * x0 - Mm[k, 1] * x1) * bb[i]
+        else:
+            # required friction of a stuck ball: lam_i = M[k,:] q'' - f_k
+            lam[i] = -fv[k] + Mm[k, 0] * x0 + Mm[k, 1] * x1 + Mm[k, ip] * psidd
+            dy[k] = 0.0
+            if creep:
+                dy[k] = creep_speed(lam[i], B[i, B_MU] * lam[2 * N + i] * R, P[P_VSAT])
+            dy[nq + k] = 0.0
+    dy[nq + ip] = psidd
+    dy[ip] = psid
+    return ok
+
+
+@inline_kernel
+def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.ndarray,
+                  Mm: np.ndarray, fv: np.ndarray, dy: np.ndarray, lam: np.ndarray,
+                  bb: np.ndarray, A: np.ndarray, idx: np.ndarray, psid: float, U: float,
+                  Sm: float, SmS: float, SmC: float, cb: float, sb: float, Mpp: float,
+                  fpp: float) -> bool:
+    """dy for a motor-driven spin (Cholesky solve of the free unknowns); lam of the stuck
+    balls. Part of :func:`rhs` (inlined)."""
+    nq = N + 3
+    ip = nq - 1
+    u = y[0]
+    v = y[1]
+    psi = y[ip]
+    R = P[P_R]
+    rho = P[P_RHO]
+    g = P[P_G]
+    gdir = P[P_GDIR]
+    has_g = g > 0.0
     # motor-driven spin: general solve of the free unknowns u'', v'', alpha'' of slipping
     # balls and psi''
     nf_ = 0
