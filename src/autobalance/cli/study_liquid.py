@@ -53,8 +53,8 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         The sweep's processes (:mod:`autobalance.cli.common`).
     """
     from ..config import parse_quantity
-    from ..studies.fill_map import (check_stability_map, compute_fill_map,
-                                    compute_stability_map, dynamic_speeds, fill_map_summary)
+    from ..studies.fill_map import (compute_fill_map, compute_stability_map, dynamic_speeds,
+                                    fill_map_summary)
     from .liquid import _list
 
     t0 = time.perf_counter()
@@ -64,8 +64,6 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         T = parse_quantity(duration, "time", "--duration")
         V = None if fills is None else _list(fills, "volume", "--fills")
         W = None if speeds is None else _list(speeds, "speed", "--speeds")
-        if dynamic:
-            check_stability_map(cfg.system.liquid)      # before the fill map's work
         ds = compute_fill_map(cfg, fills=V, speeds=W, quick=quick)
         stab = None
         if dynamic:

@@ -24,8 +24,7 @@ if TYPE_CHECKING:
     from ..config import Config
     from ..models import LiquidDevice
 
-__all__ = ["check_stability_map", "compute_fill_map", "compute_stability_map", "default_fills",
-           "dynamic_speeds",
+__all__ = ["compute_fill_map", "compute_stability_map", "default_fills", "dynamic_speeds",
            "fill_map_summary"]
 
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
@@ -193,23 +192,6 @@ def fill_map_summary(ds: xr.Dataset) -> dict:
 SPREAD_MAX = 0.05
 
 
-def check_stability_map(device: LiquidDevice | None) -> None:
-    """Refuse, in one line, a machine the stability map does not cover: a horizontal axis,
-    where gravity's puddle makes the whirl about the sag wobble once per revolution and the
-    spread criterion would read it as unsteadiness (a criterion on the revolution-averaged
-    whirl is not built yet; the fill map itself covers both axes).
-
-    Parameters
-    ----------
-    device : autobalance.models.LiquidDevice or None
-        The machine's ``[liquid]`` section.
-    """
-    if device is not None and device.axis == "horizontal":
-        raise ParameterError("liquid.axis", device.axis, "the stability map (--dynamic) covers a "
-                             "vertical axis: on a horizontal one gravity makes the whirl wobble "
-                             "once per revolution (not a criterion yet); the fill map covers both")
-
-
 def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
                           speeds: Sequence[float], duration: float = 6.0,
                           store: str | Path | None = None, executor: str | None = None,
@@ -223,7 +205,7 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
     Parameters
     ----------
     base : str, Path or Config
-        A vertical-axis liquid-balancer machine.
+        A liquid-balancer machine.
     fills : sequence of float
         Fills [m^3].
     speeds : sequence of float
@@ -240,8 +222,9 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
     Returns
     -------
     xarray.Dataset
-        ``spread`` (fill, speed) [-]: (max - min) / mean of the whirl amplitude over the last
-        quarter; ``steady`` (spread < :data:`SPREAD_MAX`: the synchronous whirl is reached
+        ``spread`` (fill, speed) [-]: (max - min) / mean over the last quarter of the whirl
+        amplitude (vertical axis) or of the synchronous residual unbalance |D + U_s| (horizontal
+        axis: a revolution average, free of gravity's once-per-revolution wobble about the sag); ``steady`` (spread < :data:`SPREAD_MAX`: the synchronous whirl is reached
         within ``duration``; not reached is an asynchronous whirl or a transient slower than
         ``duration``, which a longer run separates; and the run in the model); ``in_model``
         (the run's status is ok: the film did not reach an annulus' inner wall);
@@ -256,7 +239,7 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
 
     from ..config import load_config
 
-    check_stability_map((base if hasattr(base, "system") else load_config(base)).system.liquid)
+    device = (base if hasattr(base, "system") else load_config(base)).system.liquid
     T = float(duration)
     if not (np.isfinite(T) and T > 0):
         raise ParameterError("duration", duration, "must be > 0 [s]")
@@ -274,10 +257,14 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
                    executor=executor, workers=workers, progress=progress,
                    resume=store is not None and Path(store).exists())
         ds = ds.load()
-    amp = ds["amplitude_history"].isel(sample=0)
-    late = amp.where(ds["history_time"] >= 0.75 * T, drop=True)
-    mean = late.mean("history_time")
-    spread = (late.max("history_time") - late.min("history_time")) / mean
+    late_of = lambda name: ds[name].isel(sample=0).where(ds["history_time"] >= 0.75 * T,  # noqa: E731
+                                                         drop=True)
+    mean = late_of("amplitude_history").mean("history_time")
+    # the whirl's amplitude; on a horizontal axis the grade of the synchronous residual
+    # unbalance (a revolution average), free of gravity's once-per-revolution wobble
+    horizontal = device is not None and device.axis == "horizontal"
+    q = late_of("grade_G_history" if horizontal else "amplitude_history")
+    spread = (q.max("history_time") - q.min("history_time")) / q.mean("history_time")
     in_model = ds["status"].isel(sample=0).values == 0     # e.g. the film off the inner wall
     out = xr.Dataset({"spread": (("fill", "speed"), spread.values, {"units": "1"}),
                       "steady": (("fill", "speed"), (spread.values < SPREAD_MAX) & in_model),
