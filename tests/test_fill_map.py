@@ -66,6 +66,8 @@ def test_refusals_are_one_line():
         compute_fill_map("vub_jeffcott_004")
     with pytest.raises(ParameterError, match="^gravity.g"):          # horizontal needs gravity
         compute_fill_map("leblanc_washer", sets=["gravity.g=0"])
+    with pytest.raises(ParameterError, match="^suspension.dry_friction_force"):  # not modelled
+        compute_fill_map("leblanc_003", sets=["suspension.dry_friction_force=70 N"])
 
     with pytest.raises(ParameterError, match="^fills"):
         compute_fill_map("leblanc_003", fills=[0.0])

@@ -107,6 +107,8 @@ def test_simulate_takes_any_liquid_machine_and_its_overrides():
     (["simulate", "vub_jeffcott_004"], ConfigError),                       # no [liquid]
     (["simulate", "--set", "liquid.partitions=4"], ParameterError),        # not in this model
     (["simulate", "--set", "suspension.ky=1e5"], ParameterError),          # anisotropic
+    (["simulate", "--set", "suspension.dry_friction_force=70 N"], ParameterError),  # not modelled
+    (["simulate", "--set", "gravity.g=9.81 m/s^2"], ParameterError),       # in-plane g, vertical
     (["simulate", "--volume", "7 l"], ConfigError),                        # over the chamber
 ])
 def test_bad_input_raises_one_line(args, exc):

@@ -261,9 +261,6 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
         raise ParameterError("liquid.axis", s.liquid.axis, "liquid simulate analyses a "
                              "vertical axis (003's bench); a horizontal machine runs with "
                              "autobalance simulate (the film model with gravity)")
-    if s.balancer.n_balls:
-        raise ParameterError("balancer.n_balls", s.balancer.n_balls, "must be 0: liquid "
-                             "simulate analyses the liquid balancer alone")
     rot, bal = liquid_parts(s)
     if liquid:
         bal = replace(bal, liquid=replace(bal.liquid, name=liquid))

@@ -32,7 +32,8 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 __all__ = ["LiquidSimulation", "check_liquid_run", "film_rotor", "film_start_speed",
-           "liquid_parts", "revolution_average", "run_seconds_estimate", "simulate_liquid"]
+           "liquid_parts", "require_liquid_machine", "revolution_average",
+           "run_seconds_estimate", "simulate_liquid"]
 
 
 #: Wall time of one film step on 256 cells with its 4 rotor sub-steps [s] (measured on the
@@ -225,29 +226,32 @@ def liquid_parts(system: System) -> tuple[VerticalRotor, LiquidBalancer]:
     Parameters
     ----------
     system : System
-        The machine; ParameterError (one line) without a ``[liquid]`` section, with an
-        anisotropic suspension or with partitions (:meth:`LiquidBalancer.of`).
+        The machine; ParameterError (one line) for what the liquid models do not cover
+        (:func:`require_liquid_machine`) and for partitions (:meth:`LiquidBalancer.of`).
 
     Returns
     -------
     tuple
         (VerticalRotor, LiquidBalancer).
     """
-    if system.liquid is None:
-        raise ParameterError("liquid", None, "needs a [liquid] section (e.g. the preset "
-                             "leblanc_003)")
-    s = system.suspension
-    if s.kx != s.ky or s.cx != s.cy:
-        raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the liquid "
-                             "models' rotor is isotropic")
+    require_liquid_machine(system)
     return film_rotor(system), LiquidBalancer.of(system.liquid)
 
 
-def _check(system: System, spin) -> None:
-    """One-line errors for what the film model does not cover."""
+def require_liquid_machine(system: System) -> None:
+    """One-line errors for a machine the liquid models (quasi-static, lumped, wall film) do not
+    cover: no ``[liquid]`` section, balls beside it, gravity that does not fit the axis, an
+    anisotropic suspension, dry friction, base motion, an unbalance schedule.
+
+    Parameters
+    ----------
+    system : System
+        The machine.
+    """
     liq, s, r = system.liquid, system.suspension, system.rotor
     if liq is None:
-        raise ParameterError("liquid", None, "needs a [liquid] section")
+        raise ParameterError("liquid", None, "needs a [liquid] section (e.g. the preset "
+                             "leblanc_003)")
     if system.balancer.n_balls:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls,
                              "must be 0 beside a [liquid] section (balls and liquid together "
@@ -259,8 +263,8 @@ def _check(system: System, spin) -> None:
         raise ParameterError("gravity.g", system.gravity.g, "must be > 0 with a horizontal-axis "
                              "liquid balancer (e.g. '9.81 m/s^2'; [gravity] is in the plane)")
     if s.kx != s.ky or s.cx != s.cy:
-        raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the film "
-                             "model's rotor is isotropic")
+        raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the liquid "
+                             "models' rotor is isotropic")
     for name in ("dry_friction_force", "base_amplitude_x", "base_amplitude_y"):
         if getattr(s, name) != 0.0:
             raise ParameterError(f"suspension.{name}", getattr(s, name),
@@ -268,6 +272,12 @@ def _check(system: System, spin) -> None:
     if r.unbalance_schedule:
         raise ParameterError("rotor.unbalance_schedule", list(r.unbalance_schedule),
                              "must be empty with a liquid balancer (not modelled yet)")
+
+
+def _check(system: System, spin: SpeedProfile | MotorDrive) -> None:
+    """One-line errors for what the film model does not cover: the machine's
+    (:func:`require_liquid_machine`) and a motor drive."""
+    require_liquid_machine(system)
     if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
         raise ParameterError("profile.kind", "motor", "a liquid balancer needs a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")

@@ -93,19 +93,9 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
     cfg = (replace_values(base, dict(parse_override(s) for s in sets)) if sets else base) \
         if isinstance(base, Config) else load_config(base, list(sets))
     s = cfg.system
-    if s.liquid is None:
-        raise ParameterError("liquid", None, "the fill map needs a machine with a [liquid] "
-                             "section")
-    if s.balancer.n_balls:
-        raise ParameterError("balancer.n_balls", s.balancer.n_balls, "must be 0: the fill map "
-                             "is of a liquid balancer alone")
+    rotor, bal = liquid_parts(s)       # one-line refusals of what the liquid models do not cover
     L = s.liquid
     g = s.gravity.g if L.axis == "horizontal" else G_STANDARD
-    if L.axis == "horizontal" and not g > 0.0:
-        raise ParameterError("gravity.g", g, "must be > 0 with a horizontal-axis liquid "
-                             "balancer ([gravity] in the plane holds the puddle below the "
-                             "ring's start speed)")
-    rotor, bal = liquid_parts(s)
     V = np.asarray(default_fills(L) if fills is None else fills, float)
     if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= L.chamber_volume):
         raise ParameterError("fills", [float(x) for x in np.atleast_1d(V)], f"must be volumes in (0, "
