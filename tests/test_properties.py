@@ -144,7 +144,8 @@ def test_exact_hold_equals_integrated_hold(mu, angles):
     exact = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
                                                                   atol_scale=1e-10))
     integ = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
-                                                                  atol_scale=1e-10, exact_holds=False))
+                                                                  atol_scale=1e-10, exact_holds=False,
+                                                                  exact_ramps=False))
     assert exact.summary()["solver"]["exact_holds"] >= 1
     assert integ.summary()["solver"]["exact_holds"] == 0
     scale = max(np.abs(integ.u).max(), np.abs(integ.v).max())

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 from .jit import kernel
 from .layout import (B_M, P_CX, P_KX, P_MT,
-                     P_R)
+                     P_R, S_AMAX, S_TAMAX, S_XMAX, S_YMAX)
 
 if TYPE_CHECKING:
     import numpy as np
@@ -75,6 +75,64 @@ def hold_transient_bound(W: float, s1: complex, s2: complex, c1: complex,
 
 
 @kernel
+def record_amplitude(a1: float, t: float, stats: np.ndarray) -> None:
+    """Keep a1 [m] at t [s] as the run's maximal amplitude if it is larger (isotropic rotor
+    without gravity: max|x| = max|y| = max|w|)."""
+    if a1 > stats[S_AMAX]:
+        stats[S_AMAX] = a1
+        stats[S_TAMAX] = t
+        stats[S_XMAX] = a1
+        stats[S_YMAX] = a1
+
+
+@kernel
+def peak_samples(f_max: float, life: float) -> tuple[int, float]:
+    """Number of samples and spacing [s] over a transient's life [s]: 16 per period of its
+    fastest frequency f_max [rad/s], at most 8192."""
+    n = min(8192, 16 + int(16.0 * life * f_max / (2.0 * math.pi)))
+    return n, life / n
+
+
+@kernel
+def vertex(f0: float, f1: float, f2: float) -> float:
+    """Abscissa in (-1, 1) of the vertex of the parabola through (-1, f0), (0, f1), (1, f2)
+    [-] (0 when it is not a maximum)."""
+    cu = f0 - 2.0 * f1 + f2
+    if cu >= 0.0:
+        return 0.0
+    return max(-1.0, min(1.0, 0.5 * (f0 - f2) / cu))
+
+
+@kernel
+def hold_peak(t: float, tau_end: float, wss: complex, s1: complex, s2: complex, c1: complex,
+              c2: complex, stats: np.ndarray) -> None:
+    """Largest |w| [m] of a hold starting at t [s] (amplitude monitor): skipped when
+    |w_ss| + |C1| + |C2| cannot beat the run's maximum; else |w| sampled 16 times per period
+    of the transient's fastest rotor-frame frequency over 16 decay times and refined at the
+    vertex of the parabola through the largest sample and its neighbours."""
+    if abs(wss) + abs(c1) + abs(c2) <= stats[S_AMAX]:
+        return
+    rate = min(-s1.real, -s2.real)
+    life = tau_end if rate <= 0.0 else min(tau_end, 16.0 / rate)
+    f_max = max(abs(s1.imag), max(abs(s2.imag), abs(s1.imag - s2.imag)))
+    n, dt = peak_samples(f_max, life)
+    kb = 0
+    ab = abs(hold_state(0.0, wss, s1, s2, c1, c2)[0])
+    for k in range(1, n + 1):
+        a1 = abs(hold_state(k * dt, wss, s1, s2, c1, c2)[0])
+        if a1 > ab:
+            ab = a1
+            kb = k
+    tb = kb * dt
+    if 0 < kb < n:
+        x = vertex(abs(hold_state(tb - dt, wss, s1, s2, c1, c2)[0]), ab,
+                   abs(hold_state(tb + dt, wss, s1, s2, c1, c2)[0]))
+        tb += x * dt
+        ab = max(ab, abs(hold_state(tb, wss, s1, s2, c1, c2)[0]))
+    record_amplitude(ab, t + tb, stats)
+
+
+@kernel
 def ball_unbalance(y: np.ndarray, B: np.ndarray, N: int, R: float, rho: float, beta: float,
                    U: float) -> complex:
     """Ut = U + sum m_i (R e^{i alpha_i} + rho e^{i beta}) [kg*m] (eq H1)."""
@@ -97,4 +155,5 @@ def hold_margin_ok(lam_ss: np.ndarray, lim: np.ndarray, N: int, B: np.ndarray, R
 
 
 __all__ = ["hold_roots", "hold_coeffs", "hold_state", "hold_transient_bound",
-           "ball_unbalance", "hold_margin_ok", "math", "P_R"]
+           "ball_unbalance", "hold_margin_ok", "hold_peak", "peak_samples", "record_amplitude",
+           "vertex", "math", "P_R"]

@@ -30,9 +30,10 @@ from .jit import inline_kernel, kernel
 from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
                      S_YMAX, P_DELTA, P_HOLDS, P_SYM)
-from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_roots,
+from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_peak, hold_roots,
                    hold_state)
-from .layout import P_BETA, P_R, P_RHO, S_HOLDS
+from .layout import P_BETA, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
+from .ramp import RAMP_TAYLOR, RAMP_TERMS, ramp_jump
 from .rhs import neighbour_gap, profile_segment, rhs
 
 #: relative tolerance of the static friction limit: a stuck ball breaks away when the friction it
@@ -218,18 +219,20 @@ def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: 
                np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)),
                np.zeros(nq), np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
                np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
-               np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan))
+               np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
+               np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((3, N)))
     return y
 
 
 @kernel
 def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
                out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
-               stuck, sgn, gs, ge, spin, in_contact, viol, trig):
+               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr):
     """The integration loop of integrate(), on preallocated work arrays (no allocation: the
     kernel runs without the numba runtime, core/jit.py). y holds the initial state on entry and
     the final state on return; gs / ge: stick margins mu_s N R - |lambda| at the start / end of
-    the trial step; in_contact, viol: per-ball flags; trig: the cos/sin cache of rhs()."""
+    the trial step; in_contact, viol: per-ball flags; trig: the cos/sin cache of rhs(); ser, qr:
+    work arrays of ramp_jump()."""
     nq = N + 3
     n = 2 * nq
     ip = nq - 1
@@ -273,8 +276,10 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     status = 0
     # static conditions of a closed-form hold, derived from the model by simulate/pack.fast_paths
     can_hold = P[P_HOLDS] == 1.0
+    can_ramp = P[P_RAMPS] == 1.0
     next_try = 0
     nhold = 0
+    nramp = 0
     while t < t_end:
         if nsteps + nrej >= max_steps:
             status = 1
@@ -289,6 +294,26 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             t_seg = t_end
             if seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_end:
                 t_seg = prof_t[seg + 1]
+            if can_ramp and not flat and all_stuck and t_seg - t > 20.0 * h:
+                # ---- linear speed ramp with every ball stuck: no stepping (core/ramp.py) ----
+                t_new, kout, ne = ramp_jump(t, t_seg, h, y, P, B, N, seg, prof_t, prof_w,
+                                            unb_t, unb_u, stuck, sgn, spin, atol, rtol, out_t,
+                                            out_y, kout, stats, ser, qr, ytmp, ftmp, lam, Mm,
+                                            fv, A, bb, idx, trig)
+                nrhs += ne
+                if t_new > t:
+                    t = t_new
+                    nramp += 1
+                    seg = profile_segment(t, prof_t)
+                    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                             spin, f0, lam, Mm, fv, A, bb, idx, trig)
+                    nrhs += N + 1
+                    for i in range(N):
+                        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+                    if t < t_seg:
+                        next_try = nsteps + 20
+                    continue
+                next_try = nsteps + 20
             if flat and all_stuck and t_seg - t > 20.0 * h:
                 W = prof_w[seg] if seg < prof_t.shape[0] else prof_w[prof_t.shape[0] - 1]
                 ut = ball_unbalance(y, B, N, P[P_R], P[P_RHO], P[P_BETA], unb_u[0])
@@ -343,18 +368,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         out_y[kout, nq + 1] = wd.imag
                         out_y[kout, ip] = y[ip] + W * tau
                         kout += 1
-                    # amplitude monitor over the decaying transient
-                    rate = min(-s1.real, -s2.real)
-                    span = tau_end if rate <= 0.0 else min(tau_end, 10.0 / rate)
-                    for ks in range(1, 129):
-                        tau = span * ks / 128.0
-                        w, wd = hold_state(tau, wss, s1, s2, c1, c2)
-                        a1 = abs(w)
-                        if a1 > stats[S_AMAX]:
-                            stats[S_AMAX] = a1
-                            stats[S_TAMAX] = t + tau
-                            stats[S_XMAX] = a1
-                            stats[S_YMAX] = a1
+                    hold_peak(t, tau_end, wss, s1, s2, c1, c2, stats)
                     w, wd = hold_state(tau_end, wss, s1, s2, c1, c2)
                     y[0] = w.real
                     y[1] = w.imag
@@ -629,3 +643,4 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     stats[S_RHS] = nrhs
     stats[S_TFINAL] = t
     stats[S_HOLDS] = nhold
+    stats[S_RAMPS] = nramp

@@ -46,8 +46,9 @@ P_MROT = 30       # rotor mass M (without balls) [kg]
 P_HOLDS = 31      # 1: stuck constant-speed holds may be solved in closed form (hold.py)
 P_ISO = 32        # 1: isotropic linear suspension force in the rotor frame (rhs.py)
 P_SYM = 33        # 1: rotationally symmetric: max|x| = max|y| = max|w| (integrate.py)
-N_P = 34
-# P_HOLDS, P_ISO and P_SYM are derived from the model in one place only:
+P_RAMPS = 34      # 1: stuck linear speed ramps may be solved without stepping (ramp.py)
+N_P = 35
+# P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
 # autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 
 # --- per-ball table B ---------------------------------------------------------------------
@@ -75,7 +76,8 @@ S_YMAX = 9        # max |y| [m]
 S_THOLD = 10      # time the motor-driven spin reached the hold speed [s] (-1 never)
 S_IMPACTS = 11    # number of ball-ball contacts started
 S_HOLDS = 12      # constant-speed holds solved in closed form (core/hold.py)
-N_S = 13
+S_RAMPS = 13      # stuck speed ramps (or parts of them) solved without stepping (core/ramp.py)
+N_S = 14
 
 
 

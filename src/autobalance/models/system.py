@@ -202,6 +202,10 @@ class SimOptions:
     exact_holds : bool
         Solve constant-speed holds with every ball stuck in closed form (isotropic rotor without
         gravity, base motion or dry friction; docs/numerics.md). False integrates them.
+    exact_ramps : bool
+        Solve linear speed ramps with every ball stuck without stepping, under the same
+        conditions and the exact stick-slip law (core/ramp.py; docs/numerics.md). False
+        integrates them.
     """
 
     friction_law: str = "stick"
@@ -213,6 +217,7 @@ class SimOptions:
     save_dt: float = 0.0
     max_steps: int = DEFAULT_MAX_STEPS
     exact_holds: bool = True
+    exact_ramps: bool = True
 
     def __post_init__(self):
         if self.friction_law not in FRICTION_LAWS:
@@ -226,4 +231,6 @@ class SimOptions:
         finite("options.save_dt", self.save_dt)
         if not isinstance(self.exact_holds, bool):
             raise ParameterError("options.exact_holds", self.exact_holds, "must be true or false")
+        if not isinstance(self.exact_ramps, bool):
+            raise ParameterError("options.exact_ramps", self.exact_ramps, "must be true or false")
         count("options.max_steps", self.max_steps, 1)  # inf/NaN: one line, not OverflowError

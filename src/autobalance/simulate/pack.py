@@ -11,7 +11,7 @@ from ..physics.response import steady_orbit_start
 from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
                      P_BETA, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
                      P_FLAW, P_G, P_GDIR, P_GDRY, P_HOLDS, P_ISO, P_SYM, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
-                     P_R, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
+                     P_R, P_RAMPS, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
 
 LAW_ID = {"constant": 0.0, "linear": 1.0, "harmonic": 2.0}
 #: options.friction_law -> core.layout.P_FLAW
@@ -42,7 +42,8 @@ def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray
     return t, w, spin.duration
 
 
-def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[bool, bool, bool]:
+def fast_paths(system: System, spin: SpeedProfile | MotorDrive,
+               options: SimOptions) -> tuple[bool, bool, bool, bool]:
     """The kernels' fast paths, derived from the model here and nowhere else.
 
     Parameters
@@ -56,7 +57,7 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOpti
 
     Returns
     -------
-    (holds, isotropic, symmetric) : tuple of bool
+    (holds, ramps, isotropic, symmetric) : tuple of bool
         ``isotropic``: kx = ky, cx = cy, no base motion, no suspension dry friction, so the
         suspension force is -k w - c (w' + i psi' w) in the rotor frame (004 eq 8-9; rhs.py).
         ``symmetric``: isotropic and no gravity, so max|x| = max|y| = max|w| (integrate.py).
@@ -64,6 +65,8 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOpti
         constant unbalance and
         ``options.exact_holds``: stuck constant-speed holds may be solved in closed form
         (core/hold.py). A new effect that breaks a closed form must be added here.
+        ``ramps``: holds, the exact stick-slip law without creep and ``options.exact_ramps``:
+        stuck linear speed ramps may be solved without stepping (core/ramp.py).
     """
     s, g = system.suspension, system.gravity
     isotropic = (s.kx == s.ky and s.cx == s.cy and s.base_frequency == 0.0
@@ -71,7 +74,8 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive, options: SimOpti
     symmetric = isotropic and g.g == 0.0
     holds = (symmetric and bool(options.exact_holds) and options.friction_law in ("stick", "creep")
              and not isinstance(spin, MotorDrive) and system.rotor.unbalance_table()[0].size == 1)
-    return holds, isotropic, symmetric
+    ramps = holds and options.friction_law == "stick" and bool(options.exact_ramps)
+    return holds, ramps, isotropic, symmetric
 
 
 def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[np.ndarray, np.ndarray]:
@@ -144,7 +148,8 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     P[P_VSAT] = options.v_sat
     P[P_NMODEL] = 0.0 if options.normal_force == "ball" else 1.0
     P[P_DELTA] = b.contact_angle
-    P[P_HOLDS], P[P_ISO], P[P_SYM] = (1.0 if f else 0.0 for f in fast_paths(system, spin, options))
+    P[P_HOLDS], P[P_RAMPS], P[P_ISO], P[P_SYM] = (1.0 if f else 0.0
+                                                  for f in fast_paths(system, spin, options))
     n = b.n_balls
     B = np.zeros((n, N_B))
     if n:

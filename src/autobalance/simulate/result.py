@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import __version__
-from ..core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
+from ..core.layout import (S_AMAX, S_EVENTS, S_HOLDS, S_IMPACTS, S_RAMPS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
                           S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX, RunStatus, alpha_dot_slice,
                           alpha_slice, psi_index, speed_index)
 from ..models import MotorDrive, System
@@ -204,7 +204,7 @@ class Simulation:
             "ball_contacts": int(st[S_IMPACTS]),
             "solver": {"steps": int(st[S_STEPS]), "rejected": int(st[S_REJECTED]),
                        "events": int(st[S_EVENTS]), "rhs_evaluations": int(st[S_RHS]),
-                       "exact_holds": int(st[S_HOLDS])},
+                       "exact_holds": int(st[S_HOLDS]), "exact_ramps": int(st[S_RAMPS])},
         }
         if isinstance(self.spin, MotorDrive):
             out["time_to_final_speed_s"] = float(st[S_THOLD]) if st[S_THOLD] >= 0 else None

@@ -86,7 +86,7 @@ def steady_rotor_frame(system: System) -> bool:
     from ..simulate.pack import fast_paths
 
     sysl = _ideal(system)
-    symmetric = fast_paths(sysl, SpeedProfile.constant(1.0, 1.0), SimOptions())[2]
+    symmetric = fast_paths(sysl, SpeedProfile.constant(1.0, 1.0), SimOptions())[3]
     return bool(symmetric and system.rotor.unbalance_table()[0].size == 1)
 
 

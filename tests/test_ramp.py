@@ -1,0 +1,184 @@
+"""Stuck-ball speed ramps without stepping (core/ramp.py, docs/numerics.md).
+
+Closed forms: the series (R2) at zero ramp rate is the hold's steady response (core/hold.py);
+at a nonzero rate it solves the ramp equation (R1), checked against scipy's DOP853 on (R1) in
+the inertial frame. The kernel: runs with the jump equal runs that step the same ramps, at
+every output, for run-ups through resonance, descents with a breakaway in the middle of the
+ramp, a rotor without balls and a lightly damped fast ramp where the series is refused near
+resonance; a hypothesis test draws ramps and friction.
+"""
+import dataclasses
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import solve_ivp
+
+import autobalance as ab
+from autobalance.config import ConfigError, load_config
+from autobalance.core.hold import hold_roots
+from autobalance.core.layout import P_CX, P_KX, P_MT
+from autobalance.core.ramp import RAMP_TAYLOR, RAMP_TERMS, ramp_series
+from autobalance.models._validate import ParameterError
+from autobalance.simulate import simulate
+from autobalance.simulate.pack import pack_params
+
+from conftest import vub_004
+
+W = 2 * np.pi
+
+
+def _P(system=None):
+    s = system or vub_004()
+    P, _ = pack_params(s, ab.SpeedProfile.constant(600.0, 1.0), ab.SimOptions())
+    return P
+
+
+def _ser():
+    return np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=complex)
+
+
+def test_series_at_zero_rate_is_the_holds_steady_response():
+    P = _P()
+    ut = 3e-4 * np.exp(0.7j)
+    for speed in (100.0, 592.0, 1049.0):
+        w, wd, r = ramp_series(P, ut, speed, 0.0, _ser())
+        _, _, Hk = hold_roots(P, speed)
+        assert w == pytest.approx(speed ** 2 * ut * Hk, rel=1e-14)
+        assert wd == 0 and r == 0
+
+
+@pytest.mark.parametrize("W0, a", [(2 * np.pi * 167, -42.0), (2 * np.pi * 80, 58.0),
+                                   (2 * np.pi * 94.2, 58.0)])
+def test_series_solves_the_ramp_equation(W0, a):
+    """(R1) integrated by DOP853 in the inertial frame from the series' own state at tau = 0:
+    after 1 s (through resonance for the last case) it is still on the series."""
+    P = _P()
+    mt, k, c = P[P_MT], P[P_KX], P[P_CX]
+    ut = 3e-4 * np.exp(0.3j)
+    w0, wd0, r0 = ramp_series(P, ut, W0, a, _ser())
+    T = 1.0
+
+    def f(t, y):
+        z, zd, psi = y[0] + 1j * y[1], y[2] + 1j * y[3], y[4]
+        Om = W0 + a * t
+        zdd = (ut * (Om * Om - 1j * a) * np.exp(1j * psi) - c * zd - k * z) / mt
+        return [zd.real, zd.imag, zdd.real, zdd.imag, Om]
+
+    z0 = w0
+    zd0 = wd0 + 1j * W0 * w0
+    sol = solve_ivp(f, (0.0, T), [z0.real, z0.imag, zd0.real, zd0.imag, 0.0], method="DOP853",
+                    rtol=1e-12, atol=1e-16)
+    zT = (sol.y[0, -1] + 1j * sol.y[1, -1]) * np.exp(-1j * sol.y[4, -1])
+    wT, _, rT = ramp_series(P, ut, W0 + a * T, a, _ser())
+    force = abs(ut) * W0 ** 2
+    assert abs(r0) < 1e-6 * force and abs(rT) < 1e-6 * force
+    assert abs(zT - wT) < 1e-8 * abs(wT)
+
+
+def _pair(system, prof, initial):
+    """The run with ramp jumps, the same run stepped at rtol 1e-10 and at 1e-11 (its own
+    error), and the stepped run's |w| sampled every 20 us (the reference of the maximal
+    amplitude)."""
+    out = []
+    for ramps, tol in ((True, 1e-10), (False, 1e-10), (False, 1e-11)):
+        o = ab.SimOptions(save_dt=0.05, rtol=tol, atol_scale=tol, exact_ramps=ramps)
+        out.append(simulate(system, prof, initial=initial, options=o))
+    o = ab.SimOptions(save_dt=2e-5, rtol=1e-10, atol_scale=1e-10, exact_ramps=False)
+    dense = simulate(system, prof, initial=initial, options=o)
+    out.append(np.abs(dense.u + 1j * dense.v).max())
+    return out
+
+
+def _assert_same(exact, integ, fine, amax):
+    """Same states at every output: the jump differs from the stepped run by at most twice the
+    stepped run's own change from rtol 1e-10 to 1e-11, plus 1e-7 of the quantity's scale (where
+    balls slide several radians that change is up to 1e-8 rad in the angle and 1e-6 of the
+    rate). The maximal amplitude is never above the densely sampled one (the jump evaluates
+    exact states). Where the jump covers the peak it finds it to 1e-7; where the peak falls in
+    a stepped part (the series refused near a lightly damped resonance) both runs sample |w| at
+    their step ends only, up to 1.3e-6 low, each on its own step sequence: 2e-6 below the
+    lower of the two references is allowed."""
+    def close(get, scale):
+        err = np.abs(get(exact) - get(integ)).max()
+        own = np.abs(get(integ) - get(fine)).max()
+        assert err <= 2.0 * own + 1e-7 * scale, (err, own, scale)
+
+    wmax = max(np.abs(integ.u).max(), np.abs(integ.v).max())
+    close(lambda x: x.u, wmax)
+    close(lambda x: x.v, wmax)
+    if exact.alpha.size:
+        close(lambda x: x.alpha, 0.01)
+        close(lambda x: x.alpha_dot, max(1.0, np.abs(integ.alpha_dot).max()))
+    close(lambda x: x.psi, 0.01 * np.abs(integ.psi).max())
+    close(lambda x: x.speed, 0.01 * np.abs(integ.speed).max())
+    a_exact = exact.summary()["max_amplitude_m"]
+    a_step = integ.summary()["max_amplitude_m"]
+    assert min(a_step, amax) * (1 - 2e-6) <= a_exact <= max(a_step, amax) * (1 + 1e-7)
+
+
+CASES = {
+    # stuck from 30 Hz on through the 94.2 Hz resonance to 150 Hz
+    "run-up through resonance": (vub_004(mu=0.05), ((0.0, 0.5, 6.0), (0.0, 30.0, 150.0)),
+                                 (0.8, 2.4)),
+    # 150 Hz hold, then a descent towards resonance: a ball breaks away at 6.75 s, mid-ramp
+    "descent with breakaway": (vub_004(mu=0.002), ((0.0, 3.0, 4.0, 8.0), (0.0, 150.0, 150.0, 90.0)),
+                               (0.8, 2.4)),
+    "rotor without balls": (vub_004(mu=0.0, n=0), ((0.0, 3.0, 4.0, 8.0), (0.0, 150.0, 150.0, 90.0)),
+                            None),
+    # c = 100 N s/m through resonance at 48 rad/s^2: the series is refused near resonance
+    "lightly damped fast ramp": (vub_004(mu=0.05, c=100.0), ((0.0, 0.5, 3.0), (0.0, 30.0, 150.0)),
+                                 (0.8, 2.4)),
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_exact_ramp_equals_integrated_ramp(name):
+    system, (t, f), angles = CASES[name]
+    prof = ab.SpeedProfile(t, tuple(W * x for x in f))
+    exact, integ, fine, amax = _pair(system, prof, ab.InitialState(ball_angles=angles))
+    se, si = exact.summary()["solver"], integ.summary()["solver"]
+    assert se["exact_ramps"] >= 1 and si["exact_ramps"] == 0
+    assert se["steps"] < 0.8 * si["steps"]
+    assert se["events"] == si["events"]
+    _assert_same(exact, integ, fine, amax)
+    if name == "descent with breakaway":
+        moving = [x.t[(x.t > 4.0) & (np.abs(x.alpha_dot).max(axis=1) > 0)][0] for x in (exact, integ)]
+        assert 4.5 < moving[0] == moving[1] < 8.0
+
+
+@settings(max_examples=8, deadline=None)
+@given(mu=st.floats(0.001, 0.02), f0=st.floats(60.0, 200.0), f1=st.floats(60.0, 200.0),
+       a1=st.floats(0.0, 2 * np.pi), gap=st.floats(0.5, 5.5), c=st.floats(300.0, 3000.0))
+def test_exact_ramps_equal_integrated_ramps_property(mu, f0, f1, a1, gap, c):
+    """A hold at f0, a ramp to f1 and a hold: the same run with and without the jump."""
+    prof = ab.SpeedProfile((0.0, 1.0, 1.5, 3.5, 4.0), (0.0, W * f0, W * f0, W * f1, W * f1))
+    exact, integ, fine, amax = _pair(vub_004(mu=mu, c=c), prof,
+                                     ab.InitialState(ball_angles=(a1, a1 + gap)))
+    assert exact.summary()["solver"]["events"] == integ.summary()["solver"]["events"]
+    _assert_same(exact, integ, fine, amax)
+
+
+def test_exact_ramps_follow_the_fast_path_conditions():
+    """The jump is an option of the exact stick law only (the creep law keeps stepping ramps),
+    and is off wherever the closed-form hold is (pack.fast_paths)."""
+    s = vub_004(mu=0.05)
+    prof = ab.SpeedProfile((0.0, 0.5, 3.0), (0.0, W * 30, W * 150))
+    ini = ab.InitialState(ball_angles=(0.8, 2.4))
+    for opts in (ab.SimOptions(friction_law="creep"), ab.SimOptions(exact_holds=False),
+                 ab.SimOptions(exact_ramps=False)):
+        sim = simulate(s, prof, initial=ini, options=dataclasses.replace(opts, save_dt=-1.0))
+        assert sim.summary()["solver"]["exact_ramps"] == 0
+    grav = dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0))
+    sim = simulate(grav, prof, initial=ini, options=ab.SimOptions(save_dt=-1.0))
+    assert sim.summary()["solver"]["exact_ramps"] == 0
+
+
+def test_exact_ramps_option_bad_input():
+    with pytest.raises(ParameterError, match=r"options.exact_ramps .*true or false"):
+        ab.SimOptions(exact_ramps="yes")
+    cfg = load_config("vub_jeffcott_004", ["options.exact_ramps=false"])
+    assert cfg.options.exact_ramps is False
+    with pytest.raises(ConfigError, match="options.exact_ramps"):
+        load_config("vub_jeffcott_004", ["options.exact_ramps=maybe"])
