@@ -49,6 +49,7 @@ def test_series_at_zero_rate_is_the_holds_steady_response():
         assert wd == 0 and r == 0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("W0, a", [(2 * np.pi * 167, -42.0), (2 * np.pi * 80, 58.0),
                                    (2 * np.pi * 94.2, 58.0)])
 def test_series_solves_the_ramp_equation(W0, a):
@@ -182,3 +183,43 @@ def test_exact_ramps_option_bad_input():
     assert cfg.options.exact_ramps is False
     with pytest.raises(ConfigError, match="options.exact_ramps"):
         load_config("vub_jeffcott_004", ["options.exact_ramps=maybe"])
+
+
+# -- holds that end in a breakaway (ramp.py R5) --------------------------------------------------
+
+def test_hold_until_breakaway_equals_integrated_hold():
+    """A 100 Hz hold started from the rotor state of 004's run at 28 s (its plateau): a ball
+    breaks away from the hold and slides. The closed-form hold up to the located breakaway
+    gives the stepped run's states and the same breakaway instant."""
+    prof = ab.SpeedProfile.constant(W * 100, 1.0)
+    ini = ab.InitialState(ball_angles=(-3.1575307, -2.7380781), x=1.2495890e-05,
+                          y=6.9396242e-05, vx=-0.043635891, vy=0.0078817905)
+    exact, integ, fine, amax = _pair(vub_004(), prof, ini)
+    se, si = exact.summary()["solver"], integ.summary()["solver"]
+    assert se["exact_holds"] == 1 and si["exact_holds"] == 0
+    assert se["events"] == si["events"] == 1
+    _assert_same(exact, integ, fine, amax)
+    o = [ab.SimOptions(save_dt=1e-4, rtol=1e-10, atol_scale=1e-10, exact_ramps=r) for r in (True, False)]
+    starts = [x.t[np.abs(x.alpha_dot).max(axis=1) > 0][0]
+              for x in (simulate(vub_004(), prof, initial=ini, options=oo) for oo in o)]
+    assert starts[0] == starts[1]
+
+
+def test_plateau_ratchet_with_closed_form_holds():
+    """004's run whose ball ratchets at the 100 Hz plateau (a stick-slip cycle at the rotor's
+    backward whirl frequency, thousands of events): with the stuck spells jumped, the ball's
+    travel and the grades stay within twice what the stepped run itself changes between the
+    default tolerances and 1e-9 (the event counts themselves depend on the tolerance)."""
+    cfg = load_config("vub_jeffcott_004")
+    ini = ab.InitialState(ball_angles=(0.25744424357926954, 0.8447628047660137))
+    runs = {}
+    for key, ramps, tol in (("jump", True, 1e-6), ("step", False, 1e-6), ("fine", False, 1e-9)):
+        o = dataclasses.replace(cfg.options, save_dt=0.5, exact_ramps=ramps, rtol=tol,
+                                atol_scale=tol)
+        runs[key] = simulate(cfg.system, cfg.spin, initial=ini, options=o)
+    assert runs["jump"].summary()["solver"]["exact_holds"] > 500
+    assert runs["step"].summary()["solver"]["events"] > 1000
+    for get, floor in ((lambda x: x.alpha, 1e-7), (lambda x: x.grade_G, 1e-5)):
+        err = np.abs(get(runs["jump"]) - get(runs["step"])).max()
+        own = np.abs(get(runs["step"]) - get(runs["fine"])).max()
+        assert err <= 2.0 * own + floor, (err, own)

@@ -109,8 +109,9 @@ def hold_peak(t: float, tau_end: float, wss: complex, s1: complex, s2: complex, 
     """Largest |w| [m] of a hold starting at t [s] (amplitude monitor): skipped when
     |w_ss| + |C1| + |C2| cannot beat the run's maximum; else |w| sampled 16 times per period
     of the transient's fastest rotor-frame frequency over 16 decay times and refined at the
-    vertex of the parabola through the largest sample and its neighbours."""
-    if abs(wss) + abs(c1) + abs(c2) <= stats[S_AMAX]:
+    vertex of the parabola through the largest sample and its neighbours. A transient that
+    could raise the maximum by at most 1e-9 of it is not sampled."""
+    if abs(wss) + abs(c1) + abs(c2) <= stats[S_AMAX] * (1.0 + 1e-9):
         return
     rate = min(-s1.real, -s2.real)
     life = tau_end if rate <= 0.0 else min(tau_end, 16.0 / rate)
@@ -130,6 +131,52 @@ def hold_peak(t: float, tau_end: float, wss: complex, s1: complex, s2: complex, 
         tb += x * dt
         ab = max(ab, abs(hold_state(tb, wss, s1, s2, c1, c2)[0]))
     record_amplitude(ab, t + tb, stats)
+
+
+@kernel
+def hold_outputs(t: float, t_to: float, kout: int, out_t: np.ndarray, out_y: np.ndarray,
+                 y: np.ndarray, N: int, W: float, wss: complex, s1: complex, s2: complex,
+                 c1: complex, c2: complex, rate: np.ndarray) -> int:
+    """Outputs at out_t in (.., t_to] [s] of a hold starting at t [s] at speed W [rad/s], from
+    the closed form; ball i's angle advances at rate[2 + i] [rad/s] (its creep speed, or 0).
+    Returns the next output index."""
+    nq = N + 3
+    while kout < out_t.shape[0] and out_t[kout] <= t_to:
+        tau = out_t[kout] - t
+        w, wd = hold_state(tau, wss, s1, s2, c1, c2)
+        for j in range(2 * nq):
+            out_y[kout, j] = y[j]
+        for i in range(N):
+            out_y[kout, 2 + i] += rate[2 + i] * tau
+        out_y[kout, 0] = w.real
+        out_y[kout, 1] = w.imag
+        out_y[kout, nq] = wd.real
+        out_y[kout, nq + 1] = wd.imag
+        out_y[kout, nq - 1] = y[nq - 1] + W * tau
+        kout += 1
+    return kout
+
+
+@kernel
+def hold_finish(t: float, tau_end: float, t_out: float, kout: int, out_t: np.ndarray,
+                out_y: np.ndarray, y: np.ndarray, N: int, W: float, wss: complex, s1: complex,
+                s2: complex, c1: complex, c2: complex, rate: np.ndarray,
+                stats: np.ndarray) -> int:
+    """Take a hold from t to t + tau_end [s] in closed form: outputs up to t_out [s]
+    (hold_outputs), the amplitude monitor (hold_peak), and y advanced to the end (balls at
+    rate[2 + i] [rad/s]). Returns the next output index."""
+    nq = N + 3
+    kout = hold_outputs(t, t_out, kout, out_t, out_y, y, N, W, wss, s1, s2, c1, c2, rate)
+    hold_peak(t, tau_end, wss, s1, s2, c1, c2, stats)
+    w, wd = hold_state(tau_end, wss, s1, s2, c1, c2)
+    y[0] = w.real
+    y[1] = w.imag
+    y[nq] = wd.real
+    y[nq + 1] = wd.imag
+    y[nq - 1] += W * tau_end
+    for i in range(N):
+        y[2 + i] += rate[2 + i] * tau_end
+    return kout
 
 
 @kernel
@@ -155,5 +202,5 @@ def hold_margin_ok(lam_ss: np.ndarray, lim: np.ndarray, N: int, B: np.ndarray, R
 
 
 __all__ = ["hold_roots", "hold_coeffs", "hold_state", "hold_transient_bound",
-           "ball_unbalance", "hold_margin_ok", "hold_peak", "peak_samples", "record_amplitude",
+           "ball_unbalance", "hold_margin_ok", "hold_finish", "hold_outputs", "hold_peak", "peak_samples", "record_amplitude",
            "vertex", "math", "P_R"]

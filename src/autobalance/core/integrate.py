@@ -30,10 +30,10 @@ from .jit import inline_kernel, kernel
 from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS, S_IMPACTS,
                      S_REJECTED, S_RHS, S_STATUS, S_STEPS, S_TAMAX, S_TFINAL, S_THOLD, S_XMAX,
                      S_YMAX, P_DELTA, P_HOLDS, P_SYM)
-from .hold import (ball_unbalance, hold_coeffs, hold_margin_ok, hold_peak, hold_roots,
+from .hold import (ball_unbalance, hold_coeffs, hold_finish, hold_margin_ok, hold_roots,
                    hold_state)
 from .layout import P_BETA, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
-from .ramp import RAMP_TAYLOR, RAMP_TERMS, ramp_jump
+from .ramp import RAMP_TAYLOR, RAMP_TERMS, hold_breakaway, ramp_jump
 from .rhs import neighbour_gap, profile_segment, rhs
 
 #: relative tolerance of the static friction limit: a stuck ball breaks away when the friction it
@@ -220,7 +220,7 @@ def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: 
                np.zeros(nq), np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
                np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
                np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
-               np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((3, N)))
+               np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)))
     return y
 
 
@@ -355,28 +355,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     else:
                         for i in range(N):
                             f1[2 + i] = 0.0
-                    while kout < nout and out_t[kout] <= t_seg:
-                        tau = out_t[kout] - t
-                        w, wd = hold_state(tau, wss, s1, s2, c1, c2)
-                        for j in range(n):
-                            out_y[kout, j] = y[j]
-                        for i in range(N):
-                            out_y[kout, 2 + i] += f1[2 + i] * tau
-                        out_y[kout, 0] = w.real
-                        out_y[kout, 1] = w.imag
-                        out_y[kout, nq] = wd.real
-                        out_y[kout, nq + 1] = wd.imag
-                        out_y[kout, ip] = y[ip] + W * tau
-                        kout += 1
-                    hold_peak(t, tau_end, wss, s1, s2, c1, c2, stats)
-                    w, wd = hold_state(tau_end, wss, s1, s2, c1, c2)
-                    y[0] = w.real
-                    y[1] = w.imag
-                    y[nq] = wd.real
-                    y[nq + 1] = wd.imag
-                    y[ip] += W * tau_end
-                    for i in range(N):
-                        y[2 + i] += f1[2 + i] * tau_end
+                    kout = hold_finish(t, tau_end, t_seg, kout, out_t, out_y, y, N, W, wss, s1,
+                                       s2, c1, c2, f1, stats)
                     t = t_seg
                     nhold += 1
                     seg = profile_segment(t, prof_t)
@@ -391,6 +371,41 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     for i in range(N):
                         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
                     continue
+                if can_ramp:
+                    # ---- the hold until its first breakaway, without stepping (ramp.py R5) ----
+                    tau_b, ib, ne = hold_breakaway(t, t_seg - t, W, wss, s1, s2, c1, c2, y, P,
+                                                   B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                                                   stuck, sgn, spin, qr, ytmp, ftmp, lam, Mm,
+                                                   fv, A, bb, idx, trig, STICK_TOL)
+                    nrhs += ne
+                    if tau_b > 1e-12 * max(1.0, t):
+                        t_to = t_seg if ib == -1 else t + tau_b
+                        for i in range(N):
+                            f1[2 + i] = 0.0
+                        kout = hold_finish(t, tau_b, t_to, kout, out_t, out_y, y, N, W, wss,
+                                           s1, s2, c1, c2, f1, stats)
+                        t = t_to
+                        nhold += 1
+                        seg = profile_segment(t, prof_t)
+                        if ib >= 0:
+                            # a breakaway event, resolved as the integrator's (ev_kind 1)
+                            rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                spin, f0, lam, Mm, fv, A, bb, idx, trig)
+                            nev += 1
+                            sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
+                            _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
+                                     sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig)
+                            if stuck[ib] == 1:
+                                stuck[ib] = 0
+                                sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
+                        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                 spin, f0, lam, Mm, fv, A, bb, idx, trig)
+                        nrhs += 2 * N + 3
+                        for i in range(N):
+                            gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+                        if ib == -2:
+                            next_try = nsteps + 20
+                        continue
                 next_try = nsteps + 20
         # hard stops at profile knots
         t_stop = t_end

@@ -1,4 +1,5 @@
-"""Speed ramps with every ball stuck, without stepping (isotropic rotor, linear speed ramp).
+"""Stuck-ball phases without stepping: linear speed ramps (R1-R4) and holds that end in a
+breakaway (R5), on the isotropic rotor of core/hold.py.
 
 With every ball stuck, an isotropic linear suspension (k, c), no gravity, base motion or dry
 friction, a constant unbalance and a prescribed spin Omega(t) = W + a tau (a piecewise-linear
@@ -42,6 +43,19 @@ chunk, and a chunk is accepted when the parabola through the three margins, less
 curvature term and the transient bound, stays positive. Chunks grow while the curvature is small
 against the margin and shrink as a breakaway approaches; below 20 integrator steps the jump stops
 and the integrator takes over (it locates the breakaway, core/integrate.py).
+
+Holds that end in a breakaway (R5). Where the bound (H2) of core/hold.py fails, the hold's
+closed form still holds until the first breakaway. `hold_breakaway` finds it: with the balls'
+angles and the speed fixed, the kernel's constrained solve is linear in the rotor state, so
+lambda_i and the limit mu_s N_i R are affine in (w - w_ss, w'); five right-hand-side
+evaluations give the maps. The margins mu_s N_i R (1 + STICK_TOL) - |lambda_i| of the closed
+form are sampled 16 times per period of the transient's fastest rotor-frame frequency and the
+crossing located by the Illinois method to 1e-9 of a sample interval (the integrator's event
+location on its Hermite interpolant: 1e-7 in step fraction, on 1.5 ms steps against 0.3 ms
+samples here). The scan stops early where (H2) with the transient decayed to
+tau, |lambda_ss| + m_i R sum_j |P_j| e^{Re(s_j) tau} <= mu_s N_i R, proves the rest of the hold
+stuck. This is the stick-slip ratchet of 004's plateau (a ball sticks and slips at the rotor's
+backward whirl frequency): its stuck spells are jumped, its slips stepped.
 """
 from __future__ import annotations
 
@@ -273,7 +287,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     On return y holds the state at the new time; outputs in (t, new time] are written to out_y
     and the amplitude statistics updated. Returns (new time [s], next output index, number of
     right-hand-side evaluations); new time == t when the jump is refused at its start. ``q`` is
-    a (3, N) float work array; h [s] is the integrator's current step.
+    a (>= 3, N) float work array; h [s] is the integrator's current step.
     """
     nq = N + 3
     n = 2 * nq
@@ -365,3 +379,132 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     if tau >= span * (1.0 - 1e-12):
         return t_seg, kout, nrhs
     return t + tau, kout, nrhs
+
+
+@kernel
+def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray,
+                 N: int, seg: int, prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray,
+                 unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
+                 q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray, lam: np.ndarray,
+                 Mm: np.ndarray, fv: np.ndarray, A: np.ndarray, bb: np.ndarray, idx: np.ndarray,
+                 trig: np.ndarray) -> None:
+    """The friction each stuck ball needs and its static limit [N*m] as affine functions of
+    (w - w_ss, w') during a hold (R5): with the balls' angles and the speed fixed, the kernel's
+    constrained solve is linear in the rotor state. Rows 0-4 of q: lambda_i at the steady
+    state and its derivatives along Re w, Im w, Re w', Im w'; rows 5-9: the same for the
+    limit. Five right-hand-side evaluations."""
+    nq = N + 3
+    dw = max(abs(wss), 1e-12)
+    dv = dw * max(W, 1.0)
+    for k in range(5):
+        for j in range(2 * nq):
+            ytmp[j] = y[j]
+        ytmp[0] = wss.real + (dw if k == 1 else 0.0)
+        ytmp[1] = wss.imag + (dw if k == 2 else 0.0)
+        ytmp[nq] = dv if k == 3 else 0.0
+        ytmp[nq + 1] = dv if k == 4 else 0.0
+        rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp, lam,
+            Mm, fv, A, bb, idx, trig)
+        for i in range(N):
+            if k == 0:
+                q[0, i] = lam[i]
+                q[5, i] = lam[N + i]
+            else:
+                d = dw if k <= 2 else dv
+                q[k, i] = (lam[i] - q[0, i]) / d
+                q[5 + k, i] = (lam[N + i] - q[5, i]) / d
+
+
+@kernel
+def _hold_margin(tau: float, s1: complex, s2: complex, c1: complex, c2: complex, N: int,
+                 q: np.ndarray, stick_tol: float, ball: int) -> tuple[float, int]:
+    """Smallest margin mu_s N_i R (1 + stick_tol) - |lambda_i| [N*m] at tau [s] into a hold
+    (of ball ``ball`` only if >= 0) and the ball that has it, from the affine maps of
+    _hold_affine (R5)."""
+    d, dv = hold_state(tau, 0j, s1, s2, c1, c2)
+    gmin = math.inf
+    imin = -1
+    for i in range(N):
+        if ball >= 0 and i != ball:
+            continue
+        lm = q[0, i] + q[1, i] * d.real + q[2, i] * d.imag + q[3, i] * dv.real + q[4, i] * dv.imag
+        li = q[5, i] + q[6, i] * d.real + q[7, i] * d.imag + q[8, i] * dv.real + q[9, i] * dv.imag
+        g = li * (1.0 + stick_tol) - abs(lm)
+        if g < gmin:
+            gmin = g
+            imin = i
+    return gmin, imin
+
+
+@kernel
+def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex, s2: complex,
+                   c1: complex, c2: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray,
+                   N: int, seg: int, prof_t: np.ndarray, prof_w: np.ndarray,
+                   unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
+                   spin: np.ndarray, q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
+                   lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray,
+                   bb: np.ndarray, idx: np.ndarray, trig: np.ndarray,
+                   stick_tol: float) -> tuple[float, int, int]:
+    """First breakaway of a hold at speed W [rad/s] starting at t [s], within tau_max [s] (R5).
+
+    ``q`` is a (10, N) float work array. Returns (tau [s], ball, right-hand-side evaluations):
+    ball >= 0 breaks away at tau; -1: none within tau_max; -2: the scan ended at tau without a
+    breakaway (sample budget).
+    """
+    _hold_affine(t, W, wss, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, q,
+                 ytmp, ftmp, lam, Mm, fv, A, bb, idx, trig)
+    f_max = max(abs(s1.imag), abs(s2.imag))
+    dtau = 2.0 * math.pi / (16.0 * max(f_max, 1e-300))
+    if dtau > tau_max:
+        dtau = tau_max
+    P1 = abs((s1 * s1 + 2j * W * s1 - W * W) * c1)
+    P2 = abs((s2 * s2 + 2j * W * s2 - W * W) * c2)
+    tau = 0.0
+    for _ in range(65536):
+        # (H2) from here on: the rest of the hold stays stuck
+        tr = P1 * math.exp(s1.real * tau) + P2 * math.exp(s2.real * tau)
+        done = True
+        for i in range(N):
+            if abs(q[0, i]) + B[i, B_M] * P[P_R] * tr > q[5, i] * (1.0 - 1e-9):
+                done = False
+        if done or tau >= tau_max:
+            return tau_max, -1, 5
+        tb = min(tau + dtau, tau_max)
+        gb, _ = _hold_margin(tb, s1, s2, c1, c2, N, q, stick_tol, -1)
+        if gb < 0.0:
+            # earliest crossing among the balls below their limit at tb (Illinois)
+            best = tb
+            bball = -1
+            for i in range(N):
+                g1, _ = _hold_margin(tb, s1, s2, c1, c2, N, q, stick_tol, i)
+                g0, _ = _hold_margin(tau, s1, s2, c1, c2, N, q, stick_tol, i)
+                if g1 >= 0.0:
+                    continue
+                if g0 <= 0.0:
+                    return tau, i, 5
+                a_ = tau
+                b_ = tb
+                side = 0
+                for _ in range(100):
+                    x = (a_ * g1 - b_ * g0) / (g1 - g0)
+                    gx, _ = _hold_margin(x, s1, s2, c1, c2, N, q, stick_tol, i)
+                    if gx > 0.0:
+                        a_ = x
+                        g0 = gx
+                        if side == 1:
+                            g1 *= 0.5
+                        side = 1
+                    else:
+                        b_ = x
+                        g1 = gx
+                        if side == -1:
+                            g0 *= 0.5
+                        side = -1
+                    if b_ - a_ < 1e-9 * dtau or gx == 0.0:
+                        break
+                if bball < 0 or b_ < best:
+                    best = b_
+                    bball = i
+            return best, bball, 5
+        tau = tb
+    return tau, -2, 5
