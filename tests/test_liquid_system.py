@@ -211,6 +211,7 @@ def test_revolution_average_removes_the_counter_rotating_part():
     assert revolution_average(psi, np.full(psi.size, 2.0)) == pytest.approx(2.0)
 
 
+@pytest.mark.slow
 def test_gravity_forces_the_film_as_a_linear_wave():
     """A film on the wall of a drum turning at constant Omega on a horizontal axis: gravity
     is the wall height b = -(g/Omega^2) cos(gamma - Omega t - theta) (core/shallow_water.py),

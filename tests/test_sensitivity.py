@@ -33,6 +33,7 @@ def test_quantities_by_hand():
     assert set(q) == set(QUANTITIES)
 
 
+@pytest.mark.slow
 def test_a_change_that_changes_nothing_has_no_effect_and_no_noise():
     cfg = load(CENTRIFUGE)
     same = f"balancer.restitution={cfg.system.balancer.restitution!r}"

@@ -114,6 +114,7 @@ def test_aligned_equilibria_are_complete(top):
         assert on_family or d.min() < 1e-6, r
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name,sets", [("washer_000", ()), ("vub_jeffcott_004", ()), (CEN, ()),
                                        ("washer_000", ("balancer.eccentricity=0.5 mm",
                                                        "balancer.eccentricity_angle=40 deg"))])
@@ -388,6 +389,7 @@ def test_family_tangent_dimension(top):
 
 
 # ============================ tier 6: the CLI ==================================================
+@pytest.mark.slow
 def test_cli_lists_the_family_as_a_family():
     """`analyze equilibria` on the 3-ball top-loader: no balanced isolated points, one family of
     dimension 1, every reachable sample stable in the full model (neutral direction removed)."""
