@@ -136,7 +136,7 @@ def ramp_series(P: np.ndarray, ut: complex, W: float, a: float,
 
 
 @kernel
-def _state(tau: float, t0: float, psi0: float, W0: float, a: float, P: np.ndarray, ut: complex,
+def _state(tau: float, psi0: float, W0: float, a: float, P: np.ndarray, ut: complex,
            s1: complex, s2: complex, c1: complex, c2: complex,
            ser: np.ndarray) -> tuple[complex, complex, complex, complex, complex]:
     """At tau [s] into the ramp: full w, w' and particular w_p, w_p' [m, m/s], residual r [N]."""
@@ -191,9 +191,9 @@ def _peak_abs(t0: float, span: float, n: int, psi0: float, W0: float, a: float, 
     five times)."""
     dt = span / n
     kb = 0
-    ab = abs(_state(t0, 0.0, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
+    ab = abs(_state(t0, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
     for k in range(1, n + 1):
-        a1 = abs(_state(t0 + k * dt, 0.0, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
+        a1 = abs(_state(t0 + k * dt, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
         if a1 > ab:
             ab = a1
             kb = k
@@ -201,11 +201,11 @@ def _peak_abs(t0: float, span: float, n: int, psi0: float, W0: float, a: float, 
     lo = t0
     hi = t0 + span
     for _ in range(5):
-        fl = abs(_state(max(lo, tb - dt), 0.0, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
-        fr = abs(_state(min(hi, tb + dt), 0.0, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
+        fl = abs(_state(max(lo, tb - dt), psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
+        fr = abs(_state(min(hi, tb + dt), psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
         x = vertex(fl, ab, fr)
         tv = min(hi, max(lo, tb + x * dt))
-        av = abs(_state(tv, 0.0, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
+        av = abs(_state(tv, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)[0])
         if av > ab:
             ab = av
             tb = tv
@@ -261,7 +261,7 @@ def _outputs(t: float, t_to: float, kout: int, out_t: np.ndarray, out_y: np.ndar
     n = 2 * nq
     while kout < out_t.shape[0] and out_t[kout] <= t_to:
         tk = out_t[kout] - t
-        wk, wdk, _, _, _ = _state(tk, t, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+        wk, wdk, _, _, _ = _state(tk, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
         for j in range(n):
             out_y[kout, j] = y[j]
         out_y[kout, 0] = wk.real
@@ -330,11 +330,11 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
             dt = span - tau
         tm = tau + 0.5 * dt
         tb = tau + dt
-        wm, _, wpm, wpdm, rm = _state(tm, t, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+        wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
         _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B,
                  N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
                  fv, A, bb, idx, trig, q, 1)
-        wb, _, wpb, wpdb, rb = _state(tb, t, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+        wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
         _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B,
                  N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
                  fv, A, bb, idx, trig, q, 2)
@@ -369,7 +369,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     if tau <= 0.0:
         return t, kout, nrhs
     _ramp_peak(t, tau, psi0, W0, a, P, ut, s1, s2, c1, c2, ser, stats)
-    w, wd, _, _, _ = _state(tau, t, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+    w, wd, _, _, _ = _state(tau, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
     y[0] = w.real
     y[1] = w.imag
     y[nq] = wd.real
