@@ -20,7 +20,7 @@ import numpy as np
 
 from autobalance.models import SimOptions
 from autobalance.sweep import make_plan, spec_from_dict, summary_dict, sweep
-from autobalance.sweep.plan import run_task, task_payload
+from autobalance.sweep.task import run_task, task_payload
 
 SPEC = {
     "sweep": {"name": "004-start-positions", "base": "vub_jeffcott_004", "batch_size": 32},

@@ -275,3 +275,18 @@ def test_real_dask_scheduler_lost_one_line_then_resume(tmp_path, serial_slow):
         cl2.stop()
     assert r.returncode == 0, r.stderr
     assert_bit_identical(open_sweep(store), serial_slow)
+
+
+def test_dask_branch_tasks_equal_serial_unbranched(cluster, tmp_path):
+    """A plateau sweep's branch tasks (one result per grid cell) on the cluster store what the
+    serial executor stores without branching."""
+    from test_branch import PLATEAU_SWEEP
+
+    spec = spec_of(PLATEAU_SWEEP)
+    m0, _ = run_task_counts(cluster)
+    ds = sweep(spec, tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address,
+               progress=False)
+    m1, _ = run_task_counts(cluster)
+    assert m1 - m0 == len(make_plan(spec).tasks) == 8
+    ref = sweep(spec, tmp_path / "serial", executor="serial", progress=False, branch=False)
+    assert_bit_identical(ds, ref)

@@ -33,6 +33,9 @@ from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS
 from .hold import (ball_unbalance, hold_coeffs, hold_finish, hold_margin_ok, hold_roots,
                    hold_state)
 from .layout import P_BETA, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
+from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_KOUT, C_NEV, C_NEXT, C_NHOLD,
+                     C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1, C_STALL, C_T, C_WHERE,
+                     N_C, RunStatus)
 from .ramp import RAMP_TAYLOR, RAMP_TERMS, hold_breakaway, ramp_jump
 from .rhs import neighbour_gap, profile_segment, rhs
 
@@ -45,6 +48,9 @@ STICK_TOL = 1e-9
 #: (P_FLAW = 2): the jump is cut into chunks, each advancing the balls at their creep speed at the
 #: chunk's midpoint (docs/numerics.md, "The tanh law's slow manifold")
 CREEP_CHUNK = 1e-5
+
+#: stats[S_STATUS] of a run paused by integrate_span
+_RUNNING = float(RunStatus.RUNNING)
 
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -191,6 +197,124 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
     return b_, nev
 
 
+@kernel
+def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+           f0, lam, Mm, fv, A, bb, idx, trig, gs, stats, exact):
+    """The modes after a step that ends in an event (``ev_kind`` of ball ``ev_i``) or at a
+    profile knot: the event's mode change, the balls that stopped within round-off, the
+    constrained solve (f0, lam, stick margins gs). Returns the RHS evaluations it made."""
+    nq = N + 3
+    if ev_kind == 0:
+        y[nq + 2 + ev_i] = 0.0
+        stuck[ev_i] = 1
+    elif ev_kind == 1:
+        stuck[ev_i] = 0
+        sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
+    elif ev_kind == 2:
+        spin[0] = 2.0
+        spin[1] = y[2 * nq - 1]
+        stats[S_THOLD] = t
+    if exact:
+        # any other slipping ball that stopped within round-off joins the stuck set
+        for i in range(N):
+            if stuck[i] == 0 and B[i, B_MUS] > 0.0 and sgn[i] * y[nq + 2 + i] <= 0.0:
+                y[nq + 2 + i] = 0.0
+                stuck[i] = 1
+        if ev_kind == 1:
+            _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                     spin, f0, lam, Mm, fv, A, bb, idx, trig)
+            # the released ball must stay released even if lambda is marginal now
+            if stuck[ev_i] == 1:
+                stuck[ev_i] = 0
+                sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
+        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                 f0, lam, Mm, fv, A, bb, idx, trig)
+        ne = N + 1
+    else:
+        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+            lam, Mm, fv, A, bb, idx, trig)
+        ne = 1
+    for i in range(N):
+        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+    return ne
+
+
+@inline_kernel
+def _next_h(en, en_old, h_acc, h, h_max):
+    """The next trial step and the controller's memory after an accepted step of error norm
+    ``en``: PI step control (Hairer, Norsett, Wanner I, II.4, DOPRI5 code: beta = 0.04) keeps
+    the step smooth where the stability boundary limits it."""
+    en_c = max(en, 1e-10)
+    fac = min(5.0, max(0.2, 0.9 * en_c ** -(0.2 - 0.75 * 0.04) * en_old ** 0.04))
+    en_old = max(en_c, 1e-4)
+    h = min(h_max, h_acc * fac if h_acc > 0.0 else h)
+    if h <= 0.0:
+        h = 1e-6
+    return h, en_old
+
+
+@kernel
+def _carry_out(carry, where, N, n, t, h, en, en_old, h_acc, nsteps, nrej, nev, stall, next_try,
+               nhold, nramp, nrhs, kout, ev_kind, ev_i, spin, stuck, sgn, in_contact, gs, lam,
+               f0):
+    """Store the loop's state of a run paused on arriving at a knot (layout.C_*)."""
+    carry[C_WHERE] = where
+    carry[C_T] = t
+    carry[C_H] = h
+    carry[C_EN] = en
+    carry[C_ENOLD] = en_old
+    carry[C_HACC] = h_acc
+    carry[C_NSTEPS] = nsteps
+    carry[C_NREJ] = nrej
+    carry[C_NEV] = nev
+    carry[C_STALL] = stall
+    carry[C_NEXT] = next_try
+    carry[C_NHOLD] = nhold
+    carry[C_NRAMP] = nramp
+    carry[C_NRHS] = nrhs
+    carry[C_KOUT] = kout
+    carry[C_SPIN0] = spin[0]
+    carry[C_SPIN1] = spin[1]
+    carry[C_EVK] = ev_kind
+    carry[C_EVI] = ev_i
+    k = N_C
+    for i in range(N):
+        carry[k + i] = stuck[i]
+        carry[k + N + i] = sgn[i]
+        carry[k + 2 * N + i] = in_contact[i]
+        carry[k + 3 * N + i] = gs[i]
+    k += 4 * N
+    for i in range(3 * N + 1):
+        carry[k + i] = lam[i]
+    k += 3 * N + 1
+    for j in range(n):
+        carry[k + j] = f0[j]
+
+
+@kernel
+def _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0):
+    """The loop's state of a paused run (the inverse of _carry_out): the per-ball flags, lam and
+    f0 into their arrays, the scalars returned."""
+    spin[0] = carry[C_SPIN0]
+    spin[1] = carry[C_SPIN1]
+    k = N_C
+    for i in range(N):
+        stuck[i] = int(carry[k + i])
+        sgn[i] = carry[k + N + i]
+        in_contact[i] = int(carry[k + 2 * N + i])
+        gs[i] = carry[k + 3 * N + i]
+    k += 4 * N
+    for i in range(3 * N + 1):
+        lam[i] = carry[k + i]
+    k += 3 * N + 1
+    for j in range(n):
+        f0[j] = carry[k + j]
+    return (carry[C_T], carry[C_H], carry[C_EN], carry[C_ENOLD], carry[C_HACC],
+            int(carry[C_NSTEPS]), int(carry[C_NREJ]), int(carry[C_NEV]), int(carry[C_STALL]),
+            int(carry[C_NEXT]), int(carry[C_NHOLD]), int(carry[C_NRAMP]), int(carry[C_NRHS]),
+            int(carry[C_KOUT]), int(carry[C_EVK]), int(carry[C_EVI]))
+
+
 @njit(cache=True)
 def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
               unb_t: np.ndarray, unb_u: np.ndarray, y0: np.ndarray, t_end: float, rtol: float,
@@ -211,76 +335,116 @@ def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: 
     out_t : sorted output times [s]; out_y : (len(out_t), 2*nq) filled with the state there.
     stats : (N_S,) filled with the run statistics (layout.S_*).
     """
+    y = y0.copy()
+    integrate_span(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t_end, rtol, atol, h_max,
+                   max_steps, out_t, out_y, stats, np.inf, np.zeros(N_C + 9 * N + 7))
+    return y
+
+
+@njit(cache=True)
+def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
+                   prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, y: np.ndarray,
+                   t_end: float, rtol: float, atol: np.ndarray, h_max: float, max_steps: int,
+                   out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray, t_pause: float,
+                   carry: np.ndarray) -> None:
+    """integrate() from a carried state, with an optional pause: the branching of runs that
+    share the start of their history (the same machine, start and profile up to a knot).
+
+    ``carry`` (layout.carry_size(N)) with carry[C_WHERE] = 0 starts from y at t = 0; a run that
+    arrives at a profile knot at or after ``t_pause`` [s] stops there before it reads the next
+    segment, with stats[S_STATUS] = RUNNING, its state in y, out_y filled up to the knot and
+    everything else the loop carries in ``carry``. Called again with that y, carry, out_y and
+    stats, and a profile equal up to the knot (any later segments), it continues bit for bit as
+    the run without the pause. t_pause = inf: the whole run.
+    """
     nq = N + 3
     n = 2 * nq
-    y = y0.copy()
     _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
                out_t, out_y, stats, y, np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n),
                np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)),
                np.zeros(nq), np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
                np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
                np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
-               np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)))
-    return y
+               np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
+               t_pause, carry)
 
 
 @kernel
 def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
                out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
-               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr):
+               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, t_pause, carry):
     """The integration loop of integrate(), on preallocated work arrays (no allocation: the
     kernel runs without the numba runtime, core/jit.py). y holds the initial state on entry and
     the final state on return; gs / ge: stick margins mu_s N R - |lambda| at the start / end of
     the trial step; in_contact, viol: per-ball flags; trig: the cos/sin cache of rhs(); ser, qr:
-    work arrays of ramp_jump()."""
+    work arrays of ramp_jump(); t_pause, carry: see integrate_span()."""
     nq = N + 3
     n = 2 * nq
     ip = nq - 1
-    spin[0] = P[P_SPIN]
-    for j in range(N_S):
-        stats[j] = 0.0
-    stats[S_THOLD] = -1.0
     nout = out_t.shape[0]
-    kout = 0
-    t = 0.0
     exact = P[P_FLAW] != 1.0          # exact stick-slip, with (2) or without (0) creep
     creep = P[P_FLAW] == 2.0
     # isotropic, no gravity, no base motion: max|x| = max|y| = max|w| (no sub-sampling needed)
     symmetric = P[P_SYM] == 1.0
-    # initial modes: balls at rest relative to the race start stuck if they can
-    if exact:
-        for i in range(N):
-            if B[i, B_MUS] > 0.0 and y[nq + 2 + i] == 0.0:
-                stuck[i] = 1
-            else:
-                sgn[i] = 1.0 if y[nq + 2 + i] >= 0.0 else -1.0
-    seg = profile_segment(t, prof_t)
-    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
-             lam, Mm, fv, A, bb, idx, trig)
-    nrhs = N + 1
-    for i in range(N):
-        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
-    while kout < nout and out_t[kout] <= t:
-        for j in range(n):
-            out_y[kout, j] = y[j]
-        kout += 1
-    amax = math.sqrt(y[0] ** 2 + y[1] ** 2)
-    stats[S_AMAX] = amax
-    # initial step: a fraction of a revolution / of the fastest natural period
-    h = min(h_max, 1e-4)
-    nsteps = 0
-    en_old = 1e-4
-    nrej = 0
-    nev = 0
-    stall = 0
-    status = 0
     # static conditions of a closed-form hold, derived from the model by simulate/pack.fast_paths
     can_hold = P[P_HOLDS] == 1.0
     can_ramp = P[P_RAMPS] == 1.0
-    next_try = 0
-    nhold = 0
-    nramp = 0
-    while t < t_end:
+    where = int(carry[C_WHERE])
+    status = 0
+    en = 0.0
+    h_acc = 0.0
+    ev_kind = -1
+    ev_i = -1
+    if where == 0:
+        spin[0] = P[P_SPIN]
+        for j in range(N_S):
+            stats[j] = 0.0
+        stats[S_THOLD] = -1.0
+        kout = 0
+        t = 0.0
+        # initial modes: balls at rest relative to the race start stuck if they can
+        if exact:
+            for i in range(N):
+                if B[i, B_MUS] > 0.0 and y[nq + 2 + i] == 0.0:
+                    stuck[i] = 1
+                else:
+                    sgn[i] = 1.0 if y[nq + 2 + i] >= 0.0 else -1.0
+        seg = profile_segment(t, prof_t)
+        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+                 lam, Mm, fv, A, bb, idx, trig)
+        nrhs = N + 1
+        for i in range(N):
+            gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+        while kout < nout and out_t[kout] <= t:
+            for j in range(n):
+                out_y[kout, j] = y[j]
+            kout += 1
+        amax = math.sqrt(y[0] ** 2 + y[1] ** 2)
+        stats[S_AMAX] = amax
+        # initial step: a fraction of a revolution / of the fastest natural period
+        h = min(h_max, 1e-4)
+        nsteps = 0
+        en_old = 1e-4
+        nrej = 0
+        nev = 0
+        stall = 0
+        next_try = 0
+        nhold = 0
+        nramp = 0
+    else:
+        # ---- continue a paused run: the arrival at the knot, with this profile's next segment
+        t, h, en, en_old, h_acc, nsteps, nrej, nev, stall, next_try, nhold, nramp, nrhs, kout, \
+            ev_kind, ev_i = _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0)
+        seg = profile_segment(t, prof_t)
+        inc = _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
+                     sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs, stats, exact)
+        nrhs += 2 * N + 3 if where == 3 else inc
+        if where == 4 and stall > 50:
+            status = 2
+        elif where == 4 and ev_kind < 0:
+            h, en_old = _next_h(en, en_old, h_acc, h, h_max)
+    paused = 0
+    while t < t_end and status == 0:
         if nsteps + nrej >= max_steps:
             status = 1
             break
@@ -304,6 +468,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 if t_new > t:
                     t = t_new
                     nramp += 1
+                    if t >= t_pause:
+                        paused = 1
+                        break
                     seg = profile_segment(t, prof_t)
                     _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
                              spin, f0, lam, Mm, fv, A, bb, idx, trig)
@@ -359,6 +526,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                        s2, c1, c2, f1, stats)
                     t = t_seg
                     nhold += 1
+                    if t >= t_pause:
+                        paused = 2
+                        break
                     seg = profile_segment(t, prof_t)
                     if exact:
                         _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
@@ -386,6 +556,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                            s1, s2, c1, c2, f1, stats)
                         t = t_to
                         nhold += 1
+                        if t >= t_pause:
+                            paused = 3
+                            break
                         seg = profile_segment(t, prof_t)
                         if ib >= 0:
                             # a breakaway event, resolved as the integrator's (ev_kind 1)
@@ -597,55 +770,30 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         for i in range(N):
             gs[i] = ge[i]
         if last and spin[0] == 0.0:
+            if t >= t_pause:
+                paused = 4
+                break
             seg = profile_segment(t, prof_t)
         # ---- mode changes ----------------------------------------------------------------
         if ev_kind >= 0 or last:
-            if ev_kind == 0:
-                y[nq + 2 + ev_i] = 0.0
-                stuck[ev_i] = 1
-            elif ev_kind == 1:
-                stuck[ev_i] = 0
-                sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
-            elif ev_kind == 2:
-                spin[0] = 2.0
-                spin[1] = y[2 * nq - 1]
-                stats[S_THOLD] = t
-            if exact:
-                # any other slipping ball that stopped within round-off joins the stuck set
-                for i in range(N):
-                    if stuck[i] == 0 and B[i, B_MUS] > 0.0 and sgn[i] * y[nq + 2 + i] <= 0.0:
-                        y[nq + 2 + i] = 0.0
-                        stuck[i] = 1
-                if ev_kind == 1:
-                    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                             spin, f0, lam, Mm, fv, A, bb, idx, trig)
-                    # the released ball must stay released even if lambda is marginal now
-                    if stuck[ev_i] == 1:
-                        stuck[ev_i] = 0
-                        sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
-                _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                         f0, lam, Mm, fv, A, bb, idx, trig)
-                nrhs += N + 1
-            else:
-                rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
-                    lam, Mm, fv, A, bb, idx, trig)
-                nrhs += 1
-            for i in range(N):
-                gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+            nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                           stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs, stats,
+                           exact)
             if stall > 50:
                 status = 2
                 break
             if ev_kind >= 0:
                 continue
-        # ---- next step size ---------------------------------------------------------------
-        # PI step control (Hairer, Norsett, Wanner I, II.4, DOPRI5 code: beta = 0.04) keeps
-        # the step smooth where the stability boundary limits it
-        en_c = max(en, 1e-10)
-        fac = min(5.0, max(0.2, 0.9 * en_c ** -(0.2 - 0.75 * 0.04) * en_old ** 0.04))
-        en_old = max(en_c, 1e-4)
-        h = min(h_max, h_acc * fac if h_acc > 0.0 else h)
-        if h <= 0.0:
-            h = 1e-6
+        h, en_old = _next_h(en, en_old, h_acc, h, h_max)
+    if paused > 0:
+        _carry_out(carry, paused, N, n, t, h, en, en_old, h_acc, nsteps, nrej, nev, stall,
+                   next_try, nhold, nramp, nrhs, kout, ev_kind, ev_i, spin, stuck, sgn,
+                   in_contact, gs, lam, f0)
+        stats[S_STATUS] = _RUNNING
+        stats[S_STEPS] = nsteps
+        stats[S_TFINAL] = t
+        return
+    carry[C_WHERE] = 0.0
     # fill any remaining outputs (t_end reached exactly)
     while kout < nout:
         for j in range(n):

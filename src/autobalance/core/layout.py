@@ -79,6 +79,37 @@ S_HOLDS = 12      # constant-speed holds solved in closed form (core/hold.py)
 S_RAMPS = 13      # stuck speed ramps (or parts of them) solved without stepping (core/ramp.py)
 N_S = 14
 
+# --- the integrator's carried state at a pause (core/integrate.integrate_span) ---------------
+# A run paused at a profile knot continues from these, bit for bit as if it had not paused.
+C_WHERE = 0       # 0: start from y at t = 0; 1-4: paused on arriving at a knot by a ramp jump (1),
+#                   a closed-form hold (2), a hold until its breakaway (3) or a step (4)
+C_T = 1           # time [s]
+C_H = 2           # next trial step [s]
+C_EN = 3          # error norm of the last step [-]
+C_ENOLD = 4       # previous error norm of the PI controller [-]
+C_HACC = 5        # accepted length of the last step [s]
+C_NSTEPS = 6
+C_NREJ = 7
+C_NEV = 8
+C_STALL = 9
+C_NEXT = 10       # step count at which the next closed-form jump is tried
+C_NHOLD = 11
+C_NRAMP = 12
+C_NRHS = 13
+C_KOUT = 14       # outputs filled
+C_SPIN0 = 15      # spin mode (0 prescribed, 1 motor, 2 motor at its hold speed)
+C_SPIN1 = 16      # the hold speed of mode 2 [rad/s]
+C_EVK = 17        # the event of the step that arrived at the knot (-1 none)
+C_EVI = 18        # its ball
+N_C = 19
+# then per ball: stuck (N), slip sign (N), in contact (N), stick margin (N); the constraint
+# forces lam (3N + 1); the derivative f0 at the pause (2 nq)
+
+
+def carry_size(n_balls: int) -> int:
+    """Length of the carried state of a paused run of N balls (C_* above) [-]."""
+    return N_C + 7 * int(n_balls) + 1 + 2 * n_q(n_balls)
+
 
 
 class RunStatus(enum.IntEnum):

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.batch import integrate_batch
+from ..core.batch import integrate_batch, integrate_branches
 from ..core.integrate import integrate
 from ..core.layout import N_S, S_STATUS, RunStatus
 from .pack import atol_vector, initial_vector, pack_params, spin_arrays
@@ -98,6 +98,39 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
     return sim
 
 
+def _pack_runs(systems: list[System], spin, initials, options: SimOptions):
+    """The kernel arrays of many runs of one spin (simulate_batch, simulate_branches): P, B,
+    N, y0, ball orders, atol, unbalance tables (unb_t, unb_u padded to the longest, unb_n); checks
+    the run against the limits with the stiffest suspension (the largest step bound)."""
+    if not systems:
+        raise ValueError("simulate_batch: systems is empty")
+    n_runs = len(systems)
+    if initials is None:
+        initials = [InitialState()] * n_runs
+    if len(initials) != n_runs:
+        raise ValueError(f"simulate_batch: {len(initials)} initial states for {n_runs} systems")
+    N = systems[0].balancer.n_balls
+    if any(s.balancer.n_balls != N for s in systems):
+        raise ValueError("simulate_batch: all systems must have the same number of balls")
+    check_run(max(systems, key=lambda s: max(s.natural_frequencies)), spin, options)
+    packed = [pack_params(s, spin, options) for s in systems]
+    Ps = np.stack([p for p, _ in packed])
+    Bs = np.stack([b for _, b in packed]) if N else np.zeros((n_runs, 0, 8))
+    inits = [initial_vector(s, spin, i) for s, i in zip(systems, initials)]
+    y0 = np.stack([y for y, _ in inits])
+    orders = np.stack([o for _, o in inits]) if N else np.zeros((n_runs, 0), int)
+    atol = np.stack([atol_vector(s, spin, options) for s in systems])
+    tables = [s.rotor.unbalance_table() for s in systems]
+    unb_n = np.array([t.size for t, _ in tables], np.int64)
+    K = int(unb_n.max())
+    unb_t = np.zeros((n_runs, K))
+    unb_u = np.zeros((n_runs, K))
+    for r, (t, u) in enumerate(tables):
+        unb_t[r, :t.size], unb_t[r, t.size:] = t, t[-1]
+        unb_u[r, :u.size], unb_u[r, u.size:] = u, u[-1]
+    return Ps, Bs, N, y0, orders, atol, unb_t, unb_u, unb_n
+
+
 def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
                    initials: list[InitialState] | None = None, *, options: SimOptions | None = None,
                    out_times: npt.ArrayLike | None = None) -> BatchResult:
@@ -137,39 +170,13 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
         Before integrating: the step budget or the run-time limit cannot be met.
     """
     options = options or SimOptions()
-    if not systems:
-        raise ValueError("simulate_batch: systems is empty")
-    n_runs = len(systems)
-    if initials is None:
-        initials = [InitialState()] * n_runs
-    if len(initials) != n_runs:
-        raise ValueError(f"simulate_batch: {len(initials)} initial states for {n_runs} systems")
-    N = systems[0].balancer.n_balls
-    if any(s.balancer.n_balls != N for s in systems):
-        raise ValueError("simulate_batch: all systems must have the same number of balls")
-    # the shared profile and N: the stiffest suspension has the largest step bound
-    check_run(max(systems, key=lambda s: max(s.natural_frequencies)), spin, options)
-    packed = [pack_params(s, spin, options) for s in systems]
-    Ps = np.stack([p for p, _ in packed])
-    Bs = np.stack([b for _, b in packed]) if N else np.zeros((n_runs, 0, 8))
-    inits = [initial_vector(s, spin, i) for s, i in zip(systems, initials)]
-    y0 = np.stack([y for y, _ in inits])
-    orders = np.stack([o for _, o in inits]) if N else np.zeros((n_runs, 0), int)
-    atol = np.stack([atol_vector(s, spin, options) for s in systems])
+    Ps, Bs, N, y0, orders, atol, unb_t, unb_u, unb_n = _pack_runs(systems, spin, initials, options)
     prof_t, prof_w, t_end = spin_arrays(spin)
-    tables = [s.rotor.unbalance_table() for s in systems]
-    unb_n = np.array([t.size for t, _ in tables], np.int64)
-    K = int(unb_n.max())
-    unb_t = np.zeros((n_runs, K))
-    unb_u = np.zeros((n_runs, K))
-    for r, (t, u) in enumerate(tables):
-        unb_t[r, :t.size], unb_t[r, t.size:] = t, t[-1]
-        unb_u[r, :u.size], unb_u[r, u.size:] = u, u[-1]
     out_t = np.asarray(spin.checkpoints if out_times is None else out_times, float)
     # the integrator fills its output times in increasing order: sort, then restore the caller's
     order = np.argsort(out_t, kind="stable")
-    out_ys = np.zeros((n_runs, out_t.size, y0.shape[1]))
-    stats = np.zeros((n_runs, N_S))
+    out_ys = np.zeros((len(systems), out_t.size, y0.shape[1]))
+    stats = np.zeros((len(systems), N_S))
     integrate_batch(Ps, Bs, N, prof_t, prof_w, unb_t, unb_u, unb_n, y0, t_end, options.rtol,
                     atol, _h_max(spin, options), int(options.max_steps), out_t[order], out_ys,
                     stats)
@@ -177,3 +184,101 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     out_y[:, order] = out_ys
     status = [RunStatus.of(s).label for s in stats[:, S_STATUS]]
     return BatchResult(systems, spin, options, out_t, out_y, stats, orders, status)
+
+
+def branch_knot(spins: list) -> float:
+    """The knot time t_b [s] up to which the speed profiles ``spins`` agree, when runs of them can
+    share their history up to it (:func:`simulate_branches`): the latest profile knot with 0 <
+    t_b < duration before which every knot (time and speed) is the same, for prescribed
+    profiles of one nominal speed (it sets the grade and the tolerances) and one duration (it
+    sets the largest step); 0.0 when there is none (also for fewer than two profiles, or a
+    motor drive).
+
+    Parameters
+    ----------
+    spins : list of SpeedProfile or MotorDrive
+        The profiles.
+
+    Returns
+    -------
+    float
+        The branch knot t_b [s], or 0.0.
+    """
+    if len(spins) < 2 or not all(isinstance(s, SpeedProfile) for s in spins):
+        return 0.0
+    if len({float(s.nominal_speed) for s in spins}) > 1 or len({float(s.duration) for s in spins}) > 1:
+        return 0.0
+    knots = [spin_arrays(s)[:2] for s in spins]
+    t0, w0 = knots[0]
+    j = 0
+    while j + 1 < min(t.size for t, _ in knots) and all(
+            t[j + 1] == t0[j + 1] and w[j + 1] == w0[j + 1] for t, w in knots):
+        j += 1
+    t_b = float(t0[j])
+    return t_b if 0.0 < t_b < spins[0].duration else 0.0
+
+
+def simulate_branches(systems: list[System], spins: list[SpeedProfile],
+                      initials: list[InitialState] | None = None, *,
+                      options: SimOptions | None = None,
+                      out_times: npt.ArrayLike | None = None) -> list[BatchResult]:
+    """:func:`simulate_batch` of every run under each of several speed profiles that agree up to
+    a knot (:func:`branch_knot`; e.g. the plateau speeds of a temporary speed reduction after the
+    same run-up): each run's history up to the knot is integrated once and continued under
+    every profile. The results are those of separate :func:`simulate_batch` calls, bit for bit.
+
+    Parameters
+    ----------
+    systems : list of System
+        One machine per run, all with the same number of balls.
+    spins : list of SpeedProfile
+        The profiles, at least two, equal up to a knot after t = 0.
+    initials : list of InitialState or None
+        One initial state per run (None: the default state for every run).
+    options : SimOptions or None
+        Numerical options shared by all runs (None: the defaults).
+    out_times : array_like or None
+        Times at which the states are kept [s] (None: the first profile's checkpoints).
+
+    Returns
+    -------
+    list of BatchResult
+        One per profile, in the order of ``spins``.
+
+    Raises
+    ------
+    ValueError
+        Profiles without a shared knot (:func:`branch_knot` is 0), and as simulate_batch.
+    ResourceError
+        Before integrating: a profile's step budget or the run-time limit cannot be met.
+    """
+    options = options or SimOptions()
+    t_b = branch_knot(spins)
+    if not t_b:
+        raise ValueError("simulate_branches: the speed profiles share no knot after t = 0 "
+                         "(prescribed profiles of one nominal speed and duration)")
+    for sp in spins[1:]:
+        check_run(max(systems, key=lambda s: max(s.natural_frequencies)), sp, options)
+    Ps, Bs, N, y0, orders, atol, unb_t, unb_u, unb_n = _pack_runs(systems, spins[0], initials,
+                                                                  options)
+    knots = [spin_arrays(sp) for sp in spins]
+    prof_n = np.array([t.size for t, _, _ in knots], np.int64)
+    prof_t = np.zeros((len(spins), int(prof_n.max())))
+    prof_w = np.zeros_like(prof_t)
+    for f, (t, w, _) in enumerate(knots):
+        prof_t[f, :t.size], prof_w[f, :w.size] = t, w
+    t_end = np.array([te for _, _, te in knots])
+    out_t = np.asarray(spins[0].checkpoints if out_times is None else out_times, float)
+    order = np.argsort(out_t, kind="stable")
+    S, F = len(systems), len(spins)
+    out_ys = np.zeros((F * S, out_t.size, y0.shape[1]))
+    stats = np.zeros((F * S, N_S))
+    integrate_branches(Ps, Bs, N, prof_t, prof_w, prof_n, unb_t, unb_u, unb_n, y0, t_end, t_b,
+                       options.rtol, atol, _h_max(spins[0], options), int(options.max_steps),
+                       out_t[order], out_ys, stats)
+    out_y = np.empty_like(out_ys)
+    out_y[:, order] = out_ys
+    return [BatchResult(systems, sp, options, out_t, out_y[f * S:(f + 1) * S],
+                        stats[f * S:(f + 1) * S], orders,
+                        [RunStatus.of(s).label for s in stats[f * S:(f + 1) * S, S_STATUS]])
+            for f, sp in enumerate(spins)]

@@ -1,6 +1,6 @@
 """Run a sweep's tasks: serially, on local processes (default), or on a Dask cluster.
 
-Every executor runs the same pure function ``plan.run_task`` on the same payloads, and the
+Every executor runs the same pure function ``task.run_task`` on the same payloads, and the
 parent process alone writes the results (one atomic file per task, store.py). Results are
 therefore bit-identical across executors, and a lost worker only costs the tasks it held
 (Dask reschedules them; an interrupted sweep resumes from the files on disk).
@@ -18,7 +18,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
-from .plan import Plan, make_plan, run_task, task_payload
+from .plan import Plan, make_plan
+from .task import run_task, task_payload
 from .spec import SweepError, SweepSpec, as_spec, load_spec
 from .store import (StoreLock, assemble, check_identity, check_store_path, covered_runs,
                     init_store, scan_tasks, write_result, write_task)
@@ -268,7 +269,8 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
           spin: SpeedProfile | MotorDrive | dict | None = None,
           initial: InitialState | None = None, executor: str | None = None,
           workers: int | None = None, scheduler: str | None = None, resume: bool = False,
-          progress: bool = True, options: SimOptions | None = None, assemble_result: bool = True):
+          progress: bool = True, options: SimOptions | None = None, assemble_result: bool = True,
+          branch: bool = True):
     """Run a sweep into a durable store and return the assembled xarray.Dataset.
 
     Parameters
@@ -303,6 +305,12 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
         batch size made them); unreadable task files are moved aside and rerun.
     options : SimOptions
         Override the numerical options of the base config (with a System base: its options).
+    assemble_result : bool
+        Assemble (and return) the result; False only writes the task files.
+    branch : bool
+        Run grid cells whose speed profiles agree up to a knot as branches of one history
+        (:class:`autobalance.sweep.plan.BranchTask`); False runs every cell on its own. The
+        results are the same bit for bit; False is the reference of ``make bench``.
 
     Raises
     ------
@@ -341,7 +349,7 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
         client = _dask_client(scheduler) if executor == "dask" else None
         with _signals_raise():
             return _sweep_locked(plan, store, lock, executor, workers, client, resume,
-                                 progress, assemble_result)
+                                 progress, assemble_result, branch)
     finally:
         lock.release()
         if client is not None:
@@ -368,7 +376,7 @@ class _signals_raise:
 
 
 def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress,
-                  assemble_result):
+                  assemble_result, branch=True):
     init_store(store, plan, resume, lock)
     warn = (lambda msg: print(f"warning: {msg}", file=sys.stderr, flush=True))
 
@@ -378,7 +386,7 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
 
     scan = scan_tasks(store, plan, on_corrupt=on_corrupt)
     covered = covered_runs(scan, plan.n_runs)
-    todo_tasks = plan.tasks_for(~covered)
+    todo_tasks = plan.tasks_for(~covered, branch)
     done_runs = int(covered.sum())
     n_workers = 1 if executor == "serial" else (workers or os.cpu_count() or 1)
     if executor == "dask":
@@ -391,9 +399,10 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
     finished = [done_runs]
 
     def on_result(res):
-        write_task(store, res)
-        finished[0] += len(res["status"])
-        bar.update(len(res["status"]))
+        for r in res if isinstance(res, list) else [res]:     # a branch task: one per cell
+            write_task(store, r)
+            finished[0] += len(r["status"])
+            bar.update(len(r["status"]))
 
     def kept():
         return f"{finished[0]} of {plan.n_runs} runs kept in {str(store)!r}"

@@ -6,7 +6,7 @@ import numpy as np
 
 
 def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
-    """:func:`autobalance.sweep.plan.run_task` for liquid balancers: one wall-film run per system
+    """:func:`autobalance.sweep.task.run_task` for liquid balancers: one wall-film run per system
     (:func:`autobalance.liquid.simulate.simulate_liquid`), read at the checkpoints and history
     times as the ball runs are; no balls (``ball_angle`` all NaN), no stick-slip events."""
     from ..core.layout import RunStatus

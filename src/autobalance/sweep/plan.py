@@ -1,11 +1,15 @@
-"""Expand a SweepSpec into grid cells, Monte-Carlo samples and tasks; run one task.
+"""Expand a SweepSpec into grid cells, Monte-Carlo samples and tasks (run by ``task.py``).
 
 Runs are numbered r = cell * n_samples + sample (C order over the grid axes, sample fastest).
 A task is a range of consecutive runs sharing the spin profile, the numerical options and the
 ball count (so one ``simulate_batch`` call serves it with each run's own cell parameters), at
 most ``batch_size`` long: tasks never mix two values of an ``options.*``, ``profile.*`` or
-``balancer.n_balls`` grid axis. Everything here is deterministic: the same description gives
-the same tasks and the same results, and a run's result does not depend on the task it ran in.
+``balancer.n_balls`` grid axis. The one exception is a :class:`BranchTask`: grid cells that
+differ only in their speed profile after a shared knot (a family, e.g. the plateau speeds of a
+temporary speed reduction) run the same samples together, each sample's history up to the knot
+integrated once (:func:`autobalance.simulate.simulate_branches`, bit for bit the separate runs).
+Everything here is deterministic: the same description gives the same tasks and the same
+results, and a run's result does not depend on the task it ran in.
 
 ``balancer.n_balls`` may be a grid axis (2 against 3 balls). The values that follow the ball
 count follow it in every cell (:func:`_follow_n_balls`): per-ball values given as one number,
@@ -26,8 +30,7 @@ import numpy as np
 from ..config import SECTIONS, ConfigError, _read, apply_overrides, from_dict, replace_values
 from ..config.overrides import parse_override
 from ..config.schema import check_value
-from ..core.layout import RunStatus
-from ..models import BallBalancer, InitialState, SimOptions
+from ..models import BallBalancer
 from .spec import SweepError, SweepSpec
 
 
@@ -42,13 +45,28 @@ class Plan:
     spec: SweepSpec
     cells: list              # Config per grid cell (C order)
     angles: dict             # N -> (n_samples, N) start angles [rad]
-    tasks: list              # (first_run, n_runs) pairs covering every run
+    tasks: list              # (first_run, n_runs) pairs and BranchTasks covering every run
     groups: tuple = ()       # (start, stop) run ranges of equal spin, options and N
+    families: tuple = ()     # tuples of grid cells that may branch (:func:`_families`)
 
-    def tasks_for(self, todo: np.ndarray) -> list:
-        """(first, count) tasks covering the runs where ``todo`` is True: contiguous runs of
-        one group, at most batch_size long (with every run todo: ``self.tasks``)."""
-        return _chunk(self.groups, todo, self.spec.batch_size)
+    def tasks_for(self, todo: np.ndarray, branch: bool = True) -> list:
+        """Tasks covering the runs where ``todo`` is True (with every run todo:
+        ``self.tasks``): :class:`BranchTask` s of at most about batch_size runs for the
+        samples whose runs are todo in at least two cells of a family (``branch``), then
+        (first, count) ranges of contiguous runs of one group, at most batch_size long."""
+        todo = np.array(todo, bool)
+        out = []
+        S = self.n_samples
+        for fam in self.families if branch else ():
+            step = max(1, self.spec.batch_size // len(fam))
+            for s0 in range(0, S, step):
+                cnt = min(step, S - s0)
+                members = tuple(c for c in fam if todo[c * S + s0:c * S + s0 + cnt].all())
+                if len(members) >= 2:
+                    out.append(BranchTask(members, s0, cnt))
+                    for c in members:
+                        todo[c * S + s0:c * S + s0 + cnt] = False
+        return out + _chunk(self.groups, todo, self.spec.batch_size)
 
     @property
     def n_balls(self) -> int:
@@ -76,6 +94,46 @@ class Plan:
     @property
     def checkpoints(self) -> np.ndarray:
         return np.asarray(self.cells[0].spin.checkpoints, float)
+
+
+@dataclass(frozen=True)
+class BranchTask:
+    """The samples ``first`` .. ``first + count - 1`` of the grid cells ``cells``, whose runs
+    share their history up to a speed-profile knot (a family, :func:`_families`): one
+    :func:`autobalance.simulate.simulate_branches` call; its runs are stored as one task file per
+    cell."""
+
+    cells: tuple
+    first: int
+    count: int
+
+    def ranges(self, n_samples: int) -> list:
+        """(first run, count) of each cell's runs."""
+        return [(c * n_samples + self.first, self.count) for c in self.cells]
+
+
+def _families(cells: list) -> tuple:
+    """Tuples (two or more) of the grid cells whose runs differ only in their speed profile
+    after a shared knot (:func:`autobalance.simulate.run.branch_knot`): the same system, start
+    state and options, prescribed profiles of one nominal speed, duration and checkpoints that
+    agree up to a knot after t = 0. Ball balancers only."""
+    from ..models import SpeedProfile
+    from ..simulate.run import branch_knot
+
+    fams = []
+    for i, c in enumerate(cells):
+        if not isinstance(c.spin, SpeedProfile) or c.system.liquid is not None:
+            continue
+        for fam in fams:
+            r = cells[fam[0]]
+            if (c.system == r.system and c.initial == r.initial and c.options == r.options
+                    and c.spin.checkpoints == r.spin.checkpoints
+                    and branch_knot([cells[j].spin for j in fam] + [c.spin]) > 0.0):
+                fam.append(i)
+                break
+        else:
+            fams.append([i])
+    return tuple(tuple(f) for f in fams if len(f) > 1)
 
 
 def start_grid(n: int, n_balls: int, identical: bool) -> np.ndarray:
@@ -469,90 +527,6 @@ def make_plan(spec: SweepSpec) -> Plan:
     bounds = [0] + [c * n_samples for c in range(1, len(cells))
                     if key(cells[c]) != key(cells[c - 1])]
     groups = tuple(zip(bounds, bounds[1:] + [n_runs]))
-    tasks = _chunk(groups, np.ones(n_runs, bool), spec.batch_size)
-    return Plan(spec, cells, angles, tasks, groups)
-
-
-def task_payload(plan: Plan, task: tuple, options: SimOptions | None = None) -> dict:
-    """Everything a worker needs to run the task (first run, count) (picklable)."""
-    first, count = task
-    n_s = plan.n_samples
-    runs = range(first, first + count)
-    systems = [plan.cells[r // n_s].system for r in runs]
-    base_init = [plan.cells[r // n_s].initial for r in runs]
-    inits = [InitialState(ball_angles=tuple(plan.cell_angles(r // n_s)[r % n_s]),
-                          ball_speeds=i.ball_speeds, x=i.x, y=i.y, vx=i.vx, vy=i.vy,
-                          steady_state=i.steady_state)
-             for r, i in zip(runs, base_init)]
-    opts = options or plan.cells[first // n_s].options
-    spin = plan.cells[first // n_s].spin
-    hist = ()
-    if plan.spec.history_dt > 0:
-        hist = tuple(np.arange(0.0, spin.duration + 1e-12, plan.spec.history_dt))
-    return {"first": first, "count": count, "systems": systems, "initials": inits, "spin": spin,
-            "options": opts, "history_times": hist, "ball_slots": plan.n_balls}
-
-
-def _pad_balls(a: np.ndarray, slots: int) -> np.ndarray:
-    """(runs, checkpoints, N) -> (runs, checkpoints, slots), NaN for the balls N..slots-1."""
-    if a.shape[2] >= slots:
-        return a
-    out = np.full(a.shape[:2] + (slots,), np.nan)
-    out[:, :, :a.shape[2]] = a
-    return out
-
-
-def run_task(payload: dict) -> dict:
-    """Run one task (in any process): numpy arrays per run, see store.VARIABLES. The runs of a
-    task share their ball count N; ``ball_angle`` has ``payload["ball_slots"]`` (>= N) balls,
-    NaN beyond N."""
-    from ..core.layout import S_AMAX, S_EVENTS, S_STEPS, speed_index
-    from ..physics.iso1940 import grade_value
-    from ..simulate.result import residual_unbalance_history
-    from ..simulate import simulate_batch
-
-    spin = payload["spin"]
-    cps = np.asarray(spin.checkpoints, float)
-    hist = np.asarray(payload["history_times"], float)
-    if payload["systems"][0].liquid is not None:
-        from .liquid_task import run_liquid_task
-        return run_liquid_task(payload, cps, hist)
-    out_t = np.concatenate([cps, hist])
-    res = simulate_batch(payload["systems"], spin, payload["initials"],
-                         options=payload["options"], out_times=out_t)
-    n_cp = cps.size
-    systems = payload["systems"]
-    mt = np.array([s.total_mass for s in systems])
-    n_balls = systems[0].balancer.n_balls
-    a0 = np.array([i.ball_angles for i in payload["initials"]], float).reshape(len(systems),
-                                                                               n_balls)
-    u0 = np.array([abs(residual_unbalance_history(s, a, np.array(0.0))) for s, a in zip(systems, a0)])
-    status = np.array([int(RunStatus.from_label(s)) for s in res.status], np.int8)
-    out = {
-        "first": payload["first"], "count": len(systems),
-        "grade_G": res.grade_G[:, :n_cp],
-        "residual_unbalance": res.residual_unbalance[:, :n_cp],
-        "ball_angle": _pad_balls(np.angle(np.exp(1j * res.alpha[:, :n_cp, :])),
-                                 payload.get("ball_slots", n_balls)),
-        "initial_grade_G": grade_value(u0, mt, spin.nominal_speed),
-        "max_amplitude": res.stats[:, S_AMAX],
-        "status": status,
-        "steps": res.stats[:, S_STEPS].astype(np.int64),
-        "events": res.stats[:, S_EVENTS].astype(np.int64),
-    }
-    if hist.size:
-        st = res.states[:, n_cp:, :]
-        out["grade_G_history"] = res.grade_G[:, n_cp:]
-        out["amplitude_history"] = np.hypot(st[:, :, 0], st[:, :, 1])
-        out["speed_history"] = st[:, :, speed_index(systems[0].balancer.n_balls)]
-    # a failed run (max_steps, step-size underflow, non-finite state) has no outcome: NaN, with
-    # its status, steps and events kept (its start, initial_grade_G, is still known)
-    failed = status != 0
-    if failed.any():
-        for name in ("grade_G", "residual_unbalance", "ball_angle", "max_amplitude",
-                     "grade_G_history", "amplitude_history", "speed_history"):
-            if name in out:
-                out[name] = np.array(out[name], float)
-                out[name][failed] = np.nan
-    return out
-
+    plan = Plan(spec, cells, angles, [], groups, _families(cells))
+    plan.tasks = plan.tasks_for(np.ones(n_runs, bool))
+    return plan
