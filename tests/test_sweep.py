@@ -675,3 +675,24 @@ n = 4
     plan = make_plan(_centrifuge_spec({}, {"kind": "random", "samples": 3},
                                       ["balancer.n_balls=0"]))
     assert plan.start_angles.shape == (3, 0)
+
+
+@pytest.mark.slow
+def test_keyed_stores_resume_their_own_and_start_new_ones_beside(tmp_path):
+    """keyed=True (the studies' stores): one store per identity under the directory; the same
+    sweep resumes its own (nothing rerun), another option starts a new store instead of being
+    refused, and the first store is left as it was."""
+    from autobalance.models import SimOptions
+
+    spec = spec_of(TINY)
+    a = sweep(spec, tmp_path, executor="serial", progress=False, keyed=True)
+    (first,) = [p for p in tmp_path.iterdir() if p.is_dir()]
+    before = snapshot(first / "tasks")
+    again = sweep(spec, tmp_path, executor="serial", progress=False, keyed=True, resume=True)
+    assert_bit_identical(a, again)
+    assert snapshot(first / "tasks") == before
+    other = sweep(spec, tmp_path, executor="serial", progress=False, keyed=True, resume=True,
+                  options=SimOptions(exact_ramps=False))
+    assert len([p for p in tmp_path.iterdir() if p.is_dir()]) == 2
+    assert snapshot(first / "tasks") == before
+    assert other.sizes == a.sizes

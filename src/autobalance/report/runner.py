@@ -4,7 +4,8 @@
 A target that raises is recorded with status ``error`` and its message; the others still run
 and the report is still written. A published number a target claims but does not report is
 listed as *unreported* (and counted): nothing is skipped silently. Sweep stores live under
-``<out>/stores`` and are reused on a rerun, so an interrupted ``--full`` run resumes.
+``<out>/stores/<name>/<identity>`` and are reused on a rerun, so an interrupted ``--full`` run
+resumes; a changed package or option gets new stores beside the old ones.
 """
 from __future__ import annotations
 

@@ -127,7 +127,9 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
     n : int
         Start positions per ball of the start grid (n(n+1)/2 runs per grid cell).
     store : str or Path or None
-        The sweep store directory (resumed), or None for a temporary one.
+        The sweep's directory, or None for a temporary store: it holds one store per identity
+        of the sweep (:func:`autobalance.sweep.sweep` with ``keyed``), so a rerun resumes its
+        own and a changed machine, option or package version starts a new one beside it.
     executor : str
         "serial", "local" (processes on this machine) or "dask" (:func:`autobalance.sweep.sweep`).
     workers : int or None
@@ -180,7 +182,7 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
             return sweep(spec, Path(d) / name, executor=executor, workers=workers,
                          scheduler=scheduler, progress=progress).load()
     return sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
-                 resume=True, progress=progress).load()
+                 resume=True, progress=progress, keyed=True).load()
 
 
 def checkpoint_labels(spin: SpeedProfile | MotorDrive) -> list:

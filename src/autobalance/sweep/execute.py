@@ -22,7 +22,7 @@ from .plan import Plan, make_plan
 from .task import run_task, task_payload
 from .spec import SweepError, SweepSpec, as_spec, load_spec
 from .store import (StoreLock, assemble, check_identity, check_store_path, covered_runs,
-                    init_store, scan_tasks, write_result, write_task)
+                    identity, init_store, scan_tasks, write_result, write_task)
 
 if TYPE_CHECKING:
     from ..config import Config
@@ -270,7 +270,7 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
           initial: InitialState | None = None, executor: str | None = None,
           workers: int | None = None, scheduler: str | None = None, resume: bool = False,
           progress: bool = True, options: SimOptions | None = None, assemble_result: bool = True,
-          branch: bool = True):
+          branch: bool = True, keyed: bool = False):
     """Run a sweep into a durable store and return the assembled xarray.Dataset.
 
     Parameters
@@ -311,6 +311,12 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
         Run grid cells whose speed profiles agree up to a knot as branches of one history
         (:class:`autobalance.sweep.plan.BranchTask`); False runs every cell on its own. The
         results are the same bit for bit; False is the reference of ``make bench``.
+    keyed : bool
+        ``store`` is a directory of stores, one per identity (``store / identity``, the digest
+        of everything that determines the results): a rerun of the same sweep resumes its own
+        store, and one whose machine, options or package version changed starts a new one
+        beside it instead of being refused (the studies' stores, e.g. ``make run``'s
+        ``out/stores``).
 
     Raises
     ------
@@ -343,6 +349,9 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
         # the override is part of every cell, hence of the store's identity: a resume with
         # other options is refused instead of mixing runs of both in one store
         plan.cells = [dataclasses.replace(c, options=options) for c in plan.cells]
+    if keyed:
+        store = store / identity(plan)
+        check_store_path(store)
     lock = StoreLock(store)
     client = None
     try:
