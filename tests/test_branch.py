@@ -10,7 +10,7 @@ import pytest
 
 from autobalance.config import load_config
 from autobalance.core.integrate import integrate, integrate_span
-from autobalance.core.layout import N_S, S_STATUS, C_WHERE, RunStatus, carry_size
+from autobalance.core.layout import C_EVI, C_WHERE, N_S, S_STATUS, RunStatus, carry_size
 from autobalance.models import InitialState, MotorDrive
 from autobalance.simulate import simulate_batch, simulate_branches
 from autobalance.simulate.pack import atol_vector, initial_vector, pack_params, spin_arrays
@@ -40,7 +40,8 @@ def _kernel_args(cfg, angles):
 
 def _pause_and_continue(cfg, angles, t_pause, prof_w_after=None):
     """(whole run, paused then continued) of one start: (y, out_y, stats) each, and where the
-    run paused. ``prof_w_after``: the speeds the continuation uses (any after the knot)."""
+    run paused (layout.C_WHERE; 5: at the end of a hold with its breakaway). ``prof_w_after``:
+    the speeds the continuation uses (any after the knot)."""
     P, B, N, unb_t, unb_u, y0, atol, h_max = _kernel_args(cfg, angles)
     prof_t, prof_w, t_end = spin_arrays(cfg.spin)
     w_after = prof_w if prof_w_after is None else prof_w_after
@@ -55,7 +56,7 @@ def _pause_and_continue(cfg, angles, t_pause, prof_w_after=None):
     integrate_span(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t_end, o.rtol, atol, h_max,
                    int(o.max_steps), out_t, out_y, stats, t_pause, carry)
     assert stats[S_STATUS] == RunStatus.RUNNING
-    where = int(carry[C_WHERE])
+    where = int(carry[C_WHERE]) if carry[C_EVI] < 0 or carry[C_WHERE] != 3 else 5
     integrate_span(P, B, N, prof_t, w_after, unb_t, unb_u, y, t_end, o.rtol, atol, h_max,
                    int(o.max_steps), out_t, out_y, stats, np.inf, carry)
     return (y_whole, *whole), (y, out_y, stats), where
@@ -108,6 +109,20 @@ def test_pause_on_every_kind_of_arrival(sets, arrivals):
             assert _same(whole, cont), (angles, t_pause, where)
         assert _same(*_pause_and_continue(cfg, angles, prof_t[1], other)[:2])
     assert seen == arrivals
+
+
+@pytest.mark.slow
+def test_pause_anywhere_continues_bit_for_bit():
+    """A pause time inside a segment stops the run at its next arrival after it (a jump's end,
+    a hold's end with its breakaway on 004's plateau): the same profile continues bit for bit."""
+    cfg = load_config("vub_jeffcott_004")
+    seen = set()
+    for angles in _starts(6, seed=5):
+        for t_pause in (12.3, 20.7, 28.9, 33.1, 41.2, 52.5):
+            whole, cont, where = _pause_and_continue(cfg, angles, t_pause)
+            seen.add(where)
+            assert _same(whole, cont), (angles, t_pause, where)
+    assert 5 in seen
 
 
 def _spins(ratios, sets=SHORT):

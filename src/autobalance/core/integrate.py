@@ -239,6 +239,30 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
     return ne
 
 
+@kernel
+def _hold_arrival(ib, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+                  lam, Mm, fv, A, bb, idx, trig, gs):
+    """The end of a hold solved until its first breakaway (ramp.hold_breakaway): ball ``ib``
+    (>= 0) breaks away there and is released as the integrator releases it (ev_kind 1), then
+    the constrained solve (f0, lam, stick margins gs). Returns the events (0 or 1)."""
+    nev = 0
+    if ib >= 0:
+        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv,
+            A, bb, idx, trig)
+        nev = 1
+        sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
+        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, lam,
+                 Mm, fv, A, bb, idx, trig)
+        if stuck[ib] == 1:
+            stuck[ib] = 0
+            sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
+    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm,
+             fv, A, bb, idx, trig)
+    for i in range(N):
+        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+    return nev
+
+
 @inline_kernel
 def _next_h(en, en_old, h_acc, h, h_max):
     """The next trial step and the controller's memory after an accepted step of error norm
@@ -350,12 +374,14 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     """integrate() from a carried state, with an optional pause: the branching of runs that
     share the start of their history (the same machine, start and profile up to a knot).
 
-    ``carry`` (layout.carry_size(N)) with carry[C_WHERE] = 0 starts from y at t = 0; a run that
-    arrives at a profile knot at or after ``t_pause`` [s] stops there before it reads the next
-    segment, with stats[S_STATUS] = RUNNING, its state in y, out_y filled up to the knot and
-    everything else the loop carries in ``carry``. Called again with that y, carry, out_y and
-    stats, and a profile equal up to the knot (any later segments), it continues bit for bit as
-    the run without the pause. t_pause = inf: the whole run.
+    ``carry`` (layout.carry_size(N)) with carry[C_WHERE] = 0 starts from y at t = 0. The run
+    stops at its first arrival at or after ``t_pause`` [s] (the end of a closed-form jump, or a
+    step that ends on a profile knot), before it reads the profile there, with stats[S_STATUS]
+    = RUNNING, its state in y, out_y filled up to that time and everything else the loop
+    carries in ``carry``. Called again with that y, carry, out_y and stats, and a profile equal
+    up to that time, it continues bit for bit as the run without the pause. With t_pause a
+    knot, the stop is on the knot and the later segments may differ (branching). t_pause = inf:
+    the whole run.
     """
     nq = N + 3
     n = 2 * nq
@@ -436,9 +462,14 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         t, h, en, en_old, h_acc, nsteps, nrej, nev, stall, next_try, nhold, nramp, nrhs, kout, \
             ev_kind, ev_i = _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0)
         seg = profile_segment(t, prof_t)
-        inc = _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
-                     sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs, stats, exact)
-        nrhs += 2 * N + 3 if where == 3 else inc
+        if where == 3:                # the hold's end, with its breakaway if any (ev_i)
+            nev += _hold_arrival(ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
+                                 sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs)
+            nrhs += 2 * N + 3
+        else:                         # a jump's end (no event) or a step's
+            nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                           stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs, stats,
+                           exact)
         if where == 4 and stall > 50:
             status = 2
         elif where == 4 and ev_kind < 0:
@@ -468,8 +499,11 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 if t_new > t:
                     t = t_new
                     nramp += 1
+                    if t < t_seg:
+                        next_try = nsteps + 20
                     if t >= t_pause:
                         paused = 1
+                        ev_kind = -1
                         break
                     seg = profile_segment(t, prof_t)
                     _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
@@ -477,8 +511,6 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     nrhs += N + 1
                     for i in range(N):
                         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
-                    if t < t_seg:
-                        next_try = nsteps + 20
                     continue
                 next_try = nsteps + 20
             if flat and all_stuck and t_seg - t > 20.0 * h:
@@ -528,6 +560,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     nhold += 1
                     if t >= t_pause:
                         paused = 2
+                        ev_kind = -1
                         break
                     seg = profile_segment(t, prof_t)
                     if exact:
@@ -556,28 +589,18 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                            s1, s2, c1, c2, f1, stats)
                         t = t_to
                         nhold += 1
-                        if t >= t_pause:
-                            paused = 3
-                            break
-                        seg = profile_segment(t, prof_t)
-                        if ib >= 0:
-                            # a breakaway event, resolved as the integrator's (ev_kind 1)
-                            rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                spin, f0, lam, Mm, fv, A, bb, idx, trig)
-                            nev += 1
-                            sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
-                            _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
-                                     sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig)
-                            if stuck[ib] == 1:
-                                stuck[ib] = 0
-                                sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
-                        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                 spin, f0, lam, Mm, fv, A, bb, idx, trig)
-                        nrhs += 2 * N + 3
-                        for i in range(N):
-                            gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
                         if ib == -2:
                             next_try = nsteps + 20
+                        if t >= t_pause:
+                            paused = 3
+                            ev_kind = -1
+                            ev_i = ib
+                            break
+                        seg = profile_segment(t, prof_t)
+                        nev += _hold_arrival(ib, t, y, P, B, N, seg, prof_t, prof_w, unb_t,
+                                             unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb,
+                                             idx, trig, gs)
+                        nrhs += 2 * N + 3
                         continue
                 next_try = nsteps + 20
         # hard stops at profile knots

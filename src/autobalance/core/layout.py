@@ -100,7 +100,7 @@ C_KOUT = 14       # outputs filled
 C_SPIN0 = 15      # spin mode (0 prescribed, 1 motor, 2 motor at its hold speed)
 C_SPIN1 = 16      # the hold speed of mode 2 [rad/s]
 C_EVK = 17        # the event of the step that arrived at the knot (-1 none)
-C_EVI = 18        # its ball
+C_EVI = 18        # its ball; at a hold's end (C_WHERE = 3) the ball that breaks away there (< 0 none)
 N_C = 19
 # then per ball: stuck (N), slip sign (N), in contact (N), stick margin (N); the constraint
 # forces lam (3N + 1); the derivative f0 at the pause (2 nq)
