@@ -31,6 +31,7 @@ def _plateau(ratio: float) -> str:
     return f"profile.plateau={ratio * wn!r}"
 
 
+@pytest.mark.slow
 def test_balls_that_never_touch_give_the_same_run_with_and_without_contact():
     a, b = _run("compliant", (0.5, 3.0)), _run("none", (0.5, 3.0))
     assert _gap_deg(a) > 60                                  # far apart all along

@@ -82,6 +82,7 @@ def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
     assert len(f["fill_sweep"]) == 4 and f["fill_sweep"][3]["optimum_volume_m3"] >= 150e-6
 
 
+@pytest.mark.slow
 def test_simulate_takes_any_liquid_machine_and_its_overrides():
     """``liquid simulate`` takes a System: the shortcuts are overrides of the machine's keys, so
     ``--volume`` and ``--set liquid.volume`` give the same run, and 001's liquids set the

@@ -145,6 +145,7 @@ def test_a_vanishing_film_leaves_the_bare_jeffcott_rotor():
     assert r.deflection[-1] == pytest.approx(w_j, rel=1e-5)
 
 
+@pytest.mark.slow
 def test_over_filled_water_whirls_asynchronously_and_viscosity_steadies_it():
     """300 ml of water at 70 1/s (1.3 omega_r): the synchronous whirl of the quasi-static liquid
     is unstable; the rotor settles on a whirl at about -17.6 rad/s in the rotor frame (near the

@@ -152,6 +152,7 @@ def test_exact_ramp_equals_integrated_ramp(name):
 @settings(max_examples=8, deadline=None)
 @given(mu=st.floats(0.001, 0.02), f0=st.floats(60.0, 200.0), f1=st.floats(60.0, 200.0),
        a1=st.floats(0.0, 2 * np.pi), gap=st.floats(0.5, 5.5), c=st.floats(300.0, 3000.0))
+@pytest.mark.slow
 def test_exact_ramps_equal_integrated_ramps_property(mu, f0, f1, a1, gap, c):
     """A hold at f0, a ramp to f1 and a hold: the same run with and without the jump."""
     prof = ab.SpeedProfile((0.0, 1.0, 1.5, 3.5, 4.0), (0.0, W * f0, W * f0, W * f1, W * f1))

@@ -46,6 +46,7 @@ def test_a_change_that_changes_nothing_has_no_effect_and_no_noise():
     assert s["variants"]["contact none"]["overrides"] == ["balancer.contact=none"]
 
 
+@pytest.mark.slow
 def test_each_value_is_the_variants_own_monte_carlo_and_effects_are_differences():
     """The variant's row equals an independent start-position run of that variant (same
     seed, so the same starts); the effect is the difference from the base's row."""

@@ -171,6 +171,7 @@ def test_force_phasor_gives_the_vibratory_forces(a, w, rho, beta):
     assert np.allclose(F, vibratory_forces(s, w, a), rtol=1e-10, atol=1e-12 * np.abs(F).max())
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None)
 @given(st.floats(0.3, 3.0), st.floats(0.2, 2.5))
 def test_family_exists_exactly_when_the_capacity_suffices(r, u):
@@ -265,6 +266,7 @@ def test_family_under_gravity_is_attracting_with_a_slow_drift(top):
 
 
 # ============================ tier 4: the speed map ===========================================
+@pytest.mark.slow
 def test_speed_map_isotropic_two_balls_against_the_natural_frequency(cen):
     """Isotropic 2-ball machine, capacity sufficing (Chung & Ro 1999; Green et al. 2006 for the
     full model; 000 eq 12): the balanced state exists at every speed, is never stable below w_n,

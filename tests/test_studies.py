@@ -17,6 +17,7 @@ def machine(tmp_path_factory):
     return load_config("vub_jeffcott_004", SHORT)
 
 
+@pytest.mark.slow
 def test_monte_carlo_same_from_a_preset_and_from_a_python_config(machine, tmp_path):
     a = common.run_start_grid("vub_jeffcott_004", "a", SHORT, {}, 4, executor="serial")
     b = common.run_start_grid(machine, "b", [], {}, 4, executor="serial")
@@ -27,6 +28,7 @@ def test_monte_carlo_same_from_a_preset_and_from_a_python_config(machine, tmp_pa
     assert sum(ds.attrs[f"region_{r}"] for r in ("I.A", "I.B", "II", "III", "IV")) == pytest.approx(1.0)
 
 
+@pytest.mark.slow
 def test_unbalance_and_plateau_on_a_python_config(machine):
     ds = unbalance.compute_unbalance(machine, G=[5.0, 25.0], n=3, executor="serial")
     assert ds["grade_G"].shape == (1, 2, 2, 3) and np.isfinite(ds["grade_G"].values).all()

@@ -63,6 +63,7 @@ def test_start_positions_three_balls_random_starts_and_grade():
     assert [c["time_s"] for c in d["checkpoints"]] == [20.0, 40.0]
 
 
+@pytest.mark.slow
 def test_start_positions_store_resumes_and_a_changed_machine_gets_its_own(tmp_path):
     store = tmp_path / "stores"
     a = run_json("start-positions", CENTRIFUGE, "--n", 3, "--store", store, "--executor", "serial")

@@ -250,6 +250,7 @@ def test_worst_case_is_attained_by_a_real_run():
 
 
 # ============================ tier 4: forward = reverse, the user's machines =================
+@pytest.mark.slow
 def test_forward_and_reverse_agree(top):
     """G16 for the top-loader: the three together scaled to meet the sum of their shares
     exactly (the causes do not add), each alone within its share; a single cause meets its
