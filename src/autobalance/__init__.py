@@ -1,7 +1,8 @@
 """autobalance: simulation and design of passive automatic balancers for rotors.
 
-Public API: the parameter dataclasses, :func:`simulate` (one run) and :func:`simulate_batch`
-(many runs in one compiled call). Configs and presets: :mod:`autobalance.config`.
+Public API: the parameter dataclasses, :func:`simulate` (one run), :func:`simulate_batch`
+(many runs in one compiled call) and :func:`simulate_branches` (many runs under several speed
+profiles that share their start). Configs and presets: :mod:`autobalance.config`.
 """
 __version__ = "0.1.0"
 
@@ -9,11 +10,11 @@ from .models import (BallBalancer, Gravity, InitialState, MotorDrive, ParameterE
                      SimOptions, SpeedProfile, Suspension, System)
 # Bind the functions after importing the submodule of the same name, so that the package
 # attribute stays the function even after ``import autobalance.simulate``.
-from .simulate import simulate, simulate_batch  # noqa: E402
+from .simulate import simulate, simulate_batch, simulate_branches  # noqa: E402
 from .simulate import BatchResult, Simulation, SimulationError  # noqa: E402
 from .sweep import sweep  # noqa: E402  (the function; autobalance.sweep.* stays importable)
 
 __all__ = ["BallBalancer", "BatchResult", "Gravity", "InitialState", "MotorDrive",
            "ParameterError", "Rotor", "SimOptions", "Simulation", "SimulationError",
-           "SpeedProfile", "Suspension", "System", "simulate", "simulate_batch", "sweep",
-           "__version__"]
+           "SpeedProfile", "Suspension", "System", "simulate", "simulate_batch",
+           "simulate_branches", "sweep", "__version__"]
