@@ -201,8 +201,9 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
 def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
            f0, lam, Mm, fv, A, bb, idx, trig, gs, stats, exact):
     """The modes after a step that ends in an event (``ev_kind`` of ball ``ev_i``) or at a
-    profile knot: the event's mode change, the balls that stopped within round-off, the
-    constrained solve (f0, lam, stick margins gs). Returns the RHS evaluations it made."""
+    profile knot, or after a closed-form jump (ev_kind -1, every ball stuck): the event's mode
+    change, the balls that stopped within round-off, the constrained solve (f0, lam, stick
+    margins gs). Returns the RHS evaluations it made."""
     nq = N + 3
     if ev_kind == 0:
         y[nq + 2 + ev_i] = 0.0
@@ -506,11 +507,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         ev_kind = -1
                         break
                     seg = profile_segment(t, prof_t)
-                    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                             spin, f0, lam, Mm, fv, A, bb, idx, trig)
-                    nrhs += N + 1
-                    for i in range(N):
-                        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+                    nrhs += _modes(-1, -1, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                                   stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
+                                   stats, exact)
                     continue
                 next_try = nsteps + 20
             if flat and all_stuck and t_seg - t > 20.0 * h:
@@ -563,16 +562,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         ev_kind = -1
                         break
                     seg = profile_segment(t, prof_t)
-                    if exact:
-                        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                 spin, f0, lam, Mm, fv, A, bb, idx, trig)
-                        nrhs += N + 1
-                    else:
-                        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                            f0, lam, Mm, fv, A, bb, idx, trig)
-                        nrhs += 1
-                    for i in range(N):
-                        gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
+                    nrhs += _modes(-1, -1, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                                   stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
+                                   stats, exact)
                     continue
                 if can_ramp:
                     # ---- the hold until its first breakaway, without stepping (ramp.py R5) ----
