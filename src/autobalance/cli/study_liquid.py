@@ -87,9 +87,14 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     typer.echo(f"{cfg.name}: fill map, {ds['fill'].size} fills x {ds['speed'].size} speeds "
                f"(resonance without liquid {du.fmt(res['resonance_without_liquid_rad_s'], 'speed')})")
     ring = "entrained" if ds.attrs.get("axis", "vertical") == "vertical" else "a ring"
-    for f in res["fills"]:
+    if "chamber_fill" in ds:
+        typer.echo(f"  (fills: the total of {ds['chamber'].size} concentric chambers, each "
+                   "scaled alike from the machine's)")
+    for i, f in enumerate(res["fills"]):
         b = f["balances_from_rad_s"]
-        typer.echo(f"  {f['fill_m3'] * 1e6:7.1f} ml: resonance {du.fmt(f['resonance_rad_s'], 'speed')}, "
+        each = "" if "chamber_fill" not in ds else " (" + " + ".join(
+            f"{x * 1e6:.4g}" for x in ds["chamber_fill"].values[i]) + ")"
+        typer.echo(f"  {f['fill_m3'] * 1e6:7.1f} ml{each}: resonance {du.fmt(f['resonance_rad_s'], 'speed')}, "
                    f"{ring} from {du.fmt(f['entrainment_speed_rad_s'], 'speed')}, balances "
                    + ("nowhere on the grid" if b is None else f"from {du.fmt(b, 'speed')}")
                    + f"; efficiency {f['efficiency_at_nominal']:.3g} at the nominal speed")

@@ -18,7 +18,7 @@ File layout (sections and their keys: :data:`SECTIONS` and :data:`PROFILE_KINDS`
     [gravity]     g, direction
     [liquid]      chamber_radius, chamber_height, volume, density, kinematic_viscosity,
                   partitions, friction_arc, axis, inner_radius  (a Leblanc liquid
-                  balancer)
+                  balancer; the chamber keys take a list for concentric chambers)
     [profile]     kind = constant | ramp | table | std | tsr | motor, and the kind's keys
     [initial]     ball_angles, ball_speeds, x, y, vx, vy, steady_state
     [options]     friction_law, v_sat, normal_force, rtol, atol_scale, max_step, save_dt, max_steps

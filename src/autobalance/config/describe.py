@@ -77,7 +77,8 @@ def describe(config: Config) -> dict:
     initial["ball_speeds_rad_s"] = _jsonable(config.initial.speeds_for(s.balancer))
     wx, wy = s.natural_frequencies
     liquid = {} if s.liquid is None else {"liquid": _fields(s.liquid, SECTIONS["liquid"])}
-    derived_liquid = {} if s.liquid is None else {"liquid_mass_kg": s.liquid.mass,
+    derived_liquid = {} if s.liquid is None else {"liquid_chambers": s.liquid.n_chambers,
+                                                  "liquid_mass_kg": s.liquid.mass,
                                                   "liquid_capacity_kg_m": s.liquid.capacity}
     return {
         "name": s.name, "description": s.description, "source": config.source,

@@ -27,7 +27,7 @@ class F:
     """Specification of one TOML key: kind, shape and whether it is required."""
 
     kind: str  # a KINDS key, or "int", "text", "bool"
-    shape: str = "scalar"  # scalar | per_ball (scalar or list) | list | pairs
+    shape: str = "scalar"  # scalar | per_ball, per_chamber (scalar or list) | list | pairs
     required: bool = False
     pair_kinds: tuple = ()
     choices: tuple = ()  # for text fields; the models check membership
@@ -87,9 +87,11 @@ SECTIONS: dict[str, dict[str, F]] = {
         contact=F("text", choices=CONTACT_MODELS)),
     "gravity": _fields_of(Gravity, g=F("acceleration"), direction=F("angle")),
     "liquid": _fields_of(
-        LiquidDevice, chamber_radius=F("length"), chamber_height=F("length"), volume=F("volume"),
-        density=F("density"), kinematic_viscosity=F("kin_viscosity"), partitions=F("int"),
-        friction_arc=F("angle"), axis=F("text", choices=AXES), inner_radius=F("length")),
+        LiquidDevice, chamber_radius=F("length", "per_chamber"),
+        chamber_height=F("length", "per_chamber"), volume=F("volume", "per_chamber"),
+        density=F("density"), kinematic_viscosity=F("kin_viscosity"),
+        partitions=F("int", "per_chamber"), friction_arc=F("angle"),
+        axis=F("text", choices=AXES), inner_radius=F("length", "per_chamber")),
     "initial": _fields_of(
         InitialState, ball_angles=F("angle", "list"), ball_speeds=F("speed", "list"),
         x=F("length"), y=F("length"), vx=F("velocity"), vy=F("velocity"),
@@ -157,7 +159,7 @@ def _check(spec: F, value: Any) -> Any:
     """pydantic before-validator: TOML value -> SI float / int / str / tuple."""
     if spec.shape == "scalar":
         return _one(spec, value)
-    if spec.shape == "per_ball" and not isinstance(value, (list, tuple)):
+    if spec.shape in ("per_ball", "per_chamber") and not isinstance(value, (list, tuple)):
         return _one(spec, value)
     if spec.shape == "pairs":
         if not isinstance(value, (list, tuple)):

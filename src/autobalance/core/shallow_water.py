@@ -297,28 +297,51 @@ def _gravity_force(Mt, gp, gdir, psi):
 
 
 @kernel
-def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, H: float, rho: float,
-               nu: float, Mt: float, k: float, c: float, D: float, Z0: complex, Y0: complex,
-               t_end: float, tt: np.ndarray, tw: np.ndarray, twd: np.ndarray, gp: float,
-               gdir: float, wall: np.ndarray, out_t: np.ndarray, out_h: np.ndarray,
-               out_q: np.ndarray, out_w: np.ndarray, hn: np.ndarray, qn: np.ndarray,
-               fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray, hl: np.ndarray, hr: np.ndarray,
-               b: np.ndarray, a: np.ndarray) -> tuple[int, complex, complex]:
-    """The film coupled two-way with an isotropic Jeffcott rotor (mass M_t = M + rho V with the
-    liquid, stiffness k, damping c, unbalance D on the rotor frame's x axis) at the prescribed
-    spin w(t) (tables tt [s], tw [rad/s], twd [rad/s^2]).
+def films_moment(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarray,
+                 Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray) -> tuple[complex, complex]:
+    """:func:`film_moment` summed over the films of concentric chambers stored one after the
+    other: film f holds the cells starts[f] to starts[f + 1] - 1 and has the wall radius Rs[f]
+    [m], height Hs[f] [m] and density rhos[f] [kg/m^3]. Returns (U [kg*m], U' [kg*m/s])."""
+    u = 0j
+    ud = 0j
+    for f in range(starts.shape[0] - 1):
+        o0 = starts[f]
+        o1 = starts[f + 1]
+        uf, udf = film_moment(h[o0:o1], q[o0:o1], theta[o0:o1], Rs[f], Hs[f], rhos[f])
+        u += uf
+        ud += udf
+    return u, ud
+
+
+@kernel
+def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarray,
+               Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray, nus: np.ndarray, Mt: float,
+               k: float, c: float, D: float, Z0: complex, Y0: complex, t_end: float,
+               tt: np.ndarray, tw: np.ndarray, twd: np.ndarray, gp: float, gdir: float,
+               wall: np.ndarray, out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray,
+               out_w: np.ndarray, hn: np.ndarray, qn: np.ndarray, fh: np.ndarray, fq: np.ndarray,
+               fqr: np.ndarray, hl: np.ndarray, hr: np.ndarray, b: np.ndarray,
+               a: np.ndarray) -> tuple[int, complex, complex]:
+    """The films of one or more concentric chambers coupled two-way with an isotropic Jeffcott
+    rotor (mass M_t = M + the liquids' masses, stiffness k [N/m], damping c [N*s/m], unbalance
+    D [kg*m] on the rotor frame's x axis) at the prescribed spin w(t) (tables tt [s], tw
+    [rad/s], twd [rad/s^2]). Film f holds the cells starts[f] to starts[f + 1] - 1 of h, q,
+    theta and wall (and of the work arrays), with its wall radius Rs[f] [m], height Hs[f] [m],
+    density rhos[f] [kg/m^3] and viscosity nus[f] [m^2/s]; every chamber is on the same rotor,
+    so every film sees the same deflection.
 
     The rotor's balance in the rotor frame, with the liquid's pull written through the total
-    first moment Z = M_t w + U (w the chamber's deflection [m], U the film's moment [kg*m]):
-    Z'' + 2 i W Z' + i W' Z - W^2 Z + c (w' + i W w) + k w = D (W^2 - i W') + M_t g_p e^{i(gamma
-    - psi)}, so the film's acceleration never needs differentiating; in-plane gravity gp
-    [m/s^2] at the inertial angle gdir [rad] (0: a vertical axis), psi = 0 at t = 0; partitions
-    where wall != 0 (:func:`sw_step`). Each film step (CFL) advances the rotor by 4 RK4
-    sub-steps with U, U' frozen (explicit coupling), and the film by one step forced by the
-    deflection and by w'' from the previous step. h, q, and the returned (Z, Y) are the final
-    state; out_w receives w at out_t. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
+    first moment Z = M_t w + U (w the chamber's deflection [m], U the films' summed moment
+    [kg*m]): Z'' + 2 i W Z' + i W' Z - W^2 Z + c (w' + i W w) + k w = D (W^2 - i W') + M_t g_p
+    e^{i(gamma - psi)}, so the films' acceleration never needs differentiating; in-plane
+    gravity gp [m/s^2] at the inertial angle gdir [rad] (0: a vertical axis), psi = 0 at t = 0;
+    partitions where wall != 0 (:func:`sw_step`). Each time step (CFL of the most restrictive
+    film) advances the rotor by 4 RK4 sub-steps with U, U' frozen (explicit coupling), and every
+    film by one step forced by the deflection and by w'' from the previous step. h, q, and the
+    returned (Z, Y) are the final state; out_h, out_q (len(out_t), total cells) the films at
+    out_t and out_w the deflection. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
     n = h.shape[0]
-    dx = R * 2.0 * math.pi / n
+    nf = starts.shape[0] - 1
     t = 0.0
     Z = Z0
     Y = Y0
@@ -327,32 +350,41 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, H: flo
     steps = 0
     wdd = 0j
     psi = 0.0
-    U, Ud = film_moment(h, q, theta, R, H, rho)
+    U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
     wd_prev = (Y - Ud) / Mt
     while t < t_end:
         W = table_interp(t, tt, tw)
         Wd = table_interp(t, tt, twd)
-        U, Ud = film_moment(h, q, theta, R, H, rho)
+        U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
         w = (Z - U) / Mt
         wd = (Y - Ud) / Mt
         k0 = kout
         kout = _emit(out_t, out_h, out_q, kout, t, h, q)
         for j in range(k0, kout):
             out_w[j] = w
-        g = W * W * R
-        s = sw_max_speed(h, q, g, R)
         dt = t_end - t
-        if s > 0.0 and CFL * dx / s < dt:
-            dt = CFL * dx / s
+        for f in range(nf):
+            o0 = starts[f]
+            o1 = starts[f + 1]
+            s = sw_max_speed(h[o0:o1], q[o0:o1], W * W * Rs[f], Rs[f])
+            dx = Rs[f] * 2.0 * math.pi / (o1 - o0)
+            if s > 0.0 and CFL * dx / s < dt:
+                dt = CFL * dx / s
         if kout < nout and out_t[kout] - t < dt:
             dt = out_t[kout] - t
-        # film step, forced by the chamber's deflection and motion at t
+        # film steps, forced by the chamber's deflection and motion at t
         off = gravity_offset(gp, gdir, psi, W) if gp != 0.0 else 0j
-        wall_height(theta, w.real + off.real, w.imag + off.imag, b)
-        frame_acceleration(theta, R, W, Wd, w.real, w.imag, wd.real, wd.imag, wdd.real,
-                           wdd.imag, a)
-        sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr)
-        # rotor: 4 RK4 sub-steps with the film's moment frozen
+        for f in range(nf):
+            o0 = starts[f]
+            o1 = starts[f + 1]
+            R = Rs[f]
+            wall_height(theta[o0:o1], w.real + off.real, w.imag + off.imag, b[o0:o1])
+            frame_acceleration(theta[o0:o1], R, W, Wd, w.real, w.imag, wd.real, wd.imag,
+                               wdd.real, wdd.imag, a[o0:o1])
+            sw_step(h[o0:o1], q[o0:o1], b[o0:o1], a[o0:o1], W * W * R,
+                    R * 2.0 * math.pi / (o1 - o0), dt, nus[f], R, wall[o0:o1], hn[o0:o1],
+                    qn[o0:o1], fh[o0:o1], fq[o0:o1], fqr[o0:o1], hl[o0:o1], hr[o0:o1])
+        # rotor: 4 RK4 sub-steps with the films' moment frozen
         hs = dt / 4.0
         for j in range(4):
             t0 = j * hs          # the spin angle within the step: psi + W tau + W' tau^2 / 2
@@ -380,12 +412,12 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, H: flo
         steps += 1
         if not ok:
             return -1, Z, Y
-        U, Ud = film_moment(h, q, theta, R, H, rho)
+        U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
         wd_new = (Y - Ud) / Mt
         wdd = (wd_new - wd_prev) / dt
         wd_prev = wd_new
         t += dt
-    U, Ud = film_moment(h, q, theta, R, H, rho)
+    U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
     k0 = kout
     kout = _emit(out_t, out_h, out_q, kout, math.inf, h, q)
     for j in range(k0, kout):

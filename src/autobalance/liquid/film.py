@@ -22,6 +22,8 @@ from ..models._validate import ParameterError, finite, nonneg, positive
 from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     import numpy.typing as npt
 
     from .dynamics import RunUp
@@ -317,49 +319,77 @@ class CoupledRun:
         Output times [s].
     deflection : ndarray (nt,) of complex
         The chamber's (rotor's) deflection w in the rotor frame [m].
-    film : FilmRun
-        The film at the same times.
+    films : tuple of FilmRun
+        The film of each chamber at the same times, from the axis outwards.
     steps : int
         Time steps [-].
     """
 
     t: np.ndarray
     deflection: np.ndarray
-    film: FilmRun
+    films: tuple[FilmRun, ...]
     steps: int
 
+    @property
+    def film(self) -> FilmRun:
+        """The film of a one-chamber run (ValueError for several: use :attr:`films`)."""
+        if len(self.films) != 1:
+            raise ValueError(f"this run has {len(self.films)} films: use .films")
+        return self.films[0]
 
-def coupled_run(rotor: VerticalRotor, radius: float, height: float, volume: float,
+    @property
+    def unbalance(self) -> np.ndarray:
+        """The films' summed first moment about the chamber centre at each output time
+        [kg*m]."""
+        return sum(f.unbalance for f in self.films)
+
+
+def _per_film(name: str, value, n: int) -> tuple:
+    """A scalar (every film) or a sequence of n values (one per film) as a tuple of n."""
+    if isinstance(value, (list, tuple, np.ndarray)):
+        if len(value) != n:
+            raise ParameterError(name, list(value), f"needs {n} values (one per chamber) or one "
+                                 "scalar")
+        return tuple(value)
+    return (value,) * n
+
+
+def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
+                height: float | Sequence[float], volume: float | Sequence[float],
                 speed: float | tuple[npt.ArrayLike, npt.ArrayLike], t_end: float, *,
-                density: float = 1000.0, viscosity: float = 1.0e-6, n_cells: int = 256,
-                save_dt: float | None = None, deflection: complex = 0j, velocity: complex = 0j,
-                gravity: float = 0.0, gravity_direction: float = -0.5 * np.pi,
-                partitions: int = 0) -> CoupledRun:
-    """The film coupled two-way with an isotropic Jeffcott rotor at a prescribed spin
-    (:func:`autobalance.core.shallow_water.sw_coupled`): the rotor's deflection moves the wall
-    (centrifugal wall height, frame accelerations) and the film's first moment pulls the rotor.
-    Starts with the rotor at ``deflection`` moving at ``velocity`` in the rotor frame, and the
-    film at rest on the displaced wall (:func:`film_equilibrium`, with gravity's offset of the
-    potential, core/shallow_water.py).
+                density: float | Sequence[float] = 1000.0,
+                viscosity: float | Sequence[float] = 1.0e-6,
+                n_cells: int | Sequence[int] = 256, save_dt: float | None = None,
+                deflection: complex = 0j, velocity: complex = 0j, gravity: float = 0.0,
+                gravity_direction: float = -0.5 * np.pi,
+                partitions: int | Sequence[int] = 0) -> CoupledRun:
+    """The film of one chamber, or of several concentric chambers on the same rotor, coupled
+    two-way with an isotropic Jeffcott rotor at a prescribed spin
+    (:func:`autobalance.core.shallow_water.sw_coupled`): the rotor's deflection moves every
+    wall (centrifugal wall height, frame accelerations) and the films' summed first moment pulls
+    the rotor. Starts with the rotor at ``deflection`` moving at ``velocity`` in the rotor
+    frame, and each film at rest on the displaced wall (:func:`film_equilibrium`, with
+    gravity's offset of the potential, core/shallow_water.py).
 
     Parameters
     ----------
     rotor : VerticalRotor
         M [kg] (without the liquid), k [N/m], c [N*s/m], D [kg*m] (on the rotor frame's x axis).
-    radius, height : float
-        Chamber R, H [m].
-    volume : float
+    radius, height : float or sequence
+        Chamber R, H [m]; a sequence gives one chamber each (the chamber keys below then take
+        a scalar for all or one value each).
+    volume : float or sequence
         Liquid volume V [m^3] (a wall film).
     speed : float or (array, array)
         Spin Omega [rad/s], constant or a table (times [s], speeds [rad/s]), > 0.
     t_end : float
         End time [s].
-    density : float
+    density : float or sequence
         rho [kg/m^3].
-    viscosity : float
+    viscosity : float or sequence
         nu [m^2/s].
-    n_cells : int
-        Cells around the wall [-].
+    n_cells : int or sequence
+        Cells around each wall [-] (a multiple of its partitions).
     save_dt : float or None
         Output spacing [s] (None: 200 outputs).
     deflection : complex
@@ -370,51 +400,68 @@ def coupled_run(rotor: VerticalRotor, radius: float, height: float, volume: floa
         Gravity in the chamber's plane g_p [m/s^2] (a horizontal axis; 0: a vertical one).
     gravity_direction : float
         Its inertial direction gamma [rad] (-pi/2: down); the spin angle is 0 at t = 0.
-    partitions : int
-        Equally spaced radial walls [-] (:func:`partition_walls`; 0: none).
+    partitions : int or sequence
+        Equally spaced radial walls per chamber [-] (:func:`partition_walls`; 0: none).
 
     Returns
     -------
     CoupledRun
     """
-    from ..core.shallow_water import film_moment, sw_coupled
+    from ..core.shallow_water import films_moment, sw_coupled
 
-    R, H, V = positive("radius", radius), positive("height", height), positive("volume", volume)
+    keys = {"radius": radius, "height": height, "volume": volume, "density": density,
+            "viscosity": viscosity, "n_cells": n_cells, "partitions": partitions}
+    nf = max((len(v) for v in keys.values() if isinstance(v, (list, tuple, np.ndarray))),
+             default=1)
+    cols = {k: _per_film(k, v, nf) for k, v in keys.items()}
     T = positive("t_end", t_end)
-    rho, nu = positive("density", density), positive("viscosity", viscosity)
-    if int(n_cells) != n_cells or n_cells < 8:
-        raise ParameterError("n_cells", n_cells, "must be an integer >= 8")
-    if V / (2 * np.pi * R * H) > 0.25 * R:
-        raise ParameterError("volume", volume, "a wall film needs a mean thickness V / (2 pi R H) "
-                             f"<= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
-    n = int(n_cells)
+    films = []
+    for f in range(nf):
+        tag = "" if nf == 1 else f"[{f}]"
+        R, H = positive(f"radius{tag}", cols["radius"][f]), positive(f"height{tag}", cols["height"][f])
+        V = positive(f"volume{tag}", cols["volume"][f])
+        rho = positive(f"density{tag}", cols["density"][f])
+        nu = positive(f"viscosity{tag}", cols["viscosity"][f])
+        n = cols["n_cells"][f]
+        if int(n) != n or n < 8:
+            raise ParameterError(f"n_cells{tag}", n, "must be an integer >= 8")
+        if V / (2 * np.pi * R * H) > 0.25 * R:
+            raise ParameterError(f"volume{tag}", V, "a wall film needs a mean thickness "
+                                 f"V / (2 pi R H) <= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
+        films.append((R, H, V, rho, nu, int(n), partition_walls(int(n), cols["partitions"][f]),
+                      cols["partitions"][f]))
     tw, w = _table(speed, T, "speed")
     if np.any(w.real <= 0) or np.any(w.imag != 0):
         raise ParameterError("speed", "table" if w.size > 2 else float(w[0].real),
                              "must be > 0 [rad/s]: the film model needs the centrifugal field")
     wv = w.real
     wd = np.gradient(wv, tw) if tw.size > 2 else np.full(tw.size, (wv[-1] - wv[0]) / (tw[-1] - tw[0]))
-    th = _theta(n)
     gp, gdir = nonneg("gravity", gravity), finite("gravity_direction", gravity_direction)
     off = gp / wv[0] ** 2 * np.exp(1j * gdir)
-    wall = partition_walls(n, partitions)
-    h = film_equilibrium(V, R, H, complex(deflection) + off, n, partitions)
-    q = np.zeros(n)
-    Mt = rotor.mass + rho * V
-    U, Ud = film_moment(h, q, th, R, H, rho)
+    starts = np.concatenate([[0], np.cumsum([f[5] for f in films])]).astype(np.int64)
+    th = np.concatenate([_theta(f[5]) for f in films])
+    wall = np.concatenate([f[6] for f in films])
+    h = np.concatenate([film_equilibrium(f[2], f[0], f[1], complex(deflection) + off, f[5], f[7])
+                        for f in films])
+    q = np.zeros(h.size)
+    Rs, Hs, rhos, nus = (np.array([f[k] for f in films], float) for k in (0, 1, 3, 4))
+    Mt = rotor.mass + float(np.sum(rhos * [f[2] for f in films]))
+    U, Ud = films_moment(h, q, th, starts, Rs, Hs, rhos)
     Z0 = Mt * complex(deflection) + U
     Y0 = Mt * complex(velocity) + Ud
     out_t = np.linspace(0.0, T, 201) if not save_dt else np.arange(0.0, T + 0.5 * save_dt, save_dt)
-    out_h, out_q = np.zeros((out_t.size, n)), np.zeros((out_t.size, n))
+    out_h, out_q = np.zeros((out_t.size, h.size)), np.zeros((out_t.size, h.size))
     out_w = np.zeros(out_t.size, complex)
-    work = [np.zeros(n) for _ in range(9)]
-    steps, Z, Y = sw_coupled(h, q, th, R, H, rho, nu, Mt, rotor.stiffness, rotor.damping,
-                             rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd, gp, gdir, wall,
-                             out_t, out_h, out_q, out_w, *work)
+    work = [np.zeros(h.size) for _ in range(9)]
+    steps, Z, Y = sw_coupled(h, q, th, starts, Rs, Hs, rhos, nus, Mt, rotor.stiffness,
+                             rotor.damping, rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd, gp,
+                             gdir, wall, out_t, out_h, out_q, out_w, *work)
     if steps < 0:
         raise FloatingPointError("coupled_run: the state became non-finite")
-    film = FilmRun(out_t, th, out_h, out_q, R, H, float(rho), int(steps))
-    return CoupledRun(out_t, out_w, film, int(steps))
+    runs = tuple(FilmRun(out_t, th[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f[0], f[1], f[3],
+                         int(steps))
+                 for f, o0, o1 in zip(films, starts[:-1], starts[1:]))
+    return CoupledRun(out_t, out_w, runs, int(steps))
 
 
 def physical_run_up(rotor: VerticalRotor, bal: LiquidBalancer, omega_end: float, duration: float,

@@ -140,10 +140,11 @@ class LiquidBalancer:
         Parameters
         ----------
         device : autobalance.models.LiquidDevice
-            The section (SI); ParameterError (one line) with partitions, which the analyses
-            taking a LiquidBalancer (quasi-static, lumped) do not model (the film model of
-            ``simulate`` does).
+            The section (SI); ParameterError (one line) with partitions or several chambers,
+            which the analyses taking a LiquidBalancer (quasi-static, lumped, kinetostatic) do
+            not model (the film model of ``simulate`` does).
         """
+        device = device.single("this analysis (quasi-static, lumped or kinetostatic liquid)")
         if device.partitions:
             raise ParameterError("liquid.partitions", device.partitions, "must be 0 for this "
                                  "analysis (the quasi-static liquid has no partitions; "

@@ -72,6 +72,13 @@ class LiquidSimulation:
         The profile's nominal speed, for the ISO grade [rad/s].
     steps : int
         Film time steps [-].
+    status : str
+        ``"ok"`` or ``"outside_model"`` (a film reached its chamber's inner wall).
+    message : str
+        Why, for a status other than ok.
+    chamber_unbalance : ndarray (nt, chambers) of complex or None
+        Each chamber's film moment, from the axis outwards, for several concentric chambers
+        (their sum is ``liquid_unbalance``) [kg*m]; None for one chamber.
     """
 
     system: System
@@ -86,6 +93,7 @@ class LiquidSimulation:
     steps: int
     status: str = "ok"
     message: str = ""
+    chamber_unbalance: np.ndarray | None = None
 
     @property
     def amplitude(self) -> np.ndarray:
@@ -116,7 +124,8 @@ class LiquidSimulation:
         closed form; exact for a slow run-up, an upper bound of its transient otherwise)."""
         L = self.system.liquid
         w = np.linspace(0.0, self.film_start_speed, 2001)
-        return float(np.max(np.abs(pool_response(film_rotor(self.system), L.volume, L.density, w))))
+        return float(np.max(np.abs(pool_response(film_rotor(self.system), L.total_volume,
+                                                 L.density, w))))
 
     def at(self, times: npt.ArrayLike) -> dict:
         """Grade [mm/s] and residual unbalance [kg*m] at ``times`` [s]: the run's, linearly
@@ -163,6 +172,11 @@ class LiquidSimulation:
             "max_amplitude_without_liquid_m": float(np.max(self.amplitude_without_liquid)),
             "max_amplitude_before_film_m": self.max_amplitude_before_film,
             "film_steps": self.steps,
+            **({} if self.chamber_unbalance is None else {"chambers": [
+                {"chamber_radius_m": c.chamber_radius,
+                 "liquid_unbalance_kg_m": float(abs(u)),
+                 "liquid_angle_deg": float(np.degrees(np.angle(u)))}
+                for c, u in zip(self.system.liquid.chambers, self.chamber_unbalance[-1])]}),
         }
 
     def to_xarray(self):
@@ -182,11 +196,19 @@ class LiquidSimulation:
                 "synchronous_unbalance_y": ("time", self.synchronous_unbalance.imag,
                                             {"units": "kg m"}),
                 "grade": ("time", self.grade, {"units": "mm/s"})}
+        coords = {"time": ("time", self.t, {"units": "s"})}
+        if self.chamber_unbalance is not None:
+            Uc = self.chamber_unbalance
+            data["chamber_unbalance_x"] = (("time", "chamber"), Uc.real,
+                                           {"units": "kg m", "long_name": "each chamber's film"})
+            data["chamber_unbalance_y"] = (("time", "chamber"), Uc.imag, {"units": "kg m"})
+            coords["chamber_radius"] = ("chamber", [c.chamber_radius for c in
+                                                    self.system.liquid.chambers], {"units": "m"})
         attrs = {"model": "wall film coupled with the rotor (autobalance.liquid.simulate)",
                  "film_start_speed_rad_s": self.film_start_speed,
                  "film_start_s": self.film_start, "status": self.status,
                  "system": json.dumps({"name": self.system.name})}
-        return xr.Dataset(data, coords={"time": ("time", self.t, {"units": "s"})}, attrs=attrs)
+        return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def to_netcdf(self, path: str | Path) -> None:
         """Write :meth:`to_xarray` to a NetCDF file.
@@ -320,20 +342,21 @@ def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
                      g_axial: float = G_STANDARD) -> float:
     """Speed from which the wall-film model holds [rad/s]: :func:`.steady.start_speed` of the
     machine's chamber, fill and axis (vertical: 003 eq 6's entrainment speed; horizontal: where
-    gravity's offset g/Omega^2 of the potential is R/10).
+    gravity's offset g/Omega^2 of the potential is R/10); with several chambers the largest,
+    where every chamber's liquid is a ring.
 
     Parameters
     ----------
     device : autobalance.models.LiquidDevice
-        The chamber (R, h [m]), fill V [m^3] and axis.
+        The chambers (R, h [m]), fills V [m^3] and axis.
     g_plane : float
         In-plane gravity for a horizontal axis [m/s^2].
     g_axial : float
         Gravity along a vertical axis [m/s^2].
     """
-    return start_speed(device.volume, device.chamber_radius, device.chamber_height,
-                       g_plane if device.axis == "horizontal" else g_axial, axis=device.axis,
-                       inner_radius=device.inner_radius)
+    g = g_plane if device.axis == "horizontal" else g_axial
+    return max(start_speed(c.volume, c.chamber_radius, c.chamber_height, g, axis=c.axis,
+                           inner_radius=c.inner_radius) for c in device.chambers)
 
 
 def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.ndarray]:
@@ -407,13 +430,15 @@ def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256)
     from ..core.shallow_water import CFL
 
     w0 = check_liquid_run(system, spin)
-    liq = system.liquid
-    R = liq.chamber_radius
-    eta = liq.volume / (2 * np.pi * R * liq.chamber_height)
     t0, tt, ww = _film_table(spin, w0)
     mean_speed = float(np.sum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt)) / tt[-1])
-    steps = STEP_FACTOR * tt[-1] * mean_speed * np.sqrt(R * eta) / (CFL * 2 * np.pi * R / n_cells)
-    return float(steps * STEP_COST_256 * n_cells / 256)
+    chambers = system.liquid.chambers
+    # the step is the most restrictive chamber's; a step costs as many cells as all films hold
+    rate = max(np.sqrt(c.chamber_radius * c.volume / (2 * np.pi * c.chamber_radius
+                                                      * c.chamber_height))
+               / (2 * np.pi * c.chamber_radius / n_cells) for c in chambers)
+    steps = STEP_FACTOR * tt[-1] * mean_speed * rate / CFL
+    return float(steps * STEP_COST_256 * n_cells * len(chambers) / 256)
 
 
 def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
@@ -459,12 +484,14 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     gp = system.gravity.g if liq.axis == "horizontal" else 0.0
     gdir = system.gravity.direction
     sag = system.total_mass * gp / s.kx * np.exp(1j * gdir)      # static, inertial frame
-    start = pool_response(rotor, liq.volume, liq.density, ww[0])   # liquid as rigid mass
-    if liq.partitions and n_cells % liq.partitions:     # whole compartments of cells
-        n_cells = liq.partitions * -(-int(n_cells) // liq.partitions)
-    run = coupled_run(rotor, liq.chamber_radius, liq.chamber_height, liq.volume, (tt, ww), T,
-                      density=liq.density, viscosity=liq.kinematic_viscosity, n_cells=n_cells,
-                      partitions=liq.partitions,
+    start = pool_response(rotor, liq.total_volume, liq.density, ww[0])  # liquid as rigid mass
+    ch = liq.chambers
+    cells = [c.partitions * -(-int(n_cells) // c.partitions) if c.partitions else int(n_cells)
+             for c in ch]                                   # whole compartments of cells
+    run = coupled_run(rotor, [c.chamber_radius for c in ch], [c.chamber_height for c in ch],
+                      [c.volume for c in ch], (tt, ww), T, density=liq.density,
+                      viscosity=liq.kinematic_viscosity, n_cells=cells,
+                      partitions=[c.partitions for c in ch],
                       save_dt=T / (int(n_out) - 1), deflection=complex(start + sag),
                       velocity=complex(-1j * ww[0] * sag), gravity=gp, gravity_direction=gdir)
     # the spin angle at the outputs (psi = 0 at the film's start; exact on the linear table)
@@ -473,12 +500,18 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     slope = (ww[i + 1] - ww[i]) / (tt[i + 1] - tt[i])
     psi = psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
     whirl = run.deflection - sag * np.exp(-1j * psi)
-    U = run.film.unbalance
-    touch = run.film.inner_wall_time(liq.inner_radius)
-    status, message = ("ok", "") if touch is None else (
-        RunStatus.OUTSIDE_MODEL.label,
-        f"the film reaches the inner wall (r_i = {liq.inner_radius:.4g} m) at t = "
-        f"{t0 + touch:.4g} s: the wall-film model does not hold from there")
+    U = run.unbalance
+    touches = [(tc, c) for f, c in zip(run.films, ch)
+               if (tc := f.inner_wall_time(c.inner_radius)) is not None]
+    status, message = ("ok", "")
+    if touches:
+        touch, c = min(touches, key=lambda x: x[0])
+        which = "" if len(ch) == 1 else f" of the chamber R = {c.chamber_radius:.4g} m"
+        status, message = (RunStatus.OUTSIDE_MODEL.label,
+                           f"the film{which} reaches the inner wall (r_i = {c.inner_radius:.4g} "
+                           f"m) at t = {t0 + touch:.4g} s: the wall-film model does not hold "
+                           "from there")
+    per = None if len(ch) == 1 else np.stack([f.unbalance for f in run.films], axis=-1)
     return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), whirl, U,
                             revolution_average(psi, U), t0, w0, float(spin.nominal_speed),
-                            run.steps, status, message)
+                            run.steps, status, message, per)

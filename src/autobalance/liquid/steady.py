@@ -34,11 +34,13 @@ from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 from .quasistatic import quasi_static
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     import numpy.typing as npt
 
 __all__ = ["GRAVITY_OFFSET_MAX", "physical_fill_sweep", "physical_steady_response",
            "pool_response", "response_curve", "ring_response", "start_speed",
-           "synchronous_deflection"]
+           "steady_amplitude", "synchronous_deflection"]
 
 #: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
 #: for the liquid models on a horizontal axis (first order in g/(Omega^2 R), core/shallow_water.py)
@@ -75,11 +77,16 @@ def start_speed(volume: float, radius: float, height: float, g: float = G_STANDA
     return entrainment_speed(volume, radius, height, g, inner_radius=inner_radius)
 
 
-def _G(w, rotor, Wsp, chamber, volume, density, g, axis):
-    R, H, ri = chamber
-    q = quasi_static(R, H, volume, density, Wsp, w, inner_radius=ri, g=g, axis=axis)
-    dyn = rotor.stiffness - (rotor.mass + q.mass) * Wsp ** 2 + 1j * rotor.damping * Wsp
-    return dyn * w - Wsp ** 2 * (rotor.unbalance + q.unbalance)
+def _G(w, rotor, Wsp, chambers, density, g, axis, pool_mass):
+    """G(w) of the module docstring summed over the chambers (R, H, r_i, V) whose liquid is a
+    ring; ``pool_mass`` [kg] is liquid below its start speed, a mass without unbalance."""
+    mass, unb = pool_mass, 0j
+    for R, H, ri, V in chambers:
+        q = quasi_static(R, H, V, density, Wsp, w, inner_radius=ri, g=g, axis=axis)
+        mass += q.mass
+        unb += q.unbalance
+    dyn = rotor.stiffness - (rotor.mass + mass) * Wsp ** 2 + 1j * rotor.damping * Wsp
+    return dyn * w - Wsp ** 2 * (rotor.unbalance + unb)
 
 
 def ring_response(rotor: VerticalRotor, chamber_volume: float, volume: float, density: float,
@@ -103,25 +110,29 @@ def ring_response(rotor: VerticalRotor, chamber_volume: float, volume: float, de
     return complex(pool_response(rotor, chamber_volume, density, speed))
 
 
-def synchronous_deflection(rotor: VerticalRotor, radius: float, height: float, volume: float,
-                           density: float, speed: float, *, inner_radius: float = 0.0,
-                           g: float = G_STANDARD, axis: str = "vertical",
-                           guess: complex | None = None) -> complex:
-    """A root w [m] of G(w) = 0 (module docstring) near ``guess``.
+def synchronous_deflection(rotor: VerticalRotor, radius: float | Sequence[float],
+                           height: float | Sequence[float], volume: float | Sequence[float],
+                           density: float, speed: float, *,
+                           inner_radius: float | Sequence[float] = 0.0, g: float = G_STANDARD,
+                           axis: str = "vertical", guess: complex | None = None,
+                           pool_mass: float = 0.0) -> complex:
+    """A root w [m] of G(w) = 0 (module docstring) near ``guess``; with several concentric
+    chambers on the rotor (sequences of R, h, V, r_i) their liquids' masses and moments add up
+    in G, every chamber at the same deflection.
 
     Parameters
     ----------
     rotor : VerticalRotor
         M [kg], k [N/m], c [N*s/m], D [kg*m].
-    radius, height : float
-        Chamber R, h [m].
-    volume : float
+    radius, height : float or sequence
+        Chamber R, h [m] (a sequence: one chamber each; a scalar key holds for every chamber).
+    volume : float or sequence
         Liquid volume V [m^3].
     density : float
         rho [kg/m^3].
     speed : float
         Omega [rad/s], > 0.
-    inner_radius : float
+    inner_radius : float or sequence
         Inner wall r_i [m].
     g : float
         Gravity [m/s^2].
@@ -129,6 +140,9 @@ def synchronous_deflection(rotor: VerticalRotor, radius: float, height: float, v
         "vertical", "horizontal" or "planar" (:func:`~autobalance.liquid.quasistatic.quasi_static`).
     guess : complex or None
         Start of the Newton iteration [m] (None: the rotor without liquid's unbalance).
+    pool_mass : float
+        Liquid of other chambers below their start speed (:func:`pool_response`): a mass that
+        translates with the chamber and balances nothing [kg].
 
     Returns
     -------
@@ -136,14 +150,19 @@ def synchronous_deflection(rotor: VerticalRotor, radius: float, height: float, v
         w [m]; NaN if the iteration does not converge.
     """
     W = positive("speed", speed)
-    chamber = (float(radius), float(height), float(inner_radius))
+    cols = [np.atleast_1d(np.asarray(x, float)) for x in (radius, height, inner_radius, volume)]
+    n = max(c.size for c in cols)
+    if any(c.size not in (1, n) for c in cols):
+        raise ParameterError("volume", [float(v) for v in cols[3]], f"needs {n} values (one "
+                             "per chamber) or one scalar, as the other chamber keys")
+    chambers = list(zip(*(np.broadcast_to(c, n).tolist() for c in cols)))
     if guess is None:
-        m = rotor.mass + density * volume
+        m = rotor.mass + pool_mass + density * float(np.sum(cols[3] * (n // cols[3].size)))
         guess = W * W * rotor.unbalance / (rotor.stiffness - m * W * W + 1j * rotor.damping * W)
-    scale = max(abs(guess), 1e-6 * radius)
+    scale = max(abs(guess), 1e-6 * float(np.max(cols[0])))
 
     def f(x):
-        r = _G(complex(x[0], x[1]) * scale, rotor, W, chamber, volume, density, g, axis)
+        r = _G(complex(x[0], x[1]) * scale, rotor, W, chambers, density, g, axis, pool_mass)
         return [r.real / (rotor.stiffness * scale), r.imag / (rotor.stiffness * scale)]
 
     sol, info, _, _ = fsolve(f, [guess.real / scale, guess.imag / scale], full_output=True,
@@ -312,13 +331,47 @@ def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.
     R, h, rho = bal.chamber.radius, bal.chamber.height, bal.liquid.density
     ri = bal.chamber.inner_radius
     dry = float(np.abs(pool_response(rotor, 0.0, rho, omega)))   # the empty chamber
-    if axis not in ("vertical", "horizontal"):
-        raise ParameterError("axis", axis, "must be 'vertical' or 'horizontal'")
-    qs_axis = "planar" if axis == "horizontal" else "vertical"
-    amps = np.array([dry if V <= 0 else abs(pool_response(rotor, V, rho, omega))
-                     if omega < start_speed(V, R, h, g, axis=axis, inner_radius=ri)
-                     else abs(synchronous_deflection(rotor, R, h, V, rho, omega, inner_radius=ri,
-                                                     g=g, axis=qs_axis))
-                     for V in vols])
+    amps = np.array([dry if V <= 0 else steady_amplitude(rotor, [(R, h, ri, V)], rho, omega, g,
+                                                         axis=axis) for V in vols])
     return {"volume_m3": vols, "amplitude_m": amps, "efficiency": dry / amps,
             "optimum_volume_m3": float(vols[int(np.nanargmin(amps))]), "omega_rad_s": float(omega)}
+
+
+def steady_amplitude(rotor: VerticalRotor, chambers: Sequence[tuple[float, float, float, float]],
+                     density: float, omega: float, g: float = G_STANDARD,
+                     axis: str = "vertical") -> float:
+    """Steady whirl amplitude |w| [m] at ``omega`` of a rotor with the liquid of one or more
+    concentric chambers: the liquid of each chamber at or above its start speed
+    (:func:`start_speed`) is the quasi-static ring (:func:`synchronous_deflection`; planar on a
+    horizontal axis, as :func:`physical_fill_sweep`), the others a centred pool or a puddle held
+    by gravity (a mass, no unbalance; :func:`pool_response` if no chamber has a ring).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    chambers : sequence of (float, float, float, float)
+        Per chamber (R [m], h [m], r_i [m], V [m^3]), V > 0.
+    density : float
+        rho [kg/m^3].
+    omega : float
+        Speed [rad/s], > 0.
+    g : float
+        Gravity [m/s^2] (along a vertical axis, in the plane of a horizontal one).
+    axis : str
+        "vertical" or "horizontal".
+    """
+    if axis not in ("vertical", "horizontal"):
+        raise ParameterError("axis", axis, "must be 'vertical' or 'horizontal'")
+    ring = [c for c in chambers if omega >= start_speed(c[3], c[0], c[1], g, axis=axis,
+                                                        inner_radius=c[2])]
+    total = sum(c[3] for c in chambers)
+    if not ring:
+        return float(abs(pool_response(rotor, total, density, omega)))
+    pool = density * (total - sum(c[3] for c in ring)) if len(ring) < len(chambers) else 0.0
+    R, h, ri, V = (list(x) for x in zip(*ring))
+    if len(ring) == 1:
+        R, h, ri, V = R[0], h[0], ri[0], V[0]
+    return abs(synchronous_deflection(rotor, R, h, V, density, omega, inner_radius=ri, g=g,
+                                      axis="planar" if axis == "horizontal" else "vertical",
+                                      pool_mass=pool))

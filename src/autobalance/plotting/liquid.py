@@ -434,7 +434,8 @@ def speed_series_figure(omegas: npt.ArrayLike, curves: list[tuple[str, npt.Array
 def liquid_run_figure(sim: LiquidSimulation, grade_limit: float = 16.0,
                       grade_label: str | None = None, time_unit: str = "s") -> Figure:
     """One liquid-balancer run over time: the whirl amplitude with and without the liquid, the
-    liquid's moment and angle from the unbalance, and the ISO grade.
+    liquid's moment and angle from the unbalance (and each chamber's, for several), and the ISO
+    grade.
 
     Parameters
     ----------
@@ -450,6 +451,9 @@ def liquid_run_figure(sim: LiquidSimulation, grade_limit: float = 16.0,
     U = sim.synchronous_unbalance
     cap = sim.system.liquid.capacity
     x, xl = sim.t, f"time [{time_unit}]"
+    per = [] if sim.chamber_unbalance is None else [     # several chambers: each one's film
+        (f"chamber R = {c.chamber_radius:g} m: |U_j| / ρV_jR_j", np.abs(u) / c.capacity, "-.")
+        for c, u in zip(sim.system.liquid.chambers, sim.chamber_unbalance.T)]
     fig = curves_figure([
         {"x": x, "xlabel": xl, "ylabel": "whirl amplitude [mm]", "title": "rotor",
          "curves": [("with liquid", 1e3 * sim.amplitude, ""),
@@ -458,7 +462,7 @@ def liquid_run_figure(sim: LiquidSimulation, grade_limit: float = 16.0,
          "title": "liquid (synchronous part)",
          "curves": [("|U| / ρVR", np.abs(U) / cap, ""),
                     ("angle from the unbalance in [0, 360°) / 180°",
-                     np.mod(np.degrees(np.angle(U)), 360.0) / 180.0, ":")]},
+                     np.mod(np.degrees(np.angle(U)), 360.0) / 180.0, ":"), *per]},
         {"x": x, "xlabel": xl, "ylabel": "grade G [mm/s]", "title": "ISO 1940 grade",
          "curves": [("G of |D + U_sync|", sim.grade, ""),
                     (grade_label or f"G{grade_limit:g}", np.full(x.size, grade_limit), "k--")]},

@@ -36,19 +36,36 @@ TIE = 0.01
 
 def default_fills(device: LiquidDevice) -> np.ndarray:
     """The default fills of a liquid balancer's maps and sweeps: 10 fills from 0.25 to 2.5 times
-    its own, each at most 0.9 of the chamber.
+    its own, each at most 0.9 of the chamber; with several chambers the total of all chambers,
+    each chamber's fill scaled alike (:func:`chamber_fills`), at most 0.9 of the fullest
+    chamber.
 
     Parameters
     ----------
     device : autobalance.models.LiquidDevice
-        The ``[liquid]`` section (volume V and chamber volume [m^3]).
+        The ``[liquid]`` section (volumes V and chamber volumes [m^3]).
 
     Returns
     -------
     ndarray
         Fills [m^3].
     """
-    return np.minimum(np.linspace(0.25, 2.5, 10) * device.volume, 0.9 * device.chamber_volume)
+    cap = min(0.9 * c.chamber_volume / c.volume for c in device.chambers)
+    return np.minimum(np.linspace(0.25, 2.5, 10), cap) * device.total_volume
+
+
+def chamber_fills(device: LiquidDevice, fill: float) -> list[float]:
+    """Each chamber's volume [m^3] for the total fill ``fill`` [m^3]: the machine's own volumes
+    scaled alike (one chamber: ``[fill]``).
+
+    Parameters
+    ----------
+    device : autobalance.models.LiquidDevice
+        The ``[liquid]`` section.
+    fill : float
+        Total fill [m^3].
+    """
+    return [float(fill) * c.volume / device.total_volume for c in device.chambers]
 
 
 def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None = None,
@@ -85,21 +102,26 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
 
     from ..config import Config, load_config, replace_values
     from ..config.overrides import parse_override
-    from ..liquid.models import G_STANDARD
-    from ..liquid.simulate import liquid_parts
-    from ..liquid.steady import physical_fill_sweep, pool_response, start_speed
+    from ..liquid.models import G_STANDARD, LiquidBalancer
+    from ..liquid.simulate import film_rotor, require_liquid_machine
+    from ..liquid.steady import pool_response, start_speed, steady_amplitude
 
     t0 = time.perf_counter()
     cfg = (replace_values(base, dict(parse_override(s) for s in sets)) if sets else base) \
         if isinstance(base, Config) else load_config(base, list(sets))
     s = cfg.system
-    rotor, bal = liquid_parts(s)       # one-line refusals of what the liquid models do not cover
+    require_liquid_machine(s)         # one-line refusals of what the liquid models do not cover
     L = s.liquid
+    for c in L.chambers:
+        LiquidBalancer.of(c)          # and of partitions, which the quasi-static liquid has not
+    rotor = film_rotor(s)
     g = s.gravity.g if L.axis == "horizontal" else G_STANDARD
     V = np.asarray(default_fills(L) if fills is None else fills, float)
-    if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= L.chamber_volume):
+    top = min(c.chamber_volume / c.volume for c in L.chambers) * L.total_volume
+    if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= top):
         raise ParameterError("fills", [float(x) for x in np.atleast_1d(V)], f"must be volumes in (0, "
-                             f"{L.chamber_volume:.4g}) m^3 (the chamber)")
+                             f"{top:.4g}) m^3 (" + ("the chamber)" if L.n_chambers == 1 else
+                             "the total of all chambers, scaled alike, until one is full)"))
     wn = np.sqrt(s.suspension.kx / s.total_mass)
     top = max(SPEED_RATIOS[1] * wn, float(cfg.spin.nominal_speed))
     W = np.asarray(np.linspace(SPEED_RATIOS[0] * wn, top, 36 if quick else 121)
@@ -107,11 +129,13 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
     if W.ndim != 1 or W.size < 2 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
         raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)], "must be >= 2 increasing "
                              "speeds > 0 [rad/s]")
-    amp = np.array([physical_fill_sweep(rotor, bal, V, w, g, axis=L.axis)["amplitude_m"]
-                    for w in W]).T
+    per = [[(c.chamber_radius, c.chamber_height, c.inner_radius, v)
+            for c, v in zip(L.chambers, chamber_fills(L, f))] for f in V]
+    amp = np.array([[steady_amplitude(rotor, p, L.density, w, g, axis=L.axis) for w in W]
+                    for p in per])
     dry = np.abs(pool_response(rotor, 0.0, L.density, W))
-    w0 = np.array([start_speed(v, L.chamber_radius, L.chamber_height, g, axis=L.axis,
-                               inner_radius=L.inner_radius) for v in V])
+    w0 = np.array([max(start_speed(v, R, h, g, axis=L.axis, inner_radius=ri)
+                       for R, h, ri, v in p) for p in per])
     vertical = L.axis == "vertical"
     ds = xr.Dataset(
         {"amplitude": (("fill", "speed"), amp, {"units": "m", "long_name": "steady whirl"}),
@@ -121,8 +145,15 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
          "entrained": (("fill", "speed"), W[None, :] >= w0[:, None]),
          "entrainment_speed": ("fill", w0, {"units": "rad/s", "long_name": "003 eq 6" if vertical
                                             else "ring start: g/Omega^2 = R/10"}),
-         "resonance": ("fill", W[np.argmax(amp, axis=1)], {"units": "rad/s"})},
-        coords={"fill": ("fill", V, {"units": "m^3"}), "speed": ("speed", W, {"units": "rad/s"})},
+         "resonance": ("fill", W[np.argmax(amp, axis=1)], {"units": "rad/s"}),
+         **({} if L.n_chambers == 1 else {"chamber_fill": (
+             ("fill", "chamber"), np.array([[x[3] for x in p] for p in per]),
+             {"units": "m^3", "long_name": "each chamber's volume (the total scaled alike)"})})},
+        coords={"fill": ("fill", V, {"units": "m^3", **({} if L.n_chambers == 1 else {
+                    "long_name": "total of all chambers"})}),
+                "speed": ("speed", W, {"units": "rad/s"}),
+                **({} if L.n_chambers == 1 else {"chamber_radius": (
+                    "chamber", [c.chamber_radius for c in L.chambers], {"units": "m"})})},
         attrs={"machine": cfg.name, "axis": L.axis,
                "model": "quasi-static liquid in the displaced chamber (vertical axis); a centred "
                "pool below the entrainment speed" if vertical else "quasi-static liquid in the "
@@ -233,20 +264,33 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
     T = float(duration)
     if not (np.isfinite(T) and T > 0):
         raise ParameterError("duration", duration, "must be > 0 [s]")
-    spec = {"sweep": {"name": "stability-map", "batch_size": 4,
-                      "set": ["profile.kind=constant", f"profile.duration={T!r}",
-                              f"profile.speed={float(speeds[0])!r}"]},
-            "grid": {"liquid.volume": [float(v) for v in fills],
-                     "profile.speed": [float(w) for w in speeds]},
-            "outputs": {"history_dt": T / 200.0}}
+    common = ["profile.kind=constant", f"profile.duration={T!r}",
+              f"profile.speed={float(speeds[0])!r}"]
+    several = device is not None and device.n_chambers > 1
+    # one chamber: one sweep over fill x speed; several: one sweep over the speeds per fill,
+    # each with every chamber's volume (a grid value is one number per key)
+    runs = [(None, common, {"liquid.volume": [float(v) for v in fills]})] if not several else [
+        (f"fill-{i}", common + ["liquid.volume=" + repr(chamber_fills(device, v))], {})
+        for i, v in enumerate(fills)]
     if not hasattr(base, "system"):
-        spec["sweep"]["base"] = str(base)
-        base = None
+        base_file, base = str(base), None
+    else:
+        base_file = None
+    parts = []
     with tempfile.TemporaryDirectory() as tmp:
-        ds = sweep(spec_from_dict(spec, "stability map", base=base), store or f"{tmp}/map",
-                   executor=executor, workers=workers, progress=progress,
-                   resume=store is not None and Path(store).exists())
-        ds = ds.load()
+        root = Path(store) if store else Path(tmp) / "map"
+        for sub, sets, grid in runs:
+            spec = {"sweep": {"name": "stability-map", "batch_size": 4, "set": sets},
+                    "grid": {**grid, "profile.speed": [float(w) for w in speeds]},
+                    "outputs": {"history_dt": T / 200.0}}
+            if base_file is not None:
+                spec["sweep"]["base"] = base_file
+            where = root / sub if sub else root
+            part = sweep(spec_from_dict(spec, "stability map", base=base), where,
+                         executor=executor, workers=workers, progress=progress,
+                         resume=store is not None and where.exists())
+            parts.append(part.load())
+        ds = parts[0] if not several else xr.concat(parts, dim="liquid__volume")
     late_of = lambda name: ds[name].isel(sample=0).where(ds["history_time"] >= 0.75 * T,  # noqa: E731
                                                          drop=True)
     mean = late_of("amplitude_history").mean("history_time")
