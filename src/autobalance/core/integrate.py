@@ -32,7 +32,7 @@ from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS
                      S_YMAX, P_DELTA, P_HOLDS, P_SYM)
 from .hold import (ball_unbalance, hold_coeffs, hold_finish, hold_margin_ok, hold_roots,
                    hold_state)
-from .layout import P_BETA, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
+from .layout import P_BETA, P_DENSE, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
 from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_KOUT, C_NEV, C_NEXT, C_NHOLD,
                      C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1, C_STALL, C_T, C_WHERE,
                      N_C, RunStatus)
@@ -61,6 +61,10 @@ A51, A52, A53, A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
 A61, A62, A63, A64, A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
 A71, A73, A74, A75, A76 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
 E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+# DOPRI5's continuous extension of order 4 (Hairer, Norsett & Wanner I, II.6, code dopri5.f
+# "contd5"; Shampine 1986)
+D1, D3, D4 = -12715105075 / 11282082432, 87487479700 / 32700410799, -10690763975 / 1880347072
+D5, D6, D7 = 701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423
 
 
 @inline_kernel
@@ -73,6 +77,20 @@ def _hermite(y0, f0, y1, f1, h, th, j):
     h01 = -2 * th3 + 3 * th2
     h11 = th3 - th2
     return h00 * y0[j] + h10 * h * f0[j] + h01 * y1[j] + h11 * h * f1[j]
+
+
+@kernel
+def _dense(y0, f0, y1, f1, K, h, th, out):
+    """DOPRI5's continuous extension at fraction th of the accepted step of size h from y0
+    (derivative f0, stages K[2..5], end y1 with FSAL derivative f1): order 4, no RHS
+    evaluation (Hairer, Norsett & Wanner I, II.6, dopri5.f "contd5")."""
+    for j in range(y0.shape[0]):
+        yd = y1[j] - y0[j]
+        bs = h * f0[j] - yd
+        r5 = h * (D1 * f0[j] + D3 * K[2, j] + D4 * K[3, j] + D5 * K[4, j] + D6 * K[5, j]
+                  + D7 * f1[j])
+        out[j] = y0[j] + th * (yd + (1.0 - th) * (bs + th * ((yd - h * f1[j] - bs)
+                                                           + (1.0 - th) * r5)))
 
 
 @kernel
@@ -416,6 +434,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     # static conditions of a closed-form hold, derived from the model by simulate/pack.fast_paths
     can_hold = P[P_HOLDS] == 1.0
     can_ramp = P[P_RAMPS] == 1.0
+    dense = P[P_DENSE] == 1.0
     where = int(carry[C_WHERE])
     status = 0
     en = 0.0
@@ -717,7 +736,16 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 stall = 0
             if th_ev < 1.0:
                 h_ev = th_ev * h
-                if h_ev > 1e-15 * max(1.0, t):
+                if h_ev > 1e-15 * max(1.0, t) and dense:
+                    # the state at the event from the accepted step's continuous extension,
+                    # and its derivative with the modes before the event (for lam and outputs)
+                    _dense(y, f0, y1, f1, K, h, th_ev, ytmp)
+                    for j in range(n):
+                        y1[j] = ytmp[j]
+                    rhs(t + h_ev, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                        spin, f1, lam, Mm, fv, A, bb, idx, trig)
+                    nrhs += 1
+                elif h_ev > 1e-15 * max(1.0, t):          # the step redone to the event
                     _dopri_step(t, y, f0, h_ev, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
                                 stuck, sgn, spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx,
                                 trig)

@@ -47,7 +47,8 @@ P_HOLDS = 31      # 1: stuck constant-speed holds may be solved in closed form (
 P_ISO = 32        # 1: isotropic linear suspension force in the rotor frame (rhs.py)
 P_SYM = 33        # 1: rotationally symmetric: max|x| = max|y| = max|w| (integrate.py)
 P_RAMPS = 34      # 1: stuck linear speed ramps may be solved without stepping (ramp.py)
-N_P = 35
+P_DENSE = 35      # 1: the state at a located event from DOPRI5's continuous extension (integrate.py)
+N_P = 36
 # P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
 # autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 

@@ -206,6 +206,10 @@ class SimOptions:
         Solve linear speed ramps with every ball stuck without stepping, under the same
         conditions and the exact stick-slip law (core/ramp.py; docs/numerics.md). False
         integrates them.
+    dense_events : bool
+        Take the state at a located stick-slip event from DOPRI5's continuous extension of the
+        accepted step (order 4, no re-stepping; docs/numerics.md). False redoes the step to the
+        event (the kernel before, bit for bit).
     """
 
     friction_law: str = "stick"
@@ -218,6 +222,7 @@ class SimOptions:
     max_steps: int = DEFAULT_MAX_STEPS
     exact_holds: bool = True
     exact_ramps: bool = True
+    dense_events: bool = True
 
     def __post_init__(self):
         if self.friction_law not in FRICTION_LAWS:
@@ -233,4 +238,6 @@ class SimOptions:
             raise ParameterError("options.exact_holds", self.exact_holds, "must be true or false")
         if not isinstance(self.exact_ramps, bool):
             raise ParameterError("options.exact_ramps", self.exact_ramps, "must be true or false")
+        if not isinstance(self.dense_events, bool):
+            raise ParameterError("options.dense_events", self.dense_events, "must be true or false")
         count("options.max_steps", self.max_steps, 1)  # inf/NaN: one line, not OverflowError
