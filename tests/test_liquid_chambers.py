@@ -246,3 +246,39 @@ def test_stability_map_of_three_chambers_runs_each_fill(tmp_path):
     again = compute_stability_map("leblanc_003_three", fills=fills, speeds=speeds,
                                   duration=1.0, executor="serial", store=tmp_path / "m")
     assert again["spread"].equals(st["spread"])
+
+
+# -- the command line --------------------------------------------------------------------------------
+@pytest.mark.slow
+def test_cli_three_chambers_end_to_end(tmp_path):
+    """show lists the chambers; simulate --json reports each; --set with a list per chamber;
+    study fill-map --json gives totals; the one-chamber analyses refuse in one line."""
+    import json
+    import subprocess
+    import sys
+
+    def cli(*args):
+        return subprocess.run([sys.executable, "-m", "autobalance", *args], capture_output=True,
+                              text=True, timeout=600)
+
+    r = cli("show", "leblanc_003_three", "--set", 'liquid.volume=["100 ml","150 ml","200 ml"]')
+    assert r.returncode == 0, r.stderr
+    assert "[0.1, 0.15, 0.2]" in r.stdout and "liquid_chambers" in r.stdout
+    nc = tmp_path / "r.nc"
+    r = cli("simulate", "leblanc_003_three", *(f"--set={s}" for s in SHORT), "--json",
+            "--out", str(nc))
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert [c["chamber_radius_m"] for c in d["chambers"]] == list(RADII)
+    assert d["status"] == "ok" and nc.stat().st_size > 0
+    r = cli("study", "fill-map", "leblanc_003_three", "--fills", "225, 450 ml",
+            "--speeds", "40:100 1/s:7", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert [f["fill_m3"] for f in d["fills"]] == pytest.approx([225e-6, 450e-6])
+    for args in (("liquid", "simulate", "leblanc_003_three"),
+                 ("show", "leblanc_003_three", "--set", "liquid.inner_radius=[0, 0.05, 0.15]")):
+        r = cli(*args)
+        lines = r.stderr.strip().splitlines()
+        assert r.returncode == 2 and len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
+        assert lines[0].startswith("error: liquid.")

@@ -223,7 +223,14 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
     change, the balls that stopped within round-off, the constrained solve (f0, lam, stick
     margins gs). Returns the RHS evaluations it made."""
     nq = N + 3
+    twin = 0
+    v_ev = 0.0
     if ev_kind == 0:
+        # the stop is located on the Hermite interpolant; with dense events the state comes from
+        # the continuous extension, where the stopping ball's speed is zero to its accuracy, not
+        # exactly: a ball in exactly its state (coincident balls) stops with it
+        twin = 1 if P[P_DENSE] == 1.0 else 0
+        v_ev = y[nq + 2 + ev_i]
         y[nq + 2 + ev_i] = 0.0
         stuck[ev_i] = 1
     elif ev_kind == 1:
@@ -236,7 +243,9 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
     if exact:
         # any other slipping ball that stopped within round-off joins the stuck set
         for i in range(N):
-            if stuck[i] == 0 and B[i, B_MUS] > 0.0 and sgn[i] * y[nq + 2 + i] <= 0.0:
+            if stuck[i] == 0 and B[i, B_MUS] > 0.0 and (
+                    sgn[i] * y[nq + 2 + i] <= 0.0
+                    or (twin == 1 and y[nq + 2 + i] == v_ev and sgn[i] == sgn[ev_i])):
                 y[nq + 2 + i] = 0.0
                 stuck[i] = 1
         if ev_kind == 1:
