@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -207,6 +207,45 @@ class FilmRun:
         return float(self.t[hit[0]]) if hit.size else None
 
 
+class _Film(NamedTuple):
+    """One chamber's film, checked (:func:`_film`): R, H [m], V [m^3], rho [kg/m^3],
+    nu [m^2/s], cells [-], radial partitions [-]."""
+
+    radius: float
+    height: float
+    volume: float
+    density: float
+    viscosity: float
+    n_cells: int
+    partitions: int
+
+
+def _film(radius, height, volume, density, viscosity, n_cells, partitions=0,
+          tag: str = "") -> _Film:
+    """The one-line checks of a wall film's parameters (``tag``, e.g. "[1]", is appended to the
+    field names): positive R, H [m], V [m^3], rho [kg/m^3], nu [m^2/s]; an integer number of
+    cells >= 8; a thin film, mean thickness V / (2 pi R H) <= R/4."""
+    R, H = positive(f"radius{tag}", radius), positive(f"height{tag}", height)
+    V = positive(f"volume{tag}", volume)
+    rho = positive(f"density{tag}", density)
+    nu = positive(f"viscosity{tag}", viscosity)
+    if int(n_cells) != n_cells or n_cells < 8:
+        raise ParameterError(f"n_cells{tag}", n_cells, "must be an integer >= 8")
+    if V / (2 * np.pi * R * H) > 0.25 * R:
+        raise ParameterError(f"volume{tag}", volume, "a wall film needs a mean thickness "
+                             f"V / (2 pi R H) <= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
+    return _Film(R, H, V, rho, nu, int(n_cells), partitions)
+
+
+def _speed_table(speed, t_end):
+    """(times [s], speeds [rad/s]) of a constant or tabulated spin, which must be > 0."""
+    tw, w = _table(speed, t_end, "speed")
+    if np.any(w.real <= 0) or np.any(w.imag != 0):
+        raise ParameterError("speed", "table" if w.size > 2 else float(w[0].real),
+                             "must be > 0 [rad/s]: the film model needs the centrifugal field")
+    return tw, w.real
+
+
 def _table(value, t_end, name):
     """(times, values) of a constant or of a (times, values) pair, values as complex."""
     if isinstance(value, tuple) and len(value) == 2:
@@ -264,22 +303,10 @@ def film_run(radius: float, height: float, volume: float,
     -------
     FilmRun
     """
-    R = positive("radius", radius)
-    H = positive("height", height)
-    V = positive("volume", volume)
+    fl = _film(radius, height, volume, density, viscosity, n_cells)
+    R, H, V, nu, n = fl.radius, fl.height, fl.volume, fl.viscosity, fl.n_cells
     T = positive("t_end", t_end)
-    positive("density", density)
-    nu = positive("viscosity", viscosity)
-    if int(n_cells) != n_cells or n_cells < 8:
-        raise ParameterError("n_cells", n_cells, "must be an integer >= 8")
-    n = int(n_cells)
-    if V / (2 * np.pi * R * H) > 0.25 * R:
-        raise ParameterError("volume", volume, "a wall film needs a mean thickness V / (2 pi R H) "
-                             f"<= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
-    tw, w = _table(speed, T, "speed")
-    if np.any(w.real <= 0) or np.any(w.imag != 0):
-        raise ParameterError("speed", "table" if w.size > 2 else float(w[0].real),
-                             "must be > 0 [rad/s]: the film model needs the centrifugal field")
+    tw, w = _speed_table(speed, T)
     tc, c = _table(deflection, T, "deflection")
     tt = np.union1d(tw, tc)
     wv = np.interp(tt, tw, w.real)
@@ -410,42 +437,27 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
     from ..core.shallow_water import films_moment, sw_coupled
 
     keys = {"radius": radius, "height": height, "volume": volume, "density": density,
-            "viscosity": viscosity, "n_cells": n_cells, "partitions": partitions}
+            "viscosity": viscosity, "n_cells": n_cells, "partitions": partitions}  # _Film's order
     nf = max((len(v) for v in keys.values() if isinstance(v, (list, tuple, np.ndarray))),
              default=1)
     cols = {k: _per_film(k, v, nf) for k, v in keys.items()}
     T = positive("t_end", t_end)
-    films = []
-    for f in range(nf):
-        tag = "" if nf == 1 else f"[{f}]"
-        R, H = positive(f"radius{tag}", cols["radius"][f]), positive(f"height{tag}", cols["height"][f])
-        V = positive(f"volume{tag}", cols["volume"][f])
-        rho = positive(f"density{tag}", cols["density"][f])
-        nu = positive(f"viscosity{tag}", cols["viscosity"][f])
-        n = cols["n_cells"][f]
-        if int(n) != n or n < 8:
-            raise ParameterError(f"n_cells{tag}", n, "must be an integer >= 8")
-        if V / (2 * np.pi * R * H) > 0.25 * R:
-            raise ParameterError(f"volume{tag}", V, "a wall film needs a mean thickness "
-                                 f"V / (2 pi R H) <= R/4, i.e. V <= {0.5 * np.pi * R * R * H:.4g} m^3")
-        films.append((R, H, V, rho, nu, int(n), partition_walls(int(n), cols["partitions"][f]),
-                      cols["partitions"][f]))
-    tw, w = _table(speed, T, "speed")
-    if np.any(w.real <= 0) or np.any(w.imag != 0):
-        raise ParameterError("speed", "table" if w.size > 2 else float(w[0].real),
-                             "must be > 0 [rad/s]: the film model needs the centrifugal field")
-    wv = w.real
+    films = [_film(*(cols[k][f] for k in keys), tag="" if nf == 1 else f"[{f}]")
+             for f in range(nf)]
+    walls = [partition_walls(f.n_cells, f.partitions) for f in films]
+    tw, wv = _speed_table(speed, T)
     wd = np.gradient(wv, tw) if tw.size > 2 else np.full(tw.size, (wv[-1] - wv[0]) / (tw[-1] - tw[0]))
     gp, gdir = nonneg("gravity", gravity), finite("gravity_direction", gravity_direction)
     off = gp / wv[0] ** 2 * np.exp(1j * gdir)
-    starts = np.concatenate([[0], np.cumsum([f[5] for f in films])]).astype(np.int64)
-    th = np.concatenate([_theta(f[5]) for f in films])
-    wall = np.concatenate([f[6] for f in films])
-    h = np.concatenate([film_equilibrium(f[2], f[0], f[1], complex(deflection) + off, f[5], f[7])
-                        for f in films])
+    starts = np.concatenate([[0], np.cumsum([f.n_cells for f in films])]).astype(np.int64)
+    th = np.concatenate([_theta(f.n_cells) for f in films])
+    wall = np.concatenate(walls)
+    h = np.concatenate([film_equilibrium(f.volume, f.radius, f.height, complex(deflection) + off,
+                                         f.n_cells, f.partitions) for f in films])
     q = np.zeros(h.size)
-    Rs, Hs, rhos, nus = (np.array([f[k] for f in films], float) for k in (0, 1, 3, 4))
-    Mt = rotor.mass + float(np.sum(rhos * [f[2] for f in films]))
+    Rs, Hs, rhos, nus = (np.array([getattr(f, k) for f in films], float)
+                         for k in ("radius", "height", "density", "viscosity"))
+    Mt = rotor.mass + float(np.sum(rhos * [f.volume for f in films]))
     U, Ud = films_moment(h, q, th, starts, Rs, Hs, rhos)
     Z0 = Mt * complex(deflection) + U
     Y0 = Mt * complex(velocity) + Ud
@@ -458,8 +470,8 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
                              gdir, wall, out_t, out_h, out_q, out_w, *work)
     if steps < 0:
         raise FloatingPointError("coupled_run: the state became non-finite")
-    runs = tuple(FilmRun(out_t, th[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f[0], f[1], f[3],
-                         int(steps))
+    runs = tuple(FilmRun(out_t, th[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f.radius, f.height,
+                         f.density, int(steps))
                  for f, o0, o1 in zip(films, starts[:-1], starts[1:]))
     return CoupledRun(out_t, out_w, runs, int(steps))
 

@@ -157,7 +157,7 @@ def synchronous_deflection(rotor: VerticalRotor, radius: float | Sequence[float]
                              "per chamber) or one scalar, as the other chamber keys")
     chambers = list(zip(*(np.broadcast_to(c, n).tolist() for c in cols)))
     if guess is None:
-        m = rotor.mass + pool_mass + density * float(np.sum(cols[3] * (n // cols[3].size)))
+        m = rotor.mass + pool_mass + density * sum(c[3] for c in chambers)
         guess = W * W * rotor.unbalance / (rotor.stiffness - m * W * W + 1j * rotor.damping * W)
     scale = max(abs(guess), 1e-6 * float(np.max(cols[0])))
 
@@ -370,8 +370,6 @@ def steady_amplitude(rotor: VerticalRotor, chambers: Sequence[tuple[float, float
         return float(abs(pool_response(rotor, total, density, omega)))
     pool = density * (total - sum(c[3] for c in ring)) if len(ring) < len(chambers) else 0.0
     R, h, ri, V = (list(x) for x in zip(*ring))
-    if len(ring) == 1:
-        R, h, ri, V = R[0], h[0], ri[0], V[0]
     return abs(synchronous_deflection(rotor, R, h, V, density, omega, inner_radius=ri, g=g,
                                       axis="planar" if axis == "horizontal" else "vertical",
                                       pool_mass=pool))

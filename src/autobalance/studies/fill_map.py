@@ -117,10 +117,10 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
     rotor = film_rotor(s)
     g = s.gravity.g if L.axis == "horizontal" else G_STANDARD
     V = np.asarray(default_fills(L) if fills is None else fills, float)
-    top = min(c.chamber_volume / c.volume for c in L.chambers) * L.total_volume
-    if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= top):
+    v_top = min(c.chamber_volume / c.volume for c in L.chambers) * L.total_volume
+    if V.ndim != 1 or V.size < 1 or np.any(V <= 0) or np.any(V >= v_top):
         raise ParameterError("fills", [float(x) for x in np.atleast_1d(V)], f"must be volumes in (0, "
-                             f"{top:.4g}) m^3 (" + ("the chamber)" if L.n_chambers == 1 else
+                             f"{v_top:.4g}) m^3 (" + ("the chamber)" if L.n_chambers == 1 else
                              "the total of all chambers, scaled alike, until one is full)"))
     wn = np.sqrt(s.suspension.kx / s.total_mass)
     top = max(SPEED_RATIOS[1] * wn, float(cfg.spin.nominal_speed))
