@@ -231,6 +231,9 @@ BAD = [
     (["profile.kind=warp"], "profile.kind"),
     (["initial.ball_angles=['30 deg']"], "initial.ball_angles"),
     (["balancer.ball_mass=[1, -2]"], "balancer.ball_mass[1]"),
+    # a unit outside a list: pint would read "[4, 2] g" as one product, 8 g for every ball
+    (["balancer.ball_mass=[4, 2] g"], "balancer.ball_mass"),
+    (["rotor.mass=1,5 kg"], "rotor.mass"),
     (["balancer.n_balls=two"], "balancer.n_balls"),
     (["profile.speed=fast"], "profile.speed"),
     (["profile.kind=motor"], "profile.law"),

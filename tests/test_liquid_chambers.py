@@ -53,6 +53,7 @@ def test_preset_lists_three_chambers_and_show_counts_them():
     ("liquid.partitions=[0, 0, 1]", "liquid.partitions[2]"),
     ('liquid.chamber_radius=["0.1 m", "-0.15 m", "0.2 m"]', "liquid.chamber_radius[1]"),
     ("liquid.volume=[]", "liquid.volume"),
+    ("liquid.volume=[1, 2, 3] ml", "liquid.volume"),                      # not 6 ml each
 ])
 def test_bad_chamber_lists_are_one_line(item, field):
     with pytest.raises(ConfigError) as e:

@@ -81,6 +81,10 @@ def _si(value: Any, kind: str) -> float:
 def _si_text(text: str, kind: str) -> float:
     """A string with units -> SI float (pint parses slowly: cached; errors are not)."""
     unit = KINDS[kind][0]
+    if any(ch in text for ch in "[],;"):
+        # pint would read "[1, 2] ml" as one product (2 ml): a list must carry its units inside
+        raise _Bad("one value expected; in a list each value carries its own unit "
+                   "(['1 ml', '2 ml'], not [1, 2] ml)")
     try:
         q = ureg.Quantity(text)
     except Exception:  # pint raises several types (UndefinedUnitError, AssertionError, ...)
