@@ -144,12 +144,13 @@ def run_config(cfg: Config) -> tuple[Simulation | LiquidSimulation, float]:
     -------
     sim : autobalance.result.Simulation or autobalance.liquid.simulate.LiquidSimulation
         The run (``status`` says whether it finished; it does not raise on failure); a system
-        with a ``[liquid]`` section runs the liquid film model.
+        with a ``[liquid]`` section and no balls runs the liquid film model, one with balls
+        beside the liquid the ball simulator with the films (``Simulation.liquid``).
     wall : float
         Wall time of the run [s].
     """
     t0 = time.perf_counter()
-    if cfg.system.liquid is not None:
+    if cfg.system.liquid is not None and not cfg.system.balancer.n_balls:
         from ..liquid.simulate import simulate_liquid
 
         sim = simulate_liquid(cfg.system, cfg.spin)

@@ -48,7 +48,11 @@ P_ISO = 32        # 1: isotropic linear suspension force in the rotor frame (rhs
 P_SYM = 33        # 1: rotationally symmetric: max|x| = max|y| = max|w| (integrate.py)
 P_RAMPS = 34      # 1: stuck linear speed ramps may be solved without stepping (ramp.py)
 P_DENSE = 35      # 1: the state at a located event from DOPRI5's continuous extension (integrate.py)
-N_P = 36
+P_LQX = 36        # a liquid beside the balls (core/hybrid.py): its first moment U about the
+P_LQY = 37        #   chamber centre, rotor frame [kg*m], and its rate U' [kg*m/s], frozen over
+P_LQDX = 38       #   a coupling step; all 0 without a liquid
+P_LQDY = 39
+N_P = 40
 # P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
 # autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 

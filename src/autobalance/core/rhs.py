@@ -27,8 +27,8 @@ from typing import TYPE_CHECKING
 from .jit import inline_kernel, kernel
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
-                     P_GDRY, P_KX, P_KY, P_LAW, P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY,
-                     P_VSAT, P_WF, P_ISO)
+                     P_GDRY, P_KX, P_KY, P_LAW, P_LQDX, P_LQDY, P_LQX, P_LQY, P_MT, P_NMODEL,
+                     P_R, P_RHO, P_T0, P_VDRY, P_VSAT, P_WF, P_ISO)
 
 if TYPE_CHECKING:
     import numpy as np
@@ -280,6 +280,16 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     Mm[1, ip] = Mt * u + U + Sm * rho * cb + R * SmC
     fv[0] = Fu + Mt * a_u + U * psid * psid + Sm * rho * psid * psid * cb + R * cent_u
     fv[1] = Fv - Mt * a_v + Sm * rho * psid * psid * sb + R * cent_v
+    lqx = P[P_LQX]
+    lqy = P[P_LQY]
+    lqdx = P[P_LQDX]
+    lqdy = P[P_LQDY]
+    if lqx != 0.0 or lqy != 0.0 or lqdx != 0.0 or lqdy != 0.0:
+        # a liquid beside the balls (core/hybrid.py, prescribed spin): its moment U and rate U'
+        # frozen over the coupling step pull the chamber with W^2 U - i W' U - 2 i W U' (the
+        # rotor-frame inertia of U with U'' = 0; the Z'' equation of shallow_water.sw_coupled)
+        fv[0] += psid * psid * lqx + psidd * lqy + 2.0 * psid * lqdy
+        fv[1] += psid * psid * lqy - psidd * lqx - 2.0 * psid * lqdx
 
     if not driven:
         return _solve_prescribed(y, P, N, stuck, Mm, fv, dy, lam, bb, B, psid, psidd)

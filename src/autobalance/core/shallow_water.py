@@ -314,6 +314,41 @@ def films_moment(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.nda
 
 
 @kernel
+def films_dt(h: np.ndarray, q: np.ndarray, starts: np.ndarray, Rs: np.ndarray, W: float,
+             dt: float) -> float:
+    """The CFL step [s] of the most restrictive of the films stored one after the other
+    (:func:`films_moment`'s layout; wall radii Rs [m]) at the spin W [rad/s], at most dt [s]."""
+    for f in range(starts.shape[0] - 1):
+        o0 = starts[f]
+        o1 = starts[f + 1]
+        s = sw_max_speed(h[o0:o1], q[o0:o1], W * W * Rs[f], Rs[f])
+        dx = Rs[f] * 2.0 * math.pi / (o1 - o0)
+        if s > 0.0 and CFL * dx / s < dt:
+            dt = CFL * dx / s
+    return dt
+
+
+@kernel
+def films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, off, wd, wdd, dt, hn, qn, fh, fq,
+               fqr, hl, hr, b, a):
+    """One step dt [s] of every film (:func:`films_moment`'s layout; radii Rs [m], viscosities
+    nus [m^2/s], partitions where wall != 0) into hn, qn: :func:`sw_step` on the wall height of
+    the chamber displaced by w + off [m] (off: gravity's offset of the potential,
+    :func:`gravity_offset`) and the frame accelerations of its rate wd [m/s] and acceleration
+    wdd [m/s^2] (rotor frame) at the spin W [rad/s], W' [rad/s^2]; fh..a work arrays."""
+    for f in range(starts.shape[0] - 1):
+        o0 = starts[f]
+        o1 = starts[f + 1]
+        R = Rs[f]
+        wall_height(theta[o0:o1], w.real + off.real, w.imag + off.imag, b[o0:o1])
+        frame_acceleration(theta[o0:o1], R, W, Wd, w.real, w.imag, wd.real, wd.imag,
+                           wdd.real, wdd.imag, a[o0:o1])
+        sw_step(h[o0:o1], q[o0:o1], b[o0:o1], a[o0:o1], W * W * R,
+                R * 2.0 * math.pi / (o1 - o0), dt, nus[f], R, wall[o0:o1], hn[o0:o1],
+                qn[o0:o1], fh[o0:o1], fq[o0:o1], fqr[o0:o1], hl[o0:o1], hr[o0:o1])
+
+
+@kernel
 def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarray,
                Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray, nus: np.ndarray, Mt: float,
                k: float, c: float, D: float, Z0: complex, Y0: complex, t_end: float,
@@ -341,7 +376,6 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     returned (Z, Y) are the final state; out_h, out_q (len(out_t), total cells) the films at
     out_t and out_w the deflection. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
     n = h.shape[0]
-    nf = starts.shape[0] - 1
     t = 0.0
     Z = Z0
     Y = Y0
@@ -362,28 +396,13 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
         kout = _emit(out_t, out_h, out_q, kout, t, h, q)
         for j in range(k0, kout):
             out_w[j] = w
-        dt = t_end - t
-        for f in range(nf):
-            o0 = starts[f]
-            o1 = starts[f + 1]
-            s = sw_max_speed(h[o0:o1], q[o0:o1], W * W * Rs[f], Rs[f])
-            dx = Rs[f] * 2.0 * math.pi / (o1 - o0)
-            if s > 0.0 and CFL * dx / s < dt:
-                dt = CFL * dx / s
+        dt = films_dt(h, q, starts, Rs, W, t_end - t)
         if kout < nout and out_t[kout] - t < dt:
             dt = out_t[kout] - t
         # film steps, forced by the chamber's deflection and motion at t
         off = gravity_offset(gp, gdir, psi, W) if gp != 0.0 else 0j
-        for f in range(nf):
-            o0 = starts[f]
-            o1 = starts[f + 1]
-            R = Rs[f]
-            wall_height(theta[o0:o1], w.real + off.real, w.imag + off.imag, b[o0:o1])
-            frame_acceleration(theta[o0:o1], R, W, Wd, w.real, w.imag, wd.real, wd.imag,
-                               wdd.real, wdd.imag, a[o0:o1])
-            sw_step(h[o0:o1], q[o0:o1], b[o0:o1], a[o0:o1], W * W * R,
-                    R * 2.0 * math.pi / (o1 - o0), dt, nus[f], R, wall[o0:o1], hn[o0:o1],
-                    qn[o0:o1], fh[o0:o1], fq[o0:o1], fqr[o0:o1], hl[o0:o1], hr[o0:o1])
+        films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, off, wd, wdd, dt, hn, qn, fh, fq,
+                   fqr, hl, hr, b, a)
         # rotor: 4 RK4 sub-steps with the films' moment frozen
         hs = dt / 4.0
         for j in range(4):

@@ -276,8 +276,8 @@ def require_liquid_machine(system: System) -> None:
                              "leblanc_003)")
     if system.balancer.n_balls:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls,
-                             "must be 0 beside a [liquid] section (balls and liquid together "
-                             "are not modelled yet)")
+                             "must be 0 for the liquid analyses, sweeps and studies (balls "
+                             "beside a liquid run with `autobalance simulate` only)")
     if liq.axis == "vertical" and system.gravity.g != 0.0:
         raise ParameterError("gravity.g", system.gravity.g, "must be 0 with a vertical-axis "
                              "liquid balancer ([gravity] acts in the rotor's plane)")

@@ -62,7 +62,8 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive,
         suspension force is -k w - c (w' + i psi' w) in the rotor frame (004 eq 8-9; rhs.py).
         ``symmetric``: isotropic and no gravity, so max|x| = max|y| = max|w| (integrate.py).
         ``holds``: symmetric, exact stick-slip law (with or without creep), prescribed spin,
-        constant unbalance and
+        constant unbalance, no liquid beside the balls (its moment is not in the closed forms)
+        and
         ``options.exact_holds``: stuck constant-speed holds may be solved in closed form
         (core/hold.py). A new effect that breaks a closed form must be added here.
         ``ramps``: holds, the exact stick-slip law without creep and ``options.exact_ramps``:
@@ -73,12 +74,14 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive,
                  and s.dry_friction_force == 0.0)
     symmetric = isotropic and g.g == 0.0
     holds = (symmetric and bool(options.exact_holds) and options.friction_law in ("stick", "creep")
-             and not isinstance(spin, MotorDrive) and system.rotor.unbalance_table()[0].size == 1)
+             and not isinstance(spin, MotorDrive) and system.rotor.unbalance_table()[0].size == 1
+             and system.liquid is None)
     ramps = holds and options.friction_law == "stick" and bool(options.exact_ramps)
     return holds, ramps, isotropic, symmetric
 
 
-def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions) -> tuple[np.ndarray, np.ndarray]:
+def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions,
+                liquid_ok: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Scalar vector P (N_P,) and ball table B (N, N_B) in SI.
 
     The slots are named in :mod:`autobalance.core.layout` (P_*, B_*). Besides the parameters
@@ -96,6 +99,9 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
         The spin (nominal speed; motor torque law).
     options : SimOptions
         Friction law, v_sat [rad/s], normal-force model.
+    liquid_ok : bool
+        True for the run of balls beside a liquid (:mod:`autobalance.simulate.hybrid`, which
+        sets the liquid's moment P_LQ* step by step; M_t includes the liquid's mass).
 
     Returns
     -------
@@ -107,15 +113,15 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     Raises
     ------
     ParameterError
-        A motor drive on a rotor without polar inertia; a system with a liquid balancer (the
-        ball kernel does not model one: :func:`autobalance.liquid.simulate_liquid` runs it).
+        A motor drive on a rotor without polar inertia; a system with a liquid balancer unless
+        ``liquid_ok``.
     """
-    if system.liquid is not None:
+    if system.liquid is not None and not liquid_ok:
         from ..models import ParameterError
         raise ParameterError("liquid", "a [liquid] section",
-                             "the ball simulator has no liquid model: a liquid balancer alone "
-                             "runs with autobalance.liquid.simulate_liquid (`autobalance "
-                             "simulate` chooses it); balls beside a liquid are not modelled yet")
+                             "the ball kernel alone has no liquid model: a liquid balancer alone "
+                             "runs with autobalance.liquid.simulate_liquid, balls beside a liquid "
+                             "with autobalance.simulate (`autobalance simulate` chooses)")
     r, s, b, g = system.rotor, system.suspension, system.balancer, system.gravity
     P = np.zeros(N_P)
     P[P_MT] = system.total_mass

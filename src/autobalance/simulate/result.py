@@ -83,6 +83,8 @@ class Simulation:
     states: np.ndarray
     stats: np.ndarray
     order: np.ndarray
+    #: balls beside a liquid: the liquid's histories (autobalance.simulate.hybrid.LiquidPart)
+    liquid: object = None
 
     def __post_init__(self):
         n = self.system.balancer.n_balls
@@ -99,6 +101,8 @@ class Simulation:
         self.y = self.u * s + self.v * c
         self.amplitude = np.hypot(self.u, self.v)
         res = residual_unbalance_history(self.system, self.alpha, self.t)
+        if self.liquid is not None:             # the liquid's part turning with the rotor
+            res = res + self.liquid.synchronous_unbalance
         self.residual_unbalance = np.abs(res)
         self.residual_angle = np.angle(res)
         self.grade_G = grade_value(self.residual_unbalance, self.system.total_mass, self.spin.nominal_speed)
@@ -208,6 +212,19 @@ class Simulation:
         }
         if isinstance(self.spin, MotorDrive):
             out["time_to_final_speed_s"] = float(st[S_THOLD]) if st[S_THOLD] >= 0 else None
+        if self.liquid is not None:
+            L = self.liquid
+            U = L.synchronous_unbalance[-1]
+            out["liquid"] = {
+                "model": "wall film beside the balls (autobalance.simulate.hybrid)",
+                "film_start_s": L.film_start, "film_start_speed_rad_s": L.film_start_speed,
+                "film_steps": L.steps, "liquid_unbalance_kg_m": float(abs(U)),
+                "liquid_angle_deg": float(np.degrees(np.angle(U))),
+                "chambers": [{"chamber_radius_m": c.chamber_radius,
+                              "liquid_unbalance_kg_m": float(abs(u)),
+                              "liquid_angle_deg": float(np.degrees(np.angle(u)))}
+                             for c, u in zip(self.system.liquid.chambers,
+                                             L.chamber_unbalance[-1])]}
         return out
 
     def to_netcdf(self, path: str | Path) -> None:
@@ -250,6 +267,22 @@ class Simulation:
             },
             coords={"time": ("time", self.t, {"units": "s"}), "ball": ("ball", ball)},
         )
+        if self.liquid is not None:
+            L = self.liquid
+            for name, val, long in (
+                    ("liquid_unbalance", L.unbalance, "the liquid's first moment about the "
+                     "chamber centre (rotor frame; 0 before the film starts)"),
+                    ("synchronous_unbalance", L.synchronous_unbalance, "the liquid's moment "
+                     "averaged over one revolution")):
+                ds[name + "_x"] = var(val.real, "time", "kg*m", long + ", x")
+                ds[name + "_y"] = var(val.imag, "time", "kg*m", long + ", y")
+            ds["chamber_unbalance_x"] = var(L.chamber_unbalance.real, ("time", "chamber"),
+                                            "kg*m", "each chamber's film moment, x")
+            ds["chamber_unbalance_y"] = var(L.chamber_unbalance.imag, ("time", "chamber"),
+                                            "kg*m", "each chamber's film moment, y")
+            ds = ds.assign_coords(chamber_radius=("chamber", [
+                c.chamber_radius for c in self.system.liquid.chambers], {"units": "m"}))
+            ds.attrs["film_start_s"] = L.film_start
         ds.attrs.update({
             "title": self.title,
             "autobalance_version": __version__,

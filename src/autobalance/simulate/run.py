@@ -81,6 +81,9 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
     """
     initial = initial or InitialState()
     options = options or SimOptions()
+    if system.liquid is not None and system.balancer.n_balls:
+        from .hybrid import simulate_hybrid        # balls beside a liquid
+        return simulate_hybrid(system, spin, initial=initial, options=options, throw=throw)
     check_run(system, spin, options)
     P, B = pack_params(system, spin, options)
     y0, order = initial_vector(system, spin, initial)

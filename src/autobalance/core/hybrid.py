@@ -1,0 +1,196 @@
+"""Balls beside a liquid: the ball kernel (integrate.py, with its exact stick-slip) and the wall
+films of core/shallow_water.py advanced together, one film time step at a time (issue 15).
+
+Coupling (explicit, as :func:`.shallow_water.sw_coupled` couples the films with the Jeffcott
+rotor): over a step [t, t + dt] (the films' CFL step)
+
+1. every film takes one step forced by the chamber's deflection w, its rate w' (rotor frame) and
+   w'' (from the previous step), read from the ball kernel's state at t;
+2. the rotor and the balls are integrated over [t, t + dt] by the ball kernel, paused at t + dt
+   (a knot added to the profile: ``integrate_span``'s pause), with the films' summed moment U
+   and its rate U' frozen at their values at t (P_LQX..P_LQDY): the chamber feels
+   W^2 U - i W' U - 2 i W U' (rhs.py);
+3. the films' new moment changes the total first moment Z = M_t w + U + (balls) by nothing: the
+   chamber's deflection and rate take the difference, w -= dU / M_t, w' -= dU' / M_t (the
+   films' motion over the step, felt by the rotor; sw_coupled keeps Z and Z' through the films'
+   update in the same way).
+
+With a film of no mass this is the ball kernel's run stepped at the films' pace; with balls that
+cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both). Prescribed
+spin only (psi'' known); a vertical axis (no in-plane gravity on the films).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .jit import kernel
+
+from .integrate import _integrate
+from .layout import P_LQDX, P_LQDY, P_LQX, P_LQY, P_MT, S_STATUS, RunStatus
+from .ramp import RAMP_TAYLOR, RAMP_TERMS
+from .rhs import profile_eval, profile_segment
+from .shallow_water import _emit, films_dt, films_moment, films_step
+
+_RUNNING = float(RunStatus.RUNNING)
+
+
+@njit(cache=True)
+def with_knot(prof_t: np.ndarray, prof_w: np.ndarray, t1: float, pt: np.ndarray,
+              pw: np.ndarray) -> int:
+    """The profile (prof_t [s], prof_w [rad/s]) with a knot at t1 [s] (its speed interpolated)
+    written into pt, pw (len(prof_t) + 1); returns the knots written (no new knot when t1 is one
+    within 1e-12 relative)."""
+    n = prof_t.shape[0]
+    m = 0
+    done = False
+    tol = 1e-12 * max(1.0, abs(t1))
+    for k in range(n):
+        if not done and abs(prof_t[k] - t1) <= tol:
+            done = True
+        elif not done and prof_t[k] > t1:
+            seg = k - 1 if k > 0 else 0
+            ws, _ = profile_eval(t1, seg, prof_t, prof_w)
+            pt[m] = t1
+            pw[m] = ws
+            m += 1
+            done = True
+        pt[m] = prof_t[k]
+        pw[m] = prof_w[k]
+        m += 1
+    if not done:
+        pt[m] = t1
+        pw[m] = prof_w[n - 1]
+        m += 1
+    return m
+
+
+@kernel
+def _accept(h: np.ndarray, q: np.ndarray, hn: np.ndarray, qn: np.ndarray) -> bool:
+    """Copy the films' new state hn, qn into h, q; False if any of it is not finite."""
+    ok = True
+    for i in range(h.shape[0]):
+        h[i] = hn[i]
+        q[i] = qn[i]
+        if not (math.isfinite(h[i]) and math.isfinite(q[i])):
+            ok = False
+    return ok
+
+
+@kernel
+def _freeze(P: np.ndarray, U: complex, Ud: complex) -> None:
+    """The films' moment U [kg*m] and rate U' [kg*m/s] that the ball kernel holds fixed over a
+    coupling step (layout.P_LQX..P_LQDY)."""
+    P[P_LQX] = U.real
+    P[P_LQY] = U.imag
+    P[P_LQDX] = Ud.real
+    P[P_LQDY] = Ud.imag
+
+
+@njit(cache=True)
+def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
+                     prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, y: np.ndarray,
+                     t0: float, t_end: float, rtol: float, atol: np.ndarray, h_max: float,
+                     max_steps: int, out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray,
+                     carry: np.ndarray, h: np.ndarray, q: np.ndarray, theta: np.ndarray,
+                     starts: np.ndarray, Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray,
+                     nus: np.ndarray, wall: np.ndarray, out_h: np.ndarray,
+                     out_q: np.ndarray) -> int:
+    """From t0 [s] to t_end [s]: the ball run (P, B, N, profile, unbalance table, y, rtol, atol,
+    h_max, max_steps, out_t, out_y, stats as integrate.integrate_span; ``carry`` its paused
+    state at t0, or carry[C_WHERE] = 0 with t0 = 0) with the films of concentric chambers
+    (h, q, theta, starts, Rs, Hs, rhos, nus, wall as shallow_water.sw_coupled, holding their
+    state at t0) beside the balls (module docstring). out_h, out_q (len(out_t), cells) receive
+    the films at the output times from t0 on (rows before are left alone). Returns the film
+    steps; -1 on a non-finite film. The run's status is the ball kernel's (stats)."""
+    nq = N + 3
+    n = 2 * nq
+    n_c = h.shape[0]
+    np_ = prof_t.shape[0] + 1
+    pt = np.zeros(np_)
+    pw = np.zeros(np_)
+    fw = np.zeros((9, n_c))              # the films' work arrays
+    hn, qn, fh, fq, fqr, hl, hr, b, a = fw[0], fw[1], fw[2], fw[3], fw[4], fw[5], fw[6], fw[7], fw[8]
+    # the ball kernel's work arrays (as integrate_span)
+    K = np.zeros((6, n))
+    ytmp = np.zeros(n)
+    y1 = np.zeros(n)
+    f0 = np.zeros(n)
+    f1 = np.zeros(n)
+    ftmp = np.zeros(n)
+    err = np.zeros(n)
+    lam = np.zeros(3 * N + 1)
+    Mm = np.zeros((nq, nq))
+    fv = np.zeros(nq)
+    A = np.zeros((nq, nq))
+    bb = np.zeros(nq)
+    idx = np.zeros(nq, dtype=np.int64)
+    stuck = np.zeros(N, dtype=np.int64)
+    sgn = np.ones(N)
+    gs = np.zeros(N)
+    ge = np.zeros(N)
+    spin = np.zeros(2)
+    in_contact = np.zeros(N, dtype=np.int64)
+    viol = np.zeros(N, dtype=np.int64)
+    trig = np.full(3 * N, np.nan)
+    ser = np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128)
+    qr = np.zeros((10, N))
+
+    Mt = P[P_MT]
+    t = t0
+    kout = 0
+    while kout < out_t.shape[0] and out_t[kout] < t - 1e-12 * max(1.0, t):
+        kout += 1
+    U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
+    wd_prev = complex(y[nq], y[nq + 1])
+    wdd = 0j
+    steps = 0
+    tol = 1e-12 * max(1.0, t_end)
+    while True:
+        kout = _emit(out_t, out_h, out_q, kout, t, h, q)
+        if t >= t_end - tol:
+            break
+        w = complex(y[0], y[1])
+        wd = complex(y[nq], y[nq + 1])
+        W, Wd = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
+        dt = films_dt(h, q, starts, Rs, W, t_end - t)
+        if kout < out_t.shape[0] and out_t[kout] - t < dt:
+            dt = out_t[kout] - t
+        t1 = t + dt
+        if t1 >= t_end - tol:
+            t1 = t_end
+            dt = t1 - t
+        # 1. the films' step, forced by the chamber's motion at t
+        films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, 0j, wd, wdd, dt, hn, qn, fh, fq,
+                   fqr, hl, hr, b, a)
+        # 2. rotor and balls over [t, t1] with the films' moment frozen
+        _freeze(P, U, Ud)
+        m = with_knot(prof_t, prof_w, t1, pt, pw)
+        t_pause = t1 if t1 < t_end else np.inf
+        _integrate(P, B, N, pt[:m], pw[:m], unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
+                   out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb,
+                   idx, stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, t_pause,
+                   carry)
+        # 3. the films' update, taken up by the chamber
+        steps += 1
+        if not _accept(h, q, hn, qn):
+            return -1
+        U1, Ud1 = films_moment(h, q, theta, starts, Rs, Hs, rhos)
+        dU = (U1 - U) / Mt                      # Z and Z' kept: the chamber takes the change
+        dUd = (Ud1 - Ud) / Mt
+        y[0] -= dU.real
+        y[1] -= dU.imag
+        y[nq] -= dUd.real
+        y[nq + 1] -= dUd.imag
+        U = U1
+        Ud = Ud1
+        wd_new = complex(y[nq], y[nq + 1])
+        wdd = (wd_new - wd_prev) / dt
+        wd_prev = wd_new
+        t = t1
+        if stats[S_STATUS] != _RUNNING and t < t_end:
+            break                  # the ball run failed (step budget, stall): its status says
+    _freeze(P, 0j, 0j)
+    return steps
