@@ -14,6 +14,7 @@ import pytest
 import xarray as xr
 
 from autobalance.config import load_config
+from autobalance.core.layout import S_EVENTS, S_STEPS
 from autobalance.liquid.simulate import simulate_liquid
 from autobalance.models import InitialState, MotorDrive, ParameterError
 from autobalance.simulate import simulate
@@ -89,6 +90,7 @@ def test_liquid_analyses_refuse_balls():
         check_liquid_run(cfg.system, cfg.spin)
 
 
+@pytest.mark.slow
 def test_cli_end_to_end(tmp_path):
     """simulate --json reports the liquid beside the balls; the NetCDF file holds its
     histories; the grade includes the liquid's synchronous moment."""
@@ -111,3 +113,46 @@ def test_cli_end_to_end(tmp_path):
         D = load_config("leblanc_003").system.rotor.unbalance
         res = abs(D + M_BALL * R_RACE * np.exp(1j * balls).sum() + complex(U[-1]))
         assert float(ds.residual_unbalance[-1]) == pytest.approx(res, rel=1e-9)
+
+
+SHORT = ("profile.end_speed=40 1/s", "profile.ramp_time=6 s", "profile.duration=6 s")
+
+
+@pytest.mark.slow
+def test_sweep_monte_carlo_of_ball_starts(tmp_path):
+    """A sweep of balls beside a liquid: a Monte Carlo over the balls' starts x two fills, on
+    a real local pool of 2 processes; every stored run is the machine's own simulate run from
+    that start (grade at the checkpoint, steps, events, ball angles), and it resumes."""
+    from autobalance.sweep import spec_from_dict, sweep
+
+    d = {"sweep": {"name": "hyb", "base": "leblanc_003", "set": [*BALLS, *SHORT]},
+         "outputs": {"history_dt": "1 s"},
+         "grid": {"liquid.volume": ["100 ml", "200 ml"]},
+         "monte_carlo": {"kind": "random", "samples": 3, "seed": 7}}
+    ds = sweep(spec_from_dict(d), tmp_path / "s", executor="local", workers=2, progress=False)
+    assert ds.sizes["sample"] == 3 and int((ds["status"] != 0).sum()) == 0
+    for i, v in enumerate(["100 ml", "200 ml"]):
+        cfg = machine(*SHORT, f"liquid.volume={v}")
+        for k in (0, 2):
+            cell = ds.isel(liquid__volume=i, sample=k)
+            a0 = tuple(float(x) for x in cell["start_angle"].values)
+            sim = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=a0))
+            assert int(cell["steps"]) == int(sim.stats[S_STEPS])
+            assert int(cell["events"]) == int(sim.stats[S_EVENTS])
+            assert float(cell["grade_G"].values[-1]) == pytest.approx(
+                sim.summary()["final"]["grade_G_mm_s"], rel=1e-12)
+            assert float(cell["grade_G_history"].values[-1]) == pytest.approx(
+                sim.grade_G[-1], rel=1e-12)
+    again = sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False,
+                  resume=True)
+    assert again["grade_G"].equals(ds["grade_G"])
+
+
+def test_sweep_refuses_a_horizontal_axis_up_front(tmp_path):
+    from autobalance.sweep import SweepError, spec_from_dict, sweep
+
+    d = {"sweep": {"name": "hyb", "base": "leblanc_003", "set": [*BALLS, *SHORT]},
+         "grid": {"liquid.axis": ["vertical", "horizontal"]}}
+    with pytest.raises(SweepError, match="liquid.axis"):
+        sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False)
+    assert not (tmp_path / "s").exists() or not any((tmp_path / "s").iterdir())

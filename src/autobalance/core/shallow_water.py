@@ -329,8 +329,11 @@ def films_dt(h: np.ndarray, q: np.ndarray, starts: np.ndarray, Rs: np.ndarray, W
 
 
 @kernel
-def films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, off, wd, wdd, dt, hn, qn, fh, fq,
-               fqr, hl, hr, b, a):
+def films_step(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarray,
+               Rs: np.ndarray, nus: np.ndarray, wall: np.ndarray, W: float, Wd: float,
+               w: complex, off: complex, wd: complex, wdd: complex, dt: float, hn: np.ndarray,
+               qn: np.ndarray, fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray, hl: np.ndarray,
+               hr: np.ndarray, b: np.ndarray, a: np.ndarray) -> None:
     """One step dt [s] of every film (:func:`films_moment`'s layout; radii Rs [m], viscosities
     nus [m^2/s], partitions where wall != 0) into hn, qn: :func:`sw_step` on the wall height of
     the chamber displaced by w + off [m] (off: gravity's offset of the potential,

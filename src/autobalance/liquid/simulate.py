@@ -276,8 +276,8 @@ def require_liquid_machine(system: System) -> None:
                              "leblanc_003)")
     if system.balancer.n_balls:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls,
-                             "must be 0 for the liquid analyses, sweeps and studies (balls "
-                             "beside a liquid run with `autobalance simulate` only)")
+                             "must be 0 for the liquid analyses and studies (balls beside a "
+                             "liquid run with `autobalance simulate` and `sweep`)")
     if liq.axis == "vertical" and system.gravity.g != 0.0:
         raise ParameterError("gravity.g", system.gravity.g, "must be 0 with a vertical-axis "
                              "liquid balancer ([gravity] acts in the rotor's plane)")
@@ -414,14 +414,15 @@ def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STAN
 
 
 def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256) -> float:
-    """Estimated wall time of :func:`simulate_liquid` [s]: film steps from the CFL condition
-    on the uniform film (wave speed Omega sqrt(R eta), cell 2 pi R / n) over the profile from
-    omega_0, times the measured cost of a step.
+    """Estimated wall time of :func:`simulate_liquid` [s], or of a run of balls beside the
+    liquid (the films' steps dominate it): film steps from the CFL condition on the uniform film
+    (wave speed Omega sqrt(R eta), cell 2 pi R / n) over the profile from omega_0, times the
+    measured cost of a step.
 
     Parameters
     ----------
     system : System
-        The machine (checked by :func:`check_liquid_run`).
+        The machine (checked by :func:`check_liquid_run` without balls).
     spin : SpeedProfile
         Its profile.
     n_cells : int
@@ -429,7 +430,10 @@ def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256)
     """
     from ..core.shallow_water import CFL
 
-    w0 = check_liquid_run(system, spin)
+    if system.balancer.n_balls:
+        w0 = film_start_speed(system.liquid, 0.0)
+    else:
+        w0 = check_liquid_run(system, spin)
     t0, tt, ww = _film_table(spin, w0)
     mean_speed = float(np.sum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt)) / tt[-1])
     chambers = system.liquid.chambers

@@ -54,7 +54,7 @@ class System:
         """
         if self.liquid is not None:
             raise ParameterError("liquid", "a [liquid] section", f"{what} take ball balancers "
-                                 "only so far; a liquid balancer runs with `autobalance simulate`")
+                                 "only so far; a liquid balancer runs with `autobalance simulate` (and `sweep`)")
         if not allow_empty and self.balancer.n_balls == 0:
             raise ParameterError("balancer.n_balls", 0, f"{what} need a ball balancer (>= 1 ball)")
 

@@ -1,6 +1,10 @@
 """The sweep task of a liquid-balancer machine (a ``[liquid]`` section): one wall-film run per
-grid cell, stored in the variables of the ball runs (:data:`autobalance.sweep.store.VARIABLES`)."""
+grid cell, stored in the variables of the ball runs (:data:`autobalance.sweep.store.VARIABLES`);
+with balls beside the liquid one run of :func:`autobalance.simulate.hybrid.simulate_hybrid` per
+run, read as a batch of ball runs."""
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -38,3 +42,31 @@ def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
             out["amplitude_history"][i, film] = np.interp(hist[film], sim.t, sim.amplitude)
             out["speed_history"][i] = [spin.speed(t) for t in hist]
     return out
+
+
+def run_hybrid_task(payload: dict, out_t: np.ndarray) -> SimpleNamespace:
+    """The runs of a task of balls beside a liquid (each with its own start, as a batch of ball
+    runs), read at ``out_t`` [s] (checkpoints, then history times) from each run's history:
+    its own samples where they fall on them (the checkpoints are on the run's output grid),
+    linear between them. Returns what :func:`autobalance.sweep.task._task_outputs` reads of a
+    :class:`autobalance.simulate.result.BatchResult` (spin, status, stats, grade_G,
+    residual_unbalance, alpha, states)."""
+    from ..simulate.hybrid import simulate_hybrid
+
+    rows = {"grade_G": [], "residual_unbalance": [], "alpha": [], "states": [], "stats": [],
+            "status": []}
+    for s, init in zip(payload["systems"], payload["initials"]):
+        sim = simulate_hybrid(s, payload["spin"], initial=init, options=payload["options"],
+                              throw=False)
+
+        def at(v):
+            return np.stack([np.interp(out_t, sim.t, c) for c in np.asarray(v).T], axis=-1)
+
+        rows["grade_G"].append(np.interp(out_t, sim.t, sim.grade_G))
+        rows["residual_unbalance"].append(np.interp(out_t, sim.t, sim.residual_unbalance))
+        rows["alpha"].append(at(sim.alpha))
+        rows["states"].append(at(sim.states))
+        rows["stats"].append(sim.stats)
+        rows["status"].append(sim.status)
+    res = {k: (v if k == "status" else np.array(v)) for k, v in rows.items()}
+    return SimpleNamespace(spin=payload["spin"], **res)

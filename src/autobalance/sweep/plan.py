@@ -489,15 +489,19 @@ def make_plan(spec: SweepSpec) -> Plan:
             pairs += _follow_n_balls(spec, given, pairs[n_axis][1])
         try:
             cells.append(replace_values(cells[0], pairs) if cells else build(pairs))
-            if cells[-1].system.liquid is not None:       # the film model's scope, up front
+            c = cells[-1]
+            if c.system.liquid is not None:               # the film model's scope, up front
                 from ..liquid.simulate import check_liquid_run
-                check_liquid_run(cells[-1].system, cells[-1].spin)
+                from ..simulate.hybrid import check_hybrid
+                (check_hybrid if c.system.balancer.n_balls else check_liquid_run)(c.system,
+                                                                                  c.spin)
         except Exception as e:   # ConfigError / ParameterError / ResourceError
             field = str(e).split(" ", 1)[0].split("[", 1)[0].rstrip(":")
             culprit = (f"grid point {where}" if n_axis is not None and field in _FOLLOW
                        else _culprit(spec, str(e), where))
             raise SweepError(f"{culprit}: {e}") from None
-    if cells[0].system.liquid is not None and spec.mc_kind != "none":
+    if cells[0].system.liquid is not None and not cells[0].system.balancer.n_balls \
+            and spec.mc_kind != "none":
         raise SweepError(f"monte_carlo.kind = {spec.mc_kind!r}: a liquid balancer has no ball "
                          "start positions to sample; leave out [monte_carlo]")
     first = {}                                   # N -> its first cell

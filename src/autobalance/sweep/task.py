@@ -57,7 +57,10 @@ def run_task(payload: dict) -> dict | list:
     cps = np.asarray(spin.checkpoints, float)
     hist = np.asarray(payload["history_times"], float)
     if payload["systems"][0].liquid is not None:
-        from .liquid_task import run_liquid_task
+        from .liquid_task import run_hybrid_task, run_liquid_task
+        if payload["systems"][0].balancer.n_balls:
+            return _task_outputs(payload, run_hybrid_task(payload, np.concatenate([cps, hist])),
+                                 payload["first"], cps.size, hist.size)
         return run_liquid_task(payload, cps, hist)
     out_t = np.concatenate([cps, hist])
     if "branches" in payload:
