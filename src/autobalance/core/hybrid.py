@@ -17,7 +17,7 @@ rotor): over a step [t, t + dt] (the films' CFL step)
 
 With a film of no mass this is the ball kernel's run stepped at the films' pace; with balls that
 cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both). Prescribed
-spin only (psi'' known); a vertical axis (no in-plane gravity on the films).
+spin only (psi'' known).
 """
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ from .integrate import _integrate
 from .layout import P_LQDX, P_LQDY, P_LQX, P_LQY, P_MT, S_STATUS, RunStatus
 from .ramp import RAMP_TAYLOR, RAMP_TERMS
 from .rhs import profile_eval, profile_segment
-from .shallow_water import _emit, films_dt, films_moment, films_step
+from .shallow_water import _emit, films_dt, films_moment, films_step, gravity_offset
 
 _RUNNING = float(RunStatus.RUNNING)
 
@@ -96,13 +96,17 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                      max_steps: int, out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray,
                      carry: np.ndarray, h: np.ndarray, q: np.ndarray, theta: np.ndarray,
                      starts: np.ndarray, Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray,
-                     nus: np.ndarray, wall: np.ndarray, out_h: np.ndarray,
-                     out_q: np.ndarray) -> int:
+                     nus: np.ndarray, wall: np.ndarray, gp: float, gdir: float, sag: complex,
+                     out_h: np.ndarray, out_q: np.ndarray) -> int:
     """From t0 [s] to t_end [s]: the ball run (P, B, N, profile, unbalance table, y, rtol, atol,
     h_max, max_steps, out_t, out_y, stats as integrate.integrate_span; ``carry`` its paused
     state at t0, or carry[C_WHERE] = 0 with t0 = 0) with the films of concentric chambers
     (h, q, theta, starts, Rs, Hs, rhos, nus, wall as shallow_water.sw_coupled, holding their
-    state at t0) beside the balls (module docstring). out_h, out_q (len(out_t), cells) receive
+    state at t0) beside the balls (module docstring); a horizontal axis: in-plane gravity gp
+    [m/s^2] at the inertial angle gdir [rad] in the films' potential (shallow_water.
+    gravity_offset, with the kernel's spin angle) and the static sag [m] (inertial frame: the
+    kernel's deflection is from the static equilibrium, the films need the chamber's position
+    about the rotation axis). out_h, out_q (len(out_t), cells) receive
     the films at the output times from t0 on (rows before are left alone). Returns the film
     steps; -1 on a non-finite film. The run's status is the ball kernel's (stats)."""
     nq = N + 3
@@ -144,7 +148,9 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     while kout < out_t.shape[0] and out_t[kout] < t - 1e-12 * max(1.0, t):
         kout += 1
     U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
-    wd_prev = complex(y[nq], y[nq + 1])
+    W0, _ = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
+    wd_prev = complex(y[nq], y[nq + 1]) - 1j * W0 * sag * complex(math.cos(y[nq - 1]),
+                                                                  -math.sin(y[nq - 1]))
     wdd = 0j
     steps = 0
     tol = 1e-12 * max(1.0, t_end)
@@ -152,9 +158,12 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         kout = _emit(out_t, out_h, out_q, kout, t, h, q)
         if t >= t_end - tol:
             break
-        w = complex(y[0], y[1])
-        wd = complex(y[nq], y[nq + 1])
         W, Wd = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
+        psi = y[nq - 1]
+        rot = complex(math.cos(psi), -math.sin(psi))
+        w = complex(y[0], y[1]) + sag * rot              # the chamber about the rotation axis
+        wd = complex(y[nq], y[nq + 1]) - 1j * W * sag * rot
+        off = gravity_offset(gp, gdir, psi, W) if gp != 0.0 else 0j
         dt = films_dt(h, q, starts, Rs, W, t_end - t)
         if kout < out_t.shape[0] and out_t[kout] - t < dt:
             dt = out_t[kout] - t
@@ -163,8 +172,8 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
             t1 = t_end
             dt = t1 - t
         # 1. the films' step, forced by the chamber's motion at t
-        films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, 0j, wd, wdd, dt, hn, qn, fh, fq,
-                   fqr, hl, hr, b, a)
+        films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, off, wd, wdd, dt, hn, qn, fh,
+                   fq, fqr, hl, hr, b, a)
         # 2. rotor and balls over [t, t1] with the films' moment frozen
         _freeze(P, U, Ud)
         m = with_knot(prof_t, prof_w, t1, pt, pw)
@@ -186,7 +195,10 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         y[nq + 1] -= dUd.imag
         U = U1
         Ud = Ud1
-        wd_new = complex(y[nq], y[nq + 1])
+        Wn, _ = profile_eval(t1, profile_segment(t1, prof_t), prof_t, prof_w)
+        psi1 = y[nq - 1]
+        wd_new = complex(y[nq], y[nq + 1]) - 1j * Wn * sag * complex(math.cos(psi1),
+                                                                    -math.sin(psi1))
         wdd = (wd_new - wd_prev) / dt
         wd_prev = wd_new
         t = t1

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 __all__ = ["LiquidSimulation", "check_liquid_run", "film_rotor", "film_start_speed",
-           "liquid_parts", "require_liquid_machine", "revolution_average",
+           "liquid_parts", "require_axis_gravity", "require_liquid_machine", "revolution_average",
            "run_seconds_estimate", "simulate_liquid"]
 
 
@@ -278,12 +278,7 @@ def require_liquid_machine(system: System) -> None:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls,
                              "must be 0 for the liquid analyses and studies (balls beside a "
                              "liquid run with `autobalance simulate` and `sweep`)")
-    if liq.axis == "vertical" and system.gravity.g != 0.0:
-        raise ParameterError("gravity.g", system.gravity.g, "must be 0 with a vertical-axis "
-                             "liquid balancer ([gravity] acts in the rotor's plane)")
-    if liq.axis == "horizontal" and not system.gravity.g > 0.0:
-        raise ParameterError("gravity.g", system.gravity.g, "must be > 0 with a horizontal-axis "
-                             "liquid balancer (e.g. '9.81 m/s^2'; [gravity] is in the plane)")
+    require_axis_gravity(system)
     if s.kx != s.ky or s.cx != s.cy:
         raise ParameterError("suspension.ky", s.ky, "must equal kx (and cy cx): the liquid "
                              "models' rotor is isotropic")
@@ -294,6 +289,24 @@ def require_liquid_machine(system: System) -> None:
     if r.unbalance_schedule:
         raise ParameterError("rotor.unbalance_schedule", list(r.unbalance_schedule),
                              "must be empty with a liquid balancer (not modelled yet)")
+
+
+def require_axis_gravity(system: System) -> None:
+    """One-line errors for [gravity] that does not fit the liquid's axis: none in the plane of
+    a vertical axis (gravity is along it), some in the plane of a horizontal one.
+
+    Parameters
+    ----------
+    system : System
+        A machine with a ``[liquid]`` section.
+    """
+    axis, g = system.liquid.axis, system.gravity.g
+    if axis == "vertical" and g != 0.0:
+        raise ParameterError("gravity.g", g, "must be 0 with a vertical-axis liquid balancer "
+                             "([gravity] acts in the rotor's plane)")
+    if axis == "horizontal" and not g > 0.0:
+        raise ParameterError("gravity.g", g, "must be > 0 with a horizontal-axis liquid "
+                             "balancer (e.g. '9.81 m/s^2'; [gravity] is in the plane)")
 
 
 def _check(system: System, spin: SpeedProfile | MotorDrive) -> None:
@@ -431,7 +444,7 @@ def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256)
     from ..core.shallow_water import CFL
 
     if system.balancer.n_balls:
-        w0 = film_start_speed(system.liquid, 0.0)
+        w0 = film_start_speed(system.liquid, system.gravity.g)
     else:
         w0 = check_liquid_run(system, spin)
     t0, tt, ww = _film_table(spin, w0)

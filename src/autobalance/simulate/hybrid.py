@@ -21,7 +21,8 @@ from ..core.layout import N_S, S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import _theta, film_equilibrium, film_unbalance, partition_walls
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import _film_table, film_start_speed, revolution_average
+from ..liquid.simulate import (_film_table, film_start_speed, require_axis_gravity,
+                               revolution_average)
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
 from .pack import atol_vector, initial_vector, pack_params, spin_arrays
 from .result import Simulation, SimulationError
@@ -61,7 +62,7 @@ class LiquidPart:
 def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
                  g_axial: float = G_STANDARD) -> float:
     """One-line errors, before any work, for what the run of balls beside a liquid does not
-    cover (a motor drive, a horizontal axis or in-plane gravity, a profile that never reaches
+    cover (a motor drive, [gravity] that does not fit the axis, a profile that never reaches
     or later leaves the film's start speed); returns omega_f [rad/s].
 
     Parameters
@@ -77,13 +78,8 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
     if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
         raise ParameterError("profile.kind", "motor", "balls beside a liquid need a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")
-    if liq.axis != "vertical":
-        raise ParameterError("liquid.axis", liq.axis, "must be 'vertical' with balls beside "
-                             "the liquid (a horizontal axis is modelled for a liquid alone)")
-    if system.gravity.g != 0.0:
-        raise ParameterError("gravity.g", system.gravity.g, "must be 0 with a vertical-axis "
-                             "liquid balancer ([gravity] acts in the rotor's plane)")
-    w0 = film_start_speed(liq, 0.0, g_axial)
+    require_axis_gravity(system)
+    w0 = film_start_speed(liq, system.gravity.g, g_axial)
     _film_table(spin, w0)
     return w0
 
@@ -96,8 +92,8 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     Parameters
     ----------
     system : System
-        Rotor, suspension (any the ball simulator takes), balls and a vertical-axis
-        ``[liquid]`` section.
+        Rotor, suspension (any the ball simulator takes), balls and a ``[liquid]`` section
+        ([gravity] in the plane on a horizontal axis).
     spin : SpeedProfile
         Prescribed speed [rad/s] over time [s].
     initial : InitialState, optional
@@ -152,8 +148,15 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     out_h = np.zeros((out_t.size, theta.size))
     out_q = np.zeros((out_t.size, theta.size))
     steps = 0
+    gp = system.gravity.g if liq.axis == "horizontal" else 0.0
+    gam = system.gravity.direction
+    s = system.suspension                      # the static sag (inertial frame) [m]
+    sag = system.total_mass * gp * complex(np.cos(gam) / s.kx, np.sin(gam) / s.ky)
     if t0 == 0.0 or stats[S_STATUS] == float(RunStatus.RUNNING):
-        w = complex(y[0], y[1])
+        psi0 = y[N + 2]
+        w0_ = spin.speed(t0) if t0 > 0.0 else max(float(prof_w[0]), w0)
+        w = complex(y[0], y[1]) + sag * np.exp(-1j * psi0) \
+            + gp / w0_ ** 2 * np.exp(1j * (gam - psi0))        # + gravity's offset
         h = np.concatenate([film_equilibrium(c.volume, c.chamber_radius, c.chamber_height, w,
                                              n, c.partitions) for n, c in zip(cells, ch)])
         Rs, Hs = (np.array([getattr(c, k) for c in ch], float)
@@ -162,8 +165,8 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
         nus = np.full(len(ch), liq.kinematic_viscosity)
         steps = hybrid_integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t0, t_end, rtol,
                                  atol, h_max, budget, out_t, out_y, stats, carry, h,
-                                 np.zeros(h.size), theta, starts, Rs, Hs, rhos, nus, wall, out_h,
-                                 out_q)
+                                 np.zeros(h.size), theta, starts, Rs, Hs, rhos, nus, wall, gp,
+                                 gam, sag, out_h, out_q)
         if steps < 0:
             raise FloatingPointError("simulate_hybrid: the film state became non-finite")
     film = out_t >= t0 - 1e-12 * max(1.0, t0)
