@@ -394,3 +394,79 @@ def simulate(source: Annotated[str, typer.Argument(
             "max_amplitude_m": float(np.nanmax(st["amplitude_m"])),
             "max_amplitude_dry_m": float(np.max(st["amplitude_dry_m"]))}
     _out(out, as_json)
+
+
+@app.command()
+def spinup(source: Annotated[str, typer.Argument(
+               metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
+               "axis); its profile from rest.")] = "leblanc_003",
+           sets: SetOpt = None,
+           cells: Annotated[int, typer.Option(
+               "--cells", help="Cells of equal bottom area per chamber.")] = 100,
+           plot: PlotOpt = None, as_json: JsonOpt = False):
+    """The liquid's spin-up from rest through 003's modes 1-3 until it reaches the lid (mode 4,
+    the entrainment), from the axisymmetric shallow-water model (docs/liquid.md sec. 3h),
+    beside 003 eq 4 and eq 6's quasi-static speeds.\f
+
+    Parameters
+    ----------
+    source : str
+        Preset or config with a ``[liquid]`` section on a vertical axis.
+    sets : list of str
+        ``--set`` overrides (e.g. ``profile.ramp_time=60 s``, ``liquid.volume=300 ml``).
+    cells : int
+        Cells per chamber [-].
+    plot : str or None
+        Figure file (liquid speed vs chamber speed; depth at the lid).
+    as_json : bool
+        One JSON object.
+    """
+    from ..liquid import mode_speeds
+    from ..liquid.models import G_STANDARD
+    from ..liquid.spinup import spinup_of
+    from ..liquid.steady import start_speed
+
+    _check_plot(plot)
+    cfg = load_machine(source, sets, balls="liquid")
+    runs = spinup_of(cfg.system, cfg.spin, n_cells=cells)
+    chambers = []
+    for r, c in zip(runs, cfg.system.liquid.chambers):
+        lid = r.mode_changes()[-1] if r.lid_time is not None else None
+        qs = {"omega_0_rad_s": start_speed(c.volume, c.chamber_radius, c.chamber_height,
+                                           G_STANDARD, axis="vertical",
+                                           inner_radius=c.inner_radius)}
+        if c.inner_radius == 0.0:                 # 003 eq 4-6's modes (a cylinder)
+            qs = {**mode_speeds(c.volume, c.chamber_radius, c.chamber_height), **qs}
+        chambers.append({
+            "chamber_radius_m": c.chamber_radius, "inner_radius_m": c.inner_radius,
+            "volume_m3": c.volume, "rest_level_m": r.rest_level,
+            "mode_changes": r.mode_changes(),
+            "entrainment_time_s": r.lid_time,
+            "entrainment_speed_rad_s": None if lid is None else lid["speed_rad_s"],
+            "liquid_speed_at_lid_rad_s": None if lid is None else lid["liquid_speed_rad_s"],
+            "quasi_static": qs, "steps": r.steps})
+    out = {"system": cfg.system.name, "profile": getattr(cfg.spin, "name", ""),
+           "model": "axisymmetric shallow water, apparent bottom, Ekman/laminar bottom and "
+                    "side-wall shear (autobalance.liquid.spinup)",
+           "cells": cells, "chambers": chambers}
+    if plot:
+        from ..plotting.liquid import spinup_figure
+
+        fig = spinup_figure(runs, [f"R = {c.chamber_radius:g} m, {c.volume * 1e6:.4g} ml"
+                                   for c in cfg.system.liquid.chambers],
+                            [c["quasi_static"]["omega_0_rad_s"] for c in chambers],
+                            f"{cfg.system.name}: the liquid's spin-up from rest")
+        fig.savefig(plot, dpi=120)
+        out["plot"] = str(plot)
+    if not as_json:
+        for c in chambers:
+            e = c["entrainment_speed_rad_s"]
+            typer.echo(f"R = {c['chamber_radius_m']:g} m, V = {c['volume_m3'] * 1e6:.4g} ml: "
+                       + (f"entrained (lid) at {e:.3f} 1/s, t = {c['entrainment_time_s']:.3f} s"
+                          if e is not None else "not entrained by the profile's end")
+                       + f"; 003 eq 6: {c['quasi_static']['omega_0_rad_s']:.3f} 1/s")
+        if plot:
+            typer.echo(f"plot: {plot}")
+        return
+    _out(out, True)
+

@@ -510,3 +510,43 @@ def fill_map_figure(ds: xr.Dataset, speed_unit: str = "rad/s", speed_factor: flo
         panels.append({"x": xd, "xlabel": xl, "ylabel": "whirl spread, last quarter [-]",
                        "title": "coupled film: steady?", "logy": True, "curves": cur})
     return curves_figure(panels, suptitle=title, size=(6.5 * len(panels), 4.8))
+
+
+def spinup_figure(runs: Sequence, labels: Sequence[str], omega0: Sequence[float],
+                  title: str = "") -> Figure:
+    """The liquid's spin-up from rest (:func:`autobalance.liquid.spinup.spinup_run`): left, the
+    liquid's mean angular speed against the chamber's, with 003 eq 6's entrainment speed of each
+    chamber (dotted) and the model's (the lid reached, a dot); right, the depth profile when each
+    chamber's liquid reaches the lid.
+
+    Parameters
+    ----------
+    runs : sequence of SpinUp
+        One run per chamber.
+    labels : sequence of str
+        Their legend labels.
+    omega0 : sequence of float
+        003 eq 6's entrainment speed of each chamber [rad/s].
+    title : str
+        Figure title.
+    """
+    fig = _new_figure((11, 4.5))
+    a, b = fig.subplots(1, 2)
+    top = max(float(r.speed[-1]) for r in runs)
+    a.plot([0, top], [0, top], color="0.7", lw=0.8, label="with the chamber")
+    for r, lab, w0 in zip(runs, labels, omega0):
+        line, = a.plot(r.speed, r.liquid_speed, label=lab)
+        a.axvline(w0, color=line.get_color(), ls=":", lw=1.0)
+        if r.lid_time is not None:
+            a.plot(r.speed[-1], r.liquid_speed[-1], "o", color=line.get_color())
+        b.fill_between(r.r * 1e3, 0.0, r.depth[-1] * 1e3, alpha=0.35, color=line.get_color())
+        b.plot(r.r * 1e3, r.depth[-1] * 1e3, color=line.get_color(), label=lab)
+    a.set(xlabel="chamber speed Ω [1/s]", ylabel="liquid's mean speed [1/s]",
+          title="spin-up (dotted: 003 eq 6; dot: lid reached)")
+    b.set(xlabel="radius r [mm]", ylabel="depth h [mm]", title="liquid at the lid (mode 4)")
+    a.legend(fontsize=8)
+    a.grid(alpha=0.3)
+    b.grid(alpha=0.3)
+    if title:
+        fig.suptitle(title)
+    return fig

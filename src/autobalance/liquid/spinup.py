@@ -1,0 +1,247 @@
+"""The spin-up of the liquid from rest on a vertical axis, through 003's modes 1-3 until it
+reaches the lid at the outer wall (mode 4, where the wall film of :mod:`.film` takes over): the
+axisymmetric shallow-water equations of :mod:`autobalance.core.spinup` (docs/liquid.md sec. 3h).
+
+With a slow run-up and a liquid that follows the chamber, the model's mode changes are the
+quasi-static speeds of :mod:`.free_surface` (003 eq 4 and 6); otherwise the liquid lags and
+forms its ring later, by an amount the viscosity and the run-up rate set, not a ramp.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.spinup import spinup_integrate
+from ..models import MotorDrive, SpeedProfile, System
+from ..models._validate import ParameterError, nonneg, positive
+from .models import G_STANDARD
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+__all__ = ["SpinUp", "spinup_of", "spinup_run"]
+
+#: Mode 1 (full priority of gravity) lasts while the surface at the inner wall (the axis) has
+#: sunk by less than this fraction of the rest level (as :func:`.free_surface.gravity_mode_speed`,
+#: our criterion) [-].
+GRAVITY_FRACTION = 0.25
+#: The bottom at the inner wall (the axis) counts as dry (mode 3) below this fraction of the rest
+#: level: a viscous film drains there for long after the ideal paraboloid has left it (our
+#: criterion) [-].
+DRY_LEVEL = 0.01
+
+
+@dataclass(frozen=True)
+class SpinUp:
+    """A run of :func:`spinup_run`.
+
+    Parameters
+    ----------
+    t : ndarray (nt,)
+        Output times [s] (up to the stop).
+    r : ndarray (n,)
+        Cell centres [m].
+    faces : ndarray (n + 1,)
+        Face radii [m], inner wall (or axis) to outer wall.
+    depth : ndarray (nt, n)
+        Liquid depth h along the axis [m].
+    radial : ndarray (nt, n)
+        Radial discharge h u [m^2/s].
+    azimuthal : ndarray (nt, n)
+        Azimuthal discharge h v [m^2/s], v relative to the chamber.
+    speed : ndarray (nt,)
+        Chamber spin Omega [rad/s].
+    lid_time : float or None
+        Time the surface reaches the lid at the outer wall [s] (mode 4); None if not by t_end.
+    rest_level : float
+        Depth of the liquid at rest h0 [m].
+    steps : int
+        Time steps [-].
+    """
+
+    t: np.ndarray
+    r: np.ndarray
+    faces: np.ndarray
+    depth: np.ndarray
+    radial: np.ndarray
+    azimuthal: np.ndarray
+    speed: np.ndarray
+    lid_time: float | None
+    rest_level: float
+    steps: int
+
+    @property
+    def _weights(self) -> np.ndarray:
+        return 0.5 * np.diff(self.faces ** 2)            # integral of r dr per cell [m^2]
+
+    @property
+    def volume(self) -> np.ndarray:
+        """Liquid volume at each output time [m^3] (2 pi sum of h r dr)."""
+        return 2 * np.pi * self.depth @ self._weights
+
+    @property
+    def liquid_speed(self) -> np.ndarray:
+        """The liquid's mean angular velocity in the inertial frame [rad/s]: its angular
+        momentum over its moment of inertia, Omega + sum(r h v dA) / sum(r^2 h dA)."""
+        A = self._weights
+        return self.speed + (self.azimuthal * self.r) @ A / ((self.depth * self.r ** 2) @ A)
+
+    @property
+    def mode(self) -> np.ndarray:
+        """003's motion mode at each output time (sec. 5.1): 1 while the surface at the inner
+        wall (the axis) has sunk by less than :data:`GRAVITY_FRACTION` of the rest level, 2
+        while it is wet, 3 once it is dry (below :data:`DRY_LEVEL` of the rest level), 4 at the
+        lid [-]."""
+        inner = self.depth[:, 0]
+        m = np.where(inner >= (1 - GRAVITY_FRACTION) * self.rest_level, 1,
+                     np.where(inner > DRY_LEVEL * self.rest_level, 2, 3))
+        if self.lid_time is not None:
+            m = np.where(self.t >= self.lid_time, 4, m)
+        return m
+
+    def mode_changes(self) -> list[dict]:
+        """The first output time of each mode after the first [s], with the chamber's and the
+        liquid's speeds there [rad/s]."""
+        m = self.mode
+        out = []
+        for k in range(int(m[0]) + 1, 5):
+            i = np.nonzero(m >= k)[0]
+            if i.size:
+                j = int(i[0])
+                out.append({"mode": k, "time_s": float(self.t[j]),
+                            "speed_rad_s": float(self.speed[j]),
+                            "liquid_speed_rad_s": float(self.liquid_speed[j])})
+        return out
+
+
+def spinup_run(radius: float, height: float, volume: float,
+               speed: tuple[npt.ArrayLike, npt.ArrayLike], t_end: float, *,
+               inner_radius: float = 0.0, viscosity: float = 1.0e-6, g: float = G_STANDARD,
+               n_cells: int = 100, save_dt: float | None = None,
+               initial: tuple[npt.ArrayLike, npt.ArrayLike, npt.ArrayLike] | None = None
+               ) -> SpinUp:
+    """The liquid, at rest in the inertial frame at t = 0 (a flat layer), spun up by the
+    chamber's bottom (module docstring) until its surface reaches the lid at the outer wall or
+    ``t_end``.
+
+    Parameters
+    ----------
+    radius, height : float
+        Chamber R, h [m].
+    volume : float
+        Liquid volume V [m^3], at most half the chamber (the surface must dry the inner wall's
+        foot before it reaches the lid: 003 eq 5-6's case).
+    speed : (array, array)
+        Spin table (times [s] from 0, speeds [rad/s] >= 0), linear between its points.
+    t_end : float
+        Latest stop [s].
+    inner_radius : float
+        Inner wall r_i [m] (0: a cylinder).
+    viscosity : float
+        nu [m^2/s].
+    g : float
+        Gravity along the axis [m/s^2].
+    n_cells : int
+        Cells of equal bottom area from the inner wall (axis) to the outer wall [-] (100: the
+        entrainment speed within 0.2 % of 800 cells', docs/liquid.md sec. 3h).
+    save_dt : float or None
+        Output spacing [s] (None: 400 outputs).
+    initial : (array, array, array) or None
+        Initial (h [m], h u [m^2/s], h v [m^2/s]) per cell (v relative to the chamber); None:
+        the flat layer at rest in the inertial frame.
+
+    Returns
+    -------
+    SpinUp
+    """
+    R, H = positive("radius", radius), positive("height", height)
+    V = positive("volume", volume)
+    ri = nonneg("inner_radius", inner_radius)
+    if ri >= R:
+        raise ParameterError("inner_radius", inner_radius, f"must be < radius {R!r} m")
+    area = math.pi * (R * R - ri * ri)
+    if V > 0.5 * area * H:
+        raise ParameterError("volume", volume, "the spin-up model needs at most half the "
+                             f"chamber, V <= {0.5 * area * H:.4g} m^3 (a fuller chamber touches "
+                             "the lid before its inner wall's foot dries)")
+    T = positive("t_end", t_end)
+    nu, gg = positive("viscosity", viscosity), positive("g", g)
+    if isinstance(n_cells, bool) or int(n_cells) != n_cells or n_cells < 8:
+        raise ParameterError("n_cells", n_cells, "must be an integer >= 8")
+    n = int(n_cells)
+    tt = np.asarray(speed[0], float)
+    tw = np.asarray(speed[1], float)
+    if tt.ndim != 1 or tt.size < 2 or tw.shape != tt.shape or np.any(np.diff(tt) <= 0) \
+            or np.any(tw < 0) or not np.all(np.isfinite(tw)):
+        raise ParameterError("speed", "table", "needs increasing times and speeds >= 0 [rad/s]")
+    twd = np.empty_like(tw)            # the slope of the segment that starts at each point
+    twd[:-1] = np.diff(tw) / np.diff(tt)
+    twd[-1] = 0.0
+    rf = np.sqrt(np.linspace(ri * ri, R * R, n + 1))       # cells of equal bottom area
+    rc = 0.5 * (rf[1:] + rf[:-1])
+    h0 = V / area
+    if initial is None:
+        h = np.full(n, h0)
+        q = np.zeros(n)
+        s = -h * tw[0] * rc            # at rest in the inertial frame
+    else:
+        h, q, s = (np.array(x, float) for x in initial)
+        if any(x.shape != (n,) for x in (h, q, s)) or np.any(h < 0) \
+                or not all(np.all(np.isfinite(x)) for x in (h, q, s)):
+            raise ParameterError("initial", "arrays", f"needs h >= 0, q and s, {n} finite "
+                                 "values each")
+    out_t = np.linspace(0.0, T, 401) if not save_dt else np.arange(0.0, T + 0.5 * save_dt,
+                                                                   positive("save_dt", save_dt))
+    out = [np.full((out_t.size, n), np.nan) for _ in range(3)]
+    work = [np.zeros(n) for _ in range(3)] + [np.zeros(n + 1) for _ in range(5)]
+    steps, t_stop = spinup_integrate(h, q, s, rf, gg, nu, H, T, tt, tw, twd, out_t, *out, *work)
+    if steps < 0:
+        raise FloatingPointError("spinup_run: the state became non-finite")
+    keep = out_t <= t_stop + 1e-12 * max(1.0, t_stop)
+    t = np.append(out_t[keep], t_stop) if out_t[keep][-1] < t_stop else out_t[keep]
+    rows = [np.vstack([o[keep], x[None, :]]) if t.size > keep.sum() else o[keep]
+            for o, x in zip(out, (h, q, s))]
+    lid = float(t_stop) if t_stop < T else None
+    return SpinUp(t, rc, rf, rows[0], rows[1], rows[2], np.interp(t, tt, tw), lid, h0,
+                  int(steps))
+
+
+def spinup_of(system: System, spin: SpeedProfile | MotorDrive, *, n_cells: int = 100,
+              g: float = G_STANDARD) -> list[SpinUp]:
+    """The spin-up of each chamber's liquid of a machine through its speed profile, from rest
+    in the inertial frame at the profile's start (the chambers spin up independently: the
+    model is axisymmetric, the rotor's whirl is not in it).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        A machine with a ``[liquid]`` section on a vertical axis.
+    spin : autobalance.models.SpeedProfile
+        Its prescribed speed [rad/s] over time [s].
+    n_cells : int
+        Cells per chamber [-].
+    g : float
+        Gravity along the axis [m/s^2].
+
+    Returns
+    -------
+    list of SpinUp
+        One per chamber, from the axis outwards; each stops where its liquid reaches the lid.
+    """
+    liq = system.liquid
+    if liq is None:
+        raise ParameterError("liquid", None, "needs a [liquid] section (e.g. the preset "
+                             "leblanc_003)")
+    if liq.axis != "vertical":
+        raise ParameterError("liquid.axis", liq.axis, "must be 'vertical' for the spin-up "
+                             "model (gravity along the axis holds the liquid on the bottom)")
+    if not isinstance(spin, SpeedProfile):
+        raise ParameterError("profile.kind", "motor", "the spin-up model needs a prescribed "
+                             "speed profile (constant, ramp, table, std or tsr)")
+    table = (np.asarray(spin.times, float), np.asarray(spin.speeds, float))
+    return [spinup_run(c.chamber_radius, c.chamber_height, c.volume, table, spin.duration,
+                       inner_radius=c.inner_radius, viscosity=liq.kinematic_viscosity, g=g,
+                       n_cells=n_cells) for c in liq.chambers]
