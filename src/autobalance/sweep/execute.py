@@ -121,6 +121,7 @@ def _stop_pool(ex) -> None:
     """Kill the pool's processes now (Ctrl-C, a write error): finished tasks are already on
     disk, the ones running are lost and rerun on --resume."""
     procs = list(getattr(ex, "_processes", {}).values())
+    manager = getattr(ex, "_executor_manager_thread", None)    # shutdown() forgets it
     _quiet_exit_wakeup(getattr(ex, "_executor_manager_thread_wakeup", None))
     for p in procs:
         try:
@@ -134,8 +135,9 @@ def _stop_pool(ex) -> None:
         except (OSError, AttributeError, ValueError, AssertionError):
             pass
     # let the pool's manager thread finish closing its wake-up pipe (prompt exit in the common
-    # case; _quiet_exit_wakeup covers a manager still closing when the interpreter exits)
-    manager = getattr(ex, "_executor_manager_thread", None)
+    # case; _quiet_exit_wakeup covers a manager still closing when the interpreter exits). The
+    # thread is taken before shutdown(), which sets the pool's reference to None: read after
+    # it, the join never ran, and a loaded machine failed test_sweep_faults' check of the pipe
     if manager is not None:
         manager.join(timeout=5)
 
