@@ -132,7 +132,10 @@ def test_cli_end_to_end(tmp_path):
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert d["status"] == "ok" and d["n_balls"] == 2 and d["liquid"]["film_steps"] > 0
-    assert d["liquid"]["film_start_s"] == pytest.approx(8 * 22.66 / 40, rel=1e-3)
+    from autobalance.liquid.spinup import spinup_of
+    cfg = machine("profile.end_speed=40 1/s", "profile.ramp_time=8 s", "profile.duration=8 s")
+    assert d["liquid"]["film_start_s"] == spinup_of(cfg.system, cfg.spin)[0].lid_time
+    assert d["liquid"]["film_start_speed_rad_s"] > 22.66           # later than 003 eq 6
     with xr.open_dataset(nc) as ds:
         U = ds.synchronous_unbalance_x + 1j * ds.synchronous_unbalance_y
         assert float(abs(U[-1])) == pytest.approx(d["liquid"]["liquid_unbalance_kg_m"])

@@ -141,15 +141,20 @@ def test_coupled_run_lists_must_agree():
 # -- simulate and sweep --------------------------------------------------------------------------
 @pytest.mark.slow
 def test_simulate_three_chambers(tmp_path):
-    """The film starts at the largest chamber's entrainment speed; the chambers' moments add up
-    to the liquid's; the summary and the NetCDF carry each chamber."""
-    from autobalance.liquid.simulate import film_start_speed
+    """The film starts where the last chamber's liquid reaches the lid in its spin-up from
+    rest; the chambers' moments add up to the liquid's; the summary and the NetCDF carry each
+    chamber."""
+    from autobalance.liquid.simulate import film_start, film_start_speed
+    from autobalance.liquid.spinup import spinup_of
 
     cfg = three(*SHORT)
     L = cfg.system.liquid
     sim = simulate_liquid(cfg.system, cfg.spin, n_cells=64)
     assert sim.status == "ok"
-    assert sim.film_start_speed == max(film_start_speed(c) for c in L.chambers)
+    fs = film_start(cfg.system, cfg.spin)      # the latest chamber's spin-up to the lid
+    assert fs.rule == "spin-up" and sim.film_start == fs.time
+    assert fs.time == max(r.lid_time for r in spinup_of(cfg.system, cfg.spin))
+    assert sim.film_start_speed == fs.speed > max(film_start_speed(c) for c in L.chambers)
     assert sim.chamber_unbalance.shape == (sim.t.size, 3)
     assert np.allclose(sim.chamber_unbalance.sum(-1), sim.liquid_unbalance, rtol=1e-14, atol=0)
     s = sim.summary()

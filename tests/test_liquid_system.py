@@ -98,15 +98,23 @@ def test_python_round_trip_and_adding_a_section():
 
 
 # -- simulate ----------------------------------------------------------------------------------
-def test_film_starts_at_the_entrainment_speed():
-    """A ramp 0 -> 100 1/s in 20 s reaches omega_0 (003 eq 6) at 20 omega_0/100 s; the run
-    starts there on the synchronous orbit of the rotor with its liquid as a rigid mass."""
+def test_film_starts_where_the_spin_up_reaches_the_lid():
+    """A ramp 0 -> 100 1/s in 20 s from rest: the liquid spins up from a flat layer at rest and
+    the film starts where it reaches the lid (liquid/spinup.py; 28.8 1/s against 003 eq 6's
+    22.7), lagging the chamber as the spin-up leaves it; the run starts there on the
+    synchronous orbit of the rotor with its liquid as a rigid mass."""
+    from autobalance.liquid.simulate import film_start
+    from autobalance.liquid.spinup import spinup_of
+
     cfg = bench()
     s, L = cfg.system, cfg.system.liquid
     sim = simulate_liquid(s, cfg.spin, n_cells=64, n_out=201)
-    w0 = entrainment_speed(L.volume, L.chamber_radius, L.chamber_height)
-    assert sim.film_start_speed == w0
-    assert sim.film_start == pytest.approx(20.0 * w0 / 100.0, rel=1e-12)
+    spun = spinup_of(s, cfg.spin)[0]
+    w0 = 100.0 * spun.lid_time / 20.0
+    assert sim.film_start == spun.lid_time and sim.film_start_speed == pytest.approx(w0)
+    assert w0 > entrainment_speed(L.volume, L.chamber_radius, L.chamber_height) + 5.0
+    fs = film_start(s, cfg.spin)
+    assert fs.rule == "spin-up" and fs.lag[0] == spun.liquid_speed[-1] - spun.speed[-1] < -3.0
     assert sim.t[0] == pytest.approx(sim.film_start) and sim.t[-1] == pytest.approx(20.0)
     assert sim.speed[0] == pytest.approx(w0) and sim.speed[-1] == pytest.approx(100.0)
     a0 = axis_response(s.total_mass, s.suspension.kx, s.suspension.cx, s.rotor.unbalance, w0)[0]
@@ -117,6 +125,25 @@ def test_film_starts_at_the_entrainment_speed():
     summary = sim.summary()
     assert summary["final"]["grade_G_mm_s"] == pytest.approx(
         1e3 * abs(s.rotor.unbalance + sim.synchronous_unbalance[-1]) / s.total_mass * 100.0)
+
+
+def test_film_starts_at_the_entrainment_speed_on_a_turning_start():
+    """A profile that starts at or above omega_0 (003 eq 6) starts with the ring turning with
+    the chamber (no film lag); one that starts turning below it spins the pool up from its
+    rigid rotation at the first speed, and reaches the lid later than the profile reaches
+    omega_0; a horizontal axis keeps the quasi-static rule (sec. 3e)."""
+    from autobalance.liquid.simulate import film_start
+
+    cfg = bench()
+    L = cfg.system.liquid
+    w0 = entrainment_speed(L.volume, L.chamber_radius, L.chamber_height)
+    fs = film_start(cfg.system, SpeedProfile.ramp(30.0, 100.0, 5.0, 5.0))
+    assert (fs.time, fs.speed, fs.lag, fs.rule) == (0.0, w0, (0.0,), "quasi-static")
+    fs = film_start(cfg.system, SpeedProfile.ramp(10.0, 100.0, 20.0, 20.0))
+    t_eq6 = 20.0 * (w0 - 10.0) / 90.0
+    assert fs.rule == "spin-up" and fs.time > t_eq6 and fs.speed > w0 and fs.lag[0] < 0.0
+    washer = load_config("leblanc_washer")
+    assert film_start(washer.system, washer.spin).rule == "quasi-static"
 
 
 def test_steady_whirl_matches_the_quasi_static_liquid():

@@ -389,7 +389,8 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
                 n_cells: int | Sequence[int] = 256, save_dt: float | None = None,
                 deflection: complex = 0j, velocity: complex = 0j, gravity: float = 0.0,
                 gravity_direction: float = -0.5 * np.pi,
-                partitions: int | Sequence[int] = 0) -> CoupledRun:
+                partitions: int | Sequence[int] = 0,
+                film_speed: float | Sequence[float] = 0.0) -> CoupledRun:
     """The film of one chamber, or of several concentric chambers on the same rotor, coupled
     two-way with an isotropic Jeffcott rotor at a prescribed spin
     (:func:`autobalance.core.shallow_water.sw_coupled`): the rotor's deflection moves every
@@ -429,6 +430,9 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
         Its inertial direction gamma [rad] (-pi/2: down); the spin angle is 0 at t = 0.
     partitions : int or sequence
         Equally spaced radial walls per chamber [-] (:func:`partition_walls`; 0: none).
+    film_speed : float or sequence
+        Each film's initial speed along its wall relative to it [m/s] (q = eta v; negative: a
+        liquid lagging the chamber, as the spin-up from rest leaves it, liquid/spinup.py).
 
     Returns
     -------
@@ -454,7 +458,8 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
     wall = np.concatenate(walls)
     h = np.concatenate([film_equilibrium(f.volume, f.radius, f.height, complex(deflection) + off,
                                          f.n_cells, f.partitions) for f in films])
-    q = np.zeros(h.size)
+    v0 = _per_film("film_speed", film_speed, nf)
+    q = h * np.concatenate([np.full(f.n_cells, finite("film_speed", v)) for f, v in zip(films, v0)])
     Rs, Hs, rhos, nus = (np.array([getattr(f, k) for f in films], float)
                          for k in ("radius", "height", "density", "viscosity"))
     Mt = rotor.mass + float(np.sum(rhos * [f.volume for f in films]))

@@ -1,13 +1,16 @@
 """One run of a System whose balancer is a liquid (its ``[liquid]`` section), through its speed
 profile, with the wall film coupled two-way to the rotor (:func:`.film.coupled_run`).
 
-The film model holds once the liquid is a ring on the wall: from the first time the profile
-reaches the film's start speed omega_f (:func:`film_start_speed`: on a vertical axis the
-entrainment speed of 003 eq 6; on a horizontal one the speed where gravity's offset of the
-potential g/Omega^2 is R/10). Before it the liquid lies as a pool; the run starts at omega_f on
-the synchronous orbit of the rotor carrying the liquid as a rigid centred mass (a quasi-steady
-start: the Jeffcott closed form, valid for a run-up slow against the rotor's decay time), plus
-the static sag M_t g / k under in-plane gravity, with the film at rest on the displaced wall.
+The film model holds once the liquid is a ring on the wall (:func:`film_start`): from rest on
+a vertical axis, where the liquid's spin-up from a flat layer at rest reaches the lid
+(:mod:`.spinup`, 003's mode 4, docs/liquid.md sec. 3h), the film lagging the chamber as the
+spin-up leaves it; otherwise from the first time the profile reaches the film's start speed
+omega_f (:func:`film_start_speed`: on a vertical axis the entrainment speed of 003 eq 6; on a
+horizontal one the speed where gravity's offset of the potential g/Omega^2 is R/10), the film
+at rest on the wall. Before it the liquid lies as a pool; the run starts on the synchronous
+orbit of the rotor carrying the liquid as a rigid centred mass (a quasi-steady start: the
+Jeffcott closed form, valid for a run-up slow against the rotor's decay time), plus the static
+sag M_t g / k under in-plane gravity, with the film on the displaced wall.
 The reported deflection is the whirl about the static sag. docs/liquid.md sec. 3e gives the
 scope and what is not modelled yet.
 """
@@ -20,18 +23,20 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.layout import RunStatus
-from ..models import LiquidDevice, MotorDrive, ParameterError, SpeedProfile, System
+from ..models import MotorDrive, ParameterError, SpeedProfile, System
 from ..physics.iso1940 import grade_value
 from .film import coupled_run
 from .models import G_STANDARD, LiquidBalancer, VerticalRotor
-from .steady import pool_response, start_speed
+from .start import FilmStart, _film_table, film_start, film_start_speed
+from .steady import pool_response
 
 if TYPE_CHECKING:
     from pathlib import Path
 
     import numpy.typing as npt
 
-__all__ = ["LiquidSimulation", "check_liquid_run", "film_rotor", "film_start_speed",
+__all__ = ["FilmStart", "LiquidSimulation", "check_liquid_run", "film_rotor", "film_start",
+           "film_start_speed",
            "liquid_parts", "require_axis_gravity", "require_liquid_machine", "revolution_average",
            "run_seconds_estimate", "simulate_liquid"]
 
@@ -65,9 +70,9 @@ class LiquidSimulation:
         part turning with the rotor, without the gravity-held part that stands still in the
         inertial frame and loads the supports statically [kg*m].
     film_start : float
-        Time the profile first reaches omega_f [s].
+        Time the film starts (:func:`film_start`) [s].
     film_start_speed : float
-        omega_f (:func:`film_start_speed`) [rad/s].
+        The profile's speed at ``film_start`` [rad/s] (:func:`film_start`).
     nominal_speed : float
         The profile's nominal speed, for the ISO grade [rad/s].
     steps : int
@@ -351,55 +356,10 @@ def revolution_average(psi: npt.ArrayLike, values: npt.ArrayLike) -> np.ndarray:
     return (cum(hi) - cum(lo)) / max(span, 1e-300)
 
 
-def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
-                     g_axial: float = G_STANDARD) -> float:
-    """Speed from which the wall-film model holds [rad/s]: :func:`.steady.start_speed` of the
-    machine's chamber, fill and axis (vertical: 003 eq 6's entrainment speed; horizontal: where
-    gravity's offset g/Omega^2 of the potential is R/10); with several chambers the largest,
-    where every chamber's liquid is a ring.
-
-    Parameters
-    ----------
-    device : autobalance.models.LiquidDevice
-        The chambers (R, h [m]), fills V [m^3] and axis.
-    g_plane : float
-        In-plane gravity for a horizontal axis [m/s^2].
-    g_axial : float
-        Gravity along a vertical axis [m/s^2].
-    """
-    g = g_plane if device.axis == "horizontal" else g_axial
-    return max(start_speed(c.volume, c.chamber_radius, c.chamber_height, g, axis=c.axis,
-                           inner_radius=c.inner_radius) for c in device.chambers)
-
-
-def _film_table(spin: SpeedProfile, w0: float) -> tuple[float, np.ndarray, np.ndarray]:
-    """(t0, times from t0 [s], speeds [rad/s]) of the profile from its first reaching w0."""
-    t = np.asarray(spin.times, float)
-    w = np.asarray(spin.speeds, float)
-    above = np.nonzero(w >= w0)[0]
-    if above.size == 0:
-        raise ParameterError("profile", f"max {w.max():.4g} rad/s", f"never reaches the film "
-                             f"model's start speed {w0:.4g} rad/s (below it the liquid is a "
-                             "pool, not a wall film; docs/liquid.md sec. 3e)")
-    i = int(above[0])
-    t0 = t[0] if i == 0 else t[i - 1] + (w0 - w[i - 1]) / (w[i] - w[i - 1]) * (t[i] - t[i - 1])
-    tt = np.concatenate([[t0], t[i:][t[i:] > t0]])
-    ww = np.interp(tt, t, w)
-    ww[0] = max(ww[0], w0)
-    low = np.nonzero(ww < w0 * (1 - 1e-12))[0]
-    if low.size:
-        raise ParameterError("profile", f"{ww[low[0]]:.4g} rad/s at {tt[low[0]]:.4g} s",
-                             f"falls below the film model's start speed {w0:.4g} rad/s after "
-                             "reaching it; the film model needs the liquid on the wall")
-    if tt[-1] <= t0:
-        raise ParameterError("profile", f"end at {t[-1]:.4g} s", f"reaches the film model's "
-                             f"start speed {w0:.4g} rad/s only at its end: nothing to simulate")
-    return float(t0), tt - t0, ww
-
-
 def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) -> float:
-    """Refuse, before any work, a machine or profile outside the film model; return its start
-    speed (:func:`film_start_speed`).
+    """Refuse, before any work, a machine or profile outside the film model; return the speed
+    where its film starts (:func:`film_start`: from rest on a vertical axis, where the spin-up
+    puts the liquid on the lid).
 
     Parameters
     ----------
@@ -413,7 +373,7 @@ def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STAN
     Returns
     -------
     float
-        omega_f [rad/s].
+        The profile's speed at the film's start [rad/s].
 
     Raises
     ------
@@ -421,9 +381,7 @@ def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STAN
         As :func:`simulate_liquid` (one line).
     """
     _check(system, spin)
-    w0 = film_start_speed(system.liquid, system.gravity.g, g_axial)
-    _film_table(spin, w0)
-    return w0
+    return film_start(system, spin, g_axial).speed
 
 
 def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256) -> float:
@@ -488,9 +446,11 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
         anisotropic suspension, a motor drive, in-plane gravity that does not fit the axis, a
         profile that never reaches or later falls below omega_f).
     """
-    w0 = check_liquid_run(system, spin, g_axial)
+    _check(system, spin)
+    fs = film_start(system, spin, g_axial)
     liq, s = system.liquid, system.suspension
-    t0, tt, ww = _film_table(spin, w0)
+    t0, tt, ww = _film_table(spin, film_start_speed(liq, system.gravity.g, g_axial), fs.time)
+    w0 = fs.speed
     psi_knots = np.concatenate([[0.0], np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))])
     if n_out is None:
         n_out = int(min(max(1001, 8 * psi_knots[-1] / (2 * np.pi) + 1), 200001))
@@ -510,7 +470,8 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
                       viscosity=liq.kinematic_viscosity, n_cells=cells,
                       partitions=[c.partitions for c in ch],
                       save_dt=T / (int(n_out) - 1), deflection=complex(start + sag),
-                      velocity=complex(-1j * ww[0] * sag), gravity=gp, gravity_direction=gdir)
+                      velocity=complex(-1j * ww[0] * sag), gravity=gp, gravity_direction=gdir,
+                      film_speed=[lag * c.chamber_radius for lag, c in zip(fs.lag, ch)])
     # the spin angle at the outputs (psi = 0 at the film's start; exact on the linear table)
     i = np.clip(np.searchsorted(tt, run.t, side="right") - 1, 0, tt.size - 2)
     tau = run.t - tt[i]

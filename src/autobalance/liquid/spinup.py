@@ -22,7 +22,7 @@ from .models import G_STANDARD
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-__all__ = ["SpinUp", "spinup_of", "spinup_run"]
+__all__ = ["SpinUp", "rigid_pool", "spinup_of", "spinup_run"]
 
 #: Mode 1 (full priority of gravity) lasts while the surface at the inner wall (the axis) has
 #: sunk by less than this fraction of the rest level (as :func:`.free_surface.gravity_mode_speed`,
@@ -212,8 +212,9 @@ def spinup_run(radius: float, height: float, volume: float,
 def spinup_of(system: System, spin: SpeedProfile | MotorDrive, *, n_cells: int = 100,
               g: float = G_STANDARD) -> list[SpinUp]:
     """The spin-up of each chamber's liquid of a machine through its speed profile, from rest
-    in the inertial frame at the profile's start (the chambers spin up independently: the
-    model is axisymmetric, the rotor's whirl is not in it).
+    in the inertial frame at the profile's start, or, for a profile that starts turning, from
+    the pool turning with the chamber at that speed (:func:`rigid_pool`); the chambers spin up
+    independently (the model is axisymmetric, the rotor's whirl is not in it).
 
     Parameters
     ----------
@@ -242,6 +243,47 @@ def spinup_of(system: System, spin: SpeedProfile | MotorDrive, *, n_cells: int =
         raise ParameterError("profile.kind", "motor", "the spin-up model needs a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")
     table = (np.asarray(spin.times, float), np.asarray(spin.speeds, float))
+    W0 = float(table[1][0])
     return [spinup_run(c.chamber_radius, c.chamber_height, c.volume, table, spin.duration,
                        inner_radius=c.inner_radius, viscosity=liq.kinematic_viscosity, g=g,
-                       n_cells=n_cells) for c in liq.chambers]
+                       n_cells=n_cells,
+                       initial=None if W0 == 0.0 else rigid_pool(
+                           c.chamber_radius, c.inner_radius, c.volume, W0, g, n_cells))
+            for c in liq.chambers]
+
+
+def rigid_pool(radius: float, inner_radius: float, volume: float, speed: float, g: float,
+               n_cells: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The liquid turning with the chamber at ``speed`` (003 eq 3's paraboloid h = C +
+    Omega^2 r^2 / 2g, dry where negative, C from the volume), on :func:`spinup_run`'s cells: the
+    initial state (h [m], hu, hv [m^2/s]) of a chamber that has turned at its profile's first
+    speed for long.
+
+    Parameters
+    ----------
+    radius, inner_radius : float
+        R, r_i [m].
+    volume : float
+        V [m^3].
+    speed : float
+        Omega [rad/s].
+    g : float
+        Gravity along the axis [m/s^2].
+    n_cells : int
+        Cells [-].
+    """
+    rf = np.sqrt(np.linspace(inner_radius ** 2, radius ** 2, int(n_cells) + 1))
+    rc = 0.5 * (rf[1:] + rf[:-1])
+    area = 0.5 * np.diff(rf ** 2)
+    rise = speed * speed * rc * rc / (2.0 * g)
+
+    def vol(C):
+        return 2.0 * np.pi * np.maximum(0.0, C + rise) @ area
+
+    lo, hi = -float(rise[-1]), volume / (2.0 * np.pi * area.sum())
+    for _ in range(200):                    # bisection: vol(C) increases with C
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if vol(mid) < volume else (lo, mid)
+    h = np.maximum(0.0, hi + rise)
+    h *= volume / (2.0 * np.pi * h @ area)  # the volume to round-off
+    return h, np.zeros_like(h), np.zeros_like(h)

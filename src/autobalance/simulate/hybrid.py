@@ -3,11 +3,13 @@
 same rotor (:mod:`autobalance.core.hybrid`; docs/liquid.md sec. 3i). :func:`autobalance.simulate`
 runs it for such a machine.
 
-Before the film model's start speed omega_f (:func:`autobalance.liquid.simulate.film_start_speed`: 003 eq 6's
-entrainment speed, the largest of the chambers') the liquid is a pool centred in its chamber:
-its mass moves with the rotor (M_t includes it) and it pulls nothing. From the time the profile
-reaches omega_f each chamber's liquid is a wall film, started at rest on the displaced wall
-(:func:`autobalance.liquid.film.film_equilibrium`) and coupled two-way with the rotor and the balls.
+Before the film starts (:func:`autobalance.liquid.simulate.film_start`: from rest on a vertical
+axis where the liquid's spin-up reaches the lid; otherwise where the profile reaches 003 eq 6's
+entrainment speed, or g/Omega^2 = R/10 on a horizontal axis) the liquid is a pool centred in its
+chamber: its mass moves with the rotor (M_t includes it) and it pulls nothing. From then on each
+chamber's liquid is a wall film on the displaced wall (:func:`autobalance.liquid.film.
+film_equilibrium`), lagging the chamber as the spin-up leaves it, coupled two-way with the
+rotor and the balls.
 """
 from __future__ import annotations
 
@@ -21,8 +23,8 @@ from ..core.layout import N_S, S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import _theta, film_equilibrium, film_unbalance, partition_walls
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import (_film_table, film_start_speed, require_axis_gravity,
-                               revolution_average)
+from ..liquid.simulate import require_axis_gravity, revolution_average
+from ..liquid.start import FilmStart, film_start
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
 from .pack import atol_vector, initial_vector, pack_params, spin_arrays
 from .result import Simulation, SimulationError
@@ -44,9 +46,9 @@ class LiquidPart:
     chamber_unbalance : ndarray of complex (nt, chambers)
         Each chamber's film moment, from the axis outwards [kg*m].
     film_start : float
-        Time the profile first reaches omega_f [s].
+        Time the film starts (:func:`autobalance.liquid.simulate.film_start`) [s].
     film_start_speed : float
-        omega_f [rad/s].
+        The profile's speed there [rad/s].
     steps : int
         Film time steps (coupling steps) [-].
     """
@@ -60,10 +62,10 @@ class LiquidPart:
 
 
 def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
-                 g_axial: float = G_STANDARD) -> float:
+                 g_axial: float = G_STANDARD) -> FilmStart:
     """One-line errors, before any work, for what the run of balls beside a liquid does not
     cover (a motor drive, [gravity] that does not fit the axis, a profile that never reaches
-    or later leaves the film's start speed); returns omega_f [rad/s].
+    or later leaves the film's start speed); returns where the film starts.
 
     Parameters
     ----------
@@ -74,14 +76,11 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
     g_axial : float
         Gravity along the vertical axis [m/s^2] (003 eq 6).
     """
-    liq = system.liquid
     if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
         raise ParameterError("profile.kind", "motor", "balls beside a liquid need a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")
     require_axis_gravity(system)
-    w0 = film_start_speed(liq, system.gravity.g, g_axial)
-    _film_table(spin, w0)
-    return w0
+    return film_start(system, spin, g_axial)
 
 
 def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState | None = None,
@@ -117,11 +116,11 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
 
     initial = initial or InitialState()
     options = options or SimOptions()
-    w0 = check_hybrid(system, spin, g_axial)
+    fs = check_hybrid(system, spin, g_axial)
     check_run(system, spin, options)
     if isinstance(n_cells, bool) or int(n_cells) != n_cells or n_cells < 16:
         raise ParameterError("n_cells", n_cells, "must be an integer >= 16")
-    t0, _, _ = _film_table(spin, w0)
+    t0, w0 = fs.time, fs.speed
     N = system.balancer.n_balls
     P, B = pack_params(system, spin, options, liquid_ok=True)
     y, order = initial_vector(system, spin, initial)
@@ -154,18 +153,19 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     sag = system.total_mass * gp * complex(np.cos(gam) / s.kx, np.sin(gam) / s.ky)
     if t0 == 0.0 or stats[S_STATUS] == float(RunStatus.RUNNING):
         psi0 = y[N + 2]
-        w0_ = spin.speed(t0) if t0 > 0.0 else max(float(prof_w[0]), w0)
         w = complex(y[0], y[1]) + sag * np.exp(-1j * psi0) \
-            + gp / w0_ ** 2 * np.exp(1j * (gam - psi0))        # + gravity's offset
+            + gp / w0 ** 2 * np.exp(1j * (gam - psi0))         # + gravity's offset
         h = np.concatenate([film_equilibrium(c.volume, c.chamber_radius, c.chamber_height, w,
                                              n, c.partitions) for n, c in zip(cells, ch)])
+        q = h * np.concatenate([np.full(n, lag * c.chamber_radius)       # the spin-up's lag
+                                for n, c, lag in zip(cells, ch, fs.lag)])
         Rs, Hs = (np.array([getattr(c, k) for c in ch], float)
                   for k in ("chamber_radius", "chamber_height"))
         rhos = np.full(len(ch), liq.density)
         nus = np.full(len(ch), liq.kinematic_viscosity)
         steps = hybrid_integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t0, t_end, rtol,
                                  atol, h_max, budget, out_t, out_y, stats, carry, h,
-                                 np.zeros(h.size), theta, starts, Rs, Hs, rhos, nus, wall, gp,
+                                 q, theta, starts, Rs, Hs, rhos, nus, wall, gp,
                                  gam, sag, out_h, out_q)
         if steps < 0:
             raise FloatingPointError("simulate_hybrid: the film state became non-finite")
