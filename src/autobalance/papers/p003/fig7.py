@@ -79,8 +79,8 @@ def _entrainment_rows(rows: Rows, b: Bench) -> dict:
              " > ".join(f"{x:.1f}" for x in vals), "decreasing", all(np.diff(vals) < 0),
              "eq 6: omega_0 ~ V^-1/2")
     rows.add("entrainment_depends_on_unbalance", "omega_0 vs D", "independent of D", "-", False,
-             "eq 6 contains no D, and the film model starts at it: the liquid's spin-up from "
-             "rest is not modelled; 003's dependence is experimental")
+             "eq 6 contains no D, nor does the spin-up from rest (axisymmetric: the rotor's "
+             "whirl is not in it, docs/liquid.md sec. 3h); 003's dependence is experimental")
     return w0s
 
 
