@@ -154,7 +154,7 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     if t0 == 0.0 or stats[S_STATUS] == float(RunStatus.RUNNING):
         psi0 = y[N + 2]
         w = complex(y[0], y[1]) + sag * np.exp(-1j * psi0) \
-            + gp / w0 ** 2 * np.exp(1j * (gam - psi0))         # + gravity's offset
+            + gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0))    # + gravity's offset
         h = np.concatenate([film_equilibrium(c.volume, c.chamber_radius, c.chamber_height, w,
                                              n, c.partitions) for n, c in zip(cells, ch)])
         q = h * np.concatenate([np.full(n, lag * c.chamber_radius)       # the spin-up's lag
