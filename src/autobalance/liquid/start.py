@@ -5,6 +5,7 @@ own runs (:mod:`.simulate`) and by balls beside a liquid (:mod:`autobalance.simu
 """
 from __future__ import annotations
 
+import functools
 from typing import NamedTuple
 
 import numpy as np
@@ -123,16 +124,33 @@ def film_start(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) 
                * c.chamber_height for c in liq.chambers)   # touches the lid before drying
     if liq.axis != "vertical" or spin.speeds[0] >= w0 or half:
         return FilmStart(t0, w0, (0.0,) * liq.n_chambers, "quasi-static")
-    from .spinup import spinup_of
-
-    runs = spinup_of(system, spin, g=g_axial)
-    for r, c in zip(runs, liq.chambers):
-        if r.lid_time is None:
+    lids = [_lid(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume,
+                 liq.kinematic_viscosity, g_axial, tuple(spin.times), tuple(spin.speeds))
+            for c in liq.chambers]
+    for (t_lid, _), c in zip(lids, liq.chambers):
+        if t_lid is None:
             raise ParameterError("profile", f"end at {spin.duration:.4g} s", "comes before the "
                                  f"liquid of the chamber R = {c.chamber_radius:.4g} m reaches "
                                  "the lid in its spin-up (docs/liquid.md sec. 3h): "
                                  "no ring for the film model; give a longer or faster run-up")
-    t1 = max(r.lid_time for r in runs)
+    t1 = max(t_lid for t_lid, _ in lids)
     _film_table(spin, w0, t1)
-    return FilmStart(t1, float(spin.speed(t1)),
-                     tuple(float(r.liquid_speed[-1] - r.speed[-1]) for r in runs), "spin-up")
+    return FilmStart(t1, float(spin.speed(t1)), tuple(lag for _, lag in lids), "spin-up")
+
+
+@functools.lru_cache(maxsize=256)
+def _lid(radius: float, height: float, inner_radius: float, volume: float, viscosity: float,
+         g: float, times: tuple, speeds: tuple) -> tuple[float | None, float]:
+    """(time [s] the chamber's liquid reaches the lid, or None; the liquid's mean angular speed
+    minus the chamber's there [rad/s]) of :func:`autobalance.liquid.spinup.spinup_run` through
+    the profile (times [s], speeds [rad/s]), from rest or from the pool turning at the first
+    speed (:func:`autobalance.liquid.spinup.rigid_pool`). Cached: the cells of a sweep that
+    differ in the rotor or the balls only share their liquid's spin-up."""
+    from .spinup import DEFAULT_CELLS, rigid_pool, spinup_run
+
+    W0 = speeds[0]
+    r = spinup_run(radius, height, volume, (np.array(times), np.array(speeds)), times[-1],
+                   inner_radius=inner_radius, viscosity=viscosity, g=g,
+                   initial=None if W0 == 0.0 else rigid_pool(radius, inner_radius, volume, W0, g,
+                                                             DEFAULT_CELLS))
+    return r.lid_time, float(r.liquid_speed[-1] - r.speed[-1])
