@@ -122,16 +122,18 @@ def test_liquid_analyses_refuse_balls():
 @pytest.mark.slow
 def test_cli_end_to_end(tmp_path):
     """simulate --json reports the liquid beside the balls; the NetCDF file holds its
-    histories; the grade includes the liquid's synchronous moment."""
+    histories; the grade includes the liquid's synchronous moment; --plot draws the ball run's
+    figure with the liquid's moment as a grade."""
     nc = tmp_path / "r.nc"
     r = subprocess.run([sys.executable, "-m", "autobalance", "simulate", "leblanc_003",
                         *(f"--set={s}" for s in BALLS), "--set=profile.end_speed=40 1/s",
                         "--set=profile.ramp_time=8 s", "--set=profile.duration=8 s",
-                        "--json", "--out", str(nc)], capture_output=True, text=True,
-                       timeout=600)
+                        "--json", "--out", str(nc), "--plot", str(tmp_path / "r.png")],
+                       capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert d["status"] == "ok" and d["n_balls"] == 2 and d["liquid"]["film_steps"] > 0
+    assert (tmp_path / "r.png").stat().st_size > 50_000     # the ball figure, the liquid's G
     from autobalance.liquid.spinup import spinup_of
     cfg = machine("profile.end_speed=40 1/s", "profile.ramp_time=8 s", "profile.duration=8 s")
     assert d["liquid"]["film_start_s"] == spinup_of(cfg.system, cfg.spin)[0].lid_time

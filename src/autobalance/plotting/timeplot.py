@@ -138,6 +138,16 @@ def plot_simulation(sim: object, *, speed_unit: str = "rpm", grade_limit: float 
     _draw_ball_angles(ax_ang, alpha, n_balls, ts, idx)
     grade = _get(sim, "grade_G")
     _draw_grade(ax_g, grade, ts, idx, n, grade_limit, label)
+    liquid = getattr(sim, "liquid", None)
+    if liquid is not None and grade is not None and grade.size == n:
+        # balls beside a liquid: the liquid's synchronous moment alone, as a grade
+        from ..physics.iso1940 import grade_value
+
+        g_liq = grade_value(np.abs(liquid.synchronous_unbalance), sim.system.total_mass,
+                            sim.spin.nominal_speed)
+        ax_g.plot(ts, g_liq[idx], color="tab:blue", lw=0.9, ls="-.",
+                  label="the liquid's moment alone")
+        ax_g.legend(loc="upper right", fontsize=8)
     for ax in (ax_x, ax_y, ax_amp, ax_ang):
         ax.tick_params(labelbottom=False)
     for ax in (ax_x, ax_y, ax_amp, ax_ang, ax_g):
