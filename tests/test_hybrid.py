@@ -190,3 +190,28 @@ def test_sweep_refuses_a_horizontal_axis_up_front(tmp_path):
     with pytest.raises(SweepError, match="liquid.axis"):
         sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False)
     assert not (tmp_path / "s").exists() or not any((tmp_path / "s").iterdir())
+
+
+@pytest.mark.slow
+def test_study_start_positions_takes_balls_beside_a_liquid(tmp_path):
+    """The start-position Monte Carlo (simulations only) takes balls beside a liquid: each
+    stored run is the machine's own simulate run from that start; studies with ball-only closed
+    forms (speed-map) still refuse the liquid in one line."""
+    nc = tmp_path / "mc.nc"
+    sets = [f"--set={s}" for s in (*BALLS, *SHORT)]
+    r = subprocess.run([sys.executable, "-m", "autobalance", "study", "start-positions",
+                        "leblanc_003", *sets, "--random", "3", "--json", "--out", str(nc)],
+                       capture_output=True, text=True, timeout=900)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["runs"] == 3 and d["failed"] == 0
+    cfg = machine(*SHORT)
+    with xr.open_dataset(nc) as ds:
+        a0 = tuple(float(x) for x in ds["start_angle"].isel(sample=1).values)
+        g = float(ds["grade_G"].isel(sample=1).values.ravel()[-1])
+    sim = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=a0))
+    assert g == pytest.approx(sim.summary()["final"]["grade_G_mm_s"], rel=1e-12)
+    bad = subprocess.run([sys.executable, "-m", "autobalance", "study", "speed-map",
+                          "leblanc_003", *sets], capture_output=True, text=True, timeout=600)
+    lines = bad.stderr.strip().splitlines()
+    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid")

@@ -217,7 +217,7 @@ def test_cli_simulate_show_and_refusals(tmp_path):
     assert png.stat().st_size > 10_000
     r = run_cli("show", "leblanc_003", "--set", "liquid.volume=300 ml")
     assert r.returncode == 0 and "[liquid]" in r.stdout and "(= 300 ml)" in r.stdout
-    for args, field in ((("study", "start-positions", "leblanc_003"), "liquid"),
+    for args, field in ((("study", "start-positions", "leblanc_003"), "balancer.n_balls"),
                         (("analyze", "bounds", "leblanc_003"), "liquid"),
                         (("simulate", "leblanc_003", "--set", "liquid.axis=horizontal"),
                          "gravity.g"),

@@ -173,7 +173,8 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
     balls : str
         ``"any"``: any machine; ``"rotor"``: a ball-balancer machine or the bare rotor (no
         liquid); ``"needed"``: a ball balancer (:meth:`autobalance.System.require_balls`);
-        ``"liquid"``: a liquid balancer (a ``[liquid]`` section).
+        ``"liquid"``: a liquid balancer (a ``[liquid]`` section); ``"beside"``: a ball
+        balancer, a liquid beside it allowed (analyses that only simulate).
 
     Returns
     -------
@@ -190,7 +191,8 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
             raise ConfigError("liquid: missing; this study needs a liquid balancer, a [liquid] "
                               "section (e.g. the preset leblanc_003)")
     elif balls != "any":
-        cfg.system.require_balls("this command's analyses", allow_empty=balls == "rotor")
+        cfg.system.require_balls("this command's analyses", allow_empty=balls == "rotor",
+                                 allow_liquid=balls == "beside")
     return cfg
 
 

@@ -171,7 +171,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units)
+                              scheduler, store, units, balls="beside")
         _counts(n=n, random=samples)
         axes = _grid(grid)
         if axes and "balancer.n_balls" in axes and samples is None:

@@ -36,7 +36,8 @@ class System:
         if self.liquid is not None and not isinstance(self.liquid, LiquidDevice):
             raise ParameterError("liquid", self.liquid, "must be a LiquidDevice or None")
 
-    def require_balls(self, what: str, allow_empty: bool = False) -> None:
+    def require_balls(self, what: str, allow_empty: bool = False,
+                      allow_liquid: bool = False) -> None:
         """Refuse, in one line, a machine an analysis of ball balancers cannot take.
 
         Parameters
@@ -45,18 +46,24 @@ class System:
             The analysis, named in the message (e.g. ``"the studies"``).
         allow_empty : bool
             Accept a machine without balls (the bare rotor) [-].
+        allow_liquid : bool
+            Accept a liquid beside the balls: the analysis runs only simulations, which model
+            it (autobalance.simulate.hybrid) [-].
 
         Raises
         ------
         ParameterError
-            A liquid balancer (the ball analyses would take the liquid as a rigid mass), or no
-            balls unless ``allow_empty``.
+            A liquid balancer (the ball analyses would take the liquid as a rigid mass) unless
+            ``allow_liquid``, or no balls unless ``allow_empty``.
         """
-        if self.liquid is not None:
+        if self.liquid is not None and not allow_liquid:
             raise ParameterError("liquid", "a [liquid] section", f"{what} take ball balancers "
                                  "only so far; a liquid balancer runs with `autobalance simulate` (and `sweep`)")
         if not allow_empty and self.balancer.n_balls == 0:
-            raise ParameterError("balancer.n_balls", 0, f"{what} need a ball balancer (>= 1 ball)")
+            alone = ("; a liquid alone runs with `autobalance simulate` and `study fill-map`"
+                     if self.liquid is not None else "")
+            raise ParameterError("balancer.n_balls", 0,
+                                 f"{what} need a ball balancer (>= 1 ball{alone})")
 
     @property
     def total_mass(self) -> float:

@@ -24,7 +24,8 @@ __all__ = ["case_sets", "checkpoint_labels", "default_starts", "load", "run_star
            "starts_for_runs", "store_path"]
 
 
-def load(base: str | Path | Config, sets: Sequence[str] = ()) -> Config:
+def load(base: str | Path | Config, sets: Sequence[str] = (),
+         allow_liquid: bool = False) -> Config:
     """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied;
     every study here is of a ball balancer, so the machine must have one.
 
@@ -35,6 +36,9 @@ def load(base: str | Path | Config, sets: Sequence[str] = ()) -> Config:
         Python (:func:`autobalance.config.from_models`).
     sets : sequence of str
         Overrides "path=value" (values with units, as for ``--set``).
+    allow_liquid : bool
+        Accept a liquid beside the balls (a study that only simulates, the start-position
+        Monte Carlo: autobalance.simulate.hybrid models it).
 
     Returns
     -------
@@ -43,7 +47,7 @@ def load(base: str | Path | Config, sets: Sequence[str] = ()) -> Config:
     Raises
     ------
     ParameterError
-        A machine without balls, or with a liquid balancer (one line).
+        A machine without balls, or with a liquid balancer unless ``allow_liquid`` (one line).
     """
     from ..config import Config, load_config, replace_values
     from ..config.overrides import parse_override
@@ -52,7 +56,7 @@ def load(base: str | Path | Config, sets: Sequence[str] = ()) -> Config:
         cfg = replace_values(base, dict(parse_override(s) for s in sets)) if sets else base
     else:
         cfg = load_config(base, list(sets))
-    cfg.system.require_balls("the studies")
+    cfg.system.require_balls("the studies", allow_liquid=allow_liquid)
     return cfg
 
 
@@ -157,7 +161,7 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
 
     n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
     if samples is None:
-        b = load(base, sets).system.balancer
+        b = load(base, sets, allow_liquid=True).system.balancer     # the caller checked
         per_cell = n_start_grid(n, b.n_balls, identical_balls(b))   # 2 balls: n(n+1)/2
     else:
         per_cell = int(samples)

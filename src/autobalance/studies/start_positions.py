@@ -222,7 +222,7 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
     from ..sweep.summary import percentiles, share_below
 
     t0 = time.perf_counter()
-    cfg = load(base, sets)
+    cfg = load(base, sets, allow_liquid=True)         # only simulations: a liquid beside is modelled
     grid = dict(grid or {})
     N = cfg.system.balancer.n_balls
     n = default_starts(N, quick) if (n is None and samples is None) else n
