@@ -215,3 +215,24 @@ def test_study_start_positions_takes_balls_beside_a_liquid(tmp_path):
                           "leblanc_003", *sets], capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid")
+
+
+def test_outside_the_wall_film_is_refused_or_reported():
+    """The wall film's limits hold beside balls as for a liquid alone (liquid/film.films_state,
+    liquid/simulate.inner_wall_status): a liquid too thick for a wall film is refused in one
+    line before any work; a film that reaches its annulus' inner wall ends the run
+    outside_model, naming the chamber (these ran silently with exit 0 before)."""
+    thick = machine("liquid.chamber_radius=0.1 m", "liquid.inner_radius=0 m", "liquid.volume=1 l",
+                    "profile.start_speed=60 1/s", "profile.end_speed=100 1/s")
+    with pytest.raises(ParameterError) as e:
+        simulate(thick.system, thick.spin)
+    assert str(e.value).startswith("volume") and "wall film" in str(e.value)
+    gap = machine('liquid.chamber_radius=["0.1 m", "0.2 m"]',
+                  'liquid.inner_radius=[0, "0.197 m"]', 'liquid.volume=["100 ml", "150 ml"]',
+                  "profile.duration=8 s", "profile.ramp_time=8 s")
+    sim = simulate(gap.system, gap.spin, throw=False)
+    ref = simulate_liquid(dataclasses.replace(gap.system, balancer=load_config(
+        "leblanc_003").system.balancer), gap.spin, n_cells=64)
+    assert ref.status == "outside_model"
+    assert sim.status == "outside_model"
+    assert "chamber R = 0.2 m" in sim.message and "0.197" in sim.message

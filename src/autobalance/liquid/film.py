@@ -28,7 +28,8 @@ if TYPE_CHECKING:
 
     from .dynamics import RunUp
 
-__all__ = ["CoupledRun", "FilmRun", "coupled_run", "film_equilibrium", "film_run", "film_unbalance",
+__all__ = ["CoupledRun", "FilmRun", "FilmsState", "coupled_run", "film_equilibrium", "film_run",
+           "film_unbalance", "films_state",
            "film_wave_speed", "physical_run_up"]
 
 
@@ -381,6 +382,61 @@ def _per_film(name: str, value, n: int) -> tuple:
     return (value,) * n
 
 
+class FilmsState(NamedTuple):
+    """The films of one or more concentric chambers as the kernels hold them, one after the
+    other (:func:`autobalance.core.shallow_water.films_moment`'s layout): the checked films,
+    starts (films + 1), cell angles theta [rad], partition walls, thickness h [m], discharge q
+    [m^2/s]; per film R, H [m], rho [kg/m^3], nu [m^2/s]."""
+
+    films: list
+    starts: np.ndarray
+    theta: np.ndarray
+    wall: np.ndarray
+    h: np.ndarray
+    q: np.ndarray
+    Rs: np.ndarray
+    Hs: np.ndarray
+    rhos: np.ndarray
+    nus: np.ndarray
+
+
+def films_state(radius: float | Sequence[float], height: float | Sequence[float],
+                volume: float | Sequence[float], density: float | Sequence[float],
+                viscosity: float | Sequence[float], n_cells: int | Sequence[int],
+                partitions: int | Sequence[int], film_speed: float | Sequence[float],
+                centre: complex) -> FilmsState:
+    """The films' starting state (the one home of the films' checks and layout, for
+    :func:`coupled_run` and the run of balls beside a liquid): each film checked
+    (:func:`_film`: a thin wall film; the chamber keys take a scalar for all or one value per
+    film), at rest on a wall displaced by ``centre`` [m] relative to the potential's centre
+    (:func:`film_equilibrium`), moving along it at ``film_speed`` [m/s].
+
+    Parameters
+    ----------
+    radius, height, volume, density, viscosity, n_cells, partitions, film_speed
+        As :func:`coupled_run`.
+    centre : complex
+        The wall's centre from the centre of the centrifugal (and gravity) potential [m].
+    """
+    keys = {"radius": radius, "height": height, "volume": volume, "density": density,
+            "viscosity": viscosity, "n_cells": n_cells, "partitions": partitions}  # _Film's order
+    nf = max((len(v) for v in keys.values() if isinstance(v, (list, tuple, np.ndarray))),
+             default=1)
+    cols = {k: _per_film(k, v, nf) for k, v in keys.items()}
+    films = [_film(*(cols[k][f] for k in keys), tag="" if nf == 1 else f"[{f}]")
+             for f in range(nf)]
+    starts = np.concatenate([[0], np.cumsum([f.n_cells for f in films])]).astype(np.int64)
+    th = np.concatenate([_theta(f.n_cells) for f in films])
+    wall = np.concatenate([partition_walls(f.n_cells, f.partitions) for f in films])
+    h = np.concatenate([film_equilibrium(f.volume, f.radius, f.height, centre, f.n_cells,
+                                         f.partitions) for f in films])
+    v0 = _per_film("film_speed", film_speed, nf)
+    q = h * np.concatenate([np.full(f.n_cells, finite("film_speed", v)) for f, v in zip(films, v0)])
+    Rs, Hs, rhos, nus = (np.array([getattr(f, k) for f in films], float)
+                         for k in ("radius", "height", "density", "viscosity"))
+    return FilmsState(films, starts, th, wall, h, q, Rs, Hs, rhos, nus)
+
+
 def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
                 height: float | Sequence[float], volume: float | Sequence[float],
                 speed: float | tuple[npt.ArrayLike, npt.ArrayLike], t_end: float, *,
@@ -440,28 +496,14 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
     """
     from ..core.shallow_water import films_moment, sw_coupled
 
-    keys = {"radius": radius, "height": height, "volume": volume, "density": density,
-            "viscosity": viscosity, "n_cells": n_cells, "partitions": partitions}  # _Film's order
-    nf = max((len(v) for v in keys.values() if isinstance(v, (list, tuple, np.ndarray))),
-             default=1)
-    cols = {k: _per_film(k, v, nf) for k, v in keys.items()}
     T = positive("t_end", t_end)
-    films = [_film(*(cols[k][f] for k in keys), tag="" if nf == 1 else f"[{f}]")
-             for f in range(nf)]
-    walls = [partition_walls(f.n_cells, f.partitions) for f in films]
     tw, wv = _speed_table(speed, T)
     wd = np.gradient(wv, tw) if tw.size > 2 else np.full(tw.size, (wv[-1] - wv[0]) / (tw[-1] - tw[0]))
     gp, gdir = nonneg("gravity", gravity), finite("gravity_direction", gravity_direction)
     off = gp / wv[0] ** 2 * np.exp(1j * gdir)
-    starts = np.concatenate([[0], np.cumsum([f.n_cells for f in films])]).astype(np.int64)
-    th = np.concatenate([_theta(f.n_cells) for f in films])
-    wall = np.concatenate(walls)
-    h = np.concatenate([film_equilibrium(f.volume, f.radius, f.height, complex(deflection) + off,
-                                         f.n_cells, f.partitions) for f in films])
-    v0 = _per_film("film_speed", film_speed, nf)
-    q = h * np.concatenate([np.full(f.n_cells, finite("film_speed", v)) for f, v in zip(films, v0)])
-    Rs, Hs, rhos, nus = (np.array([getattr(f, k) for f in films], float)
-                         for k in ("radius", "height", "density", "viscosity"))
+    st = films_state(radius, height, volume, density, viscosity, n_cells, partitions,
+                     film_speed, complex(deflection) + off)
+    films, starts, th, wall, h, q, Rs, Hs, rhos, nus = st
     Mt = rotor.mass + float(np.sum(rhos * [f.volume for f in films]))
     U, Ud = films_moment(h, q, th, starts, Rs, Hs, rhos)
     Z0 = Mt * complex(deflection) + U

@@ -31,9 +31,12 @@ from .start import FilmStart, _film_table, film_start, film_start_speed
 from .steady import pool_response
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
     from pathlib import Path
 
     import numpy.typing as npt
+
+    from ..models import LiquidDevice
 
 __all__ = ["FilmStart", "LiquidSimulation", "check_liquid_run", "film_rotor", "film_start",
            "film_start_speed",
@@ -416,6 +419,30 @@ def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256)
     return float(steps * STEP_COST_256 * n_cells * len(chambers) / 256)
 
 
+def chamber_cells(chambers: Sequence[LiquidDevice], n_cells: int) -> list[int]:
+    """Film cells per chamber [-]: ``n_cells`` rounded up to whole compartments of its
+    partitions."""
+    return [c.partitions * -(-int(n_cells) // c.partitions) if c.partitions else int(n_cells)
+            for c in chambers]
+
+
+def inner_wall_status(films: Sequence, chambers: Sequence[LiquidDevice],
+                      t0: float) -> tuple[str, str]:
+    """("ok", "") or (``outside_model``, the one-line reason) when a chamber's film reaches
+    its inner wall (:meth:`.film.FilmRun.inner_wall_time`; the earliest, named when there are
+    several chambers); ``films`` one :class:`.film.FilmRun` per chamber, their times from t0
+    [s] on the profile."""
+    touches = [(tc, c) for f, c in zip(films, chambers)
+               if (tc := f.inner_wall_time(c.inner_radius)) is not None]
+    if not touches:
+        return "ok", ""
+    touch, c = min(touches, key=lambda x: x[0])
+    which = "" if len(chambers) == 1 else f" of the chamber R = {c.chamber_radius:.4g} m"
+    return (RunStatus.OUTSIDE_MODEL.label,
+            f"the film{which} reaches the inner wall (r_i = {c.inner_radius:.4g} m) at t = "
+            f"{t0 + touch:.4g} s: the wall-film model does not hold from there")
+
+
 def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
                     n_out: int | None = None, g_axial: float = G_STANDARD) -> LiquidSimulation:
     """Run a liquid-balancer System through a speed profile (module docstring).
@@ -463,8 +490,7 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     sag = system.total_mass * gp / s.kx * np.exp(1j * gdir)      # static, inertial frame
     start = pool_response(rotor, liq.total_volume, liq.density, ww[0])  # liquid as rigid mass
     ch = liq.chambers
-    cells = [c.partitions * -(-int(n_cells) // c.partitions) if c.partitions else int(n_cells)
-             for c in ch]                                   # whole compartments of cells
+    cells = chamber_cells(ch, n_cells)
     run = coupled_run(rotor, [c.chamber_radius for c in ch], [c.chamber_height for c in ch],
                       [c.volume for c in ch], (tt, ww), T, density=liq.density,
                       viscosity=liq.kinematic_viscosity, n_cells=cells,
@@ -479,16 +505,7 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     psi = psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
     whirl = run.deflection - sag * np.exp(-1j * psi)
     U = run.unbalance
-    touches = [(tc, c) for f, c in zip(run.films, ch)
-               if (tc := f.inner_wall_time(c.inner_radius)) is not None]
-    status, message = ("ok", "")
-    if touches:
-        touch, c = min(touches, key=lambda x: x[0])
-        which = "" if len(ch) == 1 else f" of the chamber R = {c.chamber_radius:.4g} m"
-        status, message = (RunStatus.OUTSIDE_MODEL.label,
-                           f"the film{which} reaches the inner wall (r_i = {c.inner_radius:.4g} "
-                           f"m) at t = {t0 + touch:.4g} s: the wall-film model does not hold "
-                           "from there")
+    status, message = inner_wall_status(run.films, ch, t0)
     per = None if len(ch) == 1 else np.stack([f.unbalance for f in run.films], axis=-1)
     return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), whirl, U,
                             revolution_average(psi, U), t0, w0, float(spin.nominal_speed),

@@ -21,9 +21,10 @@ from ..core.hybrid import hybrid_integrate, with_knot
 from ..core.integrate import integrate_span
 from ..core.layout import N_S, S_STATUS, RunStatus, carry_size
 from ..limits import check_run
-from ..liquid.film import _theta, film_equilibrium, film_unbalance, partition_walls
+from ..liquid.film import FilmRun, FilmsState, films_state
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import require_axis_gravity, revolution_average
+from ..liquid.simulate import (chamber_cells, inner_wall_status, require_axis_gravity,
+                               revolution_average)
 from ..liquid.start import FilmStart, film_start
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
 from .pack import atol_vector, initial_vector, pack_params, spin_arrays
@@ -65,7 +66,8 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
                  g_axial: float = G_STANDARD) -> FilmStart:
     """One-line errors, before any work, for what the run of balls beside a liquid does not
     cover (a motor drive, [gravity] that does not fit the axis, a profile that never reaches
-    or later leaves the film's start speed); returns where the film starts.
+    or later leaves the film's start speed, a chamber's liquid too thick for a wall film);
+    returns where the film starts.
 
     Parameters
     ----------
@@ -80,7 +82,21 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
         raise ParameterError("profile.kind", "motor", "balls beside a liquid need a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")
     require_axis_gravity(system)
-    return film_start(system, spin, g_axial)
+    fs = film_start(system, spin, g_axial)
+    _films(system, fs, 256, 0j)                  # the wall film's checks, before any work
+    return fs
+
+
+def _films(system: System, fs: FilmStart, n_cells: int, centre: complex) -> FilmsState:
+    """The chambers' films at the film's start (:func:`autobalance.liquid.film.films_state`:
+    the wall film's one-line checks, a thin film per chamber), each lagging its wall as the
+    spin-up leaves it, on a wall at ``centre`` [m] from the potential's centre."""
+    liq = system.liquid
+    ch = liq.chambers
+    return films_state([c.chamber_radius for c in ch], [c.chamber_height for c in ch],
+                       [c.volume for c in ch], liq.density, liq.kinematic_viscosity,
+                       chamber_cells(ch, n_cells), [c.partitions for c in ch],
+                       [lag * c.chamber_radius for lag, c in zip(fs.lag, ch)], centre)
 
 
 def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState | None = None,
@@ -139,45 +155,40 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
                        budget, out_t, out_y, stats, t0, carry)
     liq = system.liquid
     ch = liq.chambers
-    cells = [c.partitions * -(-int(n_cells) // c.partitions) if c.partitions else int(n_cells)
-             for c in ch]
-    starts = np.concatenate([[0], np.cumsum(cells)]).astype(np.int64)
-    theta = np.concatenate([_theta(n) for n in cells])
-    wall = np.concatenate([partition_walls(n, c.partitions) for n, c in zip(cells, ch)])
-    out_h = np.zeros((out_t.size, theta.size))
-    out_q = np.zeros((out_t.size, theta.size))
-    steps = 0
     gp = system.gravity.g if liq.axis == "horizontal" else 0.0
     gam = system.gravity.direction
     s = system.suspension                      # the static sag (inertial frame) [m]
     sag = system.total_mass * gp * complex(np.cos(gam) / s.kx, np.sin(gam) / s.ky)
+    psi0 = y[N + 2]
+    # the films at the film's start: the chamber about the rotation axis, + gravity's offset
+    st = _films(system, fs, n_cells, complex(y[0], y[1]) + sag * np.exp(-1j * psi0)
+                + gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0)))
+    out_h = np.zeros((out_t.size, st.h.size))
+    out_q = np.zeros((out_t.size, st.h.size))
+    steps = 0
     if t0 == 0.0 or stats[S_STATUS] == float(RunStatus.RUNNING):
-        psi0 = y[N + 2]
-        w = complex(y[0], y[1]) + sag * np.exp(-1j * psi0) \
-            + gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0))    # + gravity's offset
-        h = np.concatenate([film_equilibrium(c.volume, c.chamber_radius, c.chamber_height, w,
-                                             n, c.partitions) for n, c in zip(cells, ch)])
-        q = h * np.concatenate([np.full(n, lag * c.chamber_radius)       # the spin-up's lag
-                                for n, c, lag in zip(cells, ch, fs.lag)])
-        Rs, Hs = (np.array([getattr(c, k) for c in ch], float)
-                  for k in ("chamber_radius", "chamber_height"))
-        rhos = np.full(len(ch), liq.density)
-        nus = np.full(len(ch), liq.kinematic_viscosity)
         steps = hybrid_integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t0, t_end, rtol,
-                                 atol, h_max, budget, out_t, out_y, stats, carry, h,
-                                 q, theta, starts, Rs, Hs, rhos, nus, wall, gp,
-                                 gam, sag, out_h, out_q)
+                                 atol, h_max, budget, out_t, out_y, stats, carry, st.h, st.q,
+                                 st.theta, st.starts, st.Rs, st.Hs, st.rhos, st.nus, st.wall,
+                                 gp, gam, sag, out_h, out_q)
         if steps < 0:
             raise FloatingPointError("simulate_hybrid: the film state became non-finite")
     film = out_t >= t0 - 1e-12 * max(1.0, t0)
+    runs = [FilmRun(out_t[film] - t0, st.theta[o0:o1], out_h[film, o0:o1], out_q[film, o0:o1],
+                    f.radius, f.height, f.density, steps)
+            for f, o0, o1 in zip(st.films, st.starts[:-1], st.starts[1:])]
     per = np.zeros((out_t.size, len(ch)), complex)
-    for j, (c, o0, o1) in enumerate(zip(ch, starts[:-1], starts[1:])):
-        per[film, j] = film_unbalance(out_h[film, o0:o1], c.chamber_radius, c.chamber_height,
-                                      liq.density)
+    for j, r in enumerate(runs):
+        per[film, j] = r.unbalance
+    status, message = inner_wall_status(runs, ch, t0)
+    if status != "ok" and stats[S_STATUS] == 0.0:   # the balls' run completed; the film did not
+        stats[S_STATUS] = float(RunStatus.OUTSIDE_MODEL)
     U = per.sum(axis=1)
     psi = out_y[:, N + 2]
     part = LiquidPart(U, revolution_average(psi, U), per, float(t0), float(w0), int(steps))
     sim = Simulation(system, spin, initial, options, out_t, out_y, stats, order, liquid=part)
+    if status != "ok" and sim.status == status:
+        sim.message = message                   # names the chamber and the time
     if throw and sim.status != "ok":
         raise SimulationError(sim.message)
     return sim
