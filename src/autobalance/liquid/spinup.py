@@ -20,9 +20,11 @@ from ..models._validate import ParameterError, nonneg, positive
 from .models import G_STANDARD
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     import numpy.typing as npt
 
-__all__ = ["SpinUp", "rigid_pool", "spinup_of", "spinup_run"]
+__all__ = ["SpinUp", "chamber_spinup", "rigid_pool", "spinup_of", "spinup_run", "within_spinup"]
 
 #: Mode 1 (full priority of gravity) lasts while the surface at the inner wall (the axis) has
 #: sunk by less than this fraction of the rest level (as :func:`.free_surface.gravity_mode_speed`,
@@ -166,7 +168,7 @@ def spinup_run(radius: float, height: float, volume: float,
     if ri >= R:
         raise ParameterError("inner_radius", inner_radius, f"must be < radius {R!r} m")
     area = math.pi * (R * R - ri * ri)
-    if V > 0.5 * area * H:
+    if not within_spinup(R, H, ri, V):
         raise ParameterError("volume", volume, "the spin-up model needs at most half the "
                              f"chamber, V <= {0.5 * area * H:.4g} m^3 (a fuller chamber touches "
                              "the lid before its inner wall's foot dries)")
@@ -245,14 +247,53 @@ def spinup_of(system: System, spin: SpeedProfile | MotorDrive, *, n_cells: int =
     if not isinstance(spin, SpeedProfile):
         raise ParameterError("profile.kind", "motor", "the spin-up model needs a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")
-    table = (np.asarray(spin.times, float), np.asarray(spin.speeds, float))
-    W0 = float(table[1][0])
-    return [spinup_run(c.chamber_radius, c.chamber_height, c.volume, table, spin.duration,
-                       inner_radius=c.inner_radius, viscosity=liq.kinematic_viscosity, g=g,
-                       n_cells=n_cells,
-                       initial=None if W0 == 0.0 else rigid_pool(
-                           c.chamber_radius, c.inner_radius, c.volume, W0, g, n_cells))
+    return [chamber_spinup(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume,
+                           liq.kinematic_viscosity, g, spin.times, spin.speeds, n_cells)
             for c in liq.chambers]
+
+
+def chamber_spinup(radius: float, height: float, inner_radius: float, volume: float,
+                   viscosity: float, g: float, times: Sequence[float], speeds: Sequence[float],
+                   n_cells: int = DEFAULT_CELLS) -> SpinUp:
+    """One chamber's :func:`spinup_run` through a profile's knots (times [s] from 0, speeds
+    [rad/s]) to its last time: from rest, or, for a profile that starts turning, from the pool
+    turning with the chamber at the first speed (:func:`rigid_pool`).
+
+    Parameters
+    ----------
+    radius, height, inner_radius : float
+        R, h, r_i [m].
+    volume : float
+        V [m^3].
+    viscosity : float
+        nu [m^2/s].
+    g : float
+        Gravity along the axis [m/s^2].
+    times, speeds : sequence of float
+        The profile's knots [s], [rad/s].
+    n_cells : int
+        Cells [-].
+    """
+    tt, ww = np.asarray(times, float), np.asarray(speeds, float)
+    W0 = float(ww[0])
+    return spinup_run(radius, height, volume, (tt, ww), float(tt[-1]), inner_radius=inner_radius,
+                      viscosity=viscosity, g=g, n_cells=n_cells,
+                      initial=None if W0 == 0.0 else rigid_pool(radius, inner_radius, volume, W0,
+                                                                g, n_cells))
+
+
+def within_spinup(radius: float, height: float, inner_radius: float, volume: float) -> bool:
+    """Whether the spin-up model covers the chamber: at most half full, so that the surface dries
+    the bottom (at the axis or the inner wall) before it reaches the lid (003 eq 5-6's case).
+
+    Parameters
+    ----------
+    radius, height, inner_radius : float
+        R, h, r_i [m].
+    volume : float
+        V [m^3].
+    """
+    return volume <= 0.5 * math.pi * (radius * radius - inner_radius * inner_radius) * height
 
 
 def rigid_pool(radius: float, inner_radius: float, volume: float, speed: float, g: float,

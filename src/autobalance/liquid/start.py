@@ -12,6 +12,7 @@ import numpy as np
 
 from ..models import LiquidDevice, ParameterError, SpeedProfile, System
 from .models import G_STANDARD
+from .spinup import chamber_spinup, within_spinup
 from .steady import start_speed
 
 __all__ = ["FilmStart", "film_start", "film_start_speed"]
@@ -120,9 +121,9 @@ def film_start(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) 
     liq = system.liquid
     w0 = film_start_speed(liq, system.gravity.g, g_axial)
     t0, _, _ = _film_table(spin, w0)
-    half = any(c.volume > 0.5 * np.pi * (c.chamber_radius ** 2 - c.inner_radius ** 2)
-               * c.chamber_height for c in liq.chambers)   # touches the lid before drying
-    if liq.axis != "vertical" or spin.speeds[0] >= w0 or half:
+    covered = all(within_spinup(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume)
+                  for c in liq.chambers)
+    if liq.axis != "vertical" or spin.speeds[0] >= w0 or not covered:
         return FilmStart(t0, w0, (0.0,) * liq.n_chambers, "quasi-static")
     lids = [_lid(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume,
                  liq.kinematic_viscosity, g_axial, tuple(spin.times), tuple(spin.speeds))
@@ -146,11 +147,5 @@ def _lid(radius: float, height: float, inner_radius: float, volume: float, visco
     the profile (times [s], speeds [rad/s]), from rest or from the pool turning at the first
     speed (:func:`autobalance.liquid.spinup.rigid_pool`). Cached: the cells of a sweep that
     differ in the rotor or the balls only share their liquid's spin-up."""
-    from .spinup import DEFAULT_CELLS, rigid_pool, spinup_run
-
-    W0 = speeds[0]
-    r = spinup_run(radius, height, volume, (np.array(times), np.array(speeds)), times[-1],
-                   inner_radius=inner_radius, viscosity=viscosity, g=g,
-                   initial=None if W0 == 0.0 else rigid_pool(radius, inner_radius, volume, W0, g,
-                                                             DEFAULT_CELLS))
+    r = chamber_spinup(radius, height, inner_radius, volume, viscosity, g, times, speeds)
     return r.lid_time, float(r.liquid_speed[-1] - r.speed[-1])

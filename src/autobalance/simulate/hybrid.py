@@ -19,7 +19,7 @@ import numpy as np
 
 from ..core.hybrid import hybrid_integrate, with_knot
 from ..core.integrate import integrate_span
-from ..core.layout import N_S, S_STATUS, RunStatus, carry_size
+from ..core.layout import S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import FilmRun, FilmsState, films_state
 from ..liquid.models import G_STANDARD
@@ -27,7 +27,6 @@ from ..liquid.simulate import (chamber_cells, inner_wall_status, require_axis_gr
                                revolution_average)
 from ..liquid.start import FilmStart, film_start
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
-from .pack import atol_vector, initial_vector, pack_params, spin_arrays
 from .result import Simulation, SimulationError
 
 __all__ = ["LiquidPart", "check_hybrid", "simulate_hybrid"]
@@ -128,7 +127,7 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
         The ball run's histories with ``liquid`` (:class:`LiquidPart`); its residual unbalance
         and grade include the liquid's synchronous moment.
     """
-    from .run import _h_max, _time_grid
+    from .run import run_inputs
 
     initial = initial or InitialState()
     options = options or SimOptions()
@@ -138,16 +137,10 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
         raise ParameterError("n_cells", n_cells, "must be an integer >= 16")
     t0, w0 = fs.time, fs.speed
     N = system.balancer.n_balls
-    P, B = pack_params(system, spin, options, liquid_ok=True)
-    y, order = initial_vector(system, spin, initial)
-    prof_t, prof_w, t_end = spin_arrays(spin)
-    unb_t, unb_u = system.rotor.unbalance_table()
-    out_t = _time_grid(spin, options, y.size)
-    out_y = np.zeros((out_t.size, y.size))
-    stats = np.zeros(N_S)
+    P, B, y, order, prof_t, prof_w, t_end, unb_t, unb_u, out_t, out_y, stats, atol, h_max = \
+        run_inputs(system, spin, initial, options, liquid_ok=True)
     carry = np.zeros(carry_size(N))
-    atol = atol_vector(system, spin, options)
-    h_max, rtol, budget = _h_max(spin, options), options.rtol, int(options.max_steps)
+    rtol, budget = options.rtol, int(options.max_steps)
     if t0 > 0.0:                     # the pool: the ball run up to the film's start
         pt, pw = np.zeros(prof_t.size + 1), np.zeros(prof_t.size + 1)
         m = with_knot(prof_t, prof_w, t0, pt, pw)

@@ -5,7 +5,7 @@ Both refuse, before allocating or integrating, a run that cannot fit the limits 
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -48,6 +48,50 @@ def _h_max(spin, options: SimOptions) -> float:
     return min(0.05, spin.duration / 20.0)
 
 
+class RunInputs(NamedTuple):
+    """The kernel's inputs of one run (:func:`run_inputs`): P, B (pack_params), the initial
+    state y0 and the balls' order, the profile's knots [s], [rad/s] and end [s], the unbalance
+    table [s], [kg*m], the output times [s] with their empty history and statistics, atol per
+    state component and the largest step [s]."""
+
+    P: np.ndarray
+    B: np.ndarray
+    y0: np.ndarray
+    order: np.ndarray
+    prof_t: np.ndarray
+    prof_w: np.ndarray
+    t_end: float
+    unb_t: np.ndarray
+    unb_u: np.ndarray
+    out_t: np.ndarray
+    out_y: np.ndarray
+    stats: np.ndarray
+    atol: np.ndarray
+    h_max: float
+
+
+def run_inputs(system: System, spin: SpeedProfile | MotorDrive, initial: InitialState,
+               options: SimOptions, liquid_ok: bool = False) -> RunInputs:
+    """The kernel's inputs of one run of :func:`simulate` (and of balls beside a liquid,
+    ``liquid_ok``: :mod:`.hybrid`), packed once here.
+
+    Parameters
+    ----------
+    system, spin, initial, options
+        As :func:`simulate`.
+    liquid_ok : bool
+        As :func:`.pack.pack_params`.
+    """
+    P, B = pack_params(system, spin, options, liquid_ok)
+    y0, order = initial_vector(system, spin, initial)
+    prof_t, prof_w, t_end = spin_arrays(spin)
+    unb_t, unb_u = system.rotor.unbalance_table()
+    out_t = _time_grid(spin, options, y0.size)
+    return RunInputs(P, B, y0, order, prof_t, prof_w, t_end, unb_t, unb_u, out_t,
+                     np.zeros((out_t.size, y0.size)), np.zeros(N_S),
+                     atol_vector(system, spin, options), _h_max(spin, options))
+
+
 def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: InitialState | None = None,
              options: SimOptions | None = None, throw: bool = True) -> Simulation:
     """Simulate the rotor with its ball balancer through a speed profile or a motor run-up.
@@ -85,17 +129,11 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
         from .hybrid import simulate_hybrid        # balls beside a liquid
         return simulate_hybrid(system, spin, initial=initial, options=options, throw=throw)
     check_run(system, spin, options)
-    P, B = pack_params(system, spin, options)
-    y0, order = initial_vector(system, spin, initial)
-    prof_t, prof_w, t_end = spin_arrays(spin)
-    unb_t, unb_u = system.rotor.unbalance_table()
-    out_t = _time_grid(spin, options, y0.size)
-    out_y = np.zeros((out_t.size, y0.size))
-    stats = np.zeros(N_S)
-    integrate(P, B, system.balancer.n_balls, prof_t, prof_w, unb_t, unb_u, y0, t_end,
-              options.rtol, atol_vector(system, spin, options), _h_max(spin, options),
-              int(options.max_steps), out_t, out_y, stats)
-    sim = Simulation(system, spin, initial, options, out_t, out_y, stats, order)
+    r = run_inputs(system, spin, initial, options)
+    integrate(r.P, r.B, system.balancer.n_balls, r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0,
+              r.t_end, options.rtol, r.atol, r.h_max, int(options.max_steps), r.out_t, r.out_y,
+              r.stats)
+    sim = Simulation(system, spin, initial, options, r.out_t, r.out_y, r.stats, r.order)
     if throw and sim.status != "ok":
         raise SimulationError(sim.message)
     return sim
