@@ -114,6 +114,7 @@ def test_machine_chambers_spin_up_independently():
     ({"inner_radius": 0.1}, "inner_radius"),
     ({"n_cells": True}, "n_cells"),
     ({"n_cells": 4}, "n_cells"),
+    ({"n_cells": 100_000}, "n_cells"),                     # hours: refused, not a hang
     ({"speed": ((0.0, 0.0), (0.0, 10.0))}, "speed"),
     ({"viscosity": 0.0}, "viscosity"),
 ])
@@ -122,6 +123,16 @@ def test_bad_input(kwargs, field):
     with pytest.raises(ParameterError) as e:
         spinup_run(**args)
     assert str(e.value).startswith(field) and "\n" not in str(e.value)
+
+
+def test_a_profile_starting_above_eq_6_starts_at_the_lid():
+    """A profile that starts above 003 eq 6's speed: the pool turning with the chamber already
+    reaches the lid, so the run stops at t = 0 in mode 4 with no mode change (the CLI read the
+    last mode change there and failed with a traceback)."""
+    cfg = load_config("leblanc_003", ["profile.start_speed=600 rpm"])
+    run = spinup_of(cfg.system, cfg.spin)[0]
+    assert run.lid_time == 0.0 and run.mode_changes() == [] and run.mode[-1] == 4
+    assert run.liquid_speed[-1] == pytest.approx(run.speed[-1], rel=1e-12)   # no lag
 
 
 def test_machine_refusals():
@@ -146,6 +157,13 @@ def test_cli_end_to_end(tmp_path):
     for c in d["chambers"]:
         assert c["entrainment_speed_rad_s"] > c["quasi_static"]["omega_0_rad_s"]
     assert png.stat().st_size > 10_000
+    r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "spinup", "leblanc_003",
+                        "--set", "profile.start_speed=600 rpm", "--json"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    c = json.loads(r.stdout)["chambers"][0]
+    assert c["entrainment_time_s"] == 0.0 and c["entrainment_speed_rad_s"] == pytest.approx(
+        600 * 2 * math.pi / 60)
     bad = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "spinup",
                           "leblanc_washer"], capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()

@@ -431,7 +431,10 @@ def spinup(source: Annotated[str, typer.Argument(
     runs = spinup_of(cfg.system, cfg.spin, n_cells=cells)
     chambers = []
     for r, c in zip(runs, cfg.system.liquid.chambers):
-        lid = r.mode_changes()[-1] if r.lid_time is not None else None
+        # the run stops where the liquid reaches the lid (at t = 0 for a pool that already
+        # touches it: a profile that starts above eq 6, no mode change)
+        lid = None if r.lid_time is None else {"speed_rad_s": float(r.speed[-1]),
+                                               "liquid_speed_rad_s": float(r.liquid_speed[-1])}
         qs = {"omega_0_rad_s": start_speed(c.volume, c.chamber_radius, c.chamber_height,
                                            G_STANDARD, axis="vertical",
                                            inner_radius=c.inner_radius)}

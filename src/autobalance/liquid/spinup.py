@@ -37,6 +37,9 @@ DRY_LEVEL = 0.01
 #: Cells of equal bottom area per chamber by default: the entrainment speed within 0.05 % of 200
 #: cells' and 0.2 % of 800 cells' (docs/liquid.md sec. 3h) [-].
 DEFAULT_CELLS = 100
+#: Most cells per chamber: the steps grow as the cells (CFL on the outermost, narrowest cell) and
+#: each step's work too; 800 cells took 60 s for 60 s of run-up, 2000 take about 6 min [-].
+MAX_CELLS = 2000
 
 
 @dataclass(frozen=True)
@@ -174,8 +177,9 @@ def spinup_run(radius: float, height: float, volume: float,
                              "the lid before its inner wall's foot dries)")
     T = positive("t_end", t_end)
     nu, gg = positive("viscosity", viscosity), positive("g", g)
-    if isinstance(n_cells, bool) or int(n_cells) != n_cells or n_cells < 8:
-        raise ParameterError("n_cells", n_cells, "must be an integer >= 8")
+    if isinstance(n_cells, bool) or int(n_cells) != n_cells or not 8 <= n_cells <= MAX_CELLS:
+        raise ParameterError("n_cells", n_cells, f"must be an integer in [8, {MAX_CELLS}] (the "
+                             "run's time grows as its square: 800 cells take about a minute)")
     n = int(n_cells)
     tt = np.asarray(speed[0], float)
     tw = np.asarray(speed[1], float)
