@@ -97,7 +97,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                      carry: np.ndarray, h: np.ndarray, q: np.ndarray, theta: np.ndarray,
                      starts: np.ndarray, Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray,
                      nus: np.ndarray, wall: np.ndarray, gp: float, gdir: float, sag: complex,
-                     out_h: np.ndarray, out_q: np.ndarray) -> int:
+                     film_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray) -> int:
     """From t0 [s] to t_end [s]: the ball run (P, B, N, profile, unbalance table, y, rtol, atol,
     h_max, max_steps, out_t, out_y, stats as integrate.integrate_span; ``carry`` its paused
     state at t0, or carry[C_WHERE] = 0 with t0 = 0) with the films of concentric chambers
@@ -106,9 +106,10 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     [m/s^2] at the inertial angle gdir [rad] in the films' potential (shallow_water.
     gravity_offset, with the kernel's spin angle) and the static sag [m] (inertial frame: the
     kernel's deflection is from the static equilibrium, the films need the chamber's position
-    about the rotation axis). out_h, out_q (len(out_t), cells) receive
-    the films at the output times from t0 on (rows before are left alone). Returns the film
-    steps; -1 on a non-finite film. The run's status is the ball kernel's (stats)."""
+    about the rotation axis). out_h, out_q (len(film_t), cells) receive the films at their own
+    sorted output times film_t [s] from t0 on (dense enough for the revolution average, whatever
+    the balls' outputs; rows before t0 are left alone). Returns the film steps; -1 on a
+    non-finite film. The run's status is the ball kernel's (stats)."""
     nq = N + 3
     n = 2 * nq
     n_c = h.shape[0]
@@ -145,7 +146,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     Mt = P[P_MT]
     t = t0
     kout = 0
-    while kout < out_t.shape[0] and out_t[kout] < t - 1e-12 * max(1.0, t):
+    while kout < film_t.shape[0] and film_t[kout] < t - 1e-12 * max(1.0, t):
         kout += 1
     U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
     W0, _ = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
@@ -155,7 +156,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     steps = 0
     tol = 1e-12 * max(1.0, t_end)
     while True:
-        kout = _emit(out_t, out_h, out_q, kout, t, h, q)
+        kout = _emit(film_t, out_h, out_q, kout, t, h, q)
         if t >= t_end - tol:
             break
         W, Wd = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
@@ -165,8 +166,8 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         wd = complex(y[nq], y[nq + 1]) - 1j * W * sag * rot
         off = gravity_offset(gp, gdir, psi, W) if gp != 0.0 else 0j
         dt = films_dt(h, q, starts, Rs, W, t_end - t)
-        if kout < out_t.shape[0] and out_t[kout] - t < dt:
-            dt = out_t[kout] - t
+        if kout < film_t.shape[0] and film_t[kout] - t < dt:
+            dt = film_t[kout] - t
         t1 = t + dt
         if t1 >= t_end - tol:
             t1 = t_end

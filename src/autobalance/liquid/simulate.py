@@ -419,6 +419,24 @@ def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256)
     return float(steps * STEP_COST_256 * n_cells * len(chambers) / 256)
 
 
+def spin_angle(t: npt.ArrayLike, tt: np.ndarray, ww: np.ndarray) -> np.ndarray:
+    """The spin angle [rad] at the times t [s] of a linear speed table (tt [s] from 0, ww
+    [rad/s]), 0 at tt[0]: exact (the integral of the linear speed)."""
+    t = np.asarray(t, float)
+    psi_knots = np.concatenate([[0.0], np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))])
+    i = np.clip(np.searchsorted(tt, t, side="right") - 1, 0, tt.size - 2)
+    tau = t - tt[i]
+    slope = (ww[i + 1] - ww[i]) / (tt[i + 1] - tt[i])
+    return psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
+
+
+def film_samples(tt: np.ndarray, ww: np.ndarray) -> int:
+    """Output samples of a film run over the speed table (tt [s], ww [rad/s]) [-]: 1001, or 8
+    per revolution if more (for :func:`revolution_average`), at most 200 001."""
+    psi_end = np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))[-1]
+    return int(min(max(1001, 8 * psi_end / (2 * np.pi) + 1), 200001))
+
+
 def chamber_cells(chambers: Sequence[LiquidDevice], n_cells: int) -> list[int]:
     """Film cells per chamber [-]: ``n_cells`` rounded up to whole compartments of its
     partitions."""
@@ -478,9 +496,8 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     liq, s = system.liquid, system.suspension
     t0, tt, ww = _film_table(spin, film_start_speed(liq, system.gravity.g, g_axial), fs.time)
     w0 = fs.speed
-    psi_knots = np.concatenate([[0.0], np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))])
     if n_out is None:
-        n_out = int(min(max(1001, 8 * psi_knots[-1] / (2 * np.pi) + 1), 200001))
+        n_out = film_samples(tt, ww)
     if isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2:
         raise ParameterError("n_out", n_out, "must be an integer >= 2")
     T = float(tt[-1])
@@ -498,11 +515,7 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
                       save_dt=T / (int(n_out) - 1), deflection=complex(start + sag),
                       velocity=complex(-1j * ww[0] * sag), gravity=gp, gravity_direction=gdir,
                       film_speed=[lag * c.chamber_radius for lag, c in zip(fs.lag, ch)])
-    # the spin angle at the outputs (psi = 0 at the film's start; exact on the linear table)
-    i = np.clip(np.searchsorted(tt, run.t, side="right") - 1, 0, tt.size - 2)
-    tau = run.t - tt[i]
-    slope = (ww[i + 1] - ww[i]) / (tt[i + 1] - tt[i])
-    psi = psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
+    psi = spin_angle(run.t, tt, ww)
     whirl = run.deflection - sag * np.exp(-1j * psi)
     U = run.unbalance
     status, message = inner_wall_status(run.films, ch, t0)

@@ -23,9 +23,9 @@ from ..core.layout import S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import FilmRun, FilmsState, films_state
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import (chamber_cells, inner_wall_status, require_axis_gravity,
-                               revolution_average)
-from ..liquid.start import FilmStart, film_start
+from ..liquid.simulate import (chamber_cells, film_samples, inner_wall_status,
+                               require_axis_gravity, revolution_average, spin_angle)
+from ..liquid.start import FilmStart, _film_table, film_start, film_start_speed
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
 from .result import Simulation, SimulationError
 
@@ -156,29 +156,38 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     # the films at the film's start: the chamber about the rotation axis, + gravity's offset
     st = _films(system, fs, n_cells, complex(y[0], y[1]) + sag * np.exp(-1j * psi0)
                 + gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0)))
-    out_h = np.zeros((out_t.size, st.h.size))
-    out_q = np.zeros((out_t.size, st.h.size))
+    # the films' own output grid from t0, dense enough for the revolution average (as a liquid
+    # alone: liquid.simulate.film_samples), whatever the balls' output times
+    _, tt, ww = _film_table(spin, film_start_speed(liq, system.gravity.g, g_axial), t0)
+    dt_f = float(tt[-1]) / (film_samples(tt, ww) - 1)
+    tf = np.arange(0.0, tt[-1] + 0.5 * dt_f, dt_f)
+    out_h = np.zeros((tf.size, st.h.size))
+    out_q = np.zeros((tf.size, st.h.size))
     steps = 0
     if t0 == 0.0 or stats[S_STATUS] == float(RunStatus.RUNNING):
         steps = hybrid_integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t0, t_end, rtol,
                                  atol, h_max, budget, out_t, out_y, stats, carry, st.h, st.q,
                                  st.theta, st.starts, st.Rs, st.Hs, st.rhos, st.nus, st.wall,
-                                 gp, gam, sag, out_h, out_q)
+                                 gp, gam, sag, t0 + tf, out_h, out_q)
         if steps < 0:
             raise FloatingPointError("simulate_hybrid: the film state became non-finite")
-    film = out_t >= t0 - 1e-12 * max(1.0, t0)
-    runs = [FilmRun(out_t[film] - t0, st.theta[o0:o1], out_h[film, o0:o1], out_q[film, o0:o1],
-                    f.radius, f.height, f.density, steps)
+    runs = [FilmRun(tf, st.theta[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f.radius, f.height,
+                    f.density, steps)
             for f, o0, o1 in zip(st.films, st.starts[:-1], st.starts[1:])]
-    per = np.zeros((out_t.size, len(ch)), complex)
-    for j, r in enumerate(runs):
-        per[film, j] = r.unbalance
     status, message = inner_wall_status(runs, ch, t0)
     if status != "ok" and stats[S_STATUS] == 0.0:   # the balls' run completed; the film did not
         stats[S_STATUS] = float(RunStatus.OUTSIDE_MODEL)
+    per_f = np.stack([r.unbalance for r in runs], axis=-1)          # (film samples, chambers)
+    sync_f = revolution_average(spin_angle(tf, tt, ww), per_f.sum(axis=1))
+
+    def at_outputs(v):            # film grid -> the balls' output times; 0 before the film
+        x = out_t - t0
+        return np.where(x >= -1e-12 * max(1.0, t0),
+                        np.interp(x, tf, v.real) + 1j * np.interp(x, tf, v.imag), 0.0)
+
+    per = np.stack([at_outputs(per_f[:, j]) for j in range(len(ch))], axis=-1)
     U = per.sum(axis=1)
-    psi = out_y[:, N + 2]
-    part = LiquidPart(U, revolution_average(psi, U), per, float(t0), float(w0), int(steps))
+    part = LiquidPart(U, at_outputs(sync_f), per, float(t0), float(w0), int(steps))
     sim = Simulation(system, spin, initial, options, out_t, out_y, stats, order, liquid=part)
     if status != "ok" and sim.status == status:
         sim.message = message                   # names the chamber and the time
