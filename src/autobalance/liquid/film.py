@@ -413,8 +413,20 @@ def films_state(radius: float | Sequence[float], height: float | Sequence[float]
 
     Parameters
     ----------
-    radius, height, volume, density, viscosity, n_cells, partitions, film_speed
-        As :func:`coupled_run`.
+    radius, height : float or sequence
+        Chamber R, H [m].
+    volume : float or sequence
+        Liquid volume V [m^3].
+    density : float or sequence
+        rho [kg/m^3].
+    viscosity : float or sequence
+        nu [m^2/s].
+    n_cells : int or sequence
+        Cells around each wall [-].
+    partitions : int or sequence
+        Radial walls per chamber [-].
+    film_speed : float or sequence
+        Each film's initial speed along its wall relative to it [m/s].
     centre : complex
         The wall's centre from the centre of the centrifugal (and gravity) potential [m].
     """

@@ -77,10 +77,16 @@ def run_inputs(system: System, spin: SpeedProfile | MotorDrive, initial: Initial
 
     Parameters
     ----------
-    system, spin, initial, options
-        As :func:`simulate`.
+    system : System
+        The machine (SI dataclasses) [-].
+    spin : SpeedProfile or MotorDrive
+        The spin: speed [rad/s] over time [s], or a motor torque law [-].
+    initial : InitialState
+        Ball angles [rad] and rotor state at t = 0 [-].
+    options : SimOptions
+        Friction law, tolerances, output spacing [-].
     liquid_ok : bool
-        As :func:`.pack.pack_params`.
+        As :func:`.pack.pack_params` [-].
     """
     P, B = pack_params(system, spin, options, liquid_ok)
     y0, order = initial_vector(system, spin, initial)
