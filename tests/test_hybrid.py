@@ -251,3 +251,82 @@ def test_outside_the_wall_film_is_refused_or_reported():
     assert ref.status == "outside_model"
     assert sim.status == "outside_model"
     assert "chamber R = 0.2 m" in sim.message and "0.197" in sim.message
+
+
+TSR = ("profile.kind=tsr", "profile.nominal=100 1/s", "profile.duration=20 s",
+       "profile.runup_fraction=0.4", "profile.down_time=2 s", "profile.plateau_time=3 s",
+       "profile.up_time=2 s", "profile.plateau=60 1/s")
+
+
+def _own_grades(cfg, n):
+    """Each start of the n-per-ball start grid run by the machine's own simulate: grade_G
+    [mm/s] at the profile's checkpoints, (start, checkpoint)."""
+    from autobalance.sweep.plan import separate, start_grid
+
+    b = cfg.system.balancer
+    out = []
+    for a in start_grid(n, b.n_balls, True):
+        sim = simulate(cfg.system, cfg.spin,
+                       initial=InitialState(ball_angles=tuple(separate(a, b.contact_angle))))
+        out.append(np.interp(cfg.spin.checkpoints, sim.t, sim.grade_G))
+    return np.array(out)
+
+
+@pytest.mark.slow
+def test_simulation_studies_take_balls_beside_a_liquid():
+    """The studies that only simulate (unbalance range, plateau, run-up) take balls beside a
+    liquid: their percentiles are those of the machine's own runs from the same starts, the
+    run-up's "bare" run is the rotor without balls and with an empty chamber, and the closed
+    forms the liquid is not in (the balls' operating boundaries, the stick threshold) are NaN
+    instead of the balls' alone."""
+    from autobalance.physics.iso1940 import unbalance_value
+    from autobalance.studies.plateau import compute_plateau
+    from autobalance.studies.runup import compute_runup
+    from autobalance.studies.unbalance import compute_unbalance
+
+    cfg = machine(*TSR)
+    U = float(unbalance_value(5.0, cfg.system.total_mass, cfg.spin.nominal_speed))
+    own = _own_grades(machine(*TSR, f"rotor.unbalance={U!r}"), 2)
+    q = [5.0, 50.0, 95.0]
+    ds = compute_unbalance(cfg, G=[5.0], n=2, executor="serial")
+    np.testing.assert_allclose(ds["grade_G"].sel(case="nominal", G_ini=5.0).values,
+                               np.percentile(own, q, axis=0).T, rtol=1e-12)
+    assert np.isnan(ds["lower_boundary"].values).all() and np.isnan(ds["upper_boundary"]).all()
+
+    fn = cfg.system.natural_frequencies[0]
+    p = compute_plateau(cfg, ratios=[1.3], G=[5.0], n=2, executor="serial")
+    own = _own_grades(machine(*TSR, f"rotor.unbalance={U!r}", f"profile.plateau={1.3 * fn!r}"), 2)
+    assert float(p["grade_G_p95"].values.ravel()[0]) == pytest.approx(
+        np.percentile(own[:, -1], 95), rel=1e-12)
+
+    ru = compute_runup(machine(*SHORT))
+    c = machine(*SHORT)
+    sim = simulate(c.system, c.spin, options=dataclasses.replace(c.options,
+                                                                 save_dt=-1.0))
+    assert float(ru["final_grade"].values[0]) == pytest.approx(sim.grade_G[-1], rel=1e-12)
+    bare = dataclasses.replace(c.system, liquid=None, balancer=dataclasses.replace(
+        c.system.balancer, n_balls=0))
+    sb = simulate(bare, c.spin)
+    assert float(ru["max_amplitude_bare"].values[0]) == pytest.approx(
+        sb.summary()["max_amplitude_m"], rel=1e-9)
+    assert ru.attrs["balancer"] == "balls and liquid"
+
+
+def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
+    from autobalance.studies.speed_map import compute_speed_map
+
+    with pytest.raises(ParameterError) as e:
+        compute_speed_map(machine())
+    msg = str(e.value)
+    assert msg.startswith("liquid") and "\n" not in msg
+    assert "unbalance-range, plateau, sensitivity and runup" in msg
+
+
+def test_sensitivity_varies_the_liquid_viscosity_beside_balls():
+    from autobalance.studies.sensitivity import default_variants
+
+    v = default_variants(machine())
+    nu = machine().system.liquid.kinematic_viscosity
+    assert v["liquid viscosity x0.5"] == [f"liquid.kinematic_viscosity={0.5 * nu!r}"]
+    assert v["liquid viscosity x2"] == [f"liquid.kinematic_viscosity={2 * nu!r}"]
+    assert not any(k.startswith("liquid") for k in default_variants("vub_jeffcott_004"))

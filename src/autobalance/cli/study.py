@@ -306,7 +306,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units)
+                              scheduler, store, units, balls="beside")
         if g_max is not None:
             check_grade(g_max, "--g-max")
         _counts(steps=steps, n=n)
@@ -371,7 +371,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units)
+                              scheduler, store, units, balls="beside")
         _counts(n=n)
         rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
         ds = compute_plateau(cfg, n=n, quick=quick, ratios=rr,

@@ -58,7 +58,7 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, None, out, workers, executor,
-                              scheduler, store, units)
+                              scheduler, store, units, balls="beside")
         _counts(n=n, random=samples)
         if not (math.isfinite(z) and z > 0):
             raise ConfigError(f"--z = {z:g}: must be a number > 0, e.g. 2")

@@ -47,7 +47,8 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
 
     t0 = time.perf_counter()
     with guard():
-        cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units)
+        cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units,
+                              balls="beside")
         if not (math.isfinite(fraction) and fraction > 0):
             raise ConfigError(f"--fraction = {fraction}: must be a number > 0, e.g. 0.05")
         laws = None
@@ -85,7 +86,8 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
             line += f" (unloaded drive, closed form: {c['t_speed_unloaded_s']:.2f} s)"
         line += f"; whirl peak {du.fmt(c['max_amplitude_m'], 'length')}"
         if "amplitude_ratio" in c:
-            line += (f" with the balls, {du.fmt(c['max_amplitude_bare_m'], 'length')} without "
+            what = ds.attrs.get("balancer", "balls")
+            line += (f" with the {what}, {du.fmt(c['max_amplitude_bare_m'], 'length')} without "
                      f"(x{c['amplitude_ratio']:.2f})")
         tb = c["balancing_time_s"]
         when = ("still above at the end" if tb >= T - 1e-9 else f"last above at {tb:.2f} s")

@@ -57,8 +57,12 @@ class System:
             ``allow_liquid``, or no balls unless ``allow_empty``.
         """
         if self.liquid is not None and not allow_liquid:
+            beside = ("the studies start-positions, unbalance-range, plateau, sensitivity and "
+                      "runup (simulations) take balls beside a liquid; "
+                      if self.balancer.n_balls else "")
             raise ParameterError("liquid", "a [liquid] section", f"{what} take ball balancers "
-                                 "only so far; a liquid balancer runs with `autobalance simulate` (and `sweep`)")
+                                 f"only (closed forms without a liquid); {beside}a liquid "
+                                 "balancer runs with `autobalance simulate` (and `sweep`)")
         if not allow_empty and self.balancer.n_balls == 0:
             alone = ("; a liquid alone runs with `autobalance simulate` and `study fill-map`"
                      if self.liquid is not None else "")

@@ -43,7 +43,7 @@ def plot_runup(ds: xr.Dataset, speed_unit: str = "rad/s", title: str = "") -> Fi
         c = f"C{i}"
         d = ds.sel(case=case)
         ax1.plot(t, d["speed"].values / k, color=c, label=str(case))
-        ax2.plot(t, 1e3 * d["amplitude"].values, color=c, label=f"{case}, with balls")
+        ax2.plot(t, 1e3 * d["amplitude"].values, color=c, label=f"{case}, with {ds.attrs.get('balancer', 'balls')}")
         if "amplitude_bare" in d:
             ax2.plot(t, 1e3 * d["amplitude_bare"].values, color=c, ls="--", lw=0.9,
                      label=f"{case}, without")

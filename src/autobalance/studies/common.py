@@ -78,7 +78,7 @@ def case_sets(base: str | Path | Config, mu_r: float, c_r: float) -> list:
     list of str
         Three "path=value" overrides (balancer.rolling_resistance, suspension.cx, suspension.cy).
     """
-    s = load(base).system
+    s = load(base, allow_liquid=True).system       # the caller checked the machine
     mu = [float(x) * mu_r for x in s.balancer.rolling_resistance]     # each ball's own, scaled
     mu_text = repr(mu[0]) if len(set(mu)) <= 1 else "[" + ", ".join(map(repr, mu)) + "]"
     return [f"balancer.rolling_resistance={mu_text}",

@@ -130,7 +130,7 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
     s = cfg.system
     if getattr(cfg.spin, "name", "") != "tsr":
         from ..models import ParameterError
@@ -179,7 +179,7 @@ def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_
     to ``ratio_end`` Omega_n in ``down_time`` [s]; the residual grade G [mm/s] of every start is
     read every ``history_dt`` [s] and its percentiles over the n(n+1)/2 starts are returned
     against the speed ratio Omega/Omega_n [-]. Also the stick threshold G*(Omega)
-    (:func:`stick_threshold_grade`) at the same speeds.
+    (:func:`stick_threshold_grade`; NaN beside a liquid, which it leaves out) at the same speeds.
 
     004 does not give its descent rate ("a gradual speed reduction"); ours is 82 Hz in 60 s
     (1.4 Hz/s), a fifth of the TSR profile's 6.7 Hz/s.
@@ -216,13 +216,13 @@ def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_
     import xarray as xr
 
     t0 = time.perf_counter()
-    machine = load(base)
+    machine = load(base, allow_liquid=True)    # simulations (G_stick: balls alone, below)
     s0 = machine.system
     fn = s0.natural_frequencies[0]
     U = float(grade_to_unbalance(G_ini, s0.total_mass, machine.spin.nominal_speed))
     sets = [f"rotor.unbalance={U!r}", f"profile.plateau={ratio_end * fn!r}",
             f"profile.down_time={down_time!r}", "profile.plateau_time=1.0", "profile.up_time=1.0"]
-    cfg = load(base, sets)
+    cfg = load(base, sets, allow_liquid=True)
     name = f"descent-g{G_ini:g}-n{n}-r{ratio_end:g}-t{down_time:g}-dt{history_dt:g}"
     raw = run_start_grid(base, f"{prefix}-{name}", sets, {}, n, store=store_path(store_dir, name),
                          executor=executor, workers=workers, scheduler=scheduler,
@@ -236,8 +236,7 @@ def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_
     pct = np.percentile(g, DESCENT_PCT, axis=0)
     ratio = speed / fn
     ds = xr.Dataset({"grade_G": (("percentile", "ratio"), pct, {"units": "mm/s"}),
-                     "G_stick": ("ratio", stick_threshold_grade(cfg.system, speed,
-                                                                 cfg.spin.nominal_speed),
+                     "G_stick": ("ratio", _stick(cfg.system, speed, cfg.spin.nominal_speed),
                                  {"units": "mm/s", "long_name": "stick threshold G*"}),
                      "time": ("ratio", t[sel], {"units": "s"})},
                     coords={"percentile": list(DESCENT_PCT),
@@ -253,6 +252,15 @@ def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_
         **rise_after_min(ratio, p95),
         "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
+
+
+def _stick(system, speed, nominal_speed):
+    """:func:`stick_threshold_grade` [mm/s] at ``speed`` [rad/s] (grade at ``nominal_speed``
+    [rad/s]); NaN beside a liquid, whose moment the closed form (a Jeffcott rotor with balls
+    alone) does not hold."""
+    if system.liquid is not None:
+        return np.full(np.shape(speed), np.nan)
+    return stick_threshold_grade(system, speed, nominal_speed)
 
 
 def plateau_summary(ds: xr.Dataset, case: str | None = None, near: float = 1.0) -> dict:

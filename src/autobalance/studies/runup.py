@@ -6,8 +6,10 @@ when the whirl last exceeds a fraction of the rotor's own eccentricity, and the 
 A motor-driven machine (``[profile] kind = "motor"``) is run under each torque law asked for
 (000 Table 1: constant, linear, harmonic), from the config's own torque, final speed and hold
 fraction; a prescribed profile (std, tsr, ramp, table) is run as it is. Each case runs with the
-balls and, unless ``bare=False``, without them (the same machine with ``n_balls = 0``), so the
-effect of the balancer on the run-up is a ratio of two simulations. The unloaded drive's time to
+balls and, unless ``bare=False``, without them (the same machine with ``n_balls = 0``; beside a
+liquid, its chamber empty too), so the effect of the balancer on the run-up is a ratio of two
+simulations. Balls beside a liquid run with :func:`autobalance.simulate.hybrid.simulate_hybrid`
+(a prescribed profile). The unloaded drive's time to
 speed in closed form (:func:`autobalance.physics.runup.runup_time_closed_form`, 000 eq 15) is
 given beside the simulated one.
 """
@@ -112,7 +114,8 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     sets : sequence of str
         "path=value" overrides, as for ``--set``.
     bare : bool
-        Also run each case without the balls (the amplitude ratio needs it).
+        Also run each case without the balls (the amplitude ratio needs it); beside a liquid,
+        without the liquid too (an empty chamber: the rotor without any balancer).
     fraction : float
         Threshold of the balancing time as a fraction of the eccentricity U/M_t [-].
     save_dt : float or None
@@ -135,7 +138,7 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     t0 = time.perf_counter()
     if not (math.isfinite(fraction) and fraction > 0):
         raise ParameterError("fraction", fraction, "must be a finite number > 0")
-    cfg = load(base, sets)
+    cfg = load(base, sets, allow_liquid=True)  # simulations only: a liquid beside is modelled
     cases = _cases(cfg, laws)
     s = cfg.system
     W = cfg.spin.nominal_speed
@@ -144,7 +147,9 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     durations = {float(c.duration) for c in cases.values()}
     tg = np.arange(0.0, max(durations) + 0.5 * save_dt, save_dt)
     opts = dataclasses.replace(cfg.options, save_dt=save_dt)
-    bare_sys = dataclasses.replace(s, balancer=dataclasses.replace(s.balancer, n_balls=0))
+    # bare: no balls, and an empty chamber (the liquid analyses' "without liquid")
+    bare_sys = dataclasses.replace(s, balancer=dataclasses.replace(s.balancer, n_balls=0),
+                                   liquid=None)
     ecc = s.rotor.unbalance / s.total_mass
     rows, hist = [], []
     for name, spin in cases.items():
@@ -186,6 +191,7 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     ds.attrs.update({"study": "runup", "machine": cfg.name, "motor": int(isinstance(cfg.spin, MotorDrive)),
                      "nominal_speed_rad_s": float(W), "eccentricity_m": float(ecc),
                      "balancing_fraction": float(fraction),
+                     "balancer": "balls" if s.liquid is None else "balls and liquid",
                      "natural_frequencies_rad_s": [float(w) for w in s.natural_frequencies],
                      "wall_s": time.perf_counter() - t0})
     return ds

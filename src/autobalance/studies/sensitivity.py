@@ -74,7 +74,8 @@ def default_variants(base: str | Path | Config) -> dict:
     "path=value" overrides (SI numbers) named by what they change: 004's point masses
     (contact none), ball damping x0.5 and x2, rolling resistance (and stiction) x0.5 and x2,
     the run-up time x0.78 (004: an 18 s reading of Fig. 3 against 14 s) and, for a TSR
-    profile, the plateau x0.96 (004: 1.06 against 1.02 Omega_n).
+    profile, the plateau x0.96 (004: 1.06 against 1.02 Omega_n); beside a liquid, its viscosity
+    x0.5 and x2 (the films' wall shear, docs/liquid.md sec. 3d).
 
     Parameters
     ----------
@@ -86,7 +87,7 @@ def default_variants(base: str | Path | Config) -> dict:
     dict of str to list of str
         Variant name -> overrides.
     """
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
     b = cfg.system.balancer
     out = {}
     if b.n_balls == 0:
@@ -105,6 +106,10 @@ def default_variants(base: str | Path | Config) -> dict:
             out[f"rolling resistance x{f:g}"] = [
                 f"balancer.rolling_resistance={per_ball(b.rolling_resistance, f)}",
                 f"balancer.stiction={per_ball(b.stiction, f)}"]
+    if cfg.system.liquid is not None:                 # a liquid beside: its viscosity is uncertain
+        for f in (0.5, 2.0):
+            out[f"liquid viscosity x{f:g}"] = [
+                f"liquid.kinematic_viscosity={cfg.system.liquid.kinematic_viscosity * f!r}"]
     spin = cfg.spin
     if getattr(spin, "name", "") in ("std", "tsr"):
         out["run-up x0.78"] = [f"profile.runup_time={0.78 * float(spin.times[1])!r}"]
@@ -155,7 +160,7 @@ def compute_sensitivity(base: str | Path | Config, variants: dict | None = None,
     from .common import store_path
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
     variants = default_variants(cfg) if variants is None else dict(variants)
     if not variants:
         raise ParameterError("variants", variants, "needs at least one change to study")
@@ -168,7 +173,7 @@ def compute_sensitivity(base: str | Path | Config, variants: dict | None = None,
         if any(str(x).split("=")[0].strip() == "balancer.n_balls" for x in sets):
             raise ParameterError(f"variants[{name!r}]", list(sets), "must keep the ball count "
                                  "(the variants share the base's start positions)")
-        c = load(cfg, list(sets))
+        c = load(cfg, list(sets), allow_liquid=True)
         if c.system.balancer.n_balls != N:
             raise ParameterError(f"variants[{name!r}]", sets, "must keep the ball count (the "
                                  "variants share the base's start positions)")

@@ -83,13 +83,14 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
         grade_G [mm/s] over (case, G_ini [mm/s], procedure = the profile's read-outs
         (:func:`~autobalance.studies.common.checkpoint_labels`; 004: STD/TSR),
         percentile 5/50/95), failed_runs per case, the operating boundaries [mm/s]
-        (:func:`operating_boundaries`); attrs G_balls [mm/s], grid_step [mm/s].
+        (:func:`operating_boundaries`; NaN beside a liquid, whose moment they leave out);
+        attrs G_balls [mm/s], grid_step [mm/s].
     """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
     G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
     Gv = default_grades(G_b, quick) if G is None else np.asarray(G, float)
     U = grade_to_unbalance(Gv, cfg.system.total_mass, cfg.spin.nominal_speed)
@@ -116,11 +117,13 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
                             "mu_r": ("case", [cases[c][0] for c in cases]),
                             "c_r": ("case", [cases[c][1] for c in cases])})
     lo, hi = operating_boundaries(Gv, G_b)
+    if cfg.system.liquid is not None:           # the boundaries are the balls' alone
+        lo, hi = np.full_like(lo, np.nan), np.full_like(hi, np.nan)
     ds["lower_boundary"] = ("G_ini", lo, {"units": "mm/s", "long_name": "every ball opposite "
                                           "the unbalance: |G_ini - G_balls|"})
     ds["upper_boundary"] = ("G_ini", hi, {"units": "mm/s", "long_name": "every ball with the "
                                           "unbalance: G_ini + G_balls"})
-    ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "grid_step": float(np.diff(Gv).max()),
+    ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "grid_step": float(np.diff(Gv).max()) if Gv.size > 1 else 0.0,
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
 
@@ -170,7 +173,7 @@ def compute_profile(base: str | Path, other_sets: Iterable[str], *,
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
     G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
     Gv = default_grades(G_b, quick) if G is None else np.asarray(G, float)
     if unbalance_ds is None or not np.array_equal(unbalance_ds["G_ini"].values, Gv) \
