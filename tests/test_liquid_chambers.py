@@ -282,9 +282,49 @@ def test_cli_three_chambers_end_to_end(tmp_path):
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert [f["fill_m3"] for f in d["fills"]] == pytest.approx([225e-6, 450e-6])
-    for args in (("liquid", "simulate", "leblanc_003_three"),
+    for args in (("liquid", "simulate", "leblanc_003_three", "--model", "lumped"),
+                 ("liquid", "simulate", "leblanc_003_three", "--set", "liquid.partitions=4"),
                  ("show", "leblanc_003_three", "--set", "liquid.inner_radius=[0, 0.05, 0.15]")):
         r = cli(*args)
         lines = r.stderr.strip().splitlines()
         assert r.returncode == 2 and len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
         assert lines[0].startswith("error: liquid.")
+
+
+@pytest.mark.slow
+def test_liquid_simulate_of_three_chambers_is_the_fill_map_and_the_film_run(tmp_path):
+    """``liquid simulate`` (quasi-static model) takes several chambers: its steady whirl, followed
+    from root to root up the speeds (liquid/steady.chambers_steady_response), equals the fill
+    map's at the machine's fill (each speed solved on its own, steady_amplitude) to 1e-9; its
+    fill sweep at omega_n is the fill map's column; its run-up is simulate_liquid's through the
+    same ramp from rest. The lumped model and partitions are refused in one line
+    (test_cli_three_chambers_end_to_end)."""
+    import json
+    import subprocess
+    import sys
+
+    from autobalance.liquid.simulate import ramp_run_up
+    from autobalance.studies.fill_map import compute_fill_map, default_fills
+
+    cfg = three(*SHORT)
+    r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "simulate",
+                        "leblanc_003_three", *(f"--set={s}" for s in SHORT), "--omega",
+                        "5:100 1/s:20", "--run-up", "--fill-sweep", "--json",
+                        "--plot", str(tmp_path / "r.png")], capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["chambers"] == 3 and d["radius_m"] == list(RADII)
+    assert d["volume_m3"] == pytest.approx(cfg.system.liquid.total_volume, rel=1e-12)
+    ws = np.asarray(d["omega_rad_s"])
+    fm = compute_fill_map(cfg, fills=[cfg.system.liquid.total_volume], speeds=ws)
+    np.testing.assert_allclose(d["amplitude_m"], fm["amplitude"].values[0], rtol=1e-9)
+    wn = d["omega_n_rad_s"]
+    vols = default_fills(cfg.system.liquid)
+    at_wn = compute_fill_map(cfg, fills=vols, speeds=[wn, 2 * wn])["amplitude"].values[:, 0]
+    sweep = d["fill_sweep"][2]
+    assert sweep["omega_rad_s"] == pytest.approx(wn, rel=1e-12)
+    np.testing.assert_allclose(sweep["amplitude_m"], at_wn, rtol=1e-9)
+    ru = ramp_run_up(cfg.system, cfg.spin.nominal_speed, cfg.spin.duration)
+    assert d["run_up"] == ru.summary()
+    assert (tmp_path / "r.png").stat().st_size > 0

@@ -240,11 +240,12 @@ def kinetostatic(delta: Annotated[str, typer.Option(help="Rotor phase angle(s)."
 
 def _machine(source, sets, radius, liquid, volume, unbalance):
     """The machine of ``liquid simulate`` with its ``--set`` and the shortcut options: (config,
-    rotor, balancer). The shortcuts are overrides of the machine's own keys (``--volume`` is
-    ``liquid.volume``, ``--radius`` ``liquid.chamber_radius``, ``--unbalance``
+    rotor, balancer, chambers). The shortcuts are overrides of the machine's own keys
+    (``--volume`` is ``liquid.volume``, ``--radius`` ``liquid.chamber_radius``, ``--unbalance``
     ``rotor.unbalance``; ``--liquid`` sets 001's density and viscosity); the suspension keeps
-    its values."""
-    from ..liquid.simulate import liquid_parts
+    its values. With several chambers the balancer is None (the lumped model takes one
+    chamber) and ``chambers`` lists each (R, h, r_i, V)."""
+    from ..liquid.simulate import film_rotor, liquid_parts, require_liquid_machine
 
     sets = list(sets or [])
     for key, value in (("liquid.volume", volume), ("liquid.chamber_radius", radius),
@@ -261,14 +262,25 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
         raise ParameterError("liquid.axis", s.liquid.axis, "liquid simulate analyses a "
                              "vertical axis (003's bench); a horizontal machine runs with "
                              "autobalance simulate (the film model with gravity)")
+    chambers = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume)
+                for c in s.liquid.chambers]
+    if s.liquid.n_chambers > 1:
+        require_liquid_machine(s)
+        if any(c.partitions for c in s.liquid.chambers):
+            raise ParameterError("liquid.partitions", s.liquid.partitions, "must be 0 for liquid "
+                                 "simulate (the quasi-static liquid has no partitions; "
+                                 "autobalance simulate has)")
+        return cfg, film_rotor(s), None, chambers
     rot, bal = liquid_parts(s)
     if liquid:
         bal = replace(bal, liquid=replace(bal.liquid, name=liquid))
-    return cfg, rot, bal
+    return cfg, rot, bal, chambers
 
 
-def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model, label=None) -> None:
-    """The steady response (with the run-up) or, with a fill sweep, the amplitude vs fill."""
+def _plot_run(plot, st, w0, wn, ru, sw, device, name, rot, model, label=None) -> None:
+    """The steady response (with the run-up) or, with a fill sweep, the amplitude vs fill;
+    ``device`` is the machine's ``[liquid]`` section (its chambers and liquid), ``name`` its
+    liquid's."""
     import logging
 
     from ..plotting.liquid import fill_figure, response_figure
@@ -276,15 +288,17 @@ def _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model, label=None) -> None:
     # matplotlib logs a fallback line per missing TeX font when a log axis is drawn
     logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
 
+    R = "/".join(f"{c.chamber_radius:g}" for c in device.chambers)
+    rho = name if name != "liquid" else f"rho = {device.density:g} kg/m³"
     if sw is not None:
         # the fill sweep varies V: name the fixed quantities only
-        fixed = (f"R = {bal.chamber.radius:g} m, {bal.liquid.name}, "
+        fixed = (f"R = {R} m, {rho}, "
                  f"D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
         fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
                           "Amplitude vs fill (003 Fig. 5)\n" + fixed)
     else:
-        title = (f"R = {bal.chamber.radius:g} m, V = {bal.volume * 1e6:.4g} ml "
-                 f"{bal.liquid.name}, D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
+        title = (f"R = {R} m, V = {device.total_volume * 1e6:.4g} ml "
+                 f"({rho}), D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
         fig = response_figure(st, w0, wn, ru, title)
     fig.savefig(plot, dpi=120)
 
@@ -350,43 +364,63 @@ def simulate(source: Annotated[str, typer.Argument(
     if model_kind not in ("lumped", "physical"):
         raise ConfigError(f"--model = {model_kind!r}: must be 'physical' or 'lumped'")
     model = LiquidModel(**({"placement": placement} if placement else {}))
-    cfg, rot, bal = _machine(source, sets, radius, liquid, volume, unbalance)
+    cfg, rot, bal, chambers = _machine(source, sets, radius, liquid, volume, unbalance)
     _check_plot(plot)
     ws = _list(omega, "speed", "omega")
     physical = model_kind == "physical"
+    L = cfg.system.liquid
+    if bal is None and not physical:
+        raise ParameterError("liquid.chamber_radius", list(L.chamber_radius), f"{L.n_chambers} "
+                             "concentric chambers: the lumped model takes one chamber (--model "
+                             "physical takes several)")
     if physical:
         from ..liquid.film import physical_run_up as run_up  # noqa: F811
-        from ..liquid.steady import physical_fill_sweep, physical_steady_response
+        from ..liquid.steady import chambers_fill_sweep, chambers_steady_response
 
         if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
             raise ConfigError(f"--omega = {omega!r}: the physical model needs increasing speeds > 0")
-        st = physical_steady_response(rot, bal, ws, model.g)
+        st = chambers_steady_response(rot, chambers, L.density, ws, model.g)
     else:
         st = steady_response(rot, bal, ws, model)
-    w0 = entrainment_speed(bal.volume, bal.chamber.radius, bal.chamber.height, model.g,
-                           bal.chamber.inner_radius)
-    wn = rot.natural_frequency(bal.mass)
+    w0s = [entrainment_speed(V, R, h, model.g, ri) for R, h, ri, V in chambers]
+    w0 = max(w0s)                                   # every chamber's liquid a ring above it
+    wn = rot.natural_frequency(L.density * L.total_volume)
     w_end, t_end = float(cfg.spin.nominal_speed), float(cfg.spin.duration)
-    out = {"machine": cfg.name, "model": model_kind, "volume_m3": bal.volume,
-           "radius_m": bal.chamber.radius,
-           "liquid": bal.liquid.name, "unbalance_kg_m": rot.unbalance,
-           "capacity_kg_m": bal.capacity, "k": bal.capacity / rot.unbalance
+    capacity = L.density * sum(V * R for R, _, _, V in chambers)
+    out = {"machine": cfg.name, "model": model_kind, "volume_m3": L.total_volume,
+           "radius_m": L.chamber_radius, "chambers": len(chambers),
+           "liquid": bal.liquid.name if bal is not None else (liquid or "liquid"),
+           "unbalance_kg_m": rot.unbalance,
+           "capacity_kg_m": capacity, "k": capacity / rot.unbalance
            if rot.unbalance else None, "placement": None if physical else model.placement,
            "omega_0_rad_s": w0, "omega_n_rad_s": wn, **st}
+    if len(chambers) > 1:
+        out["omega_0_per_chamber_rad_s"] = w0s
     ru = sw = None
     if run:
-        ru = (run_up(rot, bal, w_end, t_end, model.g) if physical
-              else run_up(rot, bal, model, w_end, t_end, n_out=1500))
+        if bal is None:
+            from ..liquid.simulate import ramp_run_up
+
+            ru = ramp_run_up(cfg.system, w_end, t_end)
+        else:
+            ru = (run_up(rot, bal, w_end, t_end, model.g) if physical
+                  else run_up(rot, bal, model, w_end, t_end, n_out=1500))
         out["run_up"] = ru.summary()
     if fill:
-        vols = default_fills(cfg.system.liquid)
-        sw = [physical_fill_sweep(rot, bal, vols, f * wn, model.g) if physical
-              else fill_sweep(rot, bal, vols, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
+        from ..studies.fill_map import chamber_fills
+
+        vols = default_fills(L)
+        if physical:
+            per = [[c[:3] + (v,) for c, v in zip(chambers, chamber_fills(L, f))] for f in vols]
+            sw = [chambers_fill_sweep(rot, per, L.density, f * wn, model.g)
+                  for f in (0.6, 0.8, 1.0, 1.2)]
+        else:
+            sw = [fill_sweep(rot, bal, vols, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
         out["fill_sweep"] = [{"omega_rad_s": s["omega_rad_s"], "volume_m3": s["volume_m3"],
                               "amplitude_m": s["amplitude_m"],
                               "optimum_volume_m3": s["optimum_volume_m3"]} for s in sw]
     if plot:
-        _plot_run(plot, st, w0, wn, ru, sw, bal, rot, model,
+        _plot_run(plot, st, w0, wn, ru, sw, L, out["liquid"], rot, model,
                   "physical model" if physical else None)
         out["plot"] = plot
     if not as_json:

@@ -141,10 +141,12 @@ class LiquidBalancer:
         ----------
         device : autobalance.models.LiquidDevice
             The section (SI); ParameterError (one line) with partitions or several chambers,
-            which the analyses taking a LiquidBalancer (quasi-static, lumped, kinetostatic) do
-            not model (the film model of ``simulate`` does).
+            which the analyses taking a LiquidBalancer (one chamber's quasi-static, lumped or
+            kinetostatic liquid) do not model (the film model of ``simulate`` does; the
+            quasi-static liquid of several chambers is liquid/steady.chambers_steady_response).
         """
-        device = device.single("this analysis (quasi-static, lumped or kinetostatic liquid)")
+        device = device.single("this analysis (one chamber's quasi-static, lumped or "
+                               "kinetostatic liquid)")
         if device.partitions:
             raise ParameterError("liquid.partitions", device.partitions, "must be 0 for this "
                                  "analysis (the quasi-static liquid has no partitions; "

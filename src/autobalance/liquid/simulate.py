@@ -24,7 +24,9 @@ import numpy as np
 
 from ..core.layout import RunStatus
 from ..models import MotorDrive, ParameterError, SpeedProfile, System
+from ..models._validate import positive
 from ..physics.iso1940 import grade_value
+from .dynamics import RunUp
 from .film import coupled_run
 from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 from .start import FilmStart, _film_table, film_start, film_start_speed
@@ -40,7 +42,8 @@ if TYPE_CHECKING:
 
 __all__ = ["FilmStart", "LiquidSimulation", "check_liquid_run", "film_rotor", "film_start",
            "film_start_speed",
-           "liquid_parts", "require_axis_gravity", "require_liquid_machine", "revolution_average",
+           "liquid_parts", "ramp_run_up", "require_axis_gravity", "require_liquid_machine",
+           "revolution_average",
            "run_seconds_estimate", "simulate_liquid"]
 
 
@@ -523,3 +526,40 @@ def simulate_liquid(system: System, spin: SpeedProfile, *, n_cells: int = 256,
     return LiquidSimulation(system, t0 + run.t, np.interp(run.t, tt, ww), whirl, U,
                             revolution_average(psi, U), t0, w0, float(spin.nominal_speed),
                             run.steps, status, message, per)
+
+
+def ramp_run_up(system: System, omega_end: float, duration: float, *,
+                n_cells: int = 256) -> RunUp:
+    """A machine's linear run-up from rest to ``omega_end`` in ``duration`` through the film
+    model (:func:`simulate_liquid`: the film starts where the spin-up says, every chamber's
+    film coupled with the rotor), as the lumped model's :class:`autobalance.liquid.RunUp`, for
+    ``liquid simulate --run-up`` with several chambers (one chamber keeps
+    :func:`autobalance.liquid.film.physical_run_up`, which starts the film at 003 eq 6's speed).
+
+    Parameters
+    ----------
+    system : System
+        The machine (a ``[liquid]`` section, vertical axis).
+    omega_end : float
+        Final speed [rad/s].
+    duration : float
+        Time of the run-up [s].
+    n_cells : int
+        Film cells per chamber [-].
+
+    Returns
+    -------
+    RunUp
+        t [s] from rest (the samples from the film's start on), omega [rad/s], amplitude and
+        amplitude_dry [m] (the chambers empty), liquid_angle [rad] and liquid_unbalance
+        [kg*m] of the films' summed moment.
+    """
+    sim = simulate_liquid(system, SpeedProfile.ramp(0.0, positive("omega_end", omega_end),
+                                                    positive("duration", duration), duration),
+                          n_cells=n_cells)
+    if sim.status != "ok":
+        raise ParameterError("liquid", "the run-up", sim.message)
+    U = sim.liquid_unbalance
+    return RunUp(t=sim.t, omega=sim.speed, amplitude=sim.amplitude,
+                 liquid_angle=np.angle(U), liquid_unbalance=np.abs(U),
+                 amplitude_dry=sim.amplitude_without_liquid)

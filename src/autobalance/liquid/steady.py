@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 
     import numpy.typing as npt
 
-__all__ = ["GRAVITY_OFFSET_MAX", "physical_fill_sweep", "physical_steady_response",
+__all__ = ["GRAVITY_OFFSET_MAX", "chambers_fill_sweep", "chambers_steady_response", "physical_fill_sweep", "physical_steady_response",
            "pool_response", "response_curve", "ring_response", "start_speed",
            "steady_amplitude", "synchronous_deflection"]
 
@@ -248,10 +248,8 @@ def pool_response(rotor: VerticalRotor, volume: float, density: float,
 
 def physical_steady_response(rotor: VerticalRotor, bal: LiquidBalancer, speeds: npt.ArrayLike,
                              g: float = G_STANDARD) -> dict:
-    """The bench's steady whirl over ``speeds`` with the quasi-static liquid (:func:`response_curve`,
-    upward sweep), in the keys of :func:`autobalance.liquid.steady_response` (the lumped model),
-    so that the CLI and the figures take either. Below the entrainment speed omega_0 (003 eq 6)
-    the liquid is a centred pool (:func:`pool_response`; liquid unbalance 0, its angle NaN).
+    """The bench's steady whirl over ``speeds`` with the quasi-static liquid of one chamber
+    (:func:`chambers_steady_response` with the balancer's chamber).
 
     Parameters
     ----------
@@ -267,27 +265,75 @@ def physical_steady_response(rotor: VerticalRotor, bal: LiquidBalancer, speeds: 
     Returns
     -------
     dict
-        omega_rad_s, amplitude_m, amplitude_dry_m (empty chamber), efficiency [-],
-        deflection_m (complex, rotor frame), liquid_angle_deg (of U_l from D) [deg],
-        liquid_unbalance_kg_m, phase_deg (of w from D).
+        As :func:`chambers_steady_response`.
     """
-    from .free_surface import entrainment_speed
+    c = bal.chamber
+    return chambers_steady_response(rotor, [(c.radius, c.height, c.inner_radius, bal.volume)],
+                                    bal.liquid.density, speeds, g)
 
+
+def _split(chambers, omega, g, axis):
+    """The chambers (R, h, r_i, V) whose liquid is a ring at ``omega`` (at or above its
+    :func:`start_speed`) and the mass [kg per kg/m^3] of the others' (a pool): (ring, V_pool)."""
+    ring = [c for c in chambers if omega >= start_speed(c[3], c[0], c[1], g, axis=axis,
+                                                        inner_radius=c[2])]
+    return ring, sum(c[3] for c in chambers) - sum(c[3] for c in ring)
+
+
+def chambers_steady_response(rotor: VerticalRotor,
+                             chambers: Sequence[tuple[float, float, float, float]],
+                             density: float, speeds: npt.ArrayLike,
+                             g: float = G_STANDARD) -> dict:
+    """A vertical rotor's steady whirl over ``speeds`` with the quasi-static liquid of one or
+    more concentric chambers (:func:`synchronous_deflection`, followed upwards in speed from
+    root to root as :func:`response_curve`), in the keys of
+    :func:`autobalance.liquid.steady_response` (the lumped model), so that the CLI and the
+    figures take either. A chamber below its entrainment speed omega_0 (003 eq 6) holds a
+    centred pool: a mass without unbalance (:func:`pool_response` if every chamber does; the
+    liquid's angle is then NaN).
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    chambers : sequence of (float, float, float, float)
+        Per chamber (R [m], h [m], r_i [m], V [m^3]).
+    density : float
+        rho [kg/m^3].
+    speeds : array_like
+        Increasing speeds [rad/s], > 0.
+    g : float
+        Gravity along the axis [m/s^2].
+
+    Returns
+    -------
+    dict
+        omega_rad_s, amplitude_m, amplitude_dry_m (empty chambers), efficiency [-],
+        deflection_m (complex, rotor frame), liquid_angle_deg (of U_l from D) [deg],
+        liquid_unbalance_kg_m (summed over the chambers), phase_deg (of w from D).
+    """
     om = np.asarray(speeds, float)
-    R, h, rho, V = bal.chamber.radius, bal.chamber.height, bal.liquid.density, bal.volume
-    ri = bal.chamber.inner_radius
-    w0 = entrainment_speed(V, R, h, g, inner_radius=ri)
-    ok = om >= w0
+    if om.ndim != 1 or om.size < 1 or np.any(om <= 0) or np.any(np.diff(om) <= 0):
+        raise ParameterError("speeds", "array", "must be increasing speeds > 0 [rad/s]")
     w = np.full(om.size, complex(math.nan, math.nan))
-    if ok.any():
-        w[ok], _ = response_curve(rotor, R, h, V, rho, om[ok], inner_radius=ri, g=g)
-    U = np.array([quasi_static(R, h, V, rho, W, x, inner_radius=ri, g=g).unbalance
-                  if np.isfinite(x) else
-                  complex(math.nan, math.nan) for W, x in zip(om, w)])
-    if (~ok).any():
-        w[~ok] = pool_response(rotor, V, rho, om[~ok])
-        U[~ok] = 0.0
-    dry = np.abs(pool_response(rotor, 0.0, rho, om))        # the empty chamber
+    U = np.zeros(om.size, complex)
+    ok = np.zeros(om.size, bool)
+    guess = None
+    for i, W in enumerate(om):
+        ring, v_pool = _split(chambers, W, g, "vertical")
+        if not ring:
+            w[i] = pool_response(rotor, v_pool, density, W)
+            guess = None
+            continue
+        ok[i] = True
+        R, h, ri, V = (list(x) for x in zip(*ring))
+        w[i] = synchronous_deflection(rotor, R, h, V, density, W, inner_radius=ri, g=g,
+                                      guess=guess, pool_mass=density * v_pool)
+        guess = w[i] if np.isfinite(w[i]) else None
+        U[i] = (sum(quasi_static(*c[:2], c[3], density, W, w[i], inner_radius=c[2],
+                                 g=g).unbalance for c in ring)
+                if np.isfinite(w[i]) else complex(math.nan, math.nan))
+    dry = np.abs(pool_response(rotor, 0.0, density, om))        # the empty chambers
     amp = np.abs(w)
     with np.errstate(divide="ignore", invalid="ignore"):
         eff = dry / amp
@@ -327,12 +373,45 @@ def physical_fill_sweep(rotor: VerticalRotor, bal: LiquidBalancer, volumes: npt.
     dict
         volume_m3, amplitude_m, efficiency, optimum_volume_m3, omega_rad_s.
     """
-    vols = np.asarray(volumes, float)
-    R, h, rho = bal.chamber.radius, bal.chamber.height, bal.liquid.density
-    ri = bal.chamber.inner_radius
-    dry = float(np.abs(pool_response(rotor, 0.0, rho, omega)))   # the empty chamber
-    amps = np.array([dry if V <= 0 else steady_amplitude(rotor, [(R, h, ri, V)], rho, omega, g,
-                                                         axis=axis) for V in vols])
+    c = bal.chamber
+    return chambers_fill_sweep(rotor, [[(c.radius, c.height, c.inner_radius, V)]
+                                       for V in np.asarray(volumes, float)],
+                               bal.liquid.density, omega, g, axis)
+
+
+def chambers_fill_sweep(rotor: VerticalRotor,
+                        fills: Sequence[Sequence[tuple[float, float, float, float]]],
+                        density: float, omega: float, g: float = G_STANDARD,
+                        axis: str = "vertical") -> dict:
+    """:func:`physical_fill_sweep` for one or more concentric chambers: the steady amplitude
+    (:func:`steady_amplitude`) at one speed for each fill, a fill being every chamber's (R, h,
+    r_i, V); its volume is the total of its chambers.
+
+    Parameters
+    ----------
+    rotor : VerticalRotor
+        M [kg], k [N/m], c [N*s/m], D [kg*m].
+    fills : sequence of sequence of (float, float, float, float)
+        Per fill, per chamber (R [m], h [m], r_i [m], V [m^3]); a total of 0 is the empty
+        chamber.
+    density : float
+        rho [kg/m^3].
+    omega : float
+        Speed [rad/s].
+    g : float
+        Gravity [m/s^2] (along a vertical axis, in the plane of a horizontal one).
+    axis : str
+        "vertical" or "horizontal".
+
+    Returns
+    -------
+    dict
+        volume_m3 (total), amplitude_m, efficiency, optimum_volume_m3, omega_rad_s.
+    """
+    vols = np.array([sum(c[3] for c in p) for p in fills], float)
+    dry = float(np.abs(pool_response(rotor, 0.0, density, omega)))   # the empty chamber
+    amps = np.array([dry if V <= 0 else steady_amplitude(rotor, p, density, omega, g, axis=axis)
+                     for V, p in zip(vols, fills)])
     return {"volume_m3": vols, "amplitude_m": amps, "efficiency": dry / amps,
             "optimum_volume_m3": float(vols[int(np.nanargmin(amps))]), "omega_rad_s": float(omega)}
 
@@ -363,12 +442,10 @@ def steady_amplitude(rotor: VerticalRotor, chambers: Sequence[tuple[float, float
     """
     if axis not in ("vertical", "horizontal"):
         raise ParameterError("axis", axis, "must be 'vertical' or 'horizontal'")
-    ring = [c for c in chambers if omega >= start_speed(c[3], c[0], c[1], g, axis=axis,
-                                                        inner_radius=c[2])]
-    total = sum(c[3] for c in chambers)
+    ring, v_pool = _split(chambers, omega, g, axis)
     if not ring:
-        return float(abs(pool_response(rotor, total, density, omega)))
-    pool = density * (total - sum(c[3] for c in ring)) if len(ring) < len(chambers) else 0.0
+        return float(abs(pool_response(rotor, v_pool, density, omega)))
+    pool = density * v_pool if len(ring) < len(chambers) else 0.0
     R, h, ri, V = (list(x) for x in zip(*ring))
     return abs(synchronous_deflection(rotor, R, h, V, density, omega, inner_radius=ri, g=g,
                                       axis="planar" if axis == "horizontal" else "vertical",

@@ -151,7 +151,8 @@ class LiquidDevice:
             return self
         raise ParameterError("liquid.chamber_radius", list(self.chamber_radius),
                              f"{self.n_chambers} concentric chambers: {what} takes one chamber "
-                             "(simulate and sweep take several; docs/liquid.md sec. 3g)")
+                             "(simulate, sweep, study fill-map and liquid simulate's physical model take "
+                             "several; docs/liquid.md sec. 3g)")
 
     @property
     def chamber_volume(self) -> float:
