@@ -340,3 +340,43 @@ def test_store_identity_sees_the_liquid():
         return identity(make_plan(spec_from_dict(d)))
 
     assert ident("100 ml") == ident("100 ml") != ident("101 ml")
+
+
+SHORT_RUN = ("profile.duration=8 s", "profile.ramp_time=8 s", "profile.end_speed=80 1/s")
+
+
+@pytest.mark.slow
+def test_unbalance_range_and_runup_studies_take_a_liquid_alone():
+    """A liquid balancer alone in the studies that only simulate and need no ball starts: the
+    unbalance range is one film run per initial grade (every percentile that run's grade at the
+    read-out, equal to simulate_liquid's), its default grid scaled by the liquid's capacity
+    rho V R; the run-up's final grade is simulate_liquid's, its peak at least the film run's,
+    "without" the rotor with its chamber empty. The studies with ball closed forms still
+    refuse a liquid alone in one line."""
+    from autobalance.physics.iso1940 import unbalance_value
+    from autobalance.studies.plateau import compute_plateau
+    from autobalance.studies.runup import compute_runup
+    from autobalance.studies.unbalance import compute_unbalance
+
+    cfg = bench(*SHORT_RUN)
+    ds = compute_unbalance(cfg, G=[30.0, 90.0], n=50, executor="serial")
+    assert ds.sizes["G_ini"] == 2 and ds.attrs["G_balls"] == 0.0
+    assert ds.attrs["G_liquid"] == pytest.approx(1e3 * cfg.system.liquid.capacity
+                                                 / cfg.system.total_mass * 80.0)
+    for G in (30.0, 90.0):
+        U = float(unbalance_value(G, cfg.system.total_mass, cfg.spin.nominal_speed))
+        c = bench(*SHORT_RUN, f"rotor.unbalance={U!r}")
+        sim = simulate_liquid(c.system, c.spin)
+        g = ds["grade_G"].sel(case="nominal", G_ini=G).values          # (procedure, pct)
+        np.testing.assert_allclose(g, sim.at(c.spin.checkpoints)["grade_G"][:, None]
+                                   * np.ones((1, 3)), rtol=1e-9)
+    assert np.isnan(ds["lower_boundary"].values).all()
+
+    ru = compute_runup(cfg)
+    sim = simulate_liquid(cfg.system, cfg.spin)
+    assert float(ru["final_grade"].values[0]) == pytest.approx(sim.grade[-1], rel=1e-12)
+    assert float(ru["max_amplitude"].values[0]) >= float(np.max(sim.amplitude))
+    assert np.isnan(ru["ball_revolutions"].values[0]) and ru.attrs["balancer"] == "liquid"
+    assert float(ru["amplitude_ratio"].values[0]) < 1.0       # the liquid lowers the peak
+    with pytest.raises(ParameterError, match="^balancer.n_balls"):
+        compute_plateau(cfg)

@@ -174,7 +174,8 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
         ``"any"``: any machine; ``"rotor"``: a ball-balancer machine or the bare rotor (no
         liquid); ``"needed"``: a ball balancer (:meth:`autobalance.System.require_balls`);
         ``"liquid"``: a liquid balancer (a ``[liquid]`` section); ``"beside"``: a ball
-        balancer, a liquid beside it allowed (analyses that only simulate).
+        balancer, a liquid beside it allowed (analyses that only simulate); ``"balancer"``:
+        balls, a liquid or both (analyses that only simulate and need no ball starts).
 
     Returns
     -------
@@ -191,8 +192,10 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
             raise ConfigError("liquid: missing; this study needs a liquid balancer, a [liquid] "
                               "section (e.g. the preset leblanc_003)")
     elif balls != "any":
-        cfg.system.require_balls("this command's analyses", allow_empty=balls == "rotor",
-                                 allow_liquid=balls == "beside")
+        s = cfg.system
+        s.require_balls("this command's analyses", allow_empty=balls == "rotor" or (
+                            balls == "balancer" and s.liquid is not None),
+                        allow_liquid=balls in ("beside", "balancer"))
     return cfg
 
 

@@ -273,7 +273,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                     grade: GradeOpt = 16.0, units: UnitsOpt = None,
                     g_max: Annotated[Optional[float], typer.Option(
                         "--g-max", help="Largest initial grade [mm/s] (default 1.5 x the "
-                                        "balls' grade).")] = None,
+                                        "balancer's grade: balls and liquid).")] = None,
                     steps: Annotated[Optional[int], typer.Option(
                         "--steps", help="Grid intervals of the initial grade (default 25; "
                                         "quick 10).")] = None,
@@ -299,20 +299,19 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     """
     import numpy as np
 
-    from ..physics.iso1940 import grade_value
-    from ..studies.common import default_starts
+    from ..studies.common import capacity_grades, default_starts
     from ..studies.unbalance import compute_unbalance, unbalance_summary
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units, balls="beside")
+                              scheduler, store, units, balls="balancer")
         if g_max is not None:
             check_grade(g_max, "--g-max")
         _counts(steps=steps, n=n)
         s = cfg.system
-        G_b = float(grade_value(s.balancer.capacity, s.total_mass, cfg.spin.nominal_speed))
-        top = 1.5 * G_b if g_max is None else g_max
+        G_b, G_l = capacity_grades(cfg)
+        top = 1.5 * (G_b + G_l) if g_max is None else g_max
         Gv = np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
         nn = n or default_starts(s.balancer.n_balls, quick)
         ds = compute_unbalance(cfg, G=Gv, n=nn,
@@ -332,8 +331,10 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     if json_:
         print_json(res)
         return
-    typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x "
-               f"{nn} starts per ball; balls G{G_b:.3g}; target {grade_text(G)}")
+    starts = f"{nn} starts per ball" if s.balancer.n_balls else "one run (a liquid alone)"
+    cap = "; ".join(f"{k} G{v:.3g}" for k, v in (("balls", G_b), ("liquid", G_l)) if v)
+    typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x {starts}; "
+               f"{cap}; target {grade_text(G)}")
     for proc, d in res["cases"]["nominal"].items():
         rng = ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in d["valid_ranges_grade_G_mm_s"]) \
             or "none"

@@ -48,7 +48,7 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     t0 = time.perf_counter()
     with guard():
         cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units,
-                              balls="beside")
+                              balls="balancer")
         if not (math.isfinite(fraction) and fraction > 0):
             raise ConfigError(f"--fraction = {fraction}: must be a number > 0, e.g. 0.05")
         laws = None
@@ -92,6 +92,8 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         tb = c["balancing_time_s"]
         when = ("still above at the end" if tb >= T - 1e-9 else f"last above at {tb:.2f} s")
         typer.echo(line)
-        typer.echo(f"    balls travel {c['ball_revolutions']:.2f} rev relative to the rotor; whirl "
+        rev = c["ball_revolutions"]
+        travel = "" if rev is None else f"balls travel {rev:.2f} rev relative to the rotor; "
+        typer.echo(f"    {travel}whirl "
                    f"{100 * res['balancing_fraction']:g} % of e: {when}; final grade "
                    f"G{c['final_grade_G_mm_s']:.3g} mm/s")

@@ -112,7 +112,7 @@ def plot_unbalance(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = N
     cases = list(ds["case"].values)
     fig, axes = _fig(len(cases))
     G = ds["G_ini"].values
-    Gb = ds.attrs["G_balls"]
+    lo, hi = ds["lower_boundary"].values, ds["upper_boundary"].values   # NaN beside a liquid
     procs = list(dict.fromkeys([ds["procedure"].values[0], ds["procedure"].values[-1]]))
     for ax, case in zip(axes, cases):
         for proc, col in zip(procs, ("0.5", "k")):
@@ -120,8 +120,9 @@ def plot_unbalance(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = N
             ax.plot(G, d.sel(percentile=95.0), color=col, lw=1.6, label=f"{proc} 95 %")
             ax.plot(G, d.sel(percentile=5.0), color=col, lw=1.0, ls="--", label=f"{proc} 5 %")
         ax.plot(G, G, "k:", lw=0.8, label="G = G_ini")
-        ax.plot(G, np.abs(G - Gb), "k-.", lw=0.8, label="balls out/in of phase")
-        ax.plot(G, G + Gb, "k-.", lw=0.8)
+        if np.isfinite(lo).any():
+            ax.plot(G, lo, "k-.", lw=0.8, label="balls out/in of phase")
+            ax.plot(G, hi, "k-.", lw=0.8)
         ax.axhline(grade, color="r", lw=0.8, label=f"target G{grade:g}")
         ax.set_xlabel("initial unbalance G_ini [mm/s]")
         ax.set_ylabel("residual G [mm/s]")

@@ -20,12 +20,13 @@ if TYPE_CHECKING:
     from ..config import Config
     from ..models import MotorDrive, SpeedProfile
 
-__all__ = ["case_sets", "checkpoint_labels", "default_starts", "load", "run_start_grid",
+__all__ = ["capacity_grades", "case_sets", "checkpoint_labels", "default_starts", "load",
+           "run_start_grid",
            "starts_for_runs", "store_path"]
 
 
 def load(base: str | Path | Config, sets: Sequence[str] = (),
-         allow_liquid: bool = False) -> Config:
+         allow_liquid: bool = False, liquid_alone: bool = False) -> Config:
     """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied;
     every study here is of a ball balancer, so the machine must have one.
 
@@ -39,6 +40,10 @@ def load(base: str | Path | Config, sets: Sequence[str] = (),
     allow_liquid : bool
         Accept a liquid beside the balls (a study that only simulates, the start-position
         Monte Carlo: autobalance.simulate.hybrid models it).
+    liquid_alone : bool
+        With ``allow_liquid``, accept a liquid balancer without balls too (a study that only
+        simulates and needs no ball starts: the film model of
+        :func:`autobalance.liquid.simulate.simulate_liquid`).
 
     Returns
     -------
@@ -56,8 +61,33 @@ def load(base: str | Path | Config, sets: Sequence[str] = (),
         cfg = replace_values(base, dict(parse_override(s) for s in sets)) if sets else base
     else:
         cfg = load_config(base, list(sets))
-    cfg.system.require_balls("the studies", allow_liquid=allow_liquid)
+    s = cfg.system
+    s.require_balls("the studies", allow_liquid=allow_liquid,
+                    allow_empty=allow_liquid and liquid_alone and s.liquid is not None)
     return cfg
+
+
+def capacity_grades(cfg: Config) -> tuple[float, float]:
+    """The ISO 1940 grades [mm/s] of the balls' capacity sum m R and of the liquid's rho V R
+    (all of it gathered at the wall, 003 sec. 5.3; 0 without a liquid) on the total mass at
+    the nominal speed: the scale of the studies' default unbalance grids.
+
+    Parameters
+    ----------
+    cfg : Config
+        The machine (its balancer [kg*m], liquid, total mass [kg] and nominal speed [rad/s]).
+
+    Returns
+    -------
+    (float, float)
+        (G_balls, G_liquid) [mm/s].
+    """
+    from ..physics.iso1940 import grade_value
+
+    s, W = cfg.system, cfg.spin.nominal_speed
+    liquid = s.liquid.capacity if s.liquid is not None else 0.0
+    return (float(grade_value(s.balancer.capacity, s.total_mass, W)),
+            float(grade_value(liquid, s.total_mass, W)))
 
 
 def case_sets(base: str | Path | Config, mu_r: float, c_r: float) -> list:
@@ -76,14 +106,16 @@ def case_sets(base: str | Path | Config, mu_r: float, c_r: float) -> list:
     Returns
     -------
     list of str
-        Three "path=value" overrides (balancer.rolling_resistance, suspension.cx, suspension.cy).
+        Three "path=value" overrides (balancer.rolling_resistance, suspension.cx, suspension.cy;
+        the first left out for a machine without balls).
     """
-    s = load(base, allow_liquid=True).system       # the caller checked the machine
+    s = load(base, allow_liquid=True, liquid_alone=True).system   # the caller checked it
     mu = [float(x) * mu_r for x in s.balancer.rolling_resistance]     # each ball's own, scaled
+    out = [f"suspension.cx={s.suspension.cx * c_r!r}", f"suspension.cy={s.suspension.cy * c_r!r}"]
+    if not mu:                                  # a liquid alone: no balls to scale
+        return out
     mu_text = repr(mu[0]) if len(set(mu)) <= 1 else "[" + ", ".join(map(repr, mu)) + "]"
-    return [f"balancer.rolling_resistance={mu_text}",
-            f"suspension.cx={s.suspension.cx * c_r!r}",
-            f"suspension.cy={s.suspension.cy * c_r!r}"]
+    return [f"balancer.rolling_resistance={mu_text}", *out]
 
 
 def store_path(store_dir: str | Path | None, name: str) -> Path | None:
@@ -111,7 +143,8 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
                    seed: int = 0, progress: bool = False):
     """Run an autobalance.sweep start-grid Monte Carlo (004 sec. 4.2: n x n equispaced start
     positions of two identical balls, n(n+1)/2 runs) of the machine ``base`` with ``sets``
-    overrides over ``grid`` (path -> values) and return its Dataset.
+    overrides over ``grid`` (path -> values) and return its Dataset. A liquid balancer alone
+    has no starts: one run per grid cell, in a ``sample`` dimension of length 1.
 
     ``store``: a directory (reused with resume: same description -> nothing rerun) or None for
     a temporary one.
@@ -160,8 +193,10 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
     from ..sweep.plan import identical_balls, n_start_grid
 
     n_cells = int(np.prod([len(v) for v in grid.values()])) if grid else 1
-    if samples is None:
-        b = load(base, sets, allow_liquid=True).system.balancer     # the caller checked
+    b = load(base, sets, allow_liquid=True, liquid_alone=True).system.balancer  # caller checked
+    if b.n_balls == 0:
+        per_cell = 1                            # a liquid alone: no starts to sample
+    elif samples is None:
         per_cell = n_start_grid(n, b.n_balls, identical_balls(b))   # 2 balls: n(n+1)/2
     else:
         per_cell = int(samples)
@@ -174,19 +209,21 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
     head = {"name": name, "set": list(sets), "batch_size": bs}
     if not python_base:
         head["base"] = str(base)
+    mc = ({} if b.n_balls == 0 else
+          {"monte_carlo": ({"kind": "start_grid", "n": int(n)} if samples is None
+                           else {"kind": "random", "samples": int(samples), "seed": int(seed)})})
     spec = spec_from_dict({"sweep": head,
-                           "grid": grid,
-                           "monte_carlo": ({"kind": "start_grid", "n": int(n)} if samples is None
-                                           else {"kind": "random", "samples": int(samples),
-                                                 "seed": int(seed)}),
+                           "grid": grid, **mc,
                            **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})},
                           base=base if python_base else None)
     if store is None:
         with tempfile.TemporaryDirectory() as d:
-            return sweep(spec, Path(d) / name, executor=executor, workers=workers,
-                         scheduler=scheduler, progress=progress).load()
-    return sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
-                 resume=True, progress=progress, keyed=True).load()
+            ds = sweep(spec, Path(d) / name, executor=executor, workers=workers,
+                       scheduler=scheduler, progress=progress).load()
+    else:
+        ds = sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
+                   resume=True, progress=progress, keyed=True).load()
+    return ds if "sample" in ds.dims else ds.expand_dims("sample")
 
 
 def checkpoint_labels(spin: SpeedProfile | MotorDrive) -> list:

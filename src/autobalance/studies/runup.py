@@ -8,8 +8,10 @@ A motor-driven machine (``[profile] kind = "motor"``) is run under each torque l
 fraction; a prescribed profile (std, tsr, ramp, table) is run as it is. Each case runs with the
 balls and, unless ``bare=False``, without them (the same machine with ``n_balls = 0``; beside a
 liquid, its chamber empty too), so the effect of the balancer on the run-up is a ratio of two
-simulations. Balls beside a liquid run with :func:`autobalance.simulate.hybrid.simulate_hybrid`
-(a prescribed profile). The unloaded drive's time to
+simulations. Balls beside a liquid run with :func:`autobalance.simulate.hybrid.simulate_hybrid`,
+a liquid alone with :func:`autobalance.liquid.simulate.simulate_liquid` (a prescribed profile;
+before its film starts, the liquid is a centred pool, quasi-steady); "without" is then the
+rotor with its chamber empty. The unloaded drive's time to
 speed in closed form (:func:`autobalance.physics.runup.runup_time_closed_form`, 000 eq 15) is
 given beside the simulated one.
 """
@@ -99,6 +101,38 @@ def _cases(cfg, laws):
     return {getattr(spin, "name", "") or "profile": spin}
 
 
+def _liquid_case(s, spin, tg, ecc, fraction):
+    """One case of a liquid balancer alone (no balls): the film model
+    (:func:`autobalance.liquid.simulate.simulate_liquid`), its whirl read on ``tg`` [s]; before
+    the film starts the liquid is a centred pool (quasi-steady, as
+    ``LiquidSimulation.max_amplitude_before_film``). (row, histories) as compute_runup's."""
+    from ..liquid.simulate import film_rotor, simulate_liquid, spin_angle
+    from ..liquid.steady import pool_response
+
+    sim = simulate_liquid(s, spin)
+    if sim.status != "ok":
+        raise ParameterError("liquid", "the run-up", sim.message)
+    S = sim.summary()
+    tt, ww = np.asarray(spin.times, float), np.asarray(spin.speeds, float)
+    speed = np.interp(tg, tt, ww, right=np.nan)
+    before = tg < sim.film_start
+    amp = np.interp(tg, sim.t, sim.amplitude, right=np.nan)
+    amp[before] = np.abs(pool_response(film_rotor(s), s.liquid.total_volume, s.liquid.density,
+                                       speed[before]))
+    xy = sim.deflection * np.exp(1j * spin_angle(sim.t, tt, ww))      # inertial frame
+    pool = S["max_amplitude_before_film_m"]
+    row = {"t_speed": _time_to_speed(spin, S),
+           "max_amplitude": max(S["max_amplitude_m"], pool),
+           "x_max": max(float(np.max(np.abs(xy.real))), pool),
+           "y_max": max(float(np.max(np.abs(xy.imag))), pool),
+           "ball_revolutions": math.nan,
+           "balancing_time": balancing_time(np.concatenate([tg[before], sim.t]),
+                                            np.concatenate([amp[before], sim.amplitude]),
+                                            ecc, fraction),
+           "final_grade": float(S["final"]["grade_G_mm_s"])}
+    return row, {"speed": speed, "amplitude": amp}
+
+
 def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = None,
                   sets: Sequence[str] = (), bare: bool = True,
                   fraction: float = BALANCING_FRACTION,
@@ -138,7 +172,7 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     t0 = time.perf_counter()
     if not (math.isfinite(fraction) and fraction > 0):
         raise ParameterError("fraction", fraction, "must be a finite number > 0")
-    cfg = load(base, sets, allow_liquid=True)  # simulations only: a liquid beside is modelled
+    cfg = load(base, sets, allow_liquid=True, liquid_alone=True)   # simulations: liquid modelled
     cases = _cases(cfg, laws)
     s = cfg.system
     W = cfg.spin.nominal_speed
@@ -153,19 +187,22 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     ecc = s.rotor.unbalance / s.total_mass
     rows, hist = [], []
     for name, spin in cases.items():
-        sim = simulate(s, spin, initial=cfg.initial, options=opts)
-        S = sim.summary()
-        r = {"t_speed": _time_to_speed(spin, S),
-             "max_amplitude": S["max_amplitude_m"], "x_max": S["x_max_m"], "y_max": S["y_max_m"],
-             "ball_revolutions": float(np.mean(np.abs(S["ball_revolutions"]))),
-             "balancing_time": balancing_time(sim.t, sim.amplitude, ecc, fraction),
-             "final_grade": float(S["final"]["grade_G_mm_s"]),
-             "t_speed_unloaded": math.nan}
+        if s.balancer.n_balls == 0:                 # a liquid alone: the film model
+            r, h = _liquid_case(s, spin, tg, ecc, fraction)
+        else:
+            sim = simulate(s, spin, initial=cfg.initial, options=opts)
+            S = sim.summary()
+            r = {"t_speed": _time_to_speed(spin, S), "max_amplitude": S["max_amplitude_m"],
+                 "x_max": S["x_max_m"], "y_max": S["y_max_m"],
+                 "ball_revolutions": float(np.mean(np.abs(S["ball_revolutions"]))),
+                 "balancing_time": balancing_time(sim.t, sim.amplitude, ecc, fraction),
+                 "final_grade": float(S["final"]["grade_G_mm_s"])}
+            h = {"speed": np.interp(tg, sim.t, sim.speed, right=np.nan),
+                 "amplitude": np.interp(tg, sim.t, sim.amplitude, right=np.nan)}
+        r["t_speed_unloaded"] = math.nan
         if isinstance(spin, MotorDrive) and (spin.law == "constant" or spin.hold_fraction < 1):
             tau = s.rotor.polar_inertia * spin.final_speed / spin.torque
             r["t_speed_unloaded"] = runup_time_closed_form(spin.law, spin.hold_fraction, tau)
-        h = {"speed": np.interp(tg, sim.t, sim.speed, right=np.nan),
-             "amplitude": np.interp(tg, sim.t, sim.amplitude, right=np.nan)}
         if bare:
             sb = simulate(bare_sys, spin, initial=dataclasses.replace(cfg.initial, ball_angles=(),
                                                                       ball_speeds=None),
@@ -173,7 +210,7 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
             Sb = sb.summary()
             r.update({"max_amplitude_bare": Sb["max_amplitude_m"], "x_max_bare": Sb["x_max_m"],
                       "y_max_bare": Sb["y_max_m"],
-                      "amplitude_ratio": S["max_amplitude_m"] / Sb["max_amplitude_m"]})
+                      "amplitude_ratio": r["max_amplitude"] / Sb["max_amplitude_m"]})
             h["amplitude_bare"] = np.interp(tg, sb.t, sb.amplitude, right=np.nan)
         rows.append(r)
         hist.append(h)
@@ -191,7 +228,8 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
     ds.attrs.update({"study": "runup", "machine": cfg.name, "motor": int(isinstance(cfg.spin, MotorDrive)),
                      "nominal_speed_rad_s": float(W), "eccentricity_m": float(ecc),
                      "balancing_fraction": float(fraction),
-                     "balancer": "balls" if s.liquid is None else "balls and liquid",
+                     "balancer": ("balls" if s.liquid is None else "liquid" if not
+                                  s.balancer.n_balls else "balls and liquid"),
                      "natural_frequencies_rad_s": [float(w) for w in s.natural_frequencies],
                      "wall_s": time.perf_counter() - t0})
     return ds

@@ -8,9 +8,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from .common import case_sets, checkpoint_labels, load, run_start_grid, store_path
+from .common import (capacity_grades, case_sets, checkpoint_labels, load, run_start_grid,
+                     store_path)
 from .statistics import profile_text, valid_ranges
 
 if TYPE_CHECKING:
@@ -25,14 +25,15 @@ __all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_
 
 
 def default_grades(G_balls: float, quick: bool) -> np.ndarray:
-    """Initial grades [mm/s] of the unbalance study of a machine whose balls make the grade
+    """Initial grades [mm/s] of the unbalance study of a machine whose balancer makes the grade
     G_balls [mm/s]: [0, 1.5 G_balls] in 25 steps (quick: 10), which covers the balls' whole
     operating range (under- and over-excited balancer, 004 sec. 4.3: [G0, G50] for G34 balls).
 
     Parameters
     ----------
     G_balls : float
-        ISO 1940 grade of the balls' capacity sum m R at the nominal speed [mm/s].
+        ISO 1940 grade of the balancer's capacity at the nominal speed [mm/s]: the balls' sum
+        m R, plus a liquid's rho V R (:func:`autobalance.studies.common.capacity_grades`).
     quick : bool
         10 steps instead of 25.
 
@@ -59,7 +60,7 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
     ----------
     base : str or Path
         The machine: a preset name or a TOML config path (its system, profile, options and
-        balls).
+        balls; a liquid beside them or alone: one run per grade without balls).
     cases : dict of str to (float, float) or None
         Case name -> (mu_r, c_r), factors [-] on the rolling resistance and the damping.
     G : array_like or None
@@ -84,15 +85,15 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
         (:func:`~autobalance.studies.common.checkpoint_labels`; 004: STD/TSR),
         percentile 5/50/95), failed_runs per case, the operating boundaries [mm/s]
         (:func:`operating_boundaries`; NaN beside a liquid, whose moment they leave out);
-        attrs G_balls [mm/s], grid_step [mm/s].
+        attrs G_balls and G_liquid (:func:`.common.capacity_grades`) [mm/s], grid_step [mm/s].
     """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
-    G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
-    Gv = default_grades(G_b, quick) if G is None else np.asarray(G, float)
+    cfg = load(base, allow_liquid=True, liquid_alone=True)    # simulations: a liquid is modelled
+    G_b, G_l = capacity_grades(cfg)
+    Gv = default_grades(G_b + G_l, quick) if G is None else np.asarray(G, float)
     U = grade_to_unbalance(Gv, cfg.system.total_mass, cfg.spin.nominal_speed)
     q = np.array([5.0, 50.0, 95.0])
     labels = checkpoint_labels(cfg.spin)
@@ -123,7 +124,7 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
                                           "the unbalance: |G_ini - G_balls|"})
     ds["upper_boundary"] = ("G_ini", hi, {"units": "mm/s", "long_name": "every ball with the "
                                           "unbalance: G_ini + G_balls"})
-    ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "grid_step": float(np.diff(Gv).max()) if Gv.size > 1 else 0.0,
+    ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "G_liquid": G_l, "grid_step": float(np.diff(Gv).max()) if Gv.size > 1 else 0.0,
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
 
@@ -173,9 +174,9 @@ def compute_profile(base: str | Path, other_sets: Iterable[str], *,
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
-    G_b = float(_grade(cfg.system.balancer.capacity, cfg.system.total_mass, cfg.spin.nominal_speed))
-    Gv = default_grades(G_b, quick) if G is None else np.asarray(G, float)
+    cfg = load(base, allow_liquid=True, liquid_alone=True)    # simulations: a liquid is modelled
+    G_b, G_l = capacity_grades(cfg)
+    Gv = default_grades(G_b + G_l, quick) if G is None else np.asarray(G, float)
     if unbalance_ds is None or not np.array_equal(unbalance_ds["G_ini"].values, Gv) \
             or "nominal" not in unbalance_ds["case"].values or unbalance_ds.attrs["n"] != n:
         unbalance_ds = compute_unbalance(base, {"nominal": (1.0, 1.0)}, G=Gv, n=n,
