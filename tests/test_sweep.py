@@ -697,3 +697,67 @@ def test_keyed_stores_resume_their_own_and_start_new_ones_beside(tmp_path):
     assert len([p for p in tmp_path.iterdir() if p.is_dir()]) == 2
     assert snapshot(first / "tasks") == before
     assert other.sizes == a.sizes
+
+
+def test_store_from_other_simulator_code_is_refused_and_keyed_stores_start_anew(tmp_path,
+                                                                                monkeypatch):
+    """The package version stays 0.1.0 between commits, so a store made before a change of the
+    simulator's code would have been resumed with the old results. The identity now includes
+    the digest of the code that computes the runs (sweep/store.code_digest): an explicit store
+    is refused in one line and left as it was; a keyed store (the studies', make run's) starts
+    a new one beside it."""
+    import importlib
+
+    st = importlib.import_module("autobalance.sweep.store")
+    from autobalance.studies.common import run_start_grid
+    from autobalance.sweep import StoreMismatch, spec_from_dict, sweep
+
+    sets = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s",
+            "profile.plateau_time=2 s", "profile.up_time=1 s"]
+    d = {"sweep": {"name": "v", "base": "vub_jeffcott_004", "set": sets},
+         "monte_carlo": {"kind": "start_grid", "n": 2}}
+    store = tmp_path / "s"
+    sweep(spec_from_dict(d), store, executor="serial", progress=False)
+    before = {p: p.read_bytes() for p in (store / "tasks").iterdir()}
+    monkeypatch.setattr(st, "code_digest", lambda: "0" * 16)
+    with pytest.raises(StoreMismatch, match="other code of autobalance") as e:
+        sweep(spec_from_dict(d), store, executor="serial", progress=False, resume=True)
+    assert "\n" not in str(e.value)
+    assert {p: p.read_bytes() for p in (store / "tasks").iterdir()} == before
+    monkeypatch.undo()
+    keyed = tmp_path / "k"
+    run_start_grid("vub_jeffcott_004", "k", sets, {}, 2, store=keyed, executor="serial")
+    monkeypatch.setattr(st, "code_digest", lambda: "0" * 16)
+    run_start_grid("vub_jeffcott_004", "k", sets, {}, 2, store=keyed, executor="serial")
+    assert len([p for p in keyed.iterdir() if p.is_dir()]) == 2
+
+
+def test_code_digest_follows_the_simulator_not_the_cli(tmp_path):
+    """code_digest changes with a byte of the kernel's source and not with the CLI's (a copy of
+    the package, imported in a fresh interpreter)."""
+    import shutil
+    import subprocess
+    import sys
+
+    import autobalance
+
+    src = Path(autobalance.__file__).parent
+
+    def digest(edit=None):
+        root = tmp_path / (edit or "orig")
+        shutil.copytree(src, root / "autobalance",
+                        ignore=shutil.ignore_patterns("__pycache__"))
+        if edit:
+            with open(root / "autobalance" / edit, "a") as f:
+                f.write("\n# edited\n")
+        r = subprocess.run([sys.executable, "-c", "from autobalance.sweep.store import "
+                            "code_digest; print(code_digest())"], capture_output=True,
+                           text=True, timeout=120, env={**os.environ, "PYTHONPATH": str(root)},
+                           cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        return r.stdout.strip()
+
+    base = digest()
+    assert len(base) == 16
+    assert digest("core/rhs.py") != base
+    assert digest("cli/simulate.py") == base

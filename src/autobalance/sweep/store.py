@@ -15,8 +15,9 @@ size runs exactly the runs that are missing.
 
 A store is tied to its *identity*: a digest of the description and of every resolved value
 that determines its results (each grid cell's system, profile, initial state and options, as
-built from the base config's contents, the start angles and the package version). Opening it
-with anything else raises StoreMismatch, never overwrites. One process at a time works on a
+built from the base config's contents, the start angles, the package version and the digest of
+the code that computes the runs, :func:`code_digest`). Opening it with anything else raises
+StoreMismatch, never overwrites. One process at a time works on a
 store (an exclusive ``flock`` on STORE/lock, released by the kernel when the process dies, so a
 stale lock after ``kill -9`` is never an obstacle).
 """
@@ -24,6 +25,7 @@ from __future__ import annotations
 
 import errno
 import fcntl
+import functools
 import hashlib
 import json
 import os
@@ -63,16 +65,44 @@ def task_path(store: Path, first: int, count: int) -> Path:
     return Path(store) / "tasks" / f"r{first:09d}-{first + count:09d}.npz"
 
 
+#: The subpackages whose code computes a run's stored results: a change to any of them is a
+#: new store (the version alone stays 0.1.0 between commits, so a `git pull` that changed the
+#: simulator would have resumed the old results). The CLI, figures, reports and the studies'
+#: read-outs of the stored runs are not in it.
+RESULT_CODE = ("config", "core", "liquid", "models", "physics", "simulate", "sweep")
+
+
+@functools.cache
+def code_digest() -> str:
+    """Digest of the source of :data:`RESULT_CODE` (every .py file, by its path in the package
+    and its bytes), once per process.
+
+    Returns
+    -------
+    str
+        16 hex digits.
+    """
+    root = Path(__file__).resolve().parent.parent
+    h = hashlib.sha256()
+    for sub in RESULT_CODE:
+        for p in sorted((root / sub).rglob("*.py")):
+            h.update(p.relative_to(root).as_posix().encode())
+            h.update(p.read_bytes())
+    return h.hexdigest()[:16]
+
+
 def identity(plan: Plan) -> str:
     """Digest of everything that determines a store's results: the description's canonical
     JSON, every grid cell's resolved system, profile, initial state and options (so an edited
-    base config or preset is a different sweep), the start angles and the package version."""
+    base config or preset is a different sweep), the start angles, the package version and the
+    code (:func:`code_digest`)."""
     cached = getattr(plan, "_identity", None)
     if cached is not None:
         return cached
     h = hashlib.sha256()
     h.update(plan.spec.canonical().encode())
     h.update(__version__.encode())
+    h.update(code_digest().encode())
     for c in plan.cells:
         h.update(repr((c.system, c.spin, c.initial, c.options)).encode())
         if c.system.liquid is not None:      # not in System's repr (models/system.py)
@@ -90,7 +120,8 @@ def identity(plan: Plan) -> str:
 def _meta(plan: Plan) -> dict:
     spec = plan.spec
     return {"digest": spec.digest(), "identity": identity(plan), "spec": json.loads(spec.canonical()),
-            "name": spec.name, "n_runs": plan.n_runs, "autobalance_version": __version__}
+            "name": spec.name, "n_runs": plan.n_runs, "autobalance_version": __version__,
+            "code_digest": code_digest()}
 
 
 def check_store_path(store: Path) -> None:
@@ -218,7 +249,7 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
 
 def check_identity(store: Path, plan: Plan) -> None:
     """Refuse (StoreMismatch, one line) a store whose sweep.json is missing, unreadable, or
-    records another package version, description or identity than ``plan``'s."""
+    records another package version, description, code or identity than ``plan``'s."""
     mpath = Path(store) / "sweep.json"
     if not mpath.exists():
         raise SweepError(f"store {str(store)!r}: no sweep.json; not a sweep store")
@@ -236,6 +267,11 @@ def check_identity(store: Path, plan: Plan) -> None:
         raise StoreMismatch(f"--store {str(store)!r} was made by a different sweep description "
                             f"(digest {old.get('digest')} != {meta['digest']}); refusing to "
                             "overwrite it (start a new store)")
+    if old.get("code_digest") != meta["code_digest"] and "identity" in old:
+        raise StoreMismatch(f"--store {str(store)!r} was made by other code of autobalance "
+                            f"{__version__} (code digest {old.get('code_digest')} != "
+                            f"{meta['code_digest']}: the simulator changed since); refusing to mix "
+                            "results (start a new store)")
     if "identity" not in old:
         raise StoreMismatch(f"--store {str(store)!r} was made by an earlier store format (task "
                             "files by index, no identity); refusing to mix results (start a new "
