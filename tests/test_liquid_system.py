@@ -314,6 +314,9 @@ def test_liquid_sweep_equals_its_single_runs(tmp_path):
 @pytest.mark.parametrize("extra, needle", [
     ({"monte_carlo": {"kind": "random", "samples": 3}}, "monte_carlo.kind"),
     ({"grid": {"liquid.axis": ["vertical", "horizontal"]}}, "gravity.g"),
+    # too thick for a wall film: it failed at run time, after the first cell's run (stop 29)
+    ({"sweep": {"set": SHORT + ["liquid.chamber_radius=0.1 m", "liquid.inner_radius=0 m"]},
+      "grid": {"liquid.volume": ["100 ml", "1 l"]}}, "grid point liquid.volume='1 l': volume"),
 ])
 def test_liquid_sweep_refusals(tmp_path, extra, needle):
     from autobalance.sweep import SweepError, spec_from_dict, sweep

@@ -27,7 +27,7 @@ from ..models import MotorDrive, ParameterError, SpeedProfile, System
 from ..models._validate import positive
 from ..physics.iso1940 import grade_value
 from .dynamics import RunUp
-from .film import coupled_run
+from .film import FilmsState, coupled_run, films_state
 from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 from .start import FilmStart, _film_table, film_start, film_start_speed
 from .steady import pool_response
@@ -41,7 +41,7 @@ if TYPE_CHECKING:
     from ..models import LiquidDevice
 
 __all__ = ["FilmStart", "LiquidSimulation", "check_liquid_run", "film_rotor", "film_start",
-           "film_start_speed",
+           "film_start_speed", "chamber_films",
            "liquid_parts", "ramp_run_up", "require_axis_gravity", "require_liquid_machine",
            "revolution_average",
            "run_seconds_estimate", "simulate_liquid"]
@@ -387,7 +387,39 @@ def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STAN
         As :func:`simulate_liquid` (one line).
     """
     _check(system, spin)
-    return film_start(system, spin, g_axial).speed
+    fs = film_start(system, spin, g_axial)
+    chamber_films(system, fs, 256, 0j)            # the wall film's checks (a thin film)
+    return fs.speed
+
+
+def chamber_films(system: System, fs: FilmStart, n_cells: int, centre: complex) -> FilmsState:
+    """The chambers' films at the film's start (:func:`autobalance.liquid.film.films_state`:
+    the wall film's one-line checks, a thin film per chamber), each lagging its wall as the
+    spin-up leaves it (``fs.lag``), on a wall at ``centre`` [m] from the potential's centre;
+    ``n_cells`` [-] cells per chamber before :func:`chamber_cells`.
+
+    Parameters
+    ----------
+    system : System
+        The machine (its ``liquid`` section: chambers [m], volumes [m^3], rho [kg/m^3], nu
+        [m^2/s]).
+    fs : FilmStart
+        Where the film starts (:func:`film_start`; its lag per chamber [-]).
+    n_cells : int
+        Film cells per chamber [-].
+    centre : complex
+        The wall's centre from the potential's centre [m].
+
+    Returns
+    -------
+    FilmsState
+    """
+    liq = system.liquid
+    ch = liq.chambers
+    return films_state([c.chamber_radius for c in ch], [c.chamber_height for c in ch],
+                       [c.volume for c in ch], liq.density, liq.kinematic_viscosity,
+                       chamber_cells(ch, n_cells), [c.partitions for c in ch],
+                       [lag * c.chamber_radius for lag, c in zip(fs.lag, ch)], centre)
 
 
 def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256) -> float:

@@ -21,9 +21,9 @@ from ..core.hybrid import hybrid_integrate, with_knot
 from ..core.integrate import integrate_span
 from ..core.layout import S_STATUS, RunStatus, carry_size
 from ..limits import check_run
-from ..liquid.film import FilmRun, FilmsState, films_state
+from ..liquid.film import FilmRun
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import (chamber_cells, film_samples, inner_wall_status,
+from ..liquid.simulate import (chamber_films, film_samples, inner_wall_status,
                                require_axis_gravity, revolution_average, spin_angle)
 from ..liquid.start import FilmStart, _film_table, film_start, film_start_speed
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
@@ -82,20 +82,8 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
                              "speed profile (constant, ramp, table, std or tsr)")
     require_axis_gravity(system)
     fs = film_start(system, spin, g_axial)
-    _films(system, fs, 256, 0j)                  # the wall film's checks, before any work
+    chamber_films(system, fs, 256, 0j)           # the wall film's checks, before any work
     return fs
-
-
-def _films(system: System, fs: FilmStart, n_cells: int, centre: complex) -> FilmsState:
-    """The chambers' films at the film's start (:func:`autobalance.liquid.film.films_state`:
-    the wall film's one-line checks, a thin film per chamber), each lagging its wall as the
-    spin-up leaves it, on a wall at ``centre`` [m] from the potential's centre."""
-    liq = system.liquid
-    ch = liq.chambers
-    return films_state([c.chamber_radius for c in ch], [c.chamber_height for c in ch],
-                       [c.volume for c in ch], liq.density, liq.kinematic_viscosity,
-                       chamber_cells(ch, n_cells), [c.partitions for c in ch],
-                       [lag * c.chamber_radius for lag, c in zip(fs.lag, ch)], centre)
 
 
 def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState | None = None,
@@ -154,7 +142,7 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     sag = system.total_mass * gp * complex(np.cos(gam) / s.kx, np.sin(gam) / s.ky)
     psi0 = y[N + 2]
     # the films at the film's start: the chamber about the rotation axis, + gravity's offset
-    st = _films(system, fs, n_cells, complex(y[0], y[1]) + sag * np.exp(-1j * psi0)
+    st = chamber_films(system, fs, n_cells, complex(y[0], y[1]) + sag * np.exp(-1j * psi0)
                 + gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0)))
     # the films' own output grid from t0, dense enough for the revolution average (as a liquid
     # alone: liquid.simulate.film_samples), whatever the balls' output times
