@@ -207,3 +207,22 @@ def test_bad_partitions_are_one_line():
     for parts, field in ((1, "partitions"), (3, "n_cells"), (2.5, "partitions")):
         with pytest.raises(ParameterError, match=f"^{field}"):
             film_run(R, H, V, W, 0.1, partitions=parts, n_cells=256)
+
+
+@pytest.mark.parametrize("volume", [100e-6, 112.5e-6, 150e-6, 1e-4 / 3])
+def test_film_at_rest_on_a_centred_wall_is_uniform(volume):
+    """A chamber on the axis (c = 0 exactly: a balanced rotor) holds a uniform film. The root
+    bracket's upper end was the uniform level itself, which round-off can leave short: 112.5 ml
+    failed with 'f(a) and f(b) must have different signs', and so did simulate_liquid of
+    leblanc_003 with that fill and no unbalance."""
+    from autobalance.config import load_config
+    from autobalance.liquid.simulate import simulate_liquid
+
+    h = film_equilibrium(volume, 0.2, 0.05, 0j, 256, 0)
+    assert np.ptp(h) == 0.0
+    assert h[0] == pytest.approx(volume / (2 * np.pi * 0.2 * 0.05), rel=1e-14)
+    if volume == 112.5e-6:
+        c = load_config("leblanc_003", ["liquid.volume=112.5 ml", "rotor.unbalance=0",
+                                        "profile.duration=4 s", "profile.ramp_time=4 s",
+                                        "profile.end_speed=40 1/s"])
+        assert simulate_liquid(c.system, c.spin).status == "ok"

@@ -148,6 +148,8 @@ def film_equilibrium(volume: float, radius: float, height: float, deflection: co
             return np.maximum(C + rise, 0.0).sum() - target
 
         lo, hi = -abs(deflection), target / m + abs(deflection)
+        if excess(hi) <= 0.0:        # c = 0: the uniform film's own level, short by round-off
+            hi *= 1.0 + 1e-12
         C = brentq(excess, lo, hi, xtol=1e-15 * radius, rtol=4.5 * 2.2205e-16)
         out[k * m:(k + 1) * m] = np.maximum(C + rise, 0.0)
     return out
