@@ -507,3 +507,56 @@ def spinup(source: Annotated[str, typer.Argument(
         return
     _out(out, True)
 
+
+
+@app.command()
+def stability(source: Annotated[str, typer.Argument(
+                  metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
+                  "axis, no balls).")] = "leblanc_003",
+              sets: SetOpt = None,
+              omega: Annotated[str, typer.Option(help="Speeds.")] = "10:120 1/s:45",
+              cells: Annotated[int, typer.Option(
+                  "--cells", help="Cells around each wall.")] = 64,
+              plot: PlotOpt = None, as_json: JsonOpt = False):
+    """Linear stability of the centred state (no unbalance) against speed: the growth rate of
+    the least stable perturbation of the rotor with its wall films and the unstable ranges
+    (Kollmann's band of partly filled rotors; docs/liquid.md sec. 3j).\f
+
+    Parameters
+    ----------
+    source : str
+        Preset or config with a ``[liquid]`` section on a vertical axis.
+    sets : list of str
+        ``--set`` overrides.
+    omega : str
+        Speeds [rad/s] (with units), increasing.
+    cells : int
+        Cells around each wall [-] (first order: the growth rates converge as 1/cells).
+    plot : str or None
+        Figure file (growth rate against speed).
+    as_json : bool
+        One JSON object.
+    """
+    from ..liquid.stability import machine_stability
+
+    _check_plot(plot)
+    cfg = load_machine(source, sets, balls="liquid")
+    ws = _list(omega, "speed", "omega")
+    res = machine_stability(cfg.system, ws, cells)
+    out = {"system": cfg.system.name,
+           "model": "the film runs' step linearised about the centred state "
+                    "(autobalance.liquid.stability)", **res}
+    if plot:
+        from ..plotting.liquid import stability_figure
+
+        stability_figure(res, f"{cfg.system.name}: linear stability").savefig(plot, dpi=120)
+        out["plot"] = str(plot)
+    if not as_json:
+        rng = ", ".join(f"{lo:.4g}-{hi:.4g} 1/s" for lo, hi in res["unstable_ranges_rad_s"])
+        typer.echo(f"{cfg.system.name}: centred state {'unstable at ' + rng if rng else 'stable'}"
+                   f" over {ws[0]:.4g}-{ws[-1]:.4g} 1/s ({cells} cells; omega_n "
+                   f"{res['omega_n_rad_s']:.4g} 1/s)")
+        if plot:
+            typer.echo(f"plot: {plot}")
+        return
+    _out(out, True)

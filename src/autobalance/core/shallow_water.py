@@ -359,7 +359,7 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
                wall: np.ndarray, out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray,
                out_w: np.ndarray, hn: np.ndarray, qn: np.ndarray, fh: np.ndarray, fq: np.ndarray,
                fqr: np.ndarray, hl: np.ndarray, hr: np.ndarray, b: np.ndarray,
-               a: np.ndarray) -> tuple[int, complex, complex]:
+               a: np.ndarray, wdd0: complex) -> tuple[int, complex, complex, complex]:
     """The films of one or more concentric chambers coupled two-way with an isotropic Jeffcott
     rotor (mass M_t = M + the liquids' masses, stiffness k [N/m], damping c [N*s/m], unbalance
     D [kg*m] on the rotor frame's x axis) at the prescribed spin w(t) (tables tt [s], tw
@@ -375,9 +375,10 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     gravity gp [m/s^2] at the inertial angle gdir [rad] (0: a vertical axis), psi = 0 at t = 0;
     partitions where wall != 0 (:func:`sw_step`). Each time step (CFL of the most restrictive
     film) advances the rotor by 4 RK4 sub-steps with U, U' frozen (explicit coupling), and every
-    film by one step forced by the deflection and by w'' from the previous step. h, q, and the
-    returned (Z, Y) are the final state; out_h, out_q (len(out_t), total cells) the films at
-    out_t and out_w the deflection. Returns (steps, Z, Y); steps = -1 on a non-finite state."""
+    film by one step forced by the deflection and by w'' from the previous step (wdd0 [m/s^2]
+    before the first). h, q, and the returned (Z, Y, w'') are the final state; out_h, out_q
+    (len(out_t), total cells) the films at out_t and out_w the deflection. Returns (steps, Z, Y,
+    w''); steps = -1 on a non-finite state."""
     n = h.shape[0]
     t = 0.0
     Z = Z0
@@ -385,7 +386,7 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     kout = 0
     nout = out_t.shape[0]
     steps = 0
-    wdd = 0j
+    wdd = wdd0
     psi = 0.0
     U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
     wd_prev = (Y - Ud) / Mt
@@ -433,7 +434,7 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
                 ok = False
         steps += 1
         if not ok:
-            return -1, Z, Y
+            return -1, Z, Y, wdd
         U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
         wd_new = (Y - Ud) / Mt
         wdd = (wd_new - wd_prev) / dt
@@ -444,4 +445,4 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     kout = _emit(out_t, out_h, out_q, kout, math.inf, h, q)
     for j in range(k0, kout):
         out_w[j] = (Z - U) / Mt
-    return steps, Z, Y
+    return steps, Z, Y, wdd

@@ -526,9 +526,9 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
     out_h, out_q = np.zeros((out_t.size, h.size)), np.zeros((out_t.size, h.size))
     out_w = np.zeros(out_t.size, complex)
     work = [np.zeros(h.size) for _ in range(9)]
-    steps, Z, Y = sw_coupled(h, q, th, starts, Rs, Hs, rhos, nus, Mt, rotor.stiffness,
-                             rotor.damping, rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd, gp,
-                             gdir, wall, out_t, out_h, out_q, out_w, *work)
+    steps, Z, Y, _ = sw_coupled(h, q, th, starts, Rs, Hs, rhos, nus, Mt, rotor.stiffness,
+                                rotor.damping, rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd,
+                                gp, gdir, wall, out_t, out_h, out_q, out_w, *work, 0j)
     if steps < 0:
         raise FloatingPointError("coupled_run: the state became non-finite")
     runs = tuple(FilmRun(out_t, th[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f.radius, f.height,

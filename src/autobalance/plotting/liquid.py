@@ -31,7 +31,8 @@ if TYPE_CHECKING:
 __all__ = ["bars_figure", "curves_figure", "efficiency_bars_figure", "fill_figure",
            "fill_panels_figure", "fill_vs_radius_figure", "friction_angle_figure",
            "fill_map_figure", "kinetostatic_figure", "liquid_run_figure", "liquid_states_figure", "mode_speeds_figure",
-           "response_figure", "speed_series_figure", "surface_figure"]
+           "response_figure", "speed_series_figure", "spinup_figure", "stability_figure",
+           "surface_figure"]
 
 ML = 1e-6   # [m^3] per ml
 GCM = 1e-5  # [kg*m] per g*cm
@@ -547,6 +548,36 @@ def spinup_figure(runs: Sequence, labels: Sequence[str], omega0: Sequence[float]
     a.legend(fontsize=8)
     a.grid(alpha=0.3)
     b.grid(alpha=0.3)
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def stability_figure(res: dict, title: str = "") -> Figure:
+    """The growth rate of the least stable perturbation of the centred state against speed
+    (:func:`autobalance.liquid.stability.machine_stability`), the unstable ranges shaded and
+    the natural frequency with the liquid as a rigid mass dotted.
+
+    Parameters
+    ----------
+    res : dict
+        ``machine_stability``'s result (speeds [rad/s], growth rates [1/s]).
+    title : str
+        Figure title.
+    """
+    fig = _new_figure((8, 4.5))
+    ax = fig.subplots()
+    ax.plot(res["omega_rad_s"], res["growth_rate_1_s"], "o-", ms=3)
+    ax.axhline(0.0, color="k", lw=0.8)
+    for lo, hi in res["unstable_ranges_rad_s"]:
+        ax.axvspan(lo, hi, color="tab:red", alpha=0.15)
+    ax.axvline(res["omega_n_rad_s"], color="0.5", ls=":", lw=1.0, label="ω_n (liquid rigid)")
+    ax.axvline(res["film_from_rad_s"], color="tab:green", ls=":", lw=1.0,
+               label="film from (003 eq 6; a pool below)")
+    ax.set(xlabel="speed Ω [1/s]", ylabel="growth rate [1/s]",
+           title=f"centred state, {res['cells']} cells per wall (shaded: unstable)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
     if title:
         fig.suptitle(title)
     return fig
