@@ -80,18 +80,41 @@ def test_cli_end_to_end(tmp_path):
     nc, png = tmp_path / "fm.nc", tmp_path / "fm.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "study", "fill-map", "leblanc_003",
                         "--fills", "50:200 ml:4", "--speeds", "30:90 1/s:13", "--json",
-                        "--out", str(nc), "--plot", str(png)],
+                        "--linear", "--out", str(nc), "--plot", str(png)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert len(d["fills"]) == 4 and d["out"] == str(nc)
+    lo, hi = d["fills"][2]["balanced_unstable_rad_s"][0]      # 150 ml: sec. 3j's 47.5-82 1/s
+    assert 45.0 < lo < 50.0 and 80.0 < hi < 85.0
     with xr.open_dataset(nc) as ds:
         assert ds["amplitude"].shape == (4, 13) and ds.attrs["command"] == "study fill-map"
+        assert ds["growth_rate"].shape == (4, 13)
     assert png.stat().st_size > 10_000
     r = subprocess.run([sys.executable, "-m", "autobalance", "study", "fill-map",
                         "vub_jeffcott_004"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 2 and r.stderr.startswith("error: liquid") and \
         len(r.stderr.strip().splitlines()) == 1
+
+
+def test_linear_map_is_ring_stability_per_point_and_a_pool_below_entrainment():
+    """compute_linear_map: each point is ring_stability of that fill at that speed (the
+    machine's chamber), NaN below the fill's entrainment speed (003 eq 6: a pool, no film); a
+    horizontal axis is refused in one line."""
+    from autobalance.liquid.simulate import film_rotor
+    from autobalance.liquid.stability import ring_stability
+    from autobalance.studies.fill_map import compute_linear_map
+
+    cfg = load_config("leblanc_003")
+    L = cfg.system.liquid
+    lm = compute_linear_map(cfg, fills=[75e-6, 300e-6], speeds=[20.0, 60.0])
+    g = lm["growth_rate"].values
+    assert np.isnan(g[0, 0]) and np.isfinite(g[1, 0])        # 75 ml: a pool until 32 1/s
+    r = ring_stability(film_rotor(cfg.system), L.chamber_radius, L.chamber_height, 300e-6,
+                       60.0, density=L.density, viscosity=L.kinematic_viscosity)
+    assert g[1, 1] == r.growth_rate and not lm["balanced_stable"].values[1, 1]
+    with pytest.raises(ParameterError, match="^liquid.axis"):
+        compute_linear_map("leblanc_washer", fills=[1e-3], speeds=[100.0])
 
 
 @pytest.mark.slow

@@ -29,6 +29,10 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                                    "speed): is the steady synchronous whirl reached?")] = False,
              duration: Annotated[str, typer.Option(
                  "--duration", help="Time at each speed of --dynamic, e.g. '6 s'.")] = "6 s",
+             linear: Annotated[bool, typer.Option(
+                 "--linear", help="Also the linear stability of the balanced state at every "
+                                  "fill and speed (vertical axis; 0.02 s per point on 64 "
+                                  "cells).")] = False,
              workers: WorkersOpt = None, executor: ExecutorOpt = None,
              quick: QuickOpt = False, out: OutOpt = None, plot: PlotOpt = None,
              json_: JsonOpt = False) -> None:
@@ -47,14 +51,17 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         Speeds [rad/s or with units].
     dynamic : bool
         Add the stability map (:func:`autobalance.studies.fill_map.compute_stability_map`).
+    linear : bool
+        Add the balanced state's linear stability (:func:`autobalance.studies.fill_map.
+        compute_linear_map`).
     duration : str
         Time at each speed of the stability map [s or with units].
     workers, executor
         The sweep's processes (:mod:`autobalance.cli.common`).
     """
     from ..config import parse_quantity
-    from ..studies.fill_map import (compute_fill_map, compute_stability_map, dynamic_speeds,
-                                    fill_map_summary)
+    from ..studies.fill_map import (compute_fill_map, compute_linear_map,
+                                    compute_stability_map, dynamic_speeds, fill_map_summary)
     from .liquid import _list
 
     t0 = time.perf_counter()
@@ -65,6 +72,9 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         V = None if fills is None else _list(fills, "volume", "--fills")
         W = None if speeds is None else _list(speeds, "speed", "--speeds")
         ds = compute_fill_map(cfg, fills=V, speeds=W, quick=quick)
+        if linear:
+            ds = ds.merge(compute_linear_map(cfg, fills=ds["fill"].values,
+                                             speeds=ds["speed"].values))
         stab = None
         if dynamic:
             stab = compute_stability_map(cfg, fills=ds["fill"].values,
@@ -98,6 +108,11 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    f"{ring} from {du.fmt(f['entrainment_speed_rad_s'], 'speed')}, balances "
                    + ("nowhere on the grid" if b is None else f"from {du.fmt(b, 'speed')}")
                    + f"; efficiency {f['efficiency_at_nominal']:.3g} at the nominal speed")
+        if "balanced_unstable_rad_s" in f:
+            u = f["balanced_unstable_rad_s"]
+            typer.echo("           balanced state " + (
+                "unstable at " + ", ".join(f"{du.fmt(lo, 'speed')}-{du.fmt(hi, 'speed')}"
+                                           for lo, hi in u) if u else "stable on the grid"))
     if "not_steady" in res:
         n = len(ds["dynamic_speed"])
         typer.echo(f"  coupled film at {', '.join(du.fmt(w, 'speed') for w in ds['dynamic_speed'].values)}"

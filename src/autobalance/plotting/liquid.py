@@ -482,7 +482,8 @@ def fill_map_figure(ds: xr.Dataset, speed_unit: str = "rad/s", speed_factor: flo
     ----------
     ds : xarray.Dataset
         amplitude [m] (fill, speed), amplitude_without_liquid [m], efficiency [-]; fill [m^3],
-        speed [rad/s]; optionally spread [-] (fill, dynamic_speed [rad/s]) of the stability map.
+        speed [rad/s]; optionally spread [-] (fill, dynamic_speed [rad/s]) of the stability map
+        and growth_rate [1/s] (fill, linear_speed [rad/s]) of the linear one.
     speed_unit : str
         Label of the speed axis.
     speed_factor : float
@@ -503,6 +504,12 @@ def fill_map_figure(ds: xr.Dataset, speed_unit: str = "rad/s", speed_factor: flo
         {"x": x, "xlabel": xl, "ylabel": "efficiency A(no liquid) / A(liquid) [-]",
          "title": "efficiency", "curves": eff},
     ]
+    if "growth_rate" in ds:     # the balanced state's linear stability (sec. 3j)
+        cur = [(f"{v:.0f} ml", g, "") for v, g in zip(fills, ds["growth_rate"].values)]
+        cur.append(("0: unstable above", np.zeros(x.size), "k:"))
+        panels.append({"x": ds["linear_speed"].values * speed_factor, "xlabel": xl,
+                       "ylabel": "growth rate [1/s]", "title": "balanced state: linear",
+                       "curves": cur})
     if "spread" in ds:          # the stability map of the coupled film
         xd = ds["dynamic_speed"].values * speed_factor
         cur = [(f"{v:.0f} ml", sp, "o-") for v, sp in zip(fills, ds["spread"].values)]

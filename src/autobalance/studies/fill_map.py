@@ -24,8 +24,8 @@ if TYPE_CHECKING:
     from ..config import Config
     from ..models import LiquidDevice
 
-__all__ = ["compute_fill_map", "compute_stability_map", "default_fills", "dynamic_speeds",
-           "fill_map_summary"]
+__all__ = ["compute_fill_map", "compute_linear_map", "compute_stability_map", "default_fills",
+           "dynamic_speeds", "fill_map_summary"]
 
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
 SPEED_RATIOS = (0.3, 2.0)
@@ -166,6 +166,66 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
     return ds
 
 
+def compute_linear_map(base: str | Path | Config, *, fills: Sequence[float],
+                       speeds: Sequence[float], n_cells: int = 64) -> xr.Dataset:
+    """The linear stability of the balanced (centred) state over fill x speed
+    (:func:`autobalance.liquid.stability.ring_stability`, docs/liquid.md sec. 3j): the growth
+    rate of its least stable perturbation; NaN below the fill's entrainment speed (a pool).
+    A vertical axis only.
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine (a liquid balancer alone).
+    fills : sequence of float
+        Total fills [m^3] (several chambers scaled alike, :func:`chamber_fills`).
+    speeds : sequence of float
+        Speeds [rad/s].
+    n_cells : int
+        Cells around each wall [-].
+
+    Returns
+    -------
+    xarray.Dataset
+        ``growth_rate`` (fill, speed) [1/s], ``balanced_stable`` (fill, speed) (growth rate < 0).
+    """
+    import xarray as xr
+
+    from ..config import load_config
+    from ..liquid.models import G_STANDARD
+    from ..liquid.simulate import film_rotor
+    from ..liquid.stability import ring_stability
+    from ..liquid.steady import start_speed
+
+    s = (base if hasattr(base, "system") else load_config(base)).system
+    L = s.liquid
+    if L.axis != "vertical":
+        raise ParameterError("liquid.axis", L.axis, "must be vertical for the linear stability "
+                             "(its centred state needs no gravity in the chamber's plane); "
+                             "--dynamic runs the films on a horizontal axis")
+    rotor = film_rotor(s)
+    g = np.full((len(fills), len(speeds)), np.nan)
+    for i, v in enumerate(fills):
+        vols = chamber_fills(L, v)
+        w0 = max(start_speed(x, c.chamber_radius, c.chamber_height, G_STANDARD,
+                             inner_radius=c.inner_radius) for x, c in zip(vols, L.chambers))
+        for j, w in enumerate(speeds):
+            if w >= w0:
+                g[i, j] = ring_stability(
+                    rotor, [c.chamber_radius for c in L.chambers],
+                    [c.chamber_height for c in L.chambers], vols, float(w), density=L.density,
+                    viscosity=L.kinematic_viscosity, n_cells=n_cells,
+                    partitions=[c.partitions for c in L.chambers]).growth_rate
+    return xr.Dataset({"growth_rate": (("fill", "linear_speed"), g, {
+                           "units": "1/s", "long_name": "growth rate of the balanced state's "
+                           "least stable perturbation (NaN: a pool)"}),
+                       "balanced_stable": (("fill", "linear_speed"), g < 0.0)},
+                      coords={"fill": ("fill", np.asarray(fills, float), {"units": "m^3"}),
+                              "linear_speed": ("linear_speed", np.asarray(speeds, float),
+                                               {"units": "rad/s"})},
+                      attrs={"linear_cells": int(n_cells)})
+
+
 def fill_map_summary(ds: xr.Dataset) -> dict:
     """The fill map's answers (SI): per fill its resonance, the speeds where it balances
     (efficiency > 1) and its efficiency at the nominal speed; the fills within :data:`TIE` of
@@ -180,6 +240,8 @@ def fill_map_summary(ds: xr.Dataset) -> dict:
     Returns
     -------
     dict
+        Per fill also ``balanced_unstable_rad_s``, the speed ranges where the balanced state
+        is unstable, when the dataset has :func:`compute_linear_map`'s growth rates.
     """
     W = ds["speed"].values
     wn = float(ds.attrs["nominal_speed_rad_s"])
@@ -192,6 +254,11 @@ def fill_map_summary(ds: xr.Dataset) -> dict:
                       "entrainment_speed_rad_s": float(ds["entrainment_speed"].values[i]),
                       "balances_from_rad_s": float(helps.min()) if helps.size else None,
                       "efficiency_at_nominal": float(e[k])})
+        if "growth_rate" in ds:          # the balanced state's linear stability (sec. 3j)
+            from ..liquid.stability import unstable_ranges
+
+            fills[-1]["balanced_unstable_rad_s"] = unstable_ranges(
+                ds["linear_speed"].values, ds["growth_rate"].values[i])
     e = ds["efficiency"].values[:, k]
     good = ds["fill"].values[e >= (1 - TIE) * e.max()]
     extra = {}
