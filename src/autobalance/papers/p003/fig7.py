@@ -15,6 +15,7 @@ import xarray as xr
 from ...liquid import entrainment_speed, free_surface, motion_mode
 from ...liquid.film import physical_run_up
 from ...liquid.quasistatic import quasi_static
+from ...liquid.stability import ring_stability
 from ...liquid.steady import physical_steady_response
 from ...plotting import liquid as lp
 from ...validation.target import Context, Outcome, Rows
@@ -45,10 +46,15 @@ def _frame_rows(rows: Rows, b: Bench, st: dict) -> None:
              f"> {OPPOSITE_DEG:g}", ang[2] > OPPOSITE_DEG,
              "at resonance the deflection lags the unbalance by about 90 deg and the liquid "
              "follows the deflection")
+    lam = ring_stability(b.rotor, R, h, V, 80.0, density=b.balancer.liquid.density,
+                         viscosity=b.balancer.liquid.kinematic_viscosity, n_cells=256)
     rows.add("d_effective_at_80", "steady efficiency at 80 1/s [-]", round(float(eff[3]), 2),
              f"> {BALANCING}", eff[3] > BALANCING,
-             "the steady state; the coupled film run-up whirls asynchronously there with 300 ml "
-             "of water (docs/liquid.md sec. 3d): its stability is not part of this row")
+             "the steady state; its stability is not part of this row. The coupled film run-up "
+             "whirls asynchronously there with 300 ml of water (docs/liquid.md sec. 3d), and "
+             f"the balanced state is linearly {'stable' if lam.stable else 'unstable'} there "
+             f"(growth rate {lam.growth_rate:+.2f} 1/s on 256 cells, sec. 3j), while 003 "
+             "observes balancing")
     fs, cyl = free_surface(80.0, V, R, h, g), math.sqrt(R * R - V / (math.pi * h))
     dev = max(cyl - fs.r_dry, fs.r_lid - cyl) / R
     rows.add("surface_cylindrical", "largest radial distance of the surface from the limiting "
