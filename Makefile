@@ -27,7 +27,7 @@ run: setup
 	$(BIN)/autobalance design examples/toploader.toml --quick --grade 40 \
 	  --plot out/design/toploader-design.png --out out/design/toploader-design.nc \
 	  | tee out/design/toploader-design.txt
-	$(BIN)/autobalance study fill-map examples/toploader-ring.toml --quick --dynamic \
+	$(BIN)/autobalance study fill-map examples/toploader-ring.toml --quick --dynamic --linear \
 	  --plot out/design/toploader-ring-fill.png --out out/design/toploader-ring-fill.nc \
 	  | tee out/design/toploader-ring-fill.txt
 

@@ -127,6 +127,10 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     typer.echo(f"  at {du.fmt(res['speed_on_grid_rad_s'], 'speed')}: best efficiency "
                f"{res['best_efficiency_at_nominal']:.3g}, reached (within "
                f"{100 * res['tie']:g} %) from {res['least_fill_within_tie_m3'] * 1e6:.1f} ml")
+    if "least_stable_fill_within_tie_m3" in res:
+        v = res["least_stable_fill_within_tie_m3"]
+        typer.echo("  with its balanced state stable there (linear): " + (
+            "no fill within the tie" if v is None else f"from {v * 1e6:.1f} ml"))
     for key in ("out", "plot"):
         if key in res:
             typer.echo(f"wrote {res[key]}")

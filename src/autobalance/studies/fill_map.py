@@ -240,8 +240,10 @@ def fill_map_summary(ds: xr.Dataset) -> dict:
     Returns
     -------
     dict
-        Per fill also ``balanced_unstable_rad_s``, the speed ranges where the balanced state
-        is unstable, when the dataset has :func:`compute_linear_map`'s growth rates.
+        With :func:`compute_linear_map`'s growth rates also: per fill
+        ``balanced_unstable_rad_s``, the speed ranges where the balanced state is unstable;
+        ``balanced_stable_at_nominal`` per fill; ``least_stable_fill_within_tie_m3``, the least
+        fill within the tie whose balanced state is stable at the nominal speed (None if none).
     """
     W = ds["speed"].values
     wn = float(ds.attrs["nominal_speed_rad_s"])
@@ -262,6 +264,12 @@ def fill_map_summary(ds: xr.Dataset) -> dict:
     e = ds["efficiency"].values[:, k]
     good = ds["fill"].values[e >= (1 - TIE) * e.max()]
     extra = {}
+    if "growth_rate" in ds:          # the balanced state at the nominal speed (sec. 3j)
+        kl = int(np.argmin(np.abs(ds["linear_speed"].values - wn)))
+        ok = ds["growth_rate"].values[:, kl] < 0.0
+        both = ds["fill"].values[(e >= (1 - TIE) * e.max()) & ok]
+        extra["balanced_stable_at_nominal"] = [bool(x) for x in ok]
+        extra["least_stable_fill_within_tie_m3"] = float(both.min()) if both.size else None
     if "steady" in ds:
         bad = np.argwhere(~ds["steady"].values)
         extra["not_steady"] = [(float(ds["fill"].values[i]), float(ds["dynamic_speed"].values[j]))
