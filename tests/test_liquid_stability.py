@@ -115,3 +115,16 @@ def test_cli_end_to_end(tmp_path):
                           "leblanc_washer"], capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid.axis")
+
+
+def test_unstable_ranges_start_at_the_first_film_or_grid_speed():
+    """A range that is unstable from the first speed with a film (NaN before: a pool) starts
+    there, not at an interpolation with NaN (the top-loader ring's 125 ml printed 'nan rpm')."""
+    from autobalance.liquid.stability import unstable_ranges
+
+    w = np.array([10.0, 20.0, 30.0, 40.0, 50.0])
+    assert unstable_ranges(w, np.array([np.nan, 1.0, 1.0, -1.0, 1.0])) == [(20.0, 35.0),
+                                                                         (45.0, 50.0)]
+    assert unstable_ranges(w, np.array([1.0, -1.0, np.nan, 1.0, np.nan])) == [(10.0, 15.0),
+                                                                           (40.0, 40.0)]
+    assert unstable_ranges(w, np.full(5, -1.0)) == []

@@ -199,8 +199,9 @@ def unstable_ranges(speeds: np.ndarray, growth: np.ndarray) -> list[tuple[float,
                 out.append((float(lo), float(speeds[i - 1])))
                 lo = None
             continue
-        if g > 0 and lo is None:
-            lo = w if i == 0 else w - g * (w - speeds[i - 1]) / (g - growth[i - 1])
+        if g > 0 and lo is None:          # from the grid's first speed or its first film
+            lo = (w if i == 0 or not np.isfinite(growth[i - 1]) else
+                  w - g * (w - speeds[i - 1]) / (g - growth[i - 1]))
         elif g <= 0 and lo is not None:
             out.append((float(lo), float(w - g * (w - speeds[i - 1]) / (g - growth[i - 1]))))
             lo = None
