@@ -38,9 +38,9 @@ if TYPE_CHECKING:
 
     import numpy.typing as npt
 
-__all__ = ["GRAVITY_OFFSET_MAX", "chambers_fill_sweep", "chambers_steady_response", "physical_fill_sweep", "physical_steady_response",
-           "pool_response", "response_curve", "ring_response", "start_speed",
-           "steady_amplitude", "synchronous_deflection"]
+__all__ = ["GRAVITY_OFFSET_MAX", "chambers_fill_sweep", "chambers_steady_response",
+           "physical_fill_sweep", "physical_steady_response", "pool_response", "response_curve",
+           "ring_response", "start_speed", "steady_amplitude", "synchronous_deflection"]
 
 #: Largest offset of the potential's centre g/Omega^2 by in-plane gravity, as a fraction of R,
 #: for the liquid models on a horizontal axis (first order in g/(Omega^2 R), core/shallow_water.py)

@@ -27,8 +27,9 @@ __all__ = ["capacity_grades", "case_sets", "checkpoint_labels", "default_starts"
 
 def load(base: str | Path | Config, sets: Sequence[str] = (),
          allow_liquid: bool = False, liquid_alone: bool = False) -> Config:
-    """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied;
-    every study here is of a ball balancer, so the machine must have one.
+    """The machine of a study with ``sets`` overrides ("path=value" as for ``--set``) applied: a
+    ball balancer, with a liquid beside it if ``allow_liquid``, or a liquid alone if
+    ``liquid_alone`` too (the fill map loads its liquid machines itself).
 
     Parameters
     ----------
