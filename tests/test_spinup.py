@@ -168,3 +168,15 @@ def test_cli_end_to_end(tmp_path):
                           "leblanc_washer"], capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid.axis")
+
+
+def test_mode_change_times_do_not_depend_on_the_output_spacing():
+    """Modes 2 and 3 change where the depth at the axis crosses its threshold, linear between
+    the outputs around it (they were read at the first output past it: up to one spacing late).
+    Outputs every 0.1 s and every 0.002 s agree to 0.01 s of a 0.1 s spacing."""
+    coarse = spinup_run(R, H, V, ramp(1.0), 60.0, save_dt=0.1).mode_changes()
+    fine = spinup_run(R, H, V, ramp(1.0), 60.0, save_dt=0.002).mode_changes()
+    assert [m["mode"] for m in coarse] == [m["mode"] for m in fine] == [2, 3, 4]
+    for a, b in zip(coarse[:2], fine[:2]):
+        assert a["time_s"] == pytest.approx(b["time_s"], abs=0.01)
+        assert a["speed_rad_s"] == pytest.approx(b["speed_rad_s"], abs=0.01)

@@ -111,17 +111,26 @@ class SpinUp:
         return m
 
     def mode_changes(self) -> list[dict]:
-        """The first output time of each mode after the first [s], with the chamber's and the
-        liquid's speeds there [rad/s]."""
+        """The time of each mode change after the first mode [s], with the chamber's and the
+        liquid's speeds there [rad/s]: modes 2 and 3 where the depth at the inner wall crosses
+        its threshold (:attr:`mode`), linear between the two outputs around it; mode 4 at the
+        lid time (the run's end, exact)."""
         m = self.mode
+        inner = self.depth[:, 0]
+        level = {2: (1 - GRAVITY_FRACTION) * self.rest_level, 3: DRY_LEVEL * self.rest_level}
         out = []
         for k in range(int(m[0]) + 1, 5):
             i = np.nonzero(m >= k)[0]
-            if i.size:
-                j = int(i[0])
-                out.append({"mode": k, "time_s": float(self.t[j]),
-                            "speed_rad_s": float(self.speed[j]),
-                            "liquid_speed_rad_s": float(self.liquid_speed[j])})
+            if not i.size:
+                continue
+            j = int(i[0])
+            t = float(self.t[j])
+            if k in level and j > 0 and inner[j - 1] > inner[j]:
+                f = float(np.clip((inner[j - 1] - level[k]) / (inner[j - 1] - inner[j]), 0, 1))
+                t = float(self.t[j - 1] + f * (self.t[j] - self.t[j - 1]))
+            out.append({"mode": k, "time_s": t,
+                        "speed_rad_s": float(np.interp(t, self.t, self.speed)),
+                        "liquid_speed_rad_s": float(np.interp(t, self.t, self.liquid_speed))})
         return out
 
 
