@@ -128,3 +128,16 @@ def test_unstable_ranges_start_at_the_first_film_or_grid_speed():
     assert unstable_ranges(w, np.array([1.0, -1.0, np.nan, 1.0, np.nan])) == [(10.0, 15.0),
                                                                            (40.0, 40.0)]
     assert unstable_ranges(w, np.full(5, -1.0)) == []
+
+
+def test_three_chambers_are_one_system():
+    """003's three concentric chambers: one volume mode per chamber is dropped, and the band of
+    the three films together (44.0-85.4 1/s on 64 cells each, sec. 3j) contains the outer
+    chamber's own (47.5-82 1/s)."""
+    three = load_config("leblanc_003_three").system
+    L3 = three.liquid
+    r = ring_stability(film_rotor(three), [c.chamber_radius for c in L3.chambers],
+                       [c.chamber_height for c in L3.chambers], [c.volume for c in L3.chambers],
+                       45.0, density=L3.density, viscosity=L3.kinematic_viscosity)
+    assert r.eigenvalues.size == 6 + 2 * 3 * 64 - 3
+    assert not r.stable and bench(150e-6, 45.0).stable
