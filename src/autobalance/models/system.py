@@ -64,8 +64,8 @@ class System:
                                  f"only (closed forms without a liquid); {beside}a liquid "
                                  "balancer runs with `autobalance simulate` (and `sweep`)")
         if not allow_empty and self.balancer.n_balls == 0:
-            alone = ("; a liquid alone runs with `autobalance simulate` and the studies fill-map, "
-                     "unbalance-range and runup"
+            alone = ("; a liquid alone runs with `autobalance simulate`, the studies fill-map, "
+                     "unbalance-range and runup, and `autobalance liquid stability`"
                      if self.liquid is not None else "")
             raise ParameterError("balancer.n_balls", 0,
                                  f"{what} need a ball balancer (>= 1 ball{alone})")
