@@ -56,17 +56,17 @@ class System:
             A liquid balancer (the ball analyses would take the liquid as a rigid mass) unless
             ``allow_liquid``, or no balls unless ``allow_empty``.
         """
+        alone = ("a liquid alone runs with `autobalance simulate`, the studies fill-map, "
+                 "unbalance-range and runup, and `autobalance liquid stability`")
         if self.liquid is not None and not allow_liquid:
-            beside = ("the studies start-positions, unbalance-range, plateau, sensitivity and "
-                      "runup (simulations) take balls beside a liquid; "
-                      if self.balancer.n_balls else "")
+            other = ("the studies start-positions, unbalance-range, plateau, sensitivity and "
+                     "runup (simulations) take balls beside a liquid; a liquid balancer runs "
+                     "with `autobalance simulate` (and `sweep`)" if self.balancer.n_balls
+                     else alone)
             raise ParameterError("liquid", "a [liquid] section", f"{what} take ball balancers "
-                                 f"only (closed forms without a liquid); {beside}a liquid "
-                                 "balancer runs with `autobalance simulate` (and `sweep`)")
+                                 f"only (closed forms without a liquid); {other}")
         if not allow_empty and self.balancer.n_balls == 0:
-            alone = ("; a liquid alone runs with `autobalance simulate`, the studies fill-map, "
-                     "unbalance-range and runup, and `autobalance liquid stability`"
-                     if self.liquid is not None else "")
+            alone = "; " + alone if self.liquid is not None else ""
             raise ParameterError("balancer.n_balls", 0,
                                  f"{what} need a ball balancer (>= 1 ball{alone})")
 
