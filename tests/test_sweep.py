@@ -149,14 +149,18 @@ def test_serial_equals_local_processes(tiny_ds, tmp_path):
 #: (commit f7b376a, where each cell was re-parsed from TOML override strings): fee275f364aaa79f.
 #: Changed twice since, on purpose: SimOptions gained ``exact_ramps`` and then ``dense_events``
 #: (issue 17), so a store of the previous kernel, whose results differ within the tolerance, is
-#: another sweep.
+#: another sweep. Since stop 29 the identity also digests the simulator's code (store.
+#: code_digest), which changes with every commit of it: the pin is of the rest, with that part
+#: empty (an empty update leaves the digest as it was).
 TINY_IDENTITY = "0fa4cd0f84e76809"
 
 
-def test_tiny_identity_unchanged_by_building_cells_on_the_models():
-    from autobalance.sweep.store import identity
+def test_tiny_identity_unchanged_by_building_cells_on_the_models(monkeypatch):
+    import importlib
 
-    assert identity(make_plan(spec_of(TINY))) == TINY_IDENTITY
+    st = importlib.import_module("autobalance.sweep.store")
+    monkeypatch.setattr(st, "code_digest", lambda: "")
+    assert st.identity(make_plan(spec_of(TINY))) == TINY_IDENTITY
 
 
 def test_python_base_gives_the_preset_base_results(tiny_ds, tmp_path):
