@@ -101,6 +101,7 @@ def test_refusals_are_one_line(kw, field):
     assert str(e.value).startswith(field) and "\n" not in str(e.value)
 
 
+@pytest.mark.slow
 def test_cli_end_to_end(tmp_path):
     png = tmp_path / "s.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",

@@ -736,6 +736,7 @@ def test_store_from_other_simulator_code_is_refused_and_keyed_stores_start_anew(
     assert len([p for p in keyed.iterdir() if p.is_dir()]) == 2
 
 
+@pytest.mark.slow
 def test_code_digest_follows_the_simulator_not_the_cli(tmp_path):
     """code_digest changes with a byte of the kernel's source and not with the CLI's (a copy of
     the package, imported in a fresh interpreter)."""
