@@ -77,6 +77,7 @@ def test_viscous_slow_run_up_is_quasi_static(rate, tol):
     assert EQ6 <= w <= EQ6 * (1 + tol)
 
 
+@pytest.mark.slow
 def test_entrainment_speed_converges_under_grid_refinement():
     """Water at 1 1/s^2: the chamber speed at the lid on 50, 100, 200 cells (measured 20.2995,
     20.3263, 20.3312 1/s; 400 and 800 cells give 20.3315 and 20.3305): the differences shrink
@@ -170,6 +171,7 @@ def test_cli_end_to_end(tmp_path):
     assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid.axis")
 
 
+@pytest.mark.slow
 def test_mode_change_times_do_not_depend_on_the_output_spacing():
     """Modes 2 and 3 change where the depth at the axis crosses its threshold, linear between
     the outputs around it (they were read at the first output past it: up to one spacing late).
