@@ -553,8 +553,11 @@ def stability(source: Annotated[str, typer.Argument(
         out["plot"] = str(plot)
     if not as_json:
         rng = ", ".join(f"{lo:.4g}-{hi:.4g} 1/s" for lo, hi in res["unstable_ranges_rad_s"])
-        typer.echo(f"{cfg.system.name}: centred state {'unstable at ' + rng if rng else 'stable'}"
-                   f" over {ws[0]:.4g}-{ws[-1]:.4g} 1/s ({cells} cells; omega_n "
+        w0 = res["film_from_rad_s"]
+        verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
+            res["growth_rate_1_s"]).any() else "not decided (no speed with a film)")
+        typer.echo(f"{cfg.system.name}: centred state {verdict} over {ws[0]:.4g}-{ws[-1]:.4g} "
+                   f"1/s (a film from {w0:.4g} 1/s; {cells} cells; omega_n "
                    f"{res['omega_n_rad_s']:.4g} 1/s)")
         if plot:
             typer.echo(f"plot: {plot}")
