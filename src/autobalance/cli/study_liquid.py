@@ -110,9 +110,11 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    + f"; efficiency {f['efficiency_at_nominal']:.3g} at the nominal speed")
         if "balanced_unstable_rad_s" in f:
             u = f["balanced_unstable_rad_s"]
+            film = any(g == g for g in ds["growth_rate"].values[i])     # not all NaN
             typer.echo("           balanced state " + (
                 "unstable at " + ", ".join(f"{du.fmt(lo, 'speed')}-{du.fmt(hi, 'speed')}"
-                                           for lo, hi in u) if u else "stable on the grid"))
+                                           for lo, hi in u) if u else "stable on the grid"
+                if film else "not decided (no film on the grid)"))
     if "not_steady" in res:
         n = len(ds["dynamic_speed"])
         typer.echo(f"  coupled film at {', '.join(du.fmt(w, 'speed') for w in ds['dynamic_speed'].values)}"
