@@ -189,13 +189,12 @@ def compute_linear_map(base: str | Path | Config, *, fills: Sequence[float],
     xarray.Dataset
         ``growth_rate`` (fill, speed) [1/s], ``balanced_stable`` (fill, speed) (growth rate < 0).
     """
+    import dataclasses
+
     import xarray as xr
 
     from ..config import load_config
-    from ..liquid.models import G_STANDARD
-    from ..liquid.simulate import film_rotor
-    from ..liquid.stability import ring_stability
-    from ..liquid.steady import start_speed
+    from ..liquid.stability import machine_stability
 
     s = (base if hasattr(base, "system") else load_config(base)).system
     L = s.liquid
@@ -203,19 +202,12 @@ def compute_linear_map(base: str | Path | Config, *, fills: Sequence[float],
         raise ParameterError("liquid.axis", L.axis, "must be vertical for the linear stability "
                              "(its centred state needs no gravity in the chamber's plane); "
                              "--dynamic runs the films on a horizontal axis")
-    rotor = film_rotor(s)
     g = np.full((len(fills), len(speeds)), np.nan)
-    for i, v in enumerate(fills):
+    for i, v in enumerate(fills):            # the machine with this fill, every chamber scaled
         vols = chamber_fills(L, v)
-        w0 = max(start_speed(x, c.chamber_radius, c.chamber_height, G_STANDARD,
-                             inner_radius=c.inner_radius) for x, c in zip(vols, L.chambers))
-        for j, w in enumerate(speeds):
-            if w >= w0:
-                g[i, j] = ring_stability(
-                    rotor, [c.chamber_radius for c in L.chambers],
-                    [c.chamber_height for c in L.chambers], vols, float(w), density=L.density,
-                    viscosity=L.kinematic_viscosity, n_cells=n_cells,
-                    partitions=[c.partitions for c in L.chambers]).growth_rate
+        liq = dataclasses.replace(L, volume=vols[0] if L.n_chambers == 1 else tuple(vols))
+        g[i] = machine_stability(dataclasses.replace(s, liquid=liq), speeds,
+                                 n_cells)["growth_rate_1_s"]
     return xr.Dataset({"growth_rate": (("fill", "linear_speed"), g, {
                            "units": "1/s", "long_name": "growth rate of the balanced state's "
                            "least stable perturbation (NaN: a pool)"}),
