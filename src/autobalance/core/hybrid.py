@@ -10,10 +10,14 @@ rotor): over a step [t, t + dt] (the films' CFL step)
    (a knot added to the profile: ``integrate_span``'s pause), with the films' summed moment U
    and its rate U' frozen at their values at t (P_LQX..P_LQDY): the chamber feels
    W^2 U - i W' U - 2 i W U' (rhs.py);
-3. the films' new moment changes the total first moment Z = M_t w + U + (balls) by nothing: the
-   chamber's deflection and rate take the difference, w -= dU / M_t, w' -= dU' / M_t (the
-   films' motion over the step, felt by the rotor; sw_coupled keeps Z and Z' through the films'
-   update in the same way).
+3. the films' new moment changes the total first moment Z = M_t w + U + (balls) and its rate
+   Z' by nothing: over the step Z moved by M_t w' (the kernel's) and the held U', i.e. by U' dt
+   of the films' change dU; the chamber's deflection and rate take the rest,
+   w -= (dU - U' dt) / M_t, w' -= dU' / M_t (the films' acceleration felt by the rotor;
+   sw_coupled keeps Z and Z' through the films' update in the same way). Until stop 30 the
+   deflection took all of dU: the rotor lagged by U' dt / M_t every step, which leaves a
+   synchronous whirl (U' = 0 in the rotor frame) alone but changed its transients and growth
+   rates (docs/liquid.md sec. 3k).
 
 With a film of no mass this is the ball kernel's run stepped at the films' pace; with balls that
 cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both). Prescribed
@@ -188,7 +192,9 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         if not _accept(h, q, hn, qn):
             return -1
         U1, Ud1 = films_moment(h, q, theta, starts, Rs, Hs, rhos)
-        dU = (U1 - U) / Mt                      # Z and Z' kept: the chamber takes the change
+        # Z and Z' kept: over the step Z moved by the kernel's M_t w' and the held U' (so U'
+        # dt is already in it); the chamber takes the rest of the films' change
+        dU = (U1 - U - dt * Ud) / Mt
         dUd = (Ud1 - Ud) / Mt
         y[0] -= dU.real
         y[1] -= dU.imag

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -34,7 +34,8 @@ if TYPE_CHECKING:
 
     from ..models import System
 
-__all__ = ["RingStability", "machine_stability", "ring_stability", "unstable_ranges"]
+__all__ = ["RingStability", "linear_modes", "machine_stability", "require_vertical",
+           "ring_stability", "unstable_ranges"]
 
 #: Relative size of the state's perturbations of the central differences [-].
 EPS = 1e-6
@@ -154,6 +155,41 @@ def ring_stability(rotor: VerticalRotor, radius: float | Sequence[float],
     scale = np.concatenate([np.full(2, Mt * hscale), np.full(2, Mt * hscale * W),
                             np.full(2, hscale * W * W), np.full(n, hscale),
                             np.full(n, hscale * W * float(np.max(st.Rs)))])
+    # each compartment keeps its volume: a uniform change of its film is a steady state too, an
+    # eigenvalue mu = 1 that decides nothing; one per compartment is dropped
+    n_inv = sum(max(1, f.partitions) for f in st.films)
+    lam = linear_modes(f, x0, scale, dt, n_inv, "ring_stability")
+    return RingStability(W, lam, dt)
+
+
+def linear_modes(f: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, scale: np.ndarray,
+                 dt: float, n_neutral: int, what: str) -> np.ndarray:
+    """The eigenvalues lambda = ln(mu) / dt [1/s] of a one-step map f about its fixed point x0,
+    largest real part first: the Jacobian by central differences (step EPS x ``scale`` per
+    state entry), its eigenvalues mu, and the ``n_neutral`` closest to 1 dropped after checking
+    |mu - 1| < 1e-7 (the conserved volumes, a balanced family: steady states that decide
+    nothing; ``what`` names the caller in the error).
+
+    Parameters
+    ----------
+    f : callable
+        x -> x after one step dt of the linearised scheme (state units as x0's).
+    x0 : ndarray
+        The fixed point [mixed: each entry's own unit].
+    scale : ndarray
+        Each entry's perturbation scale [mixed: the entry's unit].
+    dt : float
+        The map's step [s].
+    n_neutral : int
+        Neutral modes to drop [-].
+    what : str
+        The caller, for the error message.
+
+    Returns
+    -------
+    ndarray of complex
+        lambda [1/s], sorted by decreasing real part (a mode the map sends to 0: -inf).
+    """
     J = np.empty((x0.size, x0.size))
     for j in range(x0.size):
         e = EPS * scale[j]
@@ -163,17 +199,14 @@ def ring_stability(rotor: VerticalRotor, radius: float | Sequence[float],
         xm[j] -= e
         J[:, j] = (f(xp) - f(xm)) / (2.0 * e)
     mu = np.linalg.eigvals(J).astype(complex)
-    # each compartment's volume is kept: a uniform change of its film is a steady state too, an
-    # eigenvalue mu = 1 that decides nothing; drop as many as there are compartments
-    n_inv = sum(max(1, f.partitions) for f in st.films)
-    near = np.argsort(np.abs(mu - 1.0))[:n_inv]
-    if np.max(np.abs(mu[near] - 1.0)) > 1e-7:
-        raise RuntimeError("ring_stability: the volume's neutral modes were not found "
+    near = np.argsort(np.abs(mu - 1.0))[:n_neutral]
+    if n_neutral and np.max(np.abs(mu[near] - 1.0)) > 1e-7:
+        raise RuntimeError(f"{what}: the neutral modes were not found "
                            f"(|mu - 1| = {np.max(np.abs(mu[near] - 1.0)):.3g})")
     mu = np.delete(mu, near)
-    lam = np.log(mu) / dt
-    lam = lam[np.argsort(-lam.real)]
-    return RingStability(W, lam, dt)
+    with np.errstate(divide="ignore"):
+        lam = np.log(mu) / dt
+    return lam[np.argsort(-lam.real)]
 
 
 def unstable_ranges(speeds: np.ndarray, growth: np.ndarray) -> list[tuple[float, float]]:
@@ -210,6 +243,23 @@ def unstable_ranges(speeds: np.ndarray, growth: np.ndarray) -> list[tuple[float,
     return out
 
 
+def require_vertical(system: System) -> None:
+    """One-line error unless the machine's liquid turns about a vertical axis: the balanced
+    state (uniform films) is a fixed point of the rotor frame only without gravity in the
+    chamber's plane.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        A machine with a ``[liquid]`` section.
+    """
+    if system.liquid.axis != "vertical":
+        raise ParameterError("liquid.axis", system.liquid.axis, "must be vertical for the "
+                             "linear stability (its centred state, uniform films, exists "
+                             "without gravity in the chamber's plane); autobalance simulate "
+                             "runs a horizontal machine")
+
+
 def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) -> dict:
     """:func:`ring_stability` of a machine's ``[liquid]`` section over ``speeds``: the growth
     rate and whirl frequency of its least stable perturbation and the unstable ranges.
@@ -231,19 +281,15 @@ def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) 
         film_from_rad_s, the largest entrainment speed, 003 eq 6, where a pool is not a film),
         unstable_ranges_rad_s, omega_n_rad_s (the rotor with its liquid as a rigid mass), cells.
     """
-    from .models import G_STANDARD
     from .simulate import film_rotor, require_liquid_machine
-    from .steady import start_speed
+    from .start import film_start_speed
 
     require_liquid_machine(system)
     L = system.liquid
     if system.balancer.n_balls:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls, "must be 0: the "
                              "linear stability has the liquid's films and the rotor, not balls")
-    if L.axis != "vertical":
-        raise ParameterError("liquid.axis", L.axis, "must be vertical for the linear stability "
-                             "(its centred state, uniform films, exists without gravity in the "
-                             "chamber's plane); autobalance simulate runs a horizontal machine")
+    require_vertical(system)
     W = np.asarray(speeds, float)
     if W.ndim != 1 or W.size < 1 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
         raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)],
@@ -251,8 +297,7 @@ def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) 
     rotor = film_rotor(system)
     ch = L.chambers
     # below a chamber's entrainment speed (003 eq 6) its liquid is a pool, not a film
-    w0 = max(start_speed(c.volume, c.chamber_radius, c.chamber_height, G_STANDARD,
-                         inner_radius=c.inner_radius) for c in ch)
+    w0 = film_start_speed(L)
     g = np.full(W.size, np.nan)
     f = np.full(W.size, np.nan)
     for i, w in enumerate(W):

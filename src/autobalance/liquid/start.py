@@ -15,7 +15,7 @@ from .models import G_STANDARD
 from .spinup import chamber_spinup, within_spinup
 from .steady import start_speed
 
-__all__ = ["FilmStart", "film_start", "film_start_speed"]
+__all__ = ["FilmStart", "film_start", "film_start_speed", "pool_machine"]
 
 
 def film_start_speed(device: LiquidDevice, g_plane: float = 0.0,
@@ -149,3 +149,26 @@ def _lid(radius: float, height: float, inner_radius: float, volume: float, visco
     differ in the rotor or the balls only share their liquid's spin-up."""
     r = chamber_spinup(radius, height, inner_radius, volume, viscosity, g, times, speeds)
     return r.lid_time, float(r.liquid_speed[-1] - r.speed[-1])
+
+
+def pool_machine(system: System) -> System:
+    """The machine with its liquid as a pool (below the film's start, docs/liquid.md sec. 3i):
+    its mass moves with the rotor and it pulls nothing, so the ball models take the machine
+    with the liquid's mass added to the rotor's and no ``[liquid]`` section. M_t is kept.
+
+    Parameters
+    ----------
+    system : System
+        The machine (a ``[liquid]`` section; the rotor's mass M [kg]).
+
+    Returns
+    -------
+    System
+        Rotor mass M + rho V [kg], ``liquid`` None (the same machine without a liquid).
+    """
+    import dataclasses
+
+    if system.liquid is None:
+        return system
+    rotor = dataclasses.replace(system.rotor, mass=system.rotor.mass + system.liquid.mass)
+    return dataclasses.replace(system, rotor=rotor, liquid=None)

@@ -70,7 +70,8 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
     return lam[:N][inv], lam[N:2 * N][inv], dy[nq:nq + 2]
 
 
-def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike) -> np.ndarray:
+def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
+                           liquid_moment: tuple[complex, complex] = (0j, 0j)) -> np.ndarray:
     """Time derivative of rotor-frame states at constant spin speed, from the compiled kernel
     (core/rhs.py, every ball free to roll): the right-hand side whose Jacobian is the linearised
     full model about a steady state (autobalance.studies.equilibria).
@@ -89,13 +90,18 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike) 
         Constant spin speed [rad/s].
     states : array_like (K, 2N + 4) or (2N + 4,)
         Rotor displacement [m], ball angles [rad], their rates [m/s], [rad/s].
+    liquid_moment : (complex, complex)
+        A liquid's moment U [kg*m] and its rate U' [kg*m/s] (rotor frame), held as the run of
+        balls beside a liquid holds them over a coupling step (core/hybrid.py): the chamber
+        feels W^2 U - 2 i W U'. The system itself has no ``[liquid]`` (its mass in the rotor's,
+        :func:`autobalance.liquid.start.pool_machine`).
 
     Returns
     -------
     ndarray, the shape of ``states``
         dz/dt [m/s, rad/s, m/s^2, rad/s^2].
     """
-    from ..core.layout import n_q, psi_index, speed_index
+    from ..core.layout import P_LQDX, P_LQDY, P_LQX, P_LQY, n_q, psi_index, speed_index
     from ..core.rhs import profile_segment, rhs
     from ..models import SimOptions, SpeedProfile
     from .pack import pack_params, spin_arrays
@@ -103,6 +109,8 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike) 
     w = float(speed)
     spin = SpeedProfile.constant(w, 1.0)
     P, B = pack_params(system, spin, SimOptions(friction_law="stick"))
+    P[P_LQX], P[P_LQY] = complex(liquid_moment[0]).real, complex(liquid_moment[0]).imag
+    P[P_LQDX], P[P_LQDY] = complex(liquid_moment[1]).real, complex(liquid_moment[1]).imag
     N = system.balancer.n_balls
     nq = n_q(N)
     Z = np.atleast_2d(np.asarray(states, float))

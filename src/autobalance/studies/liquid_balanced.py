@@ -1,0 +1,190 @@
+"""The balanced state of balls beside a liquid and its linear stability at a constant speed
+(issue 15; docs/liquid.md sec. 3k): the rotor on the axis, the balls where they cancel the
+unbalance, every film uniform and at rest on its wall. Whether it stays balanced decides what
+the speed map reports for such a machine.
+
+Method (our choice, as sec. 3j for a liquid alone): the linearisation of the coupling the run of
+balls beside a liquid uses (core/hybrid.py), one film step dt at a time:
+
+1. every film takes one step of :func:`autobalance.core.shallow_water.films_step`, forced by the
+   chamber's deflection w, rate w' and the last step's w'' (rotor frame);
+2. the rotor and the balls advance over dt with the films' moment U and rate U' held: here by
+   the exact propagator expm([[A, B], [0, 0]] dt) of the kernel's right-hand side linearised
+   about the balanced state (A: the ideal machine, rolling resistance and dry friction off, as
+   the balls-alone speed map; B: the held moment's pull W^2 U - 2 i W U'; both central
+   differences of :func:`autobalance.simulate.probe.rotor_frame_derivative`). The run
+   integrates the same equations with DOPRI5 to its tolerance;
+3. the films' new moment is taken up by the chamber, Z and Z' kept: w -= (dU - U' dt) / M_t,
+   w' -= dU' / M_t.
+
+The eigenvalues of the map's Jacobian (:func:`autobalance.liquid.stability.linear_modes`) give
+the growth rates; a compartment's volume and, for N >= 3 balls, the balanced family's N - 2
+directions are neutral and dropped. The liquid's mass moves with the rotor; below the film's
+start (003 eq 6) the liquid is a pool and the balls-alone closed forms hold on
+:func:`autobalance.liquid.start.pool_machine`.
+"""
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..liquid.stability import DT_FRACTION, RingStability, linear_modes, require_vertical
+from ..models import ParameterError
+from ..models._validate import positive
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from ..models import System
+
+__all__ = ["balanced_stability", "require_balanced_liquid"]
+
+#: The balanced state's residual force, scaled by (L w^2, w^2), above which ``alpha`` is refused [-].
+BALANCED_TOL = 1e-9
+
+
+def require_balanced_liquid(system: System) -> System:
+    """One-line errors for a machine of balls beside a liquid whose balanced state is not a
+    fixed point of the rotor frame (a horizontal axis, an anisotropic suspension, base motion,
+    an unbalance schedule); returns its ideal pool machine (the liquid's mass in the rotor's,
+    rolling resistance and dry friction off).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Balls and a ``[liquid]`` section.
+
+    Returns
+    -------
+    autobalance.models.System
+    """
+    from ..liquid.start import pool_machine
+    from .equilibria import _ideal, steady_rotor_frame
+
+    if system.liquid is None or system.balancer.n_balls < 1:
+        raise ParameterError("machine", system.name or "machine",
+                             "needs balls and a [liquid] section for the balanced state beside "
+                             "a liquid")
+    require_vertical(system)
+    pool = pool_machine(system)
+    if not steady_rotor_frame(pool):
+        s = system.suspension
+        raise ParameterError("suspension", f"kx {s.kx:.6g} N/m, ky {s.ky:.6g} N/m",
+                             "must be isotropic, without base motion or an unbalance schedule, "
+                             "for the balanced state beside a liquid (a fixed point of the "
+                             "rotor frame)")
+    return _ideal(pool)
+
+
+def _ball_propagator(pool, W, alpha, dt, L):
+    """(Phi, Gamma): the ideal pool machine's rotor and balls over dt [s] at W [rad/s], linear
+    about the balanced angles alpha [rad], z -> Phi z + Gamma (U, U') (real pairs), and the
+    balanced state's scaled residual."""
+    from scipy.linalg import expm
+
+    from ..simulate.probe import rotor_frame_derivative
+
+    n = alpha.size
+    z0 = np.concatenate([[0.0, 0.0], alpha, np.zeros(n + 2)])
+    h = np.concatenate([[1e-4 * L] * 2, [1e-5] * n, [1e-4 * L * W] * 2, [1e-7 * W] * n])
+    F = rotor_frame_derivative(pool, W, np.concatenate([z0 + np.diag(h), z0 - np.diag(h)]))
+    m = z0.size
+    A = ((F[:m] - F[m:]) / (2 * h)[:, None]).T
+    fscale = np.concatenate([[L * W] * 2, [W] * n, [L * W * W] * 2, [W * W] * n])
+    res = float(np.max(np.abs(rotor_frame_derivative(pool, W, z0) / fscale)))
+    Bm = np.empty((m, 4))
+    u = pool.total_mass * L              # the held moment's scale [kg*m]
+    for j, (U, Ud) in enumerate([(u, 0j), (1j * u, 0j), (0j, u * W), (0j, 1j * u * W)]):
+        d = abs(U) + abs(Ud)
+        Bm[:, j] = (rotor_frame_derivative(pool, W, z0, (U, Ud))
+                    - rotor_frame_derivative(pool, W, z0, (-U, -Ud))) / (2 * d)
+    aug = np.zeros((m + 4, m + 4))
+    aug[:m, :m] = A
+    aug[:m, m:] = Bm
+    E = expm(aug * dt)
+    return E[:m, :m], E[:m, m:], res
+
+
+def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
+                       n_cells: int = 64, family: bool = False) -> RingStability:
+    """The linear stability of a balanced state of balls beside a liquid at the constant spin
+    ``speed`` (module docstring).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Balls and a ``[liquid]`` section on a vertical axis, isotropic suspension
+        (:func:`require_balanced_liquid`); M [kg], k [N/m], c [N*s/m], the balls' m [kg],
+        R [m] and damping.
+    speed : float
+        Omega [rad/s], > 0, where every chamber's liquid is a film (above 003 eq 6's
+        entrainment speed: the caller's choice).
+    alpha : array_like (N,)
+        The balanced state's ball angles [rad] (sum m_i R e^{i alpha_i} cancels the unbalance;
+        :func:`autobalance.physics.equilibria.find_equilibrium_set`).
+    n_cells : int
+        Cells around each wall [-].
+    family : bool
+        alpha lies on a balanced family (N >= 3): its N - 2 neutral directions are dropped.
+
+    Returns
+    -------
+    autobalance.liquid.stability.RingStability
+        Growth rates [1/s] of every mode (rotor frame), the step dt [s].
+    """
+    from ..core.shallow_water import films_dt, films_moment, films_step
+    from ..liquid.film import films_state
+
+    W = positive("speed", speed)
+    pool = require_balanced_liquid(system)
+    if isinstance(n_cells, bool) or int(n_cells) != n_cells or not 8 <= n_cells <= 1024:
+        raise ParameterError("n_cells", n_cells, "must be an integer in [8, 1024]")
+    N = system.balancer.n_balls
+    a = np.asarray(alpha, float).ravel()
+    if a.size != N or not np.all(np.isfinite(a)):
+        raise ParameterError("alpha", a.tolist(), f"must be {N} finite ball angles [rad]")
+    liq = system.liquid
+    ch = liq.chambers
+    st = films_state([c.chamber_radius for c in ch], [c.chamber_height for c in ch],
+                     [c.volume for c in ch], liq.density, liq.kinematic_viscosity,
+                     int(n_cells), [c.partitions for c in ch], 0.0, 0j)
+    Mt = pool.total_mass
+    L = max(pool.rotor.unbalance, pool.balancer.capacity) / Mt
+    dt = DT_FRACTION * films_dt(st.h, st.q, st.starts, st.Rs, W, math.inf)
+    Phi, Gam, res = _ball_propagator(pool, W, a, dt, L)
+    if res > BALANCED_TOL:
+        raise ParameterError("alpha", [round(float(x), 6) for x in a],
+                             f"is not a balanced state at {W:.6g} rad/s (scaled residual "
+                             f"force {res:.3g})")
+    m = Phi.shape[0]
+    nc = st.h.size
+    work = [np.zeros(nc) for _ in range(9)]
+    z_ref = np.concatenate([[0.0, 0.0], a, np.zeros(N + 2)])
+    r = N + 2                                   # index of the rotor's rate u'
+
+    def step(x):
+        z = x[:m]
+        h, q = x[m + 2:m + 2 + nc].copy(), x[m + 2 + nc:].copy()
+        w, wd = complex(z[0], z[1]), complex(z[r], z[r + 1])
+        films_step(h, q, st.theta, st.starts, st.Rs, st.nus, st.wall, W, 0.0, w, 0j, wd,
+                   complex(x[m], x[m + 1]), dt, *work)
+        U, Ud = films_moment(h, q, st.theta, st.starts, st.Rs, st.Hs, st.rhos)
+        U1, Ud1 = films_moment(work[0], work[1], st.theta, st.starts, st.Rs, st.Hs, st.rhos)
+        z1 = z_ref + Phi @ (z - z_ref) + Gam @ np.array([U.real, U.imag, Ud.real, Ud.imag])
+        dU, dUd = (U1 - U - dt * Ud) / Mt, (Ud1 - Ud) / Mt
+        z1[0] -= dU.real
+        z1[1] -= dU.imag
+        z1[r] -= dUd.real
+        z1[r + 1] -= dUd.imag
+        wdd = (complex(z1[r], z1[r + 1]) - wd) / dt
+        return np.concatenate([z1, [wdd.real, wdd.imag], work[0], work[1]])
+
+    hs = float(np.max(st.h))
+    x0 = np.concatenate([z_ref, [0.0, 0.0], st.h, st.q])
+    scale = np.concatenate([[hs] * 2, [1.0] * N, [hs * W] * 2, [W] * N, [hs * W * W] * 2,
+                            np.full(nc, hs), np.full(nc, hs * W * float(np.max(st.Rs)))])
+    n_neutral = sum(max(1, c.partitions) for c in ch) + (N - 2 if family else 0)
+    return RingStability(W, linear_modes(step, x0, scale, dt, n_neutral, "balanced_stability"),
+                         dt)
