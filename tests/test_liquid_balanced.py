@@ -63,7 +63,9 @@ def film_run_slope(system, speed, alpha, end, n_cells=64):
     return np.polyfit(out_t[late], np.log(np.hypot(out_y[late, 0], out_y[late, 1])), 1)[0]
 
 
-@pytest.mark.parametrize("speed, end", [(60.0, 6.0), (80.0, 12.0), (100.0, 20.0)])
+@pytest.mark.parametrize("speed, end", [(60.0, 6.0),
+                                        pytest.param(80.0, 12.0, marks=pytest.mark.slow),
+                                        pytest.param(100.0, 20.0, marks=pytest.mark.slow)])
 def test_growth_rate_is_the_runs(speed, end):
     """The run of balls beside a liquid from 1e-8 rad off the balanced state grows or decays at
     the linearisation's rate. Measured: 2.636 vs 2.637, 0.359 vs 0.357, -0.102 vs -0.096 1/s
@@ -74,7 +76,8 @@ def test_growth_rate_is_the_runs(speed, end):
     assert film_run_slope(s, speed, a, end) == pytest.approx(r.growth_rate, abs=0.02)
 
 
-def test_massless_balls_leave_the_liquid_alone():
+@pytest.mark.parametrize("n, tol", [(64, 0.02), pytest.param(256, 0.005, marks=pytest.mark.slow)])
+def test_massless_balls_leave_the_liquid_alone(n, tol):
     """Balls of 1e-8 kg (D 1e-9 kg*m) do not change the rotor with its films: the growth rate is
     the liquid-alone linearisation's (liquid/stability.ring_stability, sw_coupled's scheme; the
     two couple the films through different rotor steps, RK4 on Z = M_t w + U and the exact
@@ -83,11 +86,10 @@ def test_massless_balls_leave_the_liquid_alone():
     s = machine("balancer.ball_mass=1e-8 kg", "rotor.unbalance=1e-9 kg*m")
     a = balanced(s, 60.0)[0]
     c, liq = s.liquid.chambers[0], s.liquid
-    for n, tol in ((64, 0.02), (256, 0.005)):
-        r = balanced_stability(s, 60.0, a, n_cells=n)
-        ring = ring_stability(film_rotor(s), c.chamber_radius, c.chamber_height, c.volume, 60.0,
-                              density=liq.density, viscosity=liq.kinematic_viscosity, n_cells=n)
-        assert r.growth_rate == pytest.approx(ring.growth_rate, abs=tol)
+    r = balanced_stability(s, 60.0, a, n_cells=n)
+    ring = ring_stability(film_rotor(s), c.chamber_radius, c.chamber_height, c.volume, 60.0,
+                          density=liq.density, viscosity=liq.kinematic_viscosity, n_cells=n)
+    assert r.growth_rate == pytest.approx(ring.growth_rate, abs=tol)
 
 
 def test_massless_liquid_leaves_the_balls_alone():
@@ -101,6 +103,7 @@ def test_massless_liquid_leaves_the_balls_alone():
         assert np.min(np.abs(r.eigenvalues - v)) < 1e-4
 
 
+@pytest.mark.slow
 def test_three_balls_drop_the_family():
     """Three balls: a balanced family; its one neutral direction is dropped with the volume's
     (the map's size less 2), and every sample point is judged."""
@@ -138,3 +141,44 @@ def test_pool_machine_keeps_the_total_mass():
     assert p.liquid is None and p.total_mass == pytest.approx(s.total_mass, rel=1e-15)
     bare = dataclasses.replace(s, liquid=None)
     assert pool_machine(bare) is bare
+
+
+@pytest.mark.slow
+def test_speed_map_beside_a_liquid():
+    """`study speed-map` beside a liquid: below the film's start (003 eq 6) the verdicts are the
+    balls' on the machine with the liquid's mass in the rotor; from there only the balanced
+    states are judged, each as balanced_stability judges it, and a range's edge is where its
+    growth rate changes sign. Measured on this machine: stable from 89.8 1/s (quick grid)."""
+    from autobalance.config import from_models, load_config
+    from autobalance.studies.speed_map import compute_speed_map
+
+    cfg = load_config("leblanc_003", list(BALLS))
+    s = cfg.system
+    w = [20.0, 40.0, 60.0, 100.0, 125.0]
+    ds = compute_speed_map(cfg, speeds=w, damping_factors=[1.0])
+    w0 = ds.attrs["film_from_rad_s"]
+    assert 20.0 < w0 < 40.0 and ds.attrs["method"] == "eigenvalues+films"
+    np.testing.assert_array_equal(ds["liquid_film"].values, [0, 1, 1, 1, 1])
+    pool = compute_speed_map(from_models(pool_machine(s), cfg.spin), speeds=[20.0],
+                             damping_factors=[1.0])
+    for v in ("balanced_exists", "balanced_stable", "n_isolated", "best_kind"):
+        assert ds[v].values[0] == pool[v].values[0], v
+    for k, wk in enumerate(w[1:], 1):
+        r = balanced_stability(s, wk, balanced(s, wk)[0])
+        assert ds["balanced_stable"].values[k] == int(r.stable), wk
+    assert list(ds["balanced_stable"].values[1:]) == [0, 0, 1, 1]
+    (lo, hi), = ds.attrs["stable_ranges_rad_s"].reshape(-1, 2)
+    assert hi == 125.0
+    assert balanced_stability(s, lo * 0.998, balanced(s, lo)[0]).growth_rate > 0
+    assert balanced_stability(s, lo * 1.002, balanced(s, lo)[0]).growth_rate < 0
+
+
+def test_speed_map_beside_a_liquid_refusals():
+    from autobalance.studies.speed_map import compute_speed_map
+
+    cfg = load_config("leblanc_003", list(BALLS))
+    with pytest.raises(ParameterError, match="^full"):
+        compute_speed_map(cfg, speeds=[50.0], full=False)
+    with pytest.raises(ParameterError, match="^balancer.eccentricity"):
+        compute_speed_map(load_config("leblanc_003", [*BALLS, "balancer.eccentricity=1 mm"]),
+                          speeds=[50.0])

@@ -6,6 +6,15 @@ profiles that share their start). Configs and presets: :mod:`autobalance.config`
 """
 __version__ = "0.1.0"
 
+import os as _os
+
+# One BLAS thread unless the user set it (before numpy's first import): the package's linear
+# algebra is many small matrices (Jacobians, propagators, <= a few hundred rows) where BLAS
+# threads gain nothing, and beside another busy process on 2 cores their spin-waits made the
+# liquid speed map 11x slower (70 s against 6.1 s; docs/numerics.md).
+for _v in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    _os.environ.setdefault(_v, "1")
+
 from .models import (BallBalancer, Gravity, InitialState, MotorDrive, ParameterError, Rotor,  # noqa: E402
                      SimOptions, SpeedProfile, Suspension, System)
 # Bind the functions after importing the submodule of the same name, so that the package

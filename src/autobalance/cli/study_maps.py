@@ -133,7 +133,8 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
 
     t0 = time.perf_counter()
     with guard():
-        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units,
+                              balls="beside")
         grid = None
         if speeds is not None:
             from .response import speed_grid
@@ -163,6 +164,10 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
                f"({res['method']}); natural frequencies "
                + ", ".join(du.fmt(w, "speed") for w in res["natural_frequencies_rad_s"])
                + f"; nominal {du.fmt(res['nominal_speed_rad_s'], 'speed')}")
+    if "film_from_rad_s" in res:
+        typer.echo(f"  beside the liquid: a pool below {du.fmt(res['film_from_rad_s'], 'speed')} "
+                   "(the balls' verdicts, with its mass), a film from there: only the balanced "
+                   "state is judged, with the films (docs/liquid.md sec. 3k)")
     c = res["counts"]
     typer.echo(f"  {c['speeds']} speeds: a balanced state at {c['balanced_exists']}, stable at "
                f"{c['balanced_stable']}; at most {c['max_isolated']} isolated equilibria and "

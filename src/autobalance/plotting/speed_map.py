@@ -66,6 +66,10 @@ def plot_speed_map(ds: xr.Dataset, speed_unit: str = "rad/s") -> Figure:
     for ax in (a1, a2):
         for j, wn in enumerate(np.unique(np.atleast_1d(ds.attrs.get("natural_frequencies_rad_s", [])))):
             ax.axvline(wn / k, color="k", ls="--", lw=0.8, label="natural frequency" if j == 0 and ax is a1 else None)
+        if "film_from_rad_s" in ds.attrs:           # beside a liquid: the films from here on
+            ax.axvline(float(ds.attrs["film_from_rad_s"]) / k, color="tab:blue", ls=":", lw=1.0,
+                       label="liquid a film (balanced states only, with the films)"
+                       if ax is a1 else None)
         if w.size > 1:
             ax.set_xlim(w[0], w[-1])
     a1.legend(fontsize=7, loc="best")

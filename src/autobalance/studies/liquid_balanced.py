@@ -47,8 +47,8 @@ BALANCED_TOL = 1e-9
 
 def require_balanced_liquid(system: System) -> System:
     """One-line errors for a machine of balls beside a liquid whose balanced state is not a
-    fixed point of the rotor frame (a horizontal axis, an anisotropic suspension, base motion,
-    an unbalance schedule); returns its ideal pool machine (the liquid's mass in the rotor's,
+    fixed point of the rotor frame with uniform films (a horizontal axis, an anisotropic
+    suspension, base motion, an unbalance schedule, a race eccentricity); returns its ideal pool machine (the liquid's mass in the rotor's,
     rolling resistance and dry friction off).
 
     Parameters
@@ -68,6 +68,10 @@ def require_balanced_liquid(system: System) -> System:
                              "needs balls and a [liquid] section for the balanced state beside "
                              "a liquid")
     require_vertical(system)
+    if system.balancer.eccentricity != 0.0:
+        raise ParameterError("balancer.eccentricity", system.balancer.eccentricity,
+                             "must be 0 beside a liquid: the balanced state then has a residual "
+                             "whirl, and the films are not uniform")
     pool = pool_machine(system)
     if not steady_rotor_frame(pool):
         s = system.suspension

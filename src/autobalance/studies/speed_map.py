@@ -37,6 +37,7 @@ import numpy as np
 
 from ..models import ParameterError
 from ..physics.equilibria import find_equilibrium_set
+from ..liquid.start import film_start_speed, pool_machine
 from ..physics.iso1940 import grade_value
 from .equilibria import full_stability, steady_rotor_frame
 from .common import load
@@ -64,6 +65,8 @@ RANGE_RTOL, RANGE_RTOL_QUICK = 1e-4, 1e-3
 ORBIT_DRIFT = 0.5
 #: Sample points per family, and how many of them the Floquet route judges [-].
 FAMILY_SAMPLES, FLOQUET_FAMILY_SAMPLES = 12, 4
+#: Film cells around each wall of a liquid beside the balls [-] (docs/liquid.md sec. 3j-3k).
+FILM_CELLS = 64
 
 
 def _validate(speeds, damping_factors):
@@ -107,10 +110,37 @@ def _stable(system, w: float, e, family: bool, full: bool, counts: dict) -> bool
     return bool(f["stable"])
 
 
+def _film_stable(system, w: float, p, family: bool, counts: dict, n_cells: int) -> bool:
+    """Verdict for the balanced state p beside a liquid whose liquid is a film at w [rad/s]:
+    the linearisation with the films (:func:`autobalance.studies.liquid_balanced.
+    balanced_stability`, ``n_cells`` [-] around each wall)."""
+    from .liquid_balanced import balanced_stability
+
+    try:
+        return balanced_stability(system, w, p.alpha, n_cells=n_cells, family=family).stable
+    except (ParameterError, RuntimeError, np.linalg.LinAlgError):
+        counts["failed"] += 1            # not a fixed point (e.g. balls in contact): no verdict
+        return False
+
+
 def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
-              balanced_only: bool = False) -> dict:
-    """Every equilibrium at speed w and its verdict (balanced states only if asked)."""
+              balanced_only: bool = False, n_cells: int = FILM_CELLS) -> dict:
+    """Every equilibrium at speed w and its verdict (balanced states only if asked). Beside a
+    liquid: below its film's start the liquid is a pool (its mass in the rotor's,
+    :func:`autobalance.liquid.start.pool_machine`) and the balls' verdicts hold; from there on
+    only the balanced states are judged, with the films (:func:`_film_stable`)."""
+    films = False
+    if system.liquid is not None:
+        films = w >= film_start_speed(system.liquid)
+        liquid, system = system, pool_machine(system)
+        balanced_only |= films
     es = find_equilibrium_set(system, w, method="closed_form", n_samples=FAMILY_SAMPLES)
+
+    def judge(p, family: bool) -> bool:
+        if films:
+            return _film_stable(liquid, w, p, family, counts, n_cells)
+        return _stable(system, w, p, family, full, counts)
+
     exists = stable = False
     n_iso = n_stable = 0
     best = (math.inf, 0)
@@ -122,7 +152,7 @@ def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
             continue
         n_iso += 1
         exists |= bal
-        if _stable(system, w, e, False, full, counts):
+        if judge(e, False):
             n_stable += 1
             stable |= bal
             best = min(best, (e.residual_unbalance, 1))
@@ -133,10 +163,10 @@ def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
             continue
         n_fam += 1
         exists = True
-        if floquet and full and len(reach) > FLOQUET_FAMILY_SAMPLES:
+        if (films or floquet and full) and len(reach) > FLOQUET_FAMILY_SAMPLES:
             idx = np.round(np.linspace(0, len(reach) - 1, FLOQUET_FAMILY_SAMPLES)).astype(int)
             reach = [reach[i] for i in idx]
-        ok = [p for p in reach if _stable(system, w, p, True, full, counts)]
+        ok = [p for p in reach if judge(p, True)]
         if ok:
             n_stable += 1
             stable = True
@@ -144,7 +174,8 @@ def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
     if not best[1] and math.isfinite(contact):
         best = (contact, 3)
     return {"exists": exists, "stable": stable, "n_isolated": n_iso, "n_families": n_fam,
-            "n_stable": n_stable, "residual": best[0] if best[1] else math.nan, "kind": best[1]}
+            "n_stable": n_stable, "residual": best[0] if best[1] else math.nan, "kind": best[1],
+            "films": films}
 
 
 def _refine(pred: Callable[[float], bool], speeds: np.ndarray, flags: np.ndarray, rtol: float) -> list:
@@ -225,16 +256,25 @@ def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None
     """
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)
     system = cfg.system
+    if system.liquid is not None:
+        from .liquid_balanced import require_balanced_liquid
+
+        require_balanced_liquid(system)
+        if not full:
+            raise ParameterError("full", full, "must be True beside a liquid: the kinetic-static "
+                                 "model has no films (docs/liquid.md sec. 3k)")
     w, factors = _validate(_default_speeds(cfg, quick) if speeds is None else speeds,
                            (DAMPING_FACTORS_QUICK if quick else DAMPING_FACTORS)
                            if damping_factors is None else damping_factors)
     if system.balancer.n_balls < 1:
         raise ParameterError("balancer.n_balls", system.balancer.n_balls, "needs at least one ball")
     rtol = RANGE_RTOL_QUICK if quick else RANGE_RTOL
-    floquet = not steady_rotor_frame(system)
+    floquet = not steady_rotor_frame(pool_machine(system))
     method = ("floquet" if floquet else "eigenvalues") if full else "kinetic_static"
+    if system.liquid is not None:
+        method += "+films"
     counts = {"failed": 0, "evaluations": 0}
     passes = [1.0] + [f for f in factors if f != 1.0]
     total = len(passes) * w.size
@@ -282,6 +322,13 @@ def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None
             rng[i, :len(r)] = r
     mt = system.total_mass
     ds = _dataset(rows, w, factors, main_stable, dmp_exists, dmp_stable, rng, mt)
+    if system.liquid is not None:
+        ds["liquid_film"] = ("speed", np.array([r["films"] for r in rows], np.int8),
+                             {"units": "1", "long_name": "the liquid is a film (003 eq 6): only "
+                                                         "the balanced states are judged, with "
+                                                         "the films"})
+        ds.attrs.update({"film_from_rad_s": float(film_start_speed(system.liquid)),
+                         "film_cells": FILM_CELLS})
     ds.attrs.update({
         "study": "speed_map", "machine": cfg.name or str(base), "n_balls": int(system.balancer.n_balls),
         "stable_ranges_rad_s": np.array(ranges, float).ravel(),
@@ -291,7 +338,10 @@ def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None
         "range_rtol": float(rtol), "method": method, "full": int(bool(full)), "quick": int(bool(quick)),
         "evaluations": int(counts["evaluations"]), "no_verdict": int(counts["failed"]),
         "definitions": "balanced: W = W* (zero residual without race eccentricity); only states "
-                       "without ball overlap count; best stable state: least residual among stable ones",
+                       "without ball overlap count; best stable state: least residual among stable ones"
+                       + ("; beside a liquid: a pool below film_from_rad_s (its mass in the "
+                          "rotor's), only the balanced states judged, with the films, above it"
+                          if system.liquid is not None else ""),
         "wall_s": float(time.perf_counter() - t0),
     })
     return ds
@@ -386,4 +436,5 @@ def speed_map_summary(ds: xr.Dataset) -> dict:
         "evaluations": int(a["evaluations"]),
         "no_verdict": int(a["no_verdict"]),
         "wall_s": float(a["wall_s"]),
+        **({"film_from_rad_s": float(a["film_from_rad_s"])} if "film_from_rad_s" in a else {}),
     }
