@@ -313,13 +313,16 @@ def test_simulation_studies_take_balls_beside_a_liquid():
 
 
 def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
-    from autobalance.studies.speed_map import compute_speed_map
+    from autobalance.studies.immobility import compute_immobility
+    from autobalance.studies.tolerances import compute_tolerances
 
-    with pytest.raises(ParameterError) as e:
-        compute_speed_map(machine())
-    msg = str(e.value)
-    assert msg.startswith("liquid") and "\n" not in msg
-    assert "unbalance-range, plateau, sensitivity and runup" in msg
+    for study in (compute_immobility, compute_tolerances):
+        with pytest.raises(ParameterError) as e:
+            study(machine())
+        msg = str(e.value)
+        assert msg.startswith("liquid") and "\n" not in msg
+        assert "unbalance-range, plateau, sensitivity and runup" in msg
+        assert "speed-map (vertical axis) and design" in msg
 
 
 def test_sensitivity_varies_the_liquid_viscosity_beside_balls():
@@ -330,3 +333,34 @@ def test_sensitivity_varies_the_liquid_viscosity_beside_balls():
     assert v["liquid viscosity x0.5"] == [f"liquid.kinematic_viscosity={0.5 * nu!r}"]
     assert v["liquid viscosity x2"] == [f"liquid.kinematic_viscosity={2 * nu!r}"]
     assert not any(k.startswith("liquid") for k in default_variants("vub_jeffcott_004"))
+
+
+@pytest.mark.slow
+def test_design_takes_balls_beside_a_liquid(tmp_path):
+    """`design` beside a liquid: each candidate keeps the liquid, every grade it ranks is the
+    candidate's own run (balls beside the liquid) from the start its sweep stored, and the
+    tolerances (closed forms without a liquid) are skipped with the reason."""
+    from autobalance.config import load_config
+    from autobalance.studies.design import DesignSpace, compute_design, design_summary
+    from autobalance.sweep.execute import open_sweep
+
+    std = ("profile.kind=std", "profile.nominal=100 1/s", "profile.runup_time=4 s",
+           "profile.duration=8 s", "profile.runup_fraction=0.6")
+    cfg = load_config("leblanc_003", [*BALLS, *std])
+    ds = compute_design(cfg, space=DesignSpace(n_balls=(2,), capacity_ratios=(1.4,),
+                                               profiles=("std",)),
+                        unbalance_range=(0.02, 0.02), n_unbalance=1, starts=2,
+                        refine_plateau=False, executor="serial", store_dir=tmp_path)
+    s = design_summary(ds)
+    assert "tolerances" not in s and s["tolerances_skipped"].startswith("beside a liquid")
+    sets = str(ds["sets"].values[0]).split("; ")
+    cand = load_config("leblanc_003", [*BALLS, *std, *sets, "rotor.unbalance=0.02 kg*m"])
+    assert cand.system.liquid is not None and cand.system.balancer.n_balls == 2
+    (store,) = [p for p in tmp_path.glob("design-*/*") if p.is_dir()]
+    raw = open_sweep(store)
+    for k in range(2):
+        a0 = tuple(float(x) for x in raw["start_angle"].isel(sample=k).values)
+        sim = simulate(cand.system, cand.spin, initial=InitialState(ball_angles=a0))
+        assert sim.liquid is not None
+        assert float(ds["grade_G"].values[0, 0, k]) == pytest.approx(
+            sim.summary()["final"]["grade_G_mm_s"], rel=1e-12)

@@ -83,7 +83,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     t0 = time.perf_counter()
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units)
+                              scheduler, store, units, balls="beside")
         if not (math.isfinite(confidence) and 0 < confidence < 1):
             raise ConfigError(f"--confidence = {confidence:g}: must be within (0, 1), e.g. 0.95")
         rng = None
@@ -165,6 +165,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    f"G{r['worst_quantile_grade_G_mm_s']:.3g}, margin "
                    f"{r['margin_grade_G_mm_s']:+.2f} mm/s" + ("  (Pareto)" if r["pareto"] else ""))
     t = res.get("tolerances")
+    if res.get("tolerances_skipped"):
+        typer.echo(f"  no tolerances: {res['tolerances_skipped']}")
     if t:
         if t["feasible"]:
             typer.echo(f"  to build {t['design']} for a worst case within {grade_text(G)}: ring "

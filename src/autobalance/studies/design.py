@@ -45,6 +45,9 @@ __all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary
 
 #: TSR plateau of the candidate profiles as a multiple of the first natural frequency [-].
 PLATEAU_RATIO = 1.06
+#: Why a design beside a liquid has no tolerances (docs/liquid.md sec. 3i).
+TOLERANCES_BESIDE_LIQUID = ("beside a liquid: the tolerance closed forms (000 eq 56-66) have no "
+                            "liquid; judge a built design by simulation (study sensitivity)")
 
 
 @dataclass(frozen=True)
@@ -183,12 +186,12 @@ def _candidate(cfg, N, m, R, ratio, prof, ball_sets, variants, plateau_ratio) ->
     ``plateau_ratio`` x the first natural frequency of the machine with the candidate's balls
     (None when that plateau is not below the nominal speed)."""
     if prof == "tsr":
-        fn = load(cfg, ball_sets).system.natural_frequencies[0]
+        fn = load(cfg, ball_sets, allow_liquid=True).system.natural_frequencies[0]
         variants = profile_variants(cfg, plateau_ratio, natural_frequency=fn)
         if "tsr" not in variants:
             return None
     sets = list(ball_sets) + list(variants[prof])
-    cand = load(cfg, sets)
+    cand = load(cfg, sets, allow_liquid=True)
     tag = prof if prof != "tsr" or plateau_ratio == PLATEAU_RATIO else f"tsr{plateau_ratio:.3g}"
     return {"name": f"{N}x{1e3 * m:.3g}g-R{1e3 * R:.3g}mm-{tag}", "n_balls": N, "ball_mass": m,
             "race_radius": R, "capacity": N * m * R, "capacity_ratio": ratio, "profile": prof,
@@ -253,7 +256,7 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)     # simulations; beside a liquid too (sec. 3i)
     if not (0.0 < confidence < 1.0):
         raise ParameterError("confidence", confidence, "must be within (0, 1), e.g. 0.95")
     for name, v in (("n_unbalance", n_unbalance), ("starts", starts)):
@@ -306,7 +309,8 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
     # the tolerances to build the recommended design with (the cheapest that meets the target,
     # else the one closest to it): study tolerances for the same grade (closed form)
     pick = int(order[0]) if meets.any() else int(np.argmin(worst))
-    tol = _design_tolerances(cands[pick]["config"], grade) if tolerances else {}
+    tol = (_design_tolerances(cands[pick]["config"], grade)
+           if tolerances and cfg.system.liquid is None else {})
     ds = xr.Dataset(
         {"grade_G": (("design", "unbalance", "sample"), g, {"units": "mm/s",
                                                             "long_name": "grade at the last read-out"}),
@@ -337,6 +341,8 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
                      **{f"plateau_{k}": v for k, v in refine.items()
                         if k not in ("candidate", "simulations")},
                      "tolerances_design": str(cands[pick]["name"]) if tol else "",
+                     "tolerances_skipped": TOLERANCES_BESIDE_LIQUID
+                     if tolerances and cfg.system.liquid is not None else "",
                      **{f"tolerance_{k}": v for k, v in tol.items()},
                      "wall_s": time.perf_counter() - t0})
     return ds
@@ -458,6 +464,8 @@ def design_summary(ds: xr.Dataset, top: int = 5) -> dict:
             "mean_p95_grade_G_mm_s": np.atleast_1d(a["plateau_mean_p95_grade_G_mm_s"]),
             "recommended_plateau_ratio": float(a["plateau_recommended_ratio"]),
             "at_grid_edge": bool(a["plateau_at_grid_edge"])}
+    if a.get("tolerances_skipped"):
+        out["tolerances_skipped"] = str(a["tolerances_skipped"])
     if a.get("tolerances_design"):
         out["tolerances"] = {"design": a["tolerances_design"],
                              "feasible": bool(a["tolerance_feasible"]),
