@@ -182,3 +182,42 @@ def test_speed_map_beside_a_liquid_refusals():
     with pytest.raises(ParameterError, match="^balancer.eccentricity"):
         compute_speed_map(load_config("leblanc_003", [*BALLS, "balancer.eccentricity=1 mm"]),
                           speeds=[50.0])
+
+
+def test_machine_stability_over_speed():
+    """balanced_machine_stability: below the film's start the balls' linearised model of the
+    pool machine (its largest multiplier over a revolution), from there balanced_stability; NaN
+    where the balls' capacity is short. Measured: unstable from the grid's start to 89.8 1/s."""
+    from autobalance.studies.liquid_balanced import balanced_machine_stability
+
+    s = machine()
+    r = balanced_machine_stability(s, [15.0, 60.0, 100.0])
+    assert r["film_from_rad_s"] == pytest.approx(22.66, abs=0.01)
+    lf = linearised_full(pool_machine(s), 15.0, r["ball_angles_rad"][0])
+    assert r["growth_rate_1_s"][0] == pytest.approx(
+        np.log(lf["max_modulus"]) * 15.0 / (2 * np.pi), rel=1e-12)
+    for k, w in ((1, 60.0), (2, 100.0)):
+        assert r["growth_rate_1_s"][k] == pytest.approx(
+            balanced_stability(s, w, r["ball_angles_rad"][k]).growth_rate, rel=1e-12)
+    assert r["growth_rate_1_s"][0] > 0 and r["growth_rate_1_s"][1] > 0 > r["growth_rate_1_s"][2]
+    short = balanced_machine_stability(machine("balancer.ball_mass=0.05 kg"), [60.0])
+    assert np.isnan(short["growth_rate_1_s"]).all() and short["unstable_ranges_rad_s"] == []
+
+
+@pytest.mark.slow
+def test_liquid_stability_cli_takes_balls(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    png = tmp_path / "s.png"
+    r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
+                        "leblanc_003", *[f"--set={x}" for x in BALLS], "--omega",
+                        "60:120 1/s:7", "--json", "--plot", str(png)],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert len(d["growth_rate_1_s"]) == 7 and len(d["ball_angles_rad"]) == 7
+    assert png.stat().st_size > 0 and "balanced state" in d["model"]
+    (lo, hi), = d["unstable_ranges_rad_s"]
+    assert lo == 60.0 and 85.0 < hi < 95.0

@@ -512,7 +512,7 @@ def spinup(source: Annotated[str, typer.Argument(
 @app.command()
 def stability(source: Annotated[str, typer.Argument(
                   metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
-                  "axis, no balls).")] = "leblanc_003",
+                  "axis), alone or beside balls.")] = "leblanc_003",
               sets: SetOpt = None,
               omega: Annotated[str, typer.Option(help="Speeds.")] = "10:120 1/s:45",
               cells: Annotated[int, typer.Option(
@@ -520,12 +520,14 @@ def stability(source: Annotated[str, typer.Argument(
               plot: PlotOpt = None, as_json: JsonOpt = False):
     """Linear stability of the centred state (no unbalance) against speed: the growth rate of
     the least stable perturbation of the rotor with its wall films and the unstable ranges
-    (Kollmann's band of partly filled rotors; docs/liquid.md sec. 3j).\f
+    (Kollmann's band of partly filled rotors; docs/liquid.md sec. 3j). With balls beside the
+    liquid: the balanced state's, balls and films together (sec. 3k).\f
 
     Parameters
     ----------
     source : str
-        Preset or config with a ``[liquid]`` section on a vertical axis.
+        Preset or config with a ``[liquid]`` section on a vertical axis (balls beside it: the
+        balanced state).
     sets : list of str
         ``--set`` overrides.
     omega : str
@@ -538,14 +540,22 @@ def stability(source: Annotated[str, typer.Argument(
         One JSON object.
     """
     from ..liquid.stability import machine_stability
+    from ..studies.liquid_balanced import balanced_machine_stability
 
     _check_plot(plot)
     cfg = load_machine(source, sets, balls="liquid")
     ws = _list(omega, "speed", "omega")
-    res = machine_stability(cfg.system, ws, cells)
-    out = {"system": cfg.system.name,
-           "model": "the film runs' step linearised about the centred state "
-                    "(autobalance.liquid.stability)", **res}
+    balls = cfg.system.balancer.n_balls > 0
+    if balls:               # the balanced state of the balls beside the liquid (sec. 3k)
+        res = balanced_machine_stability(cfg.system, ws, cells)
+        model = ("the run of balls beside the liquid linearised about the balanced state "
+                 "(autobalance.studies.liquid_balanced); below the film's start the balls' "
+                 "linearised model with the liquid as a pool")
+    else:
+        res = machine_stability(cfg.system, ws, cells)
+        model = ("the film runs' step linearised about the centred state "
+                 "(autobalance.liquid.stability)")
+    out = {"system": cfg.system.name, "model": model, **res}
     if plot:
         from ..plotting.liquid import stability_figure
 
@@ -556,7 +566,12 @@ def stability(source: Annotated[str, typer.Argument(
         w0 = res["film_from_rad_s"]
         verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
             res["growth_rate_1_s"]).any() else "not decided (no speed with a film)")
-        typer.echo(f"{cfg.system.name}: centred state {verdict} over {ws[0]:.4g}-{ws[-1]:.4g} "
+        state = "balanced state of the balls" if balls else "centred state"
+        if balls:
+            verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
+                res["growth_rate_1_s"]).any() else "not decided (no balanced state: the "
+                "balls' capacity is short)")
+        typer.echo(f"{cfg.system.name}: {state} {verdict} over {ws[0]:.4g}-{ws[-1]:.4g} "
                    f"1/s (a film from {w0:.4g} 1/s; {cells} cells; omega_n "
                    f"{res['omega_n_rad_s']:.4g} 1/s)")
         if plot:

@@ -568,10 +568,13 @@ def stability_figure(res: dict, title: str = "") -> Figure:
     Parameters
     ----------
     res : dict
-        ``machine_stability``'s result (speeds [rad/s], growth rates [1/s]).
+        ``machine_stability``'s result (speeds [rad/s], growth rates [1/s]); with balls beside
+        the liquid ``balanced_machine_stability``'s (its ``ball_angles_rad``: the balanced
+        state).
     title : str
         Figure title.
     """
+    state = "balanced state of the balls" if "ball_angles_rad" in res else "centred state"
     fig = _new_figure((8, 4.5))
     ax = fig.subplots()
     ax.plot(res["omega_rad_s"], res["growth_rate_1_s"], "o-", ms=3)
@@ -582,7 +585,7 @@ def stability_figure(res: dict, title: str = "") -> Figure:
     ax.axvline(res["film_from_rad_s"], color="tab:green", ls=":", lw=1.0,
                label="film from (003 eq 6; a pool below)")
     ax.set(xlabel="speed Ω [1/s]", ylabel="growth rate [1/s]",
-           title=f"centred state, {res['cells']} cells per wall (shaded: unstable)")
+           title=f"{state}, {res['cells']} cells per wall (shaded: unstable)")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     if title:

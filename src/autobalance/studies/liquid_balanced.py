@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 
     from ..models import System
 
-__all__ = ["balanced_stability", "require_balanced_liquid"]
+__all__ = ["balanced_machine_stability", "balanced_stability", "require_balanced_liquid"]
 
 #: The balanced state's residual force, scaled by (L w^2, w^2), above which ``alpha`` is refused [-].
 BALANCED_TOL = 1e-9
@@ -192,3 +192,71 @@ def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
     n_neutral = sum(max(1, c.partitions) for c in ch) + (N - 2 if family else 0)
     return RingStability(W, linear_modes(step, x0, scale, dt, n_neutral, "balanced_stability"),
                          dt)
+
+
+def _balanced_states(system, w: float) -> list:
+    """(alpha [rad], family) of every reachable balanced state at w [rad/s] of the machine with
+    its liquid as a pool (the balls' closed forms; a family's four sample points)."""
+    from ..liquid.start import pool_machine
+    from ..physics.equilibria import find_equilibrium_set
+
+    es = find_equilibrium_set(pool_machine(system), w, method="closed_form", n_samples=4)
+    out = [(e.alpha, False) for e, b in zip(es.isolated, es.balanced) if b and not e.overlap]
+    return out + [(p.alpha, True) for f in es.families for p in f.points if not p.overlap]
+
+
+def balanced_machine_stability(system: System, speeds: npt.ArrayLike,
+                               n_cells: int = 64) -> dict:
+    """The balanced state of balls beside a liquid over ``speeds``: the growth rate and whirl
+    frequency of its least stable perturbation (of its most stable sample on a family), the
+    unstable ranges, and the balls' angles. Below the film's start (003 eq 6) the liquid is a
+    pool and the balls' linearised full model of the pool machine decides
+    (:func:`autobalance.studies.equilibria.linearised_full`); from there
+    :func:`balanced_stability`.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Balls and a ``[liquid]`` section (:func:`require_balanced_liquid`).
+    speeds : array_like
+        Increasing speeds [rad/s], > 0.
+    n_cells : int
+        Cells around each wall [-].
+
+    Returns
+    -------
+    dict
+        As :func:`autobalance.liquid.stability.machine_stability` (omega_rad_s,
+        growth_rate_1_s, whirl_frequency_rad_s, film_from_rad_s, unstable_ranges_rad_s,
+        omega_n_rad_s, cells; NaN where no balanced state exists: the balls' capacity is short),
+        and ball_angles_rad (speed, ball).
+    """
+    from ..liquid.start import film_start_speed
+    from ..liquid.stability import unstable_ranges
+    from .equilibria import linearised_full
+
+    pool = require_balanced_liquid(system)
+    W = np.asarray(speeds, float)
+    if W.ndim != 1 or W.size < 1 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
+        raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)],
+                             "must be increasing speeds > 0 [rad/s]")
+    N = system.balancer.n_balls
+    w0 = film_start_speed(system.liquid)
+    g, f = np.full(W.size, np.nan), np.full(W.size, np.nan)
+    angles = np.full((W.size, N), np.nan)
+    for i, w in enumerate(W):
+        for a, fam in _balanced_states(system, float(w)):
+            if w >= w0:
+                r = balanced_stability(system, w, a, n_cells=n_cells, family=fam)
+                gi, fi = r.growth_rate, r.whirl_frequency
+            else:
+                lf = linearised_full(pool, w, a, family=fam)
+                gi = math.log(max(lf["max_modulus"], 1e-300)) * w / (2 * math.pi)
+                lam = lf["eigenvalues_1_s"]
+                fi = float(abs(lam[np.argmin(np.abs(lam.real - gi))].imag))
+            if not np.isfinite(g[i]) or gi < g[i]:
+                g[i], f[i], angles[i] = gi, fi, a
+    return {"omega_rad_s": W, "growth_rate_1_s": g, "whirl_frequency_rad_s": f,
+            "film_from_rad_s": w0, "unstable_ranges_rad_s": unstable_ranges(W, g),
+            "omega_n_rad_s": float(system.natural_frequencies[0]), "cells": int(n_cells),
+            "ball_angles_rad": angles}
