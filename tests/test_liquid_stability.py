@@ -112,6 +112,12 @@ def test_cli_end_to_end(tmp_path):
     assert len(d["growth_rate_1_s"]) == 13 and png.stat().st_size > 0
     lo, hi = d["unstable_ranges_rad_s"][0]
     assert 45.0 < lo < 60.0 < hi < 100.0
+    # the text gives speeds in the unit --omega was written in
+    t = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
+                        "leblanc_003", "--omega", "400:900 rpm:6"],
+                       capture_output=True, text=True, timeout=600)
+    assert t.returncode == 0, t.stderr
+    assert "rpm - " in t.stdout and "1/s" not in t.stdout
     bad = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
                           "leblanc_washer"], capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()

@@ -562,7 +562,14 @@ def stability(source: Annotated[str, typer.Argument(
         stability_figure(res, f"{cfg.system.name}: linear stability").savefig(plot, dpi=120)
         out["plot"] = str(plot)
     if not as_json:
-        rng = ", ".join(f"{lo:.4g}-{hi:.4g} 1/s" for lo, hi in res["unstable_ranges_rad_s"])
+        from ..config.display import display_units
+
+        # speeds in the unit --omega was written in (e.g. rpm), else as the config writes them
+        unit = omega.strip().split(",")[-1].split(":")[-2 if omega.count(":") == 2 else -1]
+        unit = unit.strip().partition(" ")[2].strip()
+        du = display_units(cfg, f"speed={unit}" if unit else None)
+        sp = lambda x: du.fmt(x, "speed")       # noqa: E731
+        rng = ", ".join(f"{sp(lo)} - {sp(hi)}" for lo, hi in res["unstable_ranges_rad_s"])
         w0 = res["film_from_rad_s"]
         verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
             res["growth_rate_1_s"]).any() else "not decided (no speed with a film)")
@@ -571,9 +578,8 @@ def stability(source: Annotated[str, typer.Argument(
             verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
                 res["growth_rate_1_s"]).any() else "not decided (no balanced state: the "
                 "balls' capacity is short)")
-        typer.echo(f"{cfg.system.name}: {state} {verdict} over {ws[0]:.4g}-{ws[-1]:.4g} "
-                   f"1/s (a film from {w0:.4g} 1/s; {cells} cells; omega_n "
-                   f"{res['omega_n_rad_s']:.4g} 1/s)")
+        typer.echo(f"{cfg.system.name}: {state} {verdict} over {sp(ws[0])} - {sp(ws[-1])} "
+                   f"(a film from {sp(w0)}; {cells} cells; omega_n {sp(res['omega_n_rad_s'])})")
         if plot:
             typer.echo(f"plot: {plot}")
         return
