@@ -496,12 +496,16 @@ def spinup(source: Annotated[str, typer.Argument(
         fig.savefig(plot, dpi=120)
         out["plot"] = str(plot)
     if not as_json:
+        from ..config.display import display_units
+
+        du = display_units(cfg)                 # speeds as the config writes them
         for c in chambers:
             e = c["entrainment_speed_rad_s"]
             typer.echo(f"R = {c['chamber_radius_m']:g} m, V = {c['volume_m3'] * 1e6:.4g} ml: "
-                       + (f"entrained (lid) at {e:.3f} 1/s, t = {c['entrainment_time_s']:.3f} s"
+                       + (f"entrained (lid) at {du.fmt(e, 'speed', 5)}, t = "
+                          f"{c['entrainment_time_s']:.3f} s"
                           if e is not None else "not entrained by the profile's end")
-                       + f"; 003 eq 6: {c['quasi_static']['omega_0_rad_s']:.3f} 1/s")
+                       + f"; 003 eq 6: {du.fmt(c['quasi_static']['omega_0_rad_s'], 'speed', 5)}")
         if plot:
             typer.echo(f"plot: {plot}")
         return
