@@ -36,9 +36,15 @@ from .load import Config, _read, from_dict, load_config, source_comments
 from .overrides import apply_overrides
 from .presets import list_presets, preset_path
 from .schema import PROFILE_KINDS, SECTIONS, F
-from .units import KINDS, UNIT_LABEL, ConfigError, parse_quantity, ureg
+from .units import KINDS, UNIT_LABEL, ConfigError, parse_quantity, registry
+
+
+def __getattr__(name: str):
+    if name == "ureg":                  # the unit registry, made on first use (units.registry)
+        return registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["KINDS", "PROFILE_KINDS", "SECTIONS", "UNIT_LABEL", "Config", "ConfigError", "F",
            "_read", "apply_overrides", "describe", "from_dict", "from_models", "list_presets",
-           "load_config", "parse_quantity", "preset_path", "replace_values", "source_comments",
-           "ureg"]
+           "load_config", "parse_quantity", "preset_path", "registry", "replace_values",
+           "source_comments", "ureg"]

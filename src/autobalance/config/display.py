@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from .schema import PROFILE_KINDS, SECTIONS
-from .units import KINDS, TWO_PI, ConfigError, ureg
+from .units import KINDS, TWO_PI, ConfigError, registry
 
 if TYPE_CHECKING:
     from .load import Config
@@ -54,15 +54,15 @@ _NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
 
 def _is_hertz(unit: str) -> bool:
     """Whether a speed unit counts cycles (Hz, kHz, ...): shown as rad/s / 2 pi."""
-    return "hertz" in str(ureg.parse_units(unit))
+    return "hertz" in str(registry().parse_units(unit))
 
 
 @functools.lru_cache(maxsize=256)
 def _factor(unit: str, kind: str) -> float:
     """Display value per SI value of ``kind`` in ``unit`` (pint parses slowly: cached)."""
     if kind == "speed" and _is_hertz(unit):
-        return float(ureg.Quantity(1.0 / TWO_PI, "Hz").to(unit).magnitude)
-    return float(ureg.Quantity(1.0, DISPLAY_KINDS[kind]).to(unit).magnitude)
+        return float(registry().Quantity(1.0 / TWO_PI, "Hz").to(unit).magnitude)
+    return float(registry().Quantity(1.0, DISPLAY_KINDS[kind]).to(unit).magnitude)
 
 
 def _check_unit(text: Any, kind: str) -> str | None:
@@ -71,8 +71,8 @@ def _check_unit(text: Any, kind: str) -> str | None:
         return None
     text = text.strip()
     try:
-        unit = ureg.parse_units(text)
-        ureg.Quantity(1.0, DISPLAY_KINDS[kind]).to(unit)
+        unit = registry().parse_units(text)
+        registry().Quantity(1.0, DISPLAY_KINDS[kind]).to(unit)
     except Exception:   # pint raises several types (UndefinedUnitError, DimensionalityError...)
         return None
     return text if str(unit) != "dimensionless" else None
@@ -162,7 +162,7 @@ def _parse_choice(choice: str) -> dict[str, str]:
             raise _bad_choice(choice, f"kind {kind!r} given twice")
         if kind == "grade":
             if _check_unit(unit, "grade") is None or not math.isclose(
-                    ureg.Quantity(1.0, unit).to("mm/s").magnitude, 1.0):
+                    registry().Quantity(1.0, unit).to("mm/s").magnitude, 1.0):
                 raise _bad_choice(choice, f"grade = {unit!r}: the ISO 1940 grade G is always "
                                           "shown in mm/s")
         elif _check_unit(unit, kind) is None:
