@@ -32,7 +32,7 @@ def machine(*sets):
 def test_massless_liquid_is_the_ball_run():
     """A liquid of density 1e-3 kg/m^3 (mass 1.5e-7 kg) beside the balls: the run is the ball
     run without it, stepped at the films' pace (a pause every film step) instead of its own.
-    Measured: 1.7e-3 of the peak amplitude, 9.7e-3 rad, 0.23 mm/s. The tolerance is the ball
+    Measured (stop 30): 0.92e-3 of the peak amplitude, 5.1e-3 rad, 0.12 mm/s. The tolerance is the ball
     run's own sensitivity to its step sequence on this machine (slipping balls): the same run
     with a knot every millisecond of the same profile moves by 1.5e-3, 5.7e-3 rad and 0.16
     mm/s, and rtol 1e-6 -> 1e-7 by 1.1e-3, 2.6e-3 rad and 0.12 mm/s."""
@@ -53,8 +53,8 @@ def test_locked_balls_are_the_film_rotor():
     settles, at a constant 40 1/s, on the state of the liquid-alone model (sw_coupled: the
     Jeffcott rotor with D + 2 m R cos 120 deg and the balls' mass). The two couple the same
     film to the rotor through different rotor integrators (RK4 sub-steps / DOPRI5 at rtol);
-    measured 1.6e-4 in |w| and 5e-3 of |U| after 8 s (both within 0.8 % of the quasi-static
-    closed form)."""
+    measured (stop 30) 2.4e-4 in |w| and 6.6e-3 of |U| after 8 s (|w| within 0.8 % of the
+    quasi-static closed form)."""
     prof = ("profile.kind=constant", "profile.speed=40 1/s", "profile.duration=8 s")
     cfg = machine("balancer.rolling_resistance=1", "balancer.stiction=1",
                   "balancer.contact=none", *prof)
@@ -76,8 +76,8 @@ def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
     the chamber about the rotation axis, static sag included, and gravity's offset of their
     potential): at a constant 25 1/s, after 30 s (the liquid's slow mode needs it), the
     revolution-averaged whirl, the liquid's synchronous moment and the grade equal the
-    liquid-alone model's. Measured (relative) 1.1e-3 in |w|, 6.5e-3 in U (2.4e-3 in |U|) and
-    1.7e-4 in G; after 15 s still converging: 4.7e-3, 5 % in |U|, 1.6 % in G."""
+    liquid-alone model's. Measured (relative, stop 30) 1.0e-3 in |w|, 8.0e-3 in U (4.8e-3 in
+    |U|) and 5.4e-4 in G; after 15 s still converging: 5.0e-3, 4.1 % in U, 1.1 % in G."""
     from autobalance.liquid.simulate import revolution_average
 
     m, R, a = 0.2, 0.27, 2 * np.pi / 3
@@ -221,7 +221,8 @@ def test_liquid_moment_does_not_depend_on_the_output_spacing():
     """The liquid's synchronous moment is the revolution average on the films' own output grid
     (8 samples per revolution at least), not on the balls' output times: with the checkpoints
     only (save_dt = -1) it averaged two samples and gave G 18.80 instead of 15.99 mm/s with
-    exit 0. Now the final grade and moment are the same for every output spacing."""
+    exit 0 (a run with damping 0.01 N*m*s/rad to 100 1/s; 15.05 mm/s since stop 30's kick
+    fix). Now the final grade and moment are the same for every output spacing."""
     import dataclasses as dc
 
     cfg = machine(*SHORT)
