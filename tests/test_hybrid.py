@@ -196,7 +196,7 @@ def test_sweep_refuses_a_horizontal_axis_up_front(tmp_path):
 def test_study_start_positions_takes_balls_beside_a_liquid(tmp_path):
     """The start-position Monte Carlo (simulations only) takes balls beside a liquid: each
     stored run is the machine's own simulate run from that start; studies with ball-only closed
-    forms (immobility) still refuse the liquid in one line."""
+    forms (tolerances) still refuse the liquid in one line."""
     nc = tmp_path / "mc.nc"
     sets = [f"--set={s}" for s in (*BALLS, *SHORT)]
     r = subprocess.run([sys.executable, "-m", "autobalance", "study", "start-positions",
@@ -211,7 +211,7 @@ def test_study_start_positions_takes_balls_beside_a_liquid(tmp_path):
         g = float(ds["grade_G"].isel(sample=1).values.ravel()[-1])
     sim = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=a0))
     assert g == pytest.approx(sim.summary()["final"]["grade_G_mm_s"], rel=1e-12)
-    bad = subprocess.run([sys.executable, "-m", "autobalance", "study", "immobility",
+    bad = subprocess.run([sys.executable, "-m", "autobalance", "study", "tolerances",
                           "leblanc_003", *sets], capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid")
@@ -314,16 +314,14 @@ def test_simulation_studies_take_balls_beside_a_liquid():
 
 
 def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
-    from autobalance.studies.immobility import compute_immobility
     from autobalance.studies.tolerances import compute_tolerances
 
-    for study in (compute_immobility, compute_tolerances):
-        with pytest.raises(ParameterError) as e:
-            study(machine())
-        msg = str(e.value)
-        assert msg.startswith("liquid") and "\n" not in msg
-        assert "unbalance-range, plateau, sensitivity and runup" in msg
-        assert "speed-map (vertical axis) and design" in msg
+    with pytest.raises(ParameterError) as e:
+        compute_tolerances(machine())
+    msg = str(e.value)
+    assert msg.startswith("liquid") and "\n" not in msg
+    assert "unbalance-range, plateau, sensitivity and runup" in msg
+    assert "speed-map and immobility (vertical axis) and design" in msg
 
 
 def test_sensitivity_varies_the_liquid_viscosity_beside_balls():

@@ -221,3 +221,42 @@ def test_liquid_stability_cli_takes_balls(tmp_path):
     assert png.stat().st_size > 0 and "balanced state" in d["model"]
     (lo, hi), = d["unstable_ranges_rad_s"]
     assert lo == 60.0 and 85.0 < hi < 95.0
+
+
+@pytest.mark.slow
+def test_immobility_beside_a_liquid():
+    """`study immobility` beside a liquid: the balls at rest on the steady orbit with the
+    quasi-static liquid (studies/immobility.liquid_response). Below the film's start the liquid
+    is a pool and the shares are the pool machine's (the Jeffcott orbit is linear in U_t, so
+    the table's interpolation is exact); the response at a tabulated magnitude is
+    chambers_steady_response's, turned to U_t's angle; G* is NaN."""
+    from autobalance.config import from_models
+    from autobalance.liquid.models import VerticalRotor
+    from autobalance.liquid.start import film_start_speed
+    from autobalance.liquid.steady import chambers_steady_response
+    from autobalance.studies.immobility import compute_immobility, liquid_response
+
+    cfg = load_config("leblanc_003", [*BALLS, "balancer.rolling_resistance=0.01"])
+    s = cfg.system
+    w0 = film_start_speed(s.liquid)
+    f = np.array([0.5, 0.9, 1.5, 2.4, 3.0]) * w0 / (2 * np.pi)        # [Hz]
+    ds = compute_immobility(cfg, speeds_hz=f, n_conf=24)
+    pool = compute_immobility(from_models(pool_machine(s), cfg.spin), speeds_hz=f, n_conf=24)
+    below = f * 2 * np.pi < w0
+    np.testing.assert_allclose(ds["immobility"].values[..., below],
+                               pool["immobility"].values[..., below], atol=1e-12)
+    assert not np.allclose(ds["immobility"].values[..., ~below],      # the film matters
+                           pool["immobility"].values[..., ~below])
+    assert np.isnan(ds["G_stick"].values).all() and np.isfinite(pool["G_stick"].values).all()
+    assert "quasi-static liquid" in ds.attrs["method"]
+    # the table at a tabulated magnitude, turned to U_t's angle
+    W = 2 * np.pi * f
+    resp = liquid_response(s, W, 5)
+    D = (abs(s.rotor.unbalance) + s.balancer.capacity) / 2          # the table's middle point
+    r, sus, b = s.rotor, s.suspension, s.balancer
+    ch = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume) for c in s.liquid.chambers]
+    ref = chambers_steady_response(VerticalRotor(r.mass + b.total_mass, sus.kx, sus.cx, D), ch,
+                                   s.liquid.density, W)["deflection_m"]
+    for k, w in enumerate(W):
+        got = resp(w, np.array([D * np.exp(0.7j)]))[0]
+        assert got == pytest.approx(ref[k] * np.exp(0.7j), rel=1e-12)

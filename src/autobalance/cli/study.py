@@ -443,7 +443,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
 
     t0 = time.perf_counter()
     with guard():
-        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units)
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units,
+                              balls="beside")
         s = cfg.system
         gi = (float(grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed))
               if g_ini is None else g_ini)
@@ -482,6 +483,11 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                f"at {du.fmt(res['least_immobility_speed_rad_s'], 'speed')}; natural frequency "
                f"{du.fmt(res['natural_frequency_rad_s'], 'speed')}")
     gs = res["stick_threshold_at_nominal_grade_G_mm_s"]
+    if cfg.system.liquid is not None:
+        typer.echo("  beside the liquid: the balls at rest on the rotor's steady orbit with the "
+                   "quasi-static liquid (docs/liquid.md sec. 3k); no stick threshold G* (a "
+                   "closed form of the balls alone)")
+        return
     typer.echo(f"  stick threshold at the nominal speed: G*{gs:.3g} mm/s "
                f"({'below' if gs <= G else 'above'} the target {grade_text(G)}): balls that "
                "stop at this speed leave about this grade")

@@ -8,7 +8,7 @@ The compiled kernel's stuck-ball friction agrees (tests/test_tsr_004.py, via
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -25,7 +25,8 @@ __all__ = ["IMMOBILITY_BYTES", "IMMOBILITY_BYTES_PER_BALL", "IMMOBILITY_COST_S",
            "tangential_force"]
 
 
-def steady_deflection(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
+def steady_deflection(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike,
+                      response: Callable | None = None):
     """Rotor-frame deflection w = u + i v [m] on the steady orbit with the balls at rest.
 
     Jeffcott rotor at constant speed (004 eq 8-9 with all time derivatives zero in the rotor
@@ -41,18 +42,25 @@ def steady_deflection(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike
         Spin speed Omega [rad/s]; broadcast against ``alpha[..., 0]``.
     alpha : array_like (..., N)
         Ball angles from the unbalance [rad].
+    response : callable or None
+        (speed [rad/s], U_t [kg*m, complex]) -> w [m]: another machine's steady orbit for the
+        same U_t (a liquid beside the balls: :func:`autobalance.studies.immobility.
+        liquid_response`); None: the Jeffcott response above.
 
     Returns
     -------
     ndarray of complex
         w [m], shape broadcast(speed, alpha[..., 0]).
     """
+    if response is not None:
+        return response(speed, residual_unbalance(system, alpha))
     s = system.suspension
     if s.kx != s.ky or s.cx != s.cy:
         raise ValueError("steady_deflection: needs an isotropic (Jeffcott) suspension")
     return synchronous_orbit(system, np.asarray(speed, float), residual_unbalance(system, alpha))[0]
 
-def tangential_force(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
+def tangential_force(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike,
+                     response: Callable | None = None):
     """Tangential vibratory force on each ball at rest [N], 004 eq (1): F_t = m z Omega^2 sin(gamma).
 
     z e^{i gamma} = w e^{-i alpha_i} is the deflection seen from ball i (gamma measured from the
@@ -69,6 +77,8 @@ def tangential_force(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike)
         Spin speed Omega [rad/s]; broadcast against ``alpha[..., 0]``.
     alpha : array_like (..., N)
         Ball angles from the unbalance [rad].
+    response : callable or None
+        The steady orbit, as :func:`steady_deflection` takes it.
 
     Returns
     -------
@@ -76,12 +86,13 @@ def tangential_force(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike)
         F_t [N].
     """
     a = np.asarray(alpha, float)
-    w = np.asarray(steady_deflection(system, speed, a))
+    w = np.asarray(steady_deflection(system, speed, a, response))
     W = np.asarray(speed, float)
     m = system.balancer.masses
     return m * (W * W)[..., None] * np.imag(w[..., None] * np.exp(-1j * a))
 
-def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
+def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike,
+                  response: Callable | None = None):
     """True where every ball at rest stays stuck: |F_t| <= mu_s N with N = m R Omega^2 (004 eq 1
     against Coulomb friction mu F_n, 004 sec. 3.1; normal force of a ball at rest on the race).
 
@@ -97,6 +108,8 @@ def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
         Spin speed Omega [rad/s]; broadcast against ``alpha[..., 0]``.
     alpha : array_like (..., N)
         Ball angles from the unbalance [rad].
+    response : callable or None
+        The steady orbit, as :func:`steady_deflection` takes it.
 
     Returns
     -------
@@ -104,7 +117,7 @@ def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike):
         True where all N balls stick, shape broadcast(speed, alpha[..., 0]).
     """
     a = np.asarray(alpha, float)
-    w = np.asarray(steady_deflection(system, speed, a))
+    w = np.asarray(steady_deflection(system, speed, a, response))
     mus = np.asarray(system.balancer.stiction, float)
     R = system.balancer.race_radius
     return np.all(np.abs(np.imag(w[..., None] * np.exp(-1j * a))) <= mus * R, axis=-1)
@@ -153,7 +166,8 @@ def check_immobility(n_conf: int, n_balls: int, n_speeds: int = 1, n_sets: int =
     check_runtime(field, n_conf, k * n_balls * n_speeds * n_sets * IMMOBILITY_COST_S,
                   f"immobility grid ({k:.3g} configurations x {n_speeds * n_sets} speeds)")
 
-def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100):
+def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100,
+               response: Callable | None = None):
     """004 sec. 4.4 immobility: share [-] of ball configurations (n_conf equispaced positions per
     ball, full product = uniform on the torus) in which no ball can move, at each speed [rad/s].
 
@@ -169,6 +183,8 @@ def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100)
         Spin speeds Omega [rad/s] (004 Figs. 8, 10: the speed axis).
     n_conf : int
         Equispaced positions per ball (004: 100).
+    response : callable or None
+        The steady orbit, as :func:`steady_deflection` takes it.
 
     Returns
     -------
@@ -182,7 +198,7 @@ def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100)
     alpha = np.stack([g.ravel() for g in grids], axis=-1)           # (K, N)
     out = np.empty(len(np.atleast_1d(speeds)))
     for j, w in enumerate(np.atleast_1d(speeds)):
-        out[j] = immobile_mask(system, float(w), alpha).mean()
+        out[j] = immobile_mask(system, float(w), alpha, response).mean()
     return out
 
 def stick_threshold_grade(system: System, speed: npt.ArrayLike, nominal_speed: float):

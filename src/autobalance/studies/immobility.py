@@ -19,7 +19,60 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     import xarray as xr
 
-__all__ = ["compute_immobility"]
+__all__ = ["compute_immobility", "liquid_response"]
+
+#: Magnitudes of the residual unbalance |U_t| on which the liquid's steady orbit is tabulated
+#: (full, quick) [-]. Each costs one quasi-static whirl over the speeds (~0.1-0.2 s per 91
+#: speeds). Measured on leblanc_003 + two 80 g balls (quick grid, 1296 configurations): 5 / 9 /
+#: 17 magnitudes differ from 33 by at most 26 / 10 / 4 configurations at one speed.
+LIQUID_MAGNITUDES, LIQUID_MAGNITUDES_QUICK = 33, 17
+
+
+def liquid_response(system, speeds: npt.ArrayLike, n_mag: int = LIQUID_MAGNITUDES):
+    """The steady orbit of balls at rest beside a liquid on a vertical axis, as
+    :func:`autobalance.physics.immobility.steady_deflection` takes it: the rotor with the balls'
+    mass and the residual unbalance U_t (rotor and balls) and the quasi-static liquid of its
+    chambers (:func:`autobalance.liquid.steady.chambers_steady_response`: a pool below a
+    chamber's entrainment speed, 003 eq 6; a ring on the displaced wall above it, followed up
+    the speeds). The liquid is axisymmetric, so w(U_t) = w(|U_t|) U_t / |U_t|; w(|U_t|) is
+    tabulated on ``n_mag`` magnitudes from 0 to |U| + the balls' capacity and interpolated
+    linearly.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Balls beside a ``[liquid]`` section (vertical axis, isotropic suspension): M [kg],
+        k [N/m], c [N*s/m], the balls' masses [kg] and capacity [kg*m], the chambers.
+    speeds : array_like
+        The increasing speeds [rad/s] the callable will be asked at.
+    n_mag : int
+        Magnitudes of the table [-].
+
+    Returns
+    -------
+    callable
+        (speed [rad/s], one of ``speeds``; U_t [kg*m], complex array) -> w [m] (rotor frame).
+    """
+    from ..liquid.models import VerticalRotor
+    from ..liquid.steady import chambers_steady_response
+
+    W = np.asarray(speeds, float)
+    r, s, b, liq = system.rotor, system.suspension, system.balancer, system.liquid
+    mags = np.linspace(0.0, abs(r.unbalance) + b.capacity, n_mag)
+    ch = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume) for c in liq.chambers]
+    table = np.zeros((W.size, n_mag), complex)
+    for k, D in enumerate(mags[1:], 1):
+        rotor = VerticalRotor(r.mass + b.total_mass, s.kx, s.cx, float(D))
+        table[:, k] = chambers_steady_response(rotor, ch, liq.density, W)["deflection_m"]
+
+    def response(speed, Ut):
+        i = int(np.argmin(np.abs(W - float(speed))))
+        u = np.asarray(Ut, complex)
+        a = np.abs(u)
+        w = np.interp(a, mags, table[i].real) + 1j * np.interp(a, mags, table[i].imag)
+        return np.where(a > 0, w * u / np.where(a > 0, a, 1.0), 0j)
+
+    return response
 
 
 def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[float] = (1.0,),
@@ -65,7 +118,7 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     import xarray as xr
 
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)
     s0 = cfg.system
     sus = s0.suspension
     if sus.kx != sus.ky or sus.cx != sus.cy:
@@ -81,8 +134,13 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     n_conf = 36 if quick else n_conf
     check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
     U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
+    if s0.liquid is not None:                   # beside a liquid: its steady orbit (sec. 3k)
+        from ..liquid.stability import require_vertical
+
+        require_vertical(s0)
     mu0 = np.asarray(s0.balancer.rolling_resistance, float)      # each ball's own
     out = np.empty((len(mu_r), len(c_r), f.size))
+    resps = {}
     for i, mr in enumerate(mu_r):
         for j, cr in enumerate(c_r):
             s = dataclasses.replace(
@@ -92,17 +150,23 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
                 balancer=dataclasses.replace(
                     s0.balancer, rolling_resistance=tuple(float(m) for m in mu0 * mr),
                     stiction=None))
-            out[i, j] = immobility(s, 2 * np.pi * f, n_conf)
+            if s0.liquid is not None and j not in resps:     # the orbit depends on c, not mu
+                resps[j] = liquid_response(s, 2 * np.pi * f, LIQUID_MAGNITUDES_QUICK if quick
+                                           else LIQUID_MAGNITUDES)
+            out[i, j] = immobility(s, 2 * np.pi * f, n_conf, resps.get(j))
     ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,
                                     {"units": "-", "long_name": "share of immobile configurations"}),
-                     "G_stick": ("speed", stick_threshold_grade(s0, 2 * np.pi * f, wn),
+                     "G_stick": ("speed", stick_threshold_grade(s0, 2 * np.pi * f, wn)
+                                 if s0.liquid is None else np.full(f.size, np.nan),
                                  {"units": "mm/s", "long_name": "stick threshold G* (mu_r = c_r = 1)"})},
                     coords={"mu_r": list(mu_r), "c_r": list(c_r),
                             "speed": ("speed", f, {"units": "Hz"})})
     ds.attrs.update({"study": "immobility", "G_ini": float(G_ini), "n_conf": n_conf,
                      "f_n_hz": fn, "nominal_hz": wn / (2 * np.pi), "plateau_hz": _plateau_hz(cfg.spin),
                      "method": "closed form |Im(w e^-i alpha)| <= mu R (004 eq 1), checked "
-                               "against the kernel's stuck-ball friction",
+                               "against the kernel's stuck-ball friction"
+                               + ("; w: the steady orbit with the quasi-static liquid"
+                                  if s0.liquid is not None else ""),
                      "wall_s": time.perf_counter() - t0})
     return ds
 
