@@ -19,6 +19,8 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     import xarray as xr
 
+    from ..models import System
+
 __all__ = ["compute_immobility", "liquid_response"]
 
 #: Magnitudes of the residual unbalance |U_t| on which the liquid's steady orbit is tabulated
@@ -28,7 +30,7 @@ __all__ = ["compute_immobility", "liquid_response"]
 LIQUID_MAGNITUDES, LIQUID_MAGNITUDES_QUICK = 33, 17
 
 
-def liquid_response(system, speeds: npt.ArrayLike, n_mag: int = LIQUID_MAGNITUDES):
+def liquid_response(system: System, speeds: npt.ArrayLike, n_mag: int = LIQUID_MAGNITUDES):
     """The steady orbit of balls at rest beside a liquid on a vertical axis, as
     :func:`autobalance.physics.immobility.steady_deflection` takes it: the rotor with the balls'
     mass and the residual unbalance U_t (rotor and balls) and the quasi-static liquid of its
