@@ -460,7 +460,7 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
             from ..plotting.tsr import plot_immobility
 
             return plot_immobility(ds, f"{cfg.name}: immobility at G_ini = G{gi:.3g}",
-                                   stick=True, speed_unit=du.unit("speed"))
+                                   stick=cfg.system.liquid is None, speed_unit=du.unit("speed"))
 
         w = 2 * np.pi * ds["speed"].values
         imm = ds["immobility"].sel(mu_r=mus[0] if 1.0 not in mus else 1.0,
