@@ -290,10 +290,9 @@ def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) 
         raise ParameterError("balancer.n_balls", system.balancer.n_balls, "must be 0: the "
                              "linear stability has the liquid's films and the rotor, not balls")
     require_vertical(system)
-    W = np.asarray(speeds, float)
-    if W.ndim != 1 or W.size < 1 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
-        raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)],
-                             "must be increasing speeds > 0 [rad/s]")
+    from .steady import increasing_speeds
+
+    W = increasing_speeds(speeds)
     rotor = film_rotor(system)
     ch = L.chambers
     # below a chamber's entrainment speed (003 eq 6) its liquid is a pool, not a film

@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 __all__ = ["GRAVITY_OFFSET_MAX", "chambers_fill_sweep", "chambers_steady_response",
+           "increasing_speeds",
            "physical_fill_sweep", "physical_steady_response", "pool_response", "response_curve",
            "ring_response", "start_speed", "steady_amplitude", "synchronous_deflection"]
 
@@ -46,6 +47,27 @@ __all__ = ["GRAVITY_OFFSET_MAX", "chambers_fill_sweep", "chambers_steady_respons
 #: for the liquid models on a horizontal axis (first order in g/(Omega^2 R), core/shallow_water.py)
 #: [-]; our criterion.
 GRAVITY_OFFSET_MAX = 0.1
+
+
+def increasing_speeds(speeds: npt.ArrayLike) -> np.ndarray:
+    """The speed grid of the liquid analyses, checked: one line naming ``speeds`` unless it is
+    a non-empty 1-D array of increasing speeds > 0 [rad/s].
+
+    Parameters
+    ----------
+    speeds : array_like
+        Speeds [rad/s].
+
+    Returns
+    -------
+    ndarray of float
+    """
+    w = np.asarray(speeds, float)
+    if w.ndim != 1 or w.size < 1 or np.any(~np.isfinite(w)) or np.any(w <= 0) \
+            or np.any(np.diff(w) <= 0):
+        raise ParameterError("speeds", [float(x) for x in np.atleast_1d(w).ravel()[:8]],
+                             "must be increasing speeds > 0 [rad/s]")
+    return w
 
 
 def start_speed(volume: float, radius: float, height: float, g: float = G_STANDARD, *,
@@ -204,9 +226,7 @@ def response_curve(rotor: VerticalRotor, radius: float, height: float, volume: f
     (ndarray, ndarray)
         Complex deflections [m] of the upward and the downward sweep.
     """
-    w = np.asarray(speeds, float)
-    if w.ndim != 1 or w.size < 1 or np.any(w <= 0) or np.any(np.diff(w) <= 0):
-        raise ParameterError("speeds", "array", "must be increasing speeds > 0 [rad/s]")
+    w = increasing_speeds(speeds)
     kw = dict(inner_radius=inner_radius, g=g, axis=axis)
 
     def sweep(order):
@@ -312,9 +332,7 @@ def chambers_steady_response(rotor: VerticalRotor,
         deflection_m (complex, rotor frame), liquid_angle_deg (of U_l from D) [deg],
         liquid_unbalance_kg_m (summed over the chambers), phase_deg (of w from D).
     """
-    om = np.asarray(speeds, float)
-    if om.ndim != 1 or om.size < 1 or np.any(om <= 0) or np.any(np.diff(om) <= 0):
-        raise ParameterError("speeds", "array", "must be increasing speeds > 0 [rad/s]")
+    om = increasing_speeds(speeds)
     w = np.full(om.size, complex(math.nan, math.nan))
     U = np.zeros(om.size, complex)
     ok = np.zeros(om.size, bool)

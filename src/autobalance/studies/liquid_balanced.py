@@ -236,10 +236,9 @@ def balanced_machine_stability(system: System, speeds: npt.ArrayLike,
     from .equilibria import linearised_full
 
     pool = require_balanced_liquid(system)
-    W = np.asarray(speeds, float)
-    if W.ndim != 1 or W.size < 1 or np.any(W <= 0) or np.any(np.diff(W) <= 0):
-        raise ParameterError("speeds", [float(x) for x in np.atleast_1d(W)],
-                             "must be increasing speeds > 0 [rad/s]")
+    from ..liquid.steady import increasing_speeds
+
+    W = increasing_speeds(speeds)
     N = system.balancer.n_balls
     w0 = film_start_speed(system.liquid)
     g, f = np.full(W.size, np.nan), np.full(W.size, np.nan)
