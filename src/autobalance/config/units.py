@@ -11,6 +11,7 @@ import functools
 import math
 from typing import Any
 
+
 @functools.lru_cache(maxsize=None)
 def registry():
     """The one unit registry of the package (pint defaults; radian is dimensionless), made on
