@@ -260,3 +260,27 @@ def test_immobility_beside_a_liquid():
     for k, w in enumerate(W):
         got = resp(w, np.array([D * np.exp(0.7j)]))[0]
         assert got == pytest.approx(ref[k] * np.exp(0.7j), rel=1e-12)
+
+
+def test_partitions_take_the_runs_cells():
+    """Partitions that do not divide the cells: the films are the runs' own (cells rounded up
+    to whole compartments, 64 -> 66 for 3 walls), for balls beside the liquid and for the
+    liquid alone. Before, both refused 64 cells, and the speed map counted every speed with a
+    film as 'no verdict' and reported the machine stable at no speed with exit 0."""
+    from autobalance.liquid.stability import machine_stability, ring_stability
+    from autobalance.studies.speed_map import compute_speed_map
+
+    s = machine("liquid.partitions=3")
+    a = balanced(s, 100.0)[0]
+    r = balanced_stability(s, 100.0, a)
+    assert r.eigenvalues.size == 2 * 2 + 4 + 2 + 2 * 66 - 3
+    alone = load_config("leblanc_003", ["liquid.partitions=3"]).system
+    c, liq = alone.liquid.chambers[0], alone.liquid
+    g = machine_stability(alone, [60.0])["growth_rate_1_s"][0]
+    assert g == ring_stability(film_rotor(alone), c.chamber_radius, c.chamber_height, c.volume,
+                               60.0, density=liq.density, viscosity=liq.kinematic_viscosity,
+                               n_cells=66, partitions=3).growth_rate
+    ds = compute_speed_map(load_config("leblanc_003", [*BALLS, "liquid.partitions=3"]),
+                           speeds=[100.0], damping_factors=[1.0])
+    assert ds.attrs["no_verdict"] == 0
+    assert ds["balanced_stable"].values[0] == int(r.stable)

@@ -110,7 +110,8 @@ def _step_map(rotor, st, Mt, speed, dt):
 def ring_stability(rotor: VerticalRotor, radius: float | Sequence[float],
                    height: float | Sequence[float], volume: float | Sequence[float],
                    speed: float, *, density: float = 1000.0, viscosity: float = 1.0e-6,
-                   n_cells: int = 64, partitions: int | Sequence[int] = 0) -> RingStability:
+                   n_cells: int | Sequence[int] = 64,
+                   partitions: int | Sequence[int] = 0) -> RingStability:
     """The linear stability of the centred state of a Jeffcott rotor with the wall films of one
     or more concentric chambers at the constant spin ``speed`` (module docstring).
 
@@ -129,8 +130,9 @@ def ring_stability(rotor: VerticalRotor, radius: float | Sequence[float],
         rho [kg/m^3].
     viscosity : float
         nu [m^2/s].
-    n_cells : int
-        Cells around each wall [-] (the Jacobian is square in twice their number).
+    n_cells : int or sequence
+        Cells around each wall [-] (a sequence: one count per chamber; the Jacobian is square
+        in twice their total).
     partitions : int or sequence
         Radial walls per chamber [-].
 
@@ -141,10 +143,12 @@ def ring_stability(rotor: VerticalRotor, radius: float | Sequence[float],
     from ..core.shallow_water import films_dt
 
     W = positive("speed", speed)
-    if isinstance(n_cells, bool) or int(n_cells) != n_cells or not 8 <= n_cells <= 1024:
+    cells = list(n_cells) if isinstance(n_cells, (list, tuple, np.ndarray)) else [n_cells]
+    if any(isinstance(n, bool) or int(n) != n or not 8 <= n <= 1024 for n in cells):
         raise ParameterError("n_cells", n_cells, "must be an integer in [8, 1024]")
-    st = films_state(radius, height, volume, density, viscosity, int(n_cells), partitions, 0.0,
-                     0j)
+    st = films_state(radius, height, volume, density, viscosity,
+                     [int(n) for n in cells] if len(cells) > 1 else int(cells[0]), partitions,
+                     0.0, 0j)
     Mt = rotor.mass + float(np.sum(st.rhos * [f.volume for f in st.films]))
     dt = DT_FRACTION * films_dt(st.h, st.q, st.starts, st.Rs, W, math.inf)
     f = _step_map(rotor, st, Mt, W, dt)
@@ -281,7 +285,7 @@ def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) 
         film_from_rad_s, the largest entrainment speed, 003 eq 6, where a pool is not a film),
         unstable_ranges_rad_s, omega_n_rad_s (the rotor with its liquid as a rigid mass), cells.
     """
-    from .simulate import film_rotor, require_liquid_machine
+    from .simulate import chamber_cells, film_rotor, require_liquid_machine
     from .start import film_start_speed
 
     require_liquid_machine(system)
@@ -304,7 +308,8 @@ def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) 
             r = ring_stability(rotor, [c.chamber_radius for c in ch],
                                [c.chamber_height for c in ch], [c.volume for c in ch], w,
                                density=L.density, viscosity=L.kinematic_viscosity,
-                               n_cells=n_cells, partitions=[c.partitions for c in ch])
+                               n_cells=chamber_cells(ch, n_cells),
+                               partitions=[c.partitions for c in ch])
             g[i], f[i] = r.growth_rate, r.whirl_frequency
     return {"omega_rad_s": W, "growth_rate_1_s": g, "whirl_frequency_rad_s": f,
             "film_from_rad_s": w0, "unstable_ranges_rad_s": unstable_ranges(W, g),

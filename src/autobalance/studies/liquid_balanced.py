@@ -39,17 +39,42 @@ if TYPE_CHECKING:
 
     from ..models import System
 
-__all__ = ["balanced_machine_stability", "balanced_stability", "require_balanced_liquid"]
+__all__ = ["balanced_machine_stability", "balanced_stability", "require_balanced_liquid",
+           "uniform_films"]
 
 #: The balanced state's residual force, scaled by (L w^2, w^2), above which ``alpha`` is refused [-].
 BALANCED_TOL = 1e-9
 
 
+def uniform_films(system: System, n_cells: int):
+    """The chambers' films uniform and at rest on the centred wall: the runs' own films
+    (:func:`autobalance.liquid.simulate.chamber_films`: the wall film's checks, the cells
+    rounded up to whole compartments) with no lag.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        A ``[liquid]`` section.
+    n_cells : int
+        Cells per chamber [-] before rounding.
+
+    Returns
+    -------
+    autobalance.liquid.film.FilmsState
+    """
+    from ..liquid.simulate import chamber_films
+    from ..liquid.start import FilmStart
+
+    lag = (0.0,) * len(system.liquid.chambers)
+    return chamber_films(system, FilmStart(0.0, 0.0, lag, "quasi-static"), n_cells, 0j)
+
+
 def require_balanced_liquid(system: System) -> System:
     """One-line errors for a machine of balls beside a liquid whose balanced state is not a
     fixed point of the rotor frame with uniform films (a horizontal axis, an anisotropic
-    suspension, base motion, an unbalance schedule, a race eccentricity); returns its ideal pool machine (the liquid's mass in the rotor's,
-    rolling resistance and dry friction off).
+    suspension, base motion, an unbalance schedule, a race eccentricity) or whose liquid is
+    not a thin wall film (:func:`uniform_films`'s checks, before any work); returns its ideal
+    pool machine (the liquid's mass in the rotor's, rolling resistance and dry friction off).
 
     Parameters
     ----------
@@ -72,6 +97,7 @@ def require_balanced_liquid(system: System) -> System:
         raise ParameterError("balancer.eccentricity", system.balancer.eccentricity,
                              "must be 0 beside a liquid: the balanced state then has a residual "
                              "whirl, and the films are not uniform")
+    uniform_films(system, 64)
     pool = pool_machine(system)
     if not steady_rotor_frame(pool):
         s = system.suspension
@@ -139,7 +165,6 @@ def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
         Growth rates [1/s] of every mode (rotor frame), the step dt [s].
     """
     from ..core.shallow_water import films_dt, films_moment, films_step
-    from ..liquid.film import films_state
 
     W = positive("speed", speed)
     pool = require_balanced_liquid(system)
@@ -149,11 +174,8 @@ def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
     a = np.asarray(alpha, float).ravel()
     if a.size != N or not np.all(np.isfinite(a)):
         raise ParameterError("alpha", a.tolist(), f"must be {N} finite ball angles [rad]")
-    liq = system.liquid
-    ch = liq.chambers
-    st = films_state([c.chamber_radius for c in ch], [c.chamber_height for c in ch],
-                     [c.volume for c in ch], liq.density, liq.kinematic_viscosity,
-                     int(n_cells), [c.partitions for c in ch], 0.0, 0j)
+    ch = system.liquid.chambers
+    st = uniform_films(system, int(n_cells))
     Mt = pool.total_mass
     L = max(pool.rotor.unbalance, pool.balancer.capacity) / Mt
     dt = DT_FRACTION * films_dt(st.h, st.q, st.starts, st.Rs, W, math.inf)
