@@ -61,13 +61,21 @@ def _q(value: str, kind: str, field: str) -> float:
 LIST_BYTES_PER_POINT = 2048
 
 
+def _list_unit(value: str) -> str:
+    """The unit written on a list of :func:`_list` ('a:b:n': on b; 'a, b, c': on the last
+    item), or '' (bare numbers)."""
+    v = value.strip()
+    items = [v.split(":")[1]] if v.count(":") == 2 else [x for x in v.split(",") if x.strip()]
+    return items[-1].strip().partition(" ")[2].strip() if items else ""
+
+
 def _list(value: str, kind: str, field: str) -> list[float]:
     """'a:b:n' (linspace) or 'a,b,c' with units on each item or on the last; n >= 1 must fit
     the memory limit (:func:`autobalance.limits.check_memory`), checked before allocating."""
     v = value.strip()
     if v.count(":") == 2:
         a, b, n = v.split(":")
-        unit = b.strip().partition(" ")[2]
+        unit = _list_unit(v)
         lo = _q(a if " " in a.strip() or not unit else f"{a} {unit}", kind, field)
         try:
             num = int(n)
@@ -82,7 +90,7 @@ def _list(value: str, kind: str, field: str) -> list[float]:
     items = [x.strip() for x in v.split(",") if x.strip()]
     if not items:
         raise ConfigError(f"{field} = {value!r}: expected a value or a list 'a, b, c'")
-    unit = items[-1].partition(" ")[2]
+    unit = _list_unit(v)
     return [_q(x if " " in x or not unit else f"{x} {unit}", kind, field) for x in items]
 
 
@@ -569,8 +577,7 @@ def stability(source: Annotated[str, typer.Argument(
         from ..config.display import display_units
 
         # speeds in the unit --omega was written in (e.g. rpm), else as the config writes them
-        unit = omega.strip().split(",")[-1].split(":")[-2 if omega.count(":") == 2 else -1]
-        unit = unit.strip().partition(" ")[2].strip()
+        unit = _list_unit(omega)
         du = display_units(cfg, f"speed={unit}" if unit else None)
         sp = lambda x: du.fmt(x, "speed")       # noqa: E731
         rng = ", ".join(f"{sp(lo)} - {sp(hi)}" for lo, hi in res["unstable_ranges_rad_s"])

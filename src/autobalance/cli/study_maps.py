@@ -168,6 +168,9 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
         typer.echo(f"  beside the liquid: a pool below {du.fmt(res['film_from_rad_s'], 'speed')} "
                    "(the balls' verdicts, with its mass), a film from there: only the balanced "
                    "state is judged, with the films (docs/liquid.md sec. 3k)")
+    if res["no_verdict"]:
+        typer.echo(f"  no verdict at {res['no_verdict']} of {res['evaluations']} evaluations "
+                   "(no fixed point or orbit found there; counted as not stable)")
     c = res["counts"]
     typer.echo(f"  {c['speeds']} speeds: a balanced state at {c['balanced_exists']}, stable at "
                f"{c['balanced_stable']}; at most {c['max_isolated']} isolated equilibria and "
