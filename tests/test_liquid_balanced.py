@@ -262,6 +262,18 @@ def test_immobility_beside_a_liquid():
         assert got == pytest.approx(ref[k] * np.exp(0.7j), rel=1e-12)
 
 
+def test_immobility_refuses_partitions():
+    """The steady orbit of `study immobility` beside a liquid is the quasi-static liquid's,
+    which has no partitions: one line naming them (before stop 31 the partitions were ignored
+    and the shares were those of the open chamber, exit 0)."""
+    from autobalance.studies.immobility import compute_immobility
+
+    cfg = load_config("leblanc_003", [*BALLS, "liquid.partitions=4"])
+    with pytest.raises(ParameterError) as e:
+        compute_immobility(cfg, speeds_hz=[10.0, 20.0], n_conf=12)
+    assert e.value.field == "liquid.partitions" and "quasi-static" in str(e.value)
+
+
 def test_partitions_take_the_runs_cells():
     """Partitions that do not divide the cells: the films are the runs' own (cells rounded up
     to whole compartments, 64 -> 66 for 3 walls), for balls beside the liquid and for the

@@ -146,11 +146,7 @@ class LiquidBalancer:
             quasi-static liquid of several chambers is liquid/steady.chambers_steady_response).
         """
         device = device.single("this analysis (one chamber's quasi-static, lumped or "
-                               "kinetostatic liquid)")
-        if device.partitions:
-            raise ParameterError("liquid.partitions", device.partitions, "must be 0 for this "
-                                 "analysis (the quasi-static liquid has no partitions; "
-                                 "autobalance simulate has)")
+                               "kinetostatic liquid)").unpartitioned("this analysis")
         return cls(Chamber(device.chamber_radius, device.chamber_height, device.inner_radius),
                    Liquid(device.density, device.kinematic_viscosity), device.volume,
                    device.friction_arc)

@@ -154,6 +154,23 @@ class LiquidDevice:
                              "(simulate, sweep, study fill-map and liquid simulate's physical model take "
                              "several; docs/liquid.md sec. 3g)")
 
+    def unpartitioned(self, what: str) -> LiquidDevice:
+        """This device if no chamber has radial partitions; a one-line ParameterError naming
+        ``what`` (an analysis on the quasi-static liquid, which has none) otherwise.
+
+        Parameters
+        ----------
+        what : str
+            The analysis, for the message [-].
+        """
+        parts = [c.partitions for c in self.chambers]
+        if any(parts):
+            raise ParameterError("liquid.partitions", parts[0] if len(parts) == 1 else parts,
+                                 f"must be 0 for {what} (the quasi-static liquid has no "
+                                 "partitions; autobalance simulate and the studies that run "
+                                 "the films have)")
+        return self
+
     @property
     def chamber_volume(self) -> float:
         """Inner volume pi (R^2 - r_i^2) h [m^3], summed over the chambers."""

@@ -140,6 +140,7 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
         from ..liquid.stability import require_vertical
 
         require_vertical(s0)
+        s0.liquid.unpartitioned("study immobility beside a liquid (its steady orbit)")
     mu0 = np.asarray(s0.balancer.rolling_resistance, float)      # each ball's own
     out = np.empty((len(mu_r), len(c_r), f.size))
     resps = {}
