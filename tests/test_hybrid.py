@@ -212,9 +212,10 @@ def test_study_start_positions_takes_balls_beside_a_liquid(tmp_path):
     sim = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=a0))
     assert g == pytest.approx(sim.summary()["final"]["grade_G_mm_s"], rel=1e-12)
     bad = subprocess.run([sys.executable, "-m", "autobalance", "study", "tolerances",
-                          "leblanc_003", *sets], capture_output=True, text=True, timeout=600)
+                          "leblanc_003", *sets, "--method", "000"], capture_output=True,
+                         text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()
-    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid")
+    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: method")
 
 
 def test_liquid_moment_does_not_depend_on_the_output_spacing():
@@ -314,14 +315,14 @@ def test_simulation_studies_take_balls_beside_a_liquid():
 
 
 def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies.start_positions import compute_single
 
     with pytest.raises(ParameterError) as e:
-        compute_tolerances(machine())
+        compute_single(machine())
     msg = str(e.value)
     assert msg.startswith("liquid") and "\n" not in msg
     assert "unbalance-range, plateau, sensitivity and runup" in msg
-    assert "speed-map and immobility (vertical axis) and design" in msg
+    assert "speed-map, immobility and tolerances (vertical axis) and design" in msg
 
 
 def test_sensitivity_varies_the_liquid_viscosity_beside_balls():
@@ -338,9 +339,10 @@ def test_sensitivity_varies_the_liquid_viscosity_beside_balls():
 def test_design_takes_balls_beside_a_liquid(tmp_path):
     """`design` beside a liquid: each candidate keeps the liquid, every grade it ranks is the
     candidate's own run (balls beside the liquid) from the start its sweep stored, and the
-    tolerances (closed forms without a liquid) are skipped with the reason."""
+    tolerances are the bound beside the liquid (study tolerances of the picked design)."""
     from autobalance.config import load_config
     from autobalance.studies.design import DesignSpace, compute_design, design_summary
+    from autobalance.studies.tolerances import compute_tolerances
     from autobalance.sweep.execute import open_sweep
 
     std = ("profile.kind=std", "profile.nominal=100 1/s", "profile.runup_time=4 s",
@@ -351,7 +353,11 @@ def test_design_takes_balls_beside_a_liquid(tmp_path):
                         unbalance_range=(0.02, 0.02), n_unbalance=1, starts=2,
                         refine_plateau=False, executor="serial", store_dir=tmp_path)
     s = design_summary(ds)
-    assert "tolerances" not in s and s["tolerances_skipped"].startswith("beside a liquid")
+    assert "tolerances_skipped" not in s
+    assert ds.attrs["tolerance_own_worst_grade_G_mm_s"] == compute_tolerances(
+        load_config("leblanc_003", [*BALLS, *std, *str(ds["sets"].values[
+            list(ds["design"].values).index(ds.attrs["tolerances_design"])]).split("; ")]),
+        grade=float(ds.attrs["grade"]))["worst_grade_G_mm_s"]
     sets = str(ds["sets"].values[0]).split("; ")
     cand = load_config("leblanc_003", [*BALLS, *std, *sets, "rotor.unbalance=0.02 kg*m"])
     assert cand.system.liquid is not None and cand.system.balancer.n_balls == 2

@@ -223,7 +223,8 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
     from ..studies.tolerances import check_tolerances_by_simulation, compute_tolerances
 
     with guard():
-        cfg, G, du = _prepare(source, set_, profile, grade, None, None, units=units)
+        cfg, G, du = _prepare(source, set_, profile, grade, None, None, units=units,
+                              balls="beside")
         w = None if speed is None else parse_quantity(speed, "speed", "--speed")
         if w is not None and not (math.isfinite(w) and w > 0):
             raise ConfigError(f"--speed = {speed!r}: must be a speed > 0, e.g. '800 rpm'")
@@ -276,6 +277,13 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                f"{du.fmt(res['worst_residual_kg_m'], 'unbalance')} = G{res['worst_grade_G_mm_s']:.3g} "
                f"({'meets' if res['meets_target'] else 'misses'} the target); expected "
                f"G{res['expected_grade_G_mm_s']:.3g}")
+    if "liquid_added_mass_kg" in res:
+        r_lin = res["liquid_linear_range_m"]
+        typer.echo(f"  beside the liquid: its synchronous moment is an added mass of "
+                   f"{res['liquid_added_mass_kg']:.4g} kg on the rotor"
+                   + (f" while its rings hold (whirl up to {du.fmt(r_lin, 'length')})"
+                      if math.isfinite(r_lin) else " (a pool at this speed: none)")
+                   + " (docs/liquid.md sec. 3l)")
     for wmsg in res.get("warnings", []):
         typer.echo(f"  note: {wmsg}")
     if "simulation_check" in res:

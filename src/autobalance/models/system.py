@@ -60,8 +60,8 @@ class System:
                  "unbalance-range and runup, and `autobalance liquid stability`")
         if self.liquid is not None and not allow_liquid:
             other = ("the studies start-positions, unbalance-range, plateau, sensitivity and "
-                     "runup (simulations), speed-map and immobility (vertical axis) and design "
-                     "take balls beside a liquid; a liquid balancer runs "
+                     "runup (simulations), speed-map, immobility and tolerances (vertical axis) "
+                     "and design take balls beside a liquid; a liquid balancer runs "
                      "with `autobalance simulate` (and `sweep`)" if self.balancer.n_balls
                      else alone)
             raise ParameterError("liquid", "a [liquid] section", f"{what} take ball balancers "

@@ -32,7 +32,7 @@ from ..models._validate import nonneg as _nonneg
 from ..models._validate import positive as _positive
 from .error_bounds import (eccentricity_equilibrium, rolling_deadband, suspension_friction_deviation)
 from .iso1940 import grade_value, unbalance_value
-from .worst_case import ASSUMPTIONS, residual_bound
+from .worst_case import SyncLiquid, residual_bound
 from .vibratory import gain_phase
 
 if TYPE_CHECKING:
@@ -218,14 +218,15 @@ def _solve_increasing(fun, target: float, x0: float, x_max: float):
     return best[0], best[1]
 
 
-def _rho_capacity(system, w: float) -> float:
+def _rho_capacity(system, w: float, added_mass: float = 0.0) -> float:
     """Largest race eccentricity [m] for which the balls can cancel the unbalance for every
-    eccentricity angle: |U + rho e^{i beta}(1/h + M_b)| within the capacity annulus."""
+    eccentricity angle: |U + rho e^{i beta}(1/h + M_b)| within the capacity annulus (h with a
+    liquid's added mass [kg])."""
     from .worst_case import synchronous_gain
 
     b = system.balancer
     c = b.masses * b.race_radius
-    k = abs(1.0 / synchronous_gain(system, w) + b.total_mass)
+    k = abs(1.0 / synchronous_gain(system, w, added_mass) + b.total_mass)
     U = system.rotor.unbalance
     total, inner = float(np.sum(c)), max(0.0, 2.0 * float(np.max(c)) - float(np.sum(c)))
     lim = (total - U) / k
@@ -243,7 +244,8 @@ def _check_grade(grade) -> float:
 
 def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
                          nominal_speed: float | None = None, split: dict | None = None,
-                         eccentricity_angle: float | None = None) -> dict:
+                         eccentricity_angle: float | None = None,
+                         liquid: SyncLiquid | None = None) -> dict:
     """Largest race eccentricity, rolling resistance and suspension friction of a machine that
     keep its worst-case residual unbalance within a target ISO 1940 grade (000 eq 56-66 for any
     balancer).
@@ -275,6 +277,9 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
         1 (000 eq 56); default :data:`DEFAULT_SPLIT` (000: 0.5, 0.35, 0.1, 0.05).
     eccentricity_angle : float or None
         beta [rad] of the eccentricity; None = any (the bound holds for every angle).
+    liquid : SyncLiquid, optional
+        A liquid beside the balls at ``speed`` (:func:`~.worst_case.residual_bound`): added
+        mass kappa [kg], linear range [m], capacity [kg*m].
 
     Returns
     -------
@@ -299,7 +304,7 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
            "max_suspension_friction_N": None, "joint_scale": None, "bound_at_max_kg_m": None,
            "design_worst_residual_kg_m": None, "design_meets_target": False}
     zero = dict(rolling_resistance=0.0, eccentricity=0.0, friction_force=0.0,
-                eccentricity_angle=eccentricity_angle)
+                eccentricity_angle=eccentricity_angle, liquid=liquid)
     base = residual_bound(system, w, **zero)
     b = system.balancer
     if not base["balancing"]:
@@ -321,7 +326,8 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
              "rolling": budgets["rolling"] * gain / (b.race_radius + system.gravity.g / (w * w)),
              "friction": budgets["friction"] * gain / max(per_n, 1e-300)}
     # beyond rho_cap the balls cannot cancel U + rho e^{i beta}(1/h + M_b) for every beta
-    x_max = {"eccentricity": min(0.999 * b.race_radius, _rho_capacity(system, w)),
+    kappa = 0.0 if liquid is None else liquid.added_mass
+    x_max = {"eccentricity": min(0.999 * b.race_radius, _rho_capacity(system, w, kappa)),
              "rolling": 1.0, "friction": 1e12}
     alone = {}
     for cause in TOLERANCE_CAUSES:
@@ -333,7 +339,8 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
         return residual_bound(system, w, rolling_resistance=lam * alone["rolling"],
                               eccentricity=lam * alone["eccentricity"],
                               friction_force=lam * alone["friction"],
-                              eccentricity_angle=eccentricity_angle)["worst_residual_kg_m"]
+                              eccentricity_angle=eccentricity_angle,
+                              liquid=liquid)["worst_residual_kg_m"]
 
     total = sum(budgets[k] for k in TOLERANCE_CAUSES)
     lam = 1.0 if joint(1.0) <= total else _solve_increasing(joint, total, 0.5, 1.0)[0]
@@ -341,7 +348,7 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
     at_max = {k: bound_of(k)(tol[k]) for k in TOLERANCE_CAUSES}
     both = residual_bound(system, w, rolling_resistance=tol["rolling"],
                           eccentricity=tol["eccentricity"], friction_force=tol["friction"],
-                          eccentricity_angle=eccentricity_angle)
+                          eccentricity_angle=eccentricity_angle, liquid=liquid)
     return {**out, "feasible": True, "reason": None,
             "max_eccentricity_m": tol["eccentricity"], "max_rolling_resistance": tol["rolling"],
             "max_suspension_friction_N": tol["friction"], "joint_scale": lam,
@@ -404,7 +411,8 @@ def tolerances_000(system: System, speed: float, residual_fraction: float, *,
 
 def worst_case_prediction(system: System, speed: float, *, nominal_speed: float | None = None,
                           eccentricity_angle: float | str | None = None,
-                          rolling_credit: float = 2.0, friction_credit: float = 2.0) -> dict:
+                          rolling_credit: float = 2.0, friction_credit: float = 2.0,
+                          liquid: SyncLiquid | None = None) -> dict:
     """Worst-case and expected residual unbalance of a machine with its own tolerances
     (the reverse of :func:`tolerances_for_grade`; 000 Tables 3-4's RMe for any balancer).
 
@@ -427,6 +435,9 @@ def worst_case_prediction(system: System, speed: float, *, nominal_speed: float 
         beta [rad]; None = any angle (default), "system" = the balancer's own.
     rolling_credit, friction_credit : float
         Divisors of the rolling and friction parts for the expected value [-], >= 1.
+    liquid : SyncLiquid, optional
+        A liquid beside the balls at ``speed`` (:func:`~.worst_case.residual_bound`): added
+        mass kappa [kg], linear range [m], capacity [kg*m].
 
     Returns
     -------
@@ -444,12 +455,12 @@ def worst_case_prediction(system: System, speed: float, *, nominal_speed: float 
     if cr < 1 or cf < 1:
         raise ParameterError("rolling_credit" if cr < 1 else "friction_credit",
                              cr if cr < 1 else cf, "must be >= 1 [-]")
-    r = residual_bound(system, w, eccentricity_angle=eccentricity_angle)
+    r = residual_bound(system, w, eccentricity_angle=eccentricity_angle, liquid=liquid)
     b = system.balancer
     alone = {"rolling": dict(eccentricity=0.0, friction_force=0.0),
              "friction": dict(eccentricity=0.0, rolling_resistance=0.0),
              "eccentricity": dict(rolling_resistance=0.0, friction_force=0.0)}
-    parts = {k: residual_bound(system, w, eccentricity_angle=eccentricity_angle,
+    parts = {k: residual_bound(system, w, eccentricity_angle=eccentricity_angle, liquid=liquid,
                                **kw)["worst_residual_kg_m"] for k, kw in alone.items()}
     worst = r["worst_residual_kg_m"]
     ecc = r["eccentricity_kg_m"]
@@ -472,4 +483,6 @@ def worst_case_prediction(system: System, speed: float, *, nominal_speed: float 
             "rolling_resistance": [float(v) for v in b.stiction],
             "eccentricity_m": b.eccentricity,
             "suspension_friction_N": system.suspension.dry_friction_force,
-            "assumptions": list(ASSUMPTIONS)}
+            "assumptions": r["assumptions"],
+            **{k: r[k] for k in ("liquid_added_mass_kg", "liquid_linear_range_m", "liquid_linear")
+               if k in r}}

@@ -42,6 +42,19 @@ exact: rho/|h| is the exact residual of 000 eq (46)-(47) for N >= 2 (F_i = 0 for
 that spans the plane means z = 0), and for one ball with m R = Me at w >> w_n the rolling part
 tends to 000 eq (61)'s m R Delta alpha = M_t R f/r.
 
+**A liquid beside the balls** (:class:`SyncLiquid`). In a synchronous whirl the liquid of a
+Leblanc chamber turns rigidly about the rotation axis while the chamber is displaced by the
+rotor's whirl z_r = z - rho e^{i beta}; while its rings stay intact its moment about the chamber
+centre is U_L = kappa z_r, kappa the mass of the missing core (intact ring, Ehrich 1992 sec. 5;
+:func:`autobalance.liquid.quasistatic.synchronous_liquid`). The rotor's whirl then obeys
+D z_r = w^2 (W_b + kappa z_r) + Phi, i.e. the rotor with the added mass kappa:
+z_r = h_b W_b + eps_b, h_b and eps_b the gain and friction shift with M_t + kappa. The balls'
+rest test and the circle test take h_b (and e_f with M_t + kappa); the residual the rotor feels,
+W = W_b + U_L = (z_r - eps_f)/h with the rotor's own h, is bounded by the same
+(zeta1 + rho + e_f)/|h|. The bound holds while the liquid is linear on the separating circle:
+|z_r| <= zeta1 + rho within the liquid's ``linear_range``; otherwise it is not claimed
+(``separated`` false, ``liquid_linear`` false).
+
 Assumptions (returned with every bound): the kinetic-static averaged force (000 eq 13; balls
 slow against the spin); the rest test of 000 eq (21) with the normal force m (R w^2 + g);
 no ball-ball contact at rest; the balls' rest state belongs to the balanced state's region at
@@ -50,7 +63,7 @@ this speed (they last moved at this speed, which is above the balancing onset, 0
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -66,8 +79,8 @@ if TYPE_CHECKING:
 
     from ..models import System
 
-__all__ = ["ASSUMPTIONS", "attained_residual", "friction_displacement", "residual_bound",
-           "rest_limits", "synchronous_gain"]
+__all__ = ["ASSUMPTIONS", "SyncLiquid", "attained_residual", "friction_displacement",
+           "residual_bound", "rest_limits", "synchronous_gain"]
 
 #: What the bound of :func:`residual_bound` assumes (JSON-ready, quoted with every result).
 ASSUMPTIONS = (
@@ -80,8 +93,35 @@ ASSUMPTIONS = (
     "the balls last moved at this speed and stopped in the region of the balanced state",
 )
 
+#: What a bound beside a liquid assumes in addition (quoted with it).
+LIQUID_ASSUMPTIONS = (
+    "the liquid in rigid rotation about the rotation axis with the chamber displaced by the "
+    "rotor's synchronous whirl (quasi-static: moment kappa z_r while its rings stay intact; "
+    "first order in z_r with partitions)",
+)
 
-def synchronous_gain(system: System, speed: float) -> complex:
+
+class SyncLiquid(NamedTuple):
+    """A liquid beside the balls as their averaged model sees it in a synchronous whirl
+    (module docstring; made by :func:`autobalance.liquid.quasistatic.synchronous_liquid`).
+
+    Parameters
+    ----------
+    added_mass : float
+        kappa [kg]: the liquid's moment about the chamber centre per unit whirl of the rotor,
+        U_L = kappa z_r (0 for a pool).
+    linear_range : float
+        Largest whirl |z_r| [m] over which U_L = kappa z_r holds (the rings stay intact).
+    capacity : float
+        Largest |U_L| [kg*m]: all the liquid gathered at the wall (rho V R).
+    """
+
+    added_mass: float
+    linear_range: float
+    capacity: float
+
+
+def synchronous_gain(system: System, speed: float, added_mass: float = 0.0) -> complex:
     """h = (w^2/2)(1/D_x + 1/D_y) [m/(kg*m)]: the forward whirl of the rotor per unit rotating
     unbalance (000 eq 6-7; conj(H)/2 of :mod:`.vibratory`).
 
@@ -91,6 +131,8 @@ def synchronous_gain(system: System, speed: float) -> complex:
         Suspension kx, ky [N/m], cx, cy [N*s/m] and the translating mass M_t [kg].
     speed : float
         Spin speed w [rad/s], > 0.
+    added_mass : float
+        kappa [kg] added to M_t in D (a liquid's synchronous moment, :class:`SyncLiquid`).
 
     Returns
     -------
@@ -98,7 +140,7 @@ def synchronous_gain(system: System, speed: float) -> complex:
         h [m/(kg*m)]; its modulus tends to 1/M_t for w >> w_n.
     """
     w = _speed(speed)
-    s, mt = system.suspension, system.total_mass
+    s, mt = system.suspension, system.total_mass + float(added_mass)
     return complex(0.5 * w * w * (1.0 / dynamic_stiffness(mt, s.kx, s.cx, w)
                                   + 1.0 / dynamic_stiffness(mt, s.ky, s.cy, w)))
 
@@ -133,7 +175,7 @@ def rest_limits(system: System, speed: float,
 
 
 def friction_displacement(system: System, speed: float, friction_force: float | None = None,
-                          friction_angle: float | None = None) -> float:
+                          friction_angle: float | None = None, added_mass: float = 0.0) -> float:
     """e_f [m]: the largest shift of the race-centre whirl z by the suspension dry friction.
 
     Two dampers along (cos g, +-sin g), each a force of magnitude <= F (000 eq 48); the first
@@ -151,6 +193,8 @@ def friction_displacement(system: System, speed: float, friction_force: float | 
         F per damper [N], >= 0; default ``suspension.dry_friction_force``.
     friction_angle : float, optional
         gamma [rad]; default ``suspension.dry_friction_angle``.
+    added_mass : float
+        kappa [kg] added to M_t in D (:class:`SyncLiquid`).
 
     Returns
     -------
@@ -158,7 +202,7 @@ def friction_displacement(system: System, speed: float, friction_force: float | 
         e_f [m].
     """
     w = _speed(speed)
-    s, mt = system.suspension, system.total_mass
+    s, mt = system.suspension, system.total_mass + float(added_mass)
     F = s.dry_friction_force if friction_force is None else _nonneg("friction_force", friction_force)
     g = s.dry_friction_angle if friction_angle is None else _finite("friction_angle", friction_angle)
     dx = dynamic_stiffness(mt, s.kx, s.cx, w)
@@ -186,7 +230,8 @@ def residual_bound(system: System, speed: float, *,
                    eccentricity: float | None = None,
                    eccentricity_angle: float | str | None = "system",
                    friction_force: float | None = None, friction_angle: float | None = None,
-                   n_theta: int = 1024, n_beta: int = 24) -> dict:
+                   n_theta: int = 1024, n_beta: int = 24,
+                   liquid: SyncLiquid | None = None) -> dict:
     """A true upper bound on the residual unbalance |W| of any rest state of the balls near
     their balanced state (module docstring: the circle test), for N balls, with rolling
     resistance (000 eq 20-22), race eccentricity (eq 46-47) and suspension friction (eq 48-49).
@@ -212,16 +257,22 @@ def residual_bound(system: System, speed: float, *,
         Angles on each test circle (>= 64); the margin shrinks as 1/n_theta.
     n_beta : int
         Eccentricity angles tested when beta is unknown (>= 4); the margin shrinks as 1/n_beta.
+    liquid : SyncLiquid, optional
+        A liquid beside the balls (module docstring): its added mass kappa [kg], linear range
+        [m] and capacity [kg*m]. The residual is then the rotor's W_b + U_L.
 
     Returns
     -------
     dict
-        "worst_residual_kg_m" (the bound, capped by the trivial |U| + M_b rho + sum m_i R),
+        "worst_residual_kg_m" (the bound, capped by the trivial |U| + M_b rho + sum m_i R
+        (+ the liquid's capacity)),
         "eccentricity_kg_m" (rho/|h|), "friction_kg_m" (e_f/|h|), "rolling_kg_m"
         (zeta1/|h|), "displacement_bound_m" (zeta1), "rest_limits_m" (a_i),
         "friction_displacement_m" (e_f), "gain_m_per_kg_m" (|h|), "capacity_kg_m",
         "trivial_bound_kg_m", "separated" (a separating circle was found below the trivial
-        bound), "balancing" (Re h < 0), "balanced_exists", "assumptions".
+        bound), "balancing" (Re h < 0), "balanced_exists", "assumptions"; beside a liquid
+        also "liquid_added_mass_kg", "liquid_linear_range_m" and "liquid_linear" (the
+        separating circle within the linear range).
     """
     w = _speed(speed)
     n_theta = int(n_theta)
@@ -245,34 +296,44 @@ def residual_bound(system: System, speed: float, *,
     a = rest_limits(system, w, rolling_resistance)
     e_f = friction_displacement(system, w, friction_force, friction_angle)
     h = synchronous_gain(system, w)
+    kappa = 0.0 if liquid is None else float(liquid.added_mass)
+    # the balls' rest states see the rotor with the liquid's added mass (module docstring)
+    h_b = synchronous_gain(system, w, kappa) if kappa else h
+    e_b = friction_displacement(system, w, friction_force, friction_angle, kappa) if kappa else e_f
     c = b.masses * b.race_radius
     U = system.rotor.unbalance
     mb = b.total_mass
     cap = float(np.sum(c))
-    trivial = U + mb * rho + cap
+    trivial_b = U + mb * rho + cap                 # rotor and balls
+    trivial = trivial_b + (0.0 if liquid is None else float(liquid.capacity))
     # balanced state z = 0 with eps_f = 0: W = -rho e^{i beta}/h
     betas = (2 * math.pi * (np.arange(int(n_beta)) + 0.5) / int(n_beta) if beta is None and rho > 0
              else np.array([0.0 if beta is None else beta]))
     # balanced state z = 0, eps_f = 0: the balls cancel V = U + rho e^{i beta} (1/h + M_b)
-    shift = rho * abs(1.0 / h + mb)
+    shift = rho * abs(1.0 / h_b + mb)
     if beta is None:
         exists = (_balanced_exists(c, U + shift, 1e-9 * cap)
                   and _balanced_exists(c, max(U - shift, 0.0), 1e-9 * cap))
     else:
-        exists = _balanced_exists(c, U + rho * np.exp(1j * beta) * (1.0 / h + mb), 1e-9 * cap)
+        exists = _balanced_exists(c, U + rho * np.exp(1j * beta) * (1.0 / h_b + mb), 1e-9 * cap)
     out = {"speed_rad_s": w, "rest_limits_m": a, "friction_displacement_m": e_f,
            "gain_m_per_kg_m": abs(h), "eccentricity_kg_m": rho / abs(h),
            "friction_kg_m": e_f / abs(h), "capacity_kg_m": cap, "trivial_bound_kg_m": trivial,
-           "balancing": bool(h.real < 0), "balanced_exists": bool(exists),
-           "assumptions": list(ASSUMPTIONS)}
-    circle = _Circle(c, a, U, h, rho, betas, mb, e_f, n_theta)
-    zeta1 = _separating_radius(circle, a, trivial * abs(h) + rho + e_f)
+           "balancing": bool(h_b.real < 0), "balanced_exists": bool(exists),
+           "assumptions": list(ASSUMPTIONS) + (list(LIQUID_ASSUMPTIONS) if liquid else [])}
+    circle = _Circle(c, a, U, h_b, rho, betas, mb, e_b, n_theta)
+    zeta1 = _separating_radius(circle, a, trivial_b * abs(h_b) + rho + e_b)
     bound = (zeta1 + rho + e_f) / abs(h) if zeta1 is not None else math.inf
-    separated = bool(exists and h.real < 0 and bound < trivial)
+    linear = liquid is None or (zeta1 is not None and zeta1 + rho <= liquid.linear_range)
+    separated = bool(exists and h_b.real < 0 and bound < trivial and linear)
     out.update({"displacement_bound_m": zeta1 if zeta1 is not None else math.inf,
                 "rolling_kg_m": zeta1 / abs(h) if zeta1 is not None else math.inf,
                 "separated": separated,
                 "worst_residual_kg_m": bound if separated else trivial})
+    if liquid is not None:
+        out.update({"liquid_added_mass_kg": kappa,
+                    "liquid_linear_range_m": float(liquid.linear_range),
+                    "liquid_linear": bool(linear)})
     return out
 
 
@@ -281,7 +342,8 @@ def attained_residual(system: System, speed: float, *,
                       eccentricity: float | None = None,
                       eccentricity_angle: float | str | None = "system",
                       friction_force: float | None = None, friction_angle: float | None = None,
-                      zeta_max: float | None = None, n_starts: int = 16, seed: int = 0) -> dict:
+                      zeta_max: float | None = None, n_starts: int = 16, seed: int = 0,
+                      liquid: SyncLiquid | None = None) -> dict:
     """The largest residual unbalance of a rest state found by optimisation (a lower bound on the
     true worst case; :func:`residual_bound` is the upper one).
 
@@ -306,6 +368,10 @@ def attained_residual(system: System, speed: float, *,
         Starting configurations (>= 1).
     seed : int
         Seed of the random starts.
+    liquid : SyncLiquid, optional
+        A liquid beside the balls (:func:`residual_bound`): the rest test takes the rotor
+        with its added mass, the residual is W_b + kappa z_r, and |z| stays within the
+        liquid's linear range less rho.
 
     Returns
     -------
@@ -319,18 +385,21 @@ def attained_residual(system: System, speed: float, *,
     b = system.balancer
     bnd = residual_bound(system, w, rolling_resistance=rolling_resistance, eccentricity=eccentricity,
                          eccentricity_angle=eccentricity_angle, friction_force=friction_force,
-                         friction_angle=friction_angle, n_theta=256)
+                         friction_angle=friction_angle, liquid=liquid)
+    kappa = 0.0 if liquid is None else float(liquid.added_mass)
+    h = synchronous_gain(system, w, kappa)          # the balls' rest states: with kappa
     zmax = bnd["displacement_bound_m"] if zeta_max is None else _nonneg("zeta_max", zeta_max)
     if not math.isfinite(zmax):
-        zmax = bnd["trivial_bound_kg_m"] * bnd["gain_m_per_kg_m"]
+        zmax = bnd["trivial_bound_kg_m"] * abs(h)
     n = b.n_balls
     c = b.masses * b.race_radius
     a = bnd["rest_limits_m"]
-    e_f = bnd["friction_displacement_m"]
-    h = synchronous_gain(system, w)
+    e_f = friction_displacement(system, w, friction_force, friction_angle, kappa)
     U = system.rotor.unbalance
     mb = b.total_mass
     rho = b.eccentricity if eccentricity is None else float(eccentricity)
+    if liquid is not None:            # the rest states the linear liquid models: |z_r| in range
+        zmax = min(zmax, max(float(liquid.linear_range) - rho, 0.0))
     free_beta = eccentricity_angle is None
     beta0 = b.eccentricity_angle if isinstance(eccentricity_angle, str) or free_beta \
         else float(eccentricity_angle)
@@ -341,6 +410,11 @@ def attained_residual(system: System, speed: float, *,
         return {"attained_residual_kg_m": bnd["worst_residual_kg_m"],
                 "alpha_rad": np.full(n, math.nan),
                 "eccentricity_angle_rad": beta0, "friction_shift_m": e_f}
+    if not zmax > 0.0:
+        # no circle to search: no rolling resistance where the balls do not balance (0/0 in
+        # the rest test before), or beside a liquid whose rings are not intact
+        return {"attained_residual_kg_m": math.nan, "alpha_rad": [math.nan] * n,
+                "eccentricity_angle_rad": math.nan, "friction_shift_m": math.nan}
     zs = max(zmax, float(a.max()), 1e-12 * b.race_radius)
 
     def unpack(x):
@@ -356,6 +430,9 @@ def attained_residual(system: System, speed: float, *,
     def z_of(x):
         al, ef, be = unpack(x)
         return h * W_of(x) + rho * np.exp(1j * be) + ef
+
+    def Wt(x):                      # the rotor's residual: + the liquid's kappa z_r
+        return W_of(x) + kappa * (z_of(x) - rho * np.exp(1j * unpack(x)[2])) if kappa else W_of(x)
 
     def cons(x):
         al, _, _ = unpack(x)
@@ -378,13 +455,13 @@ def attained_residual(system: System, speed: float, *,
         x = np.concatenate([al0 + rng.normal(0, 1e-3, n), [0.0, 0.0], [be] if free_beta else []])
         for frac in np.linspace(0.25, 1.0, 4):     # continuation: |z| <= frac zeta_max
             lim = frac * zmax
-            r = minimize(lambda x: -abs(W_of(x) / scale) ** 2, x, method="SLSQP",
+            r = minimize(lambda x: -abs(Wt(x) / scale) ** 2, x, method="SLSQP",
                          constraints=[{"type": "ineq", "fun": lambda x, lim=lim: np.concatenate(
                              [cons(x)[:-1], [(lim / zs) ** 2 - abs(z_of(x) / zs) ** 2]])}],
                          options={"maxiter": 300, "ftol": 1e-14})
             if np.all(cons(r.x) >= -1e-9):
                 x = r.x
-                v = abs(W_of(x))
+                v = abs(Wt(x))
                 if v > best:
                     best, best_x = v, x
     if n == 2:                         # exact: the outermost rest state on the circles
@@ -392,8 +469,8 @@ def attained_residual(system: System, speed: float, *,
             x = _outermost_two_balls(c, a, U, h, rho, be, mb, zmax)
             if x is not None:
                 x = np.concatenate([x, [0.0, 0.0], [be] if free_beta else []])
-                if np.all(cons(x) >= -1e-9) and abs(W_of(x)) > best:
-                    best, best_x = abs(W_of(x)), x
+                if np.all(cons(x) >= -1e-9) and abs(Wt(x)) > best:
+                    best, best_x = abs(Wt(x)), x
     if best_x is None:
         return {"attained_residual_kg_m": math.nan, "alpha_rad": [math.nan] * n,
                 "eccentricity_angle_rad": math.nan, "friction_shift_m": math.nan}

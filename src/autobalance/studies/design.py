@@ -45,9 +45,10 @@ __all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary
 
 #: TSR plateau of the candidate profiles as a multiple of the first natural frequency [-].
 PLATEAU_RATIO = 1.06
-#: Why a design beside a liquid has no tolerances (docs/liquid.md sec. 3i).
-TOLERANCES_BESIDE_LIQUID = ("beside a liquid: the tolerance closed forms (000 eq 56-66) have no "
-                            "liquid; judge a built design by simulation (study sensitivity)")
+#: Why a design beside a liquid may have no tolerances (docs/liquid.md sec. 3l), before the
+#: bound's one-line refusal (a horizontal axis, two partitions, an anisotropic suspension).
+TOLERANCES_BESIDE_LIQUID = ("beside this liquid the tolerance bound does not hold; judge a "
+                            "built design by simulation (study sensitivity)")
 
 
 @dataclass(frozen=True)
@@ -309,8 +310,14 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
     # the tolerances to build the recommended design with (the cheapest that meets the target,
     # else the one closest to it): study tolerances for the same grade (closed form)
     pick = int(order[0]) if meets.any() else int(np.argmin(worst))
-    tol = (_design_tolerances(cands[pick]["config"], grade)
-           if tolerances and cfg.system.liquid is None else {})
+    tol, skipped = {}, ""
+    if tolerances:
+        try:
+            tol = _design_tolerances(cands[pick]["config"], grade)
+        except ParameterError as e:          # beside a liquid the bound has its limits
+            if cfg.system.liquid is None:
+                raise
+            skipped = f"{TOLERANCES_BESIDE_LIQUID}: {e}"
     ds = xr.Dataset(
         {"grade_G": (("design", "unbalance", "sample"), g, {"units": "mm/s",
                                                             "long_name": "grade at the last read-out"}),
@@ -341,8 +348,7 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
                      **{f"plateau_{k}": v for k, v in refine.items()
                         if k not in ("candidate", "simulations")},
                      "tolerances_design": str(cands[pick]["name"]) if tol else "",
-                     "tolerances_skipped": TOLERANCES_BESIDE_LIQUID
-                     if tolerances and cfg.system.liquid is not None else "",
+                     "tolerances_skipped": skipped,
                      **{f"tolerance_{k}": v for k, v in tol.items()},
                      "wall_s": time.perf_counter() - t0})
     return ds

@@ -2,6 +2,10 @@
 to N balls and any balancer), the true worst case of the machine's own tolerances, and a Monte
 Carlo of real simulations of the machine built with the tolerances at their limits.
 
+Beside a liquid (vertical axis, isotropic suspension) the bounds take the liquid's synchronous
+moment (:func:`autobalance.liquid.synchronous.synchronous_liquid`, docs/liquid.md sec. 3l) and
+the simulations are runs of balls beside the films (:mod:`autobalance.simulate.hybrid`).
+
 :func:`compute_tolerances` is closed form (:mod:`autobalance.physics.tolerance`,
 :mod:`autobalance.physics.worst_case`); :func:`check_tolerances_by_simulation` integrates
 the full model (:func:`autobalance.simulate.simulate_batch`) from random start angles with the
@@ -40,6 +44,30 @@ METHODS = {"bound": "000 eq 56-66 generalised: the true worst-case bound of this
 
 #: Keys of a tolerance dict (as :func:`compute_tolerances` returns them).
 TOLERANCE_KEYS = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")
+
+
+def liquid_at(system: System):
+    """speed [rad/s] -> the machine's liquid in a synchronous whirl (SyncLiquid), or None for
+    no liquid; one-line errors for what the bound beside a liquid does not take (a horizontal
+    axis, two partitions: :func:`~autobalance.liquid.synchronous.synchronous_liquid`; an
+    anisotropic suspension).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (balls, perhaps a ``[liquid]`` section; suspension kx, ky [N/m]).
+    """
+    if system.liquid is None:
+        return lambda speed: None
+    from ..liquid.synchronous import check_synchronous, synchronous_liquid
+
+    sus = system.suspension
+    if sus.kx != sus.ky or sus.cx != sus.cy:
+        raise ParameterError("suspension", f"kx={sus.kx:g}, ky={sus.ky:g}, cx={sus.cx:g}, "
+                             f"cy={sus.cy:g}", "must be isotropic for the tolerances beside a "
+                             "liquid (the liquid follows the forward whirl only)")
+    check_synchronous(system.liquid)
+    return lambda speed: synchronous_liquid(system.liquid, speed)
 
 
 def _settle_speed(cfg, speed):
@@ -98,11 +126,15 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         (docs/tolerances.md).
     """
     t0 = time.perf_counter()
-    cfg = load(base)
+    cfg = load(base, allow_liquid=True)
     s = cfg.system
     if method not in METHODS:
         raise ParameterError("method", method, "must be one of: " + "; ".join(
             f"{k!r} ({v})" for k, v in METHODS.items()))
+    if method == "000" and s.liquid is not None:
+        raise ParameterError("method", method, "is 000's one-ball estimate without a liquid; "
+                             "'bound' takes the liquid beside the balls")
+    liq = liquid_at(s)
     w, basis = _settle_speed(cfg, speed)
     Om = cfg.spin.nominal_speed
     U, mt = s.rotor.unbalance, s.total_mass
@@ -120,9 +152,9 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
                                  f"most the unbalance (G{float(grade_value(U, mt, Om)):.4g} here)")
         d = tolerances_000(s, w, q, nominal_speed=Om, split=split)
     else:
-        d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split)
-    p = worst_case_prediction(s, w, nominal_speed=Om)
-    att = attained_residual(s, w, eccentricity_angle=None, n_starts=8)
+        d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split, liquid=liq(w))
+    p = worst_case_prediction(s, w, nominal_speed=Om, liquid=liq(w))
+    att = attained_residual(s, w, eccentricity_angle=None, n_starts=8, liquid=liq(w))
     u_g = d["target_unbalance_kg_m"]
     warnings = []
     if not d["feasible"]:
@@ -131,6 +163,11 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         warnings.append(f"at {w:.4g} rad/s the balls can rest almost anywhere with the machine's "
                         "own tolerances (no dead-band gap): the worst case is the trivial bound "
                         "U + M_b rho + sum m_i R; it depends on where they last moved")
+    if not p.get("liquid_linear", True):
+        warnings.append(f"at {w:.4g} rad/s the balls' rest states reach whirls beyond the "
+                        f"liquid's linear range ({p['liquid_linear_range_m']:.3g} m: its rings "
+                        "break): no bound beside this liquid; the worst case is the trivial "
+                        "bound")
     if p["rme_worst"] < 0:
         warnings.append("in the worst case the balls at rest leave more than the rotor's own "
                         "unbalance (e.g. clustered on the heavy side)")
@@ -166,9 +203,15 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         out["paper_000"] = d["paper_000"]
         out["design_meets_target"] = d["design_meets_target"]
     out["collinear_residuals_kg_m"] = collinear_residuals(s)
+    if s.liquid is not None:
+        out.update({"liquid_added_mass_kg": p["liquid_added_mass_kg"],
+                    "liquid_linear_range_m": p["liquid_linear_range_m"],
+                    "liquid_linear": p["liquid_linear"]})
+        warnings.append("beside a liquid the collinear residuals are of the rotor and balls "
+                        "alone (the liquid's rings are broken at such whirls)")
     if getattr(cfg, "profile_kind", "") == "tsr":
         wp = plateau_speed(cfg.spin)
-        pp = residual_bound(s, wp, eccentricity_angle=None)
+        pp = residual_bound(s, wp, eccentricity_angle=None, liquid=liq(wp))
         out.update({"plateau_speed_rad_s": wp,
                     "plateau_worst_residual_kg_m": pp["worst_residual_kg_m"],
                     "plateau_worst_grade_G_mm_s": float(grade_value(pp["worst_residual_kg_m"], mt, Om))})
@@ -301,10 +344,11 @@ def check_tolerances_by_simulation(base: str | Path | Config, tolerances: dict, 
     sets = []
     if duration is not None:
         sets.append(f"profile.duration={duration if isinstance(duration, str) else repr(float(duration))}")
-    cfg = load(base, sets)
+    cfg = load(base, sets, allow_liquid=True)
     s0 = cfg.system
     tol_speed = tolerances.get("speed_rad_s") if isinstance(tolerances, dict) else None
     w, _ = _settle_speed(cfg, tol_speed)
+    liq = liquid_at(s0)
     machine_with_tolerances(s0, tolerances)          # validates before any work
     rng = np.random.default_rng(int(seed))
     betas = rng.uniform(0.0, 2 * math.pi, n)
@@ -312,11 +356,12 @@ def check_tolerances_by_simulation(base: str | Path | Config, tolerances: dict, 
     systems = [machine_with_tolerances(s0, tolerances, b) for b in betas]
     inits = [InitialState(ball_angles=tuple(float(v) for v in a)) for a in starts]
     t_read = cfg.spin.checkpoints[-1] if cfg.spin.checkpoints else cfg.spin.duration
-    res = simulate_batch(systems, cfg.spin, inits, options=cfg.options, out_times=[t_read])
+    res = (simulate_batch(systems, cfg.spin, inits, options=cfg.options, out_times=[t_read])
+           if s0.liquid is None else _hybrid_runs(systems, cfg, inits, t_read))
     final = res.residual_unbalance[:, -1]
     ok = np.array([st == "ok" for st in res.status])
     pred = worst_case_prediction(systems[0], w, nominal_speed=cfg.spin.nominal_speed,
-                                 eccentricity_angle=None)
+                                 eccentricity_angle=None, liquid=liq(w))
     bound = pred["worst_residual_kg_m"]
     collinear = np.array([_collinear(a, s0.balancer.contact_angle) for a in res.alpha[:, -1]])
     above = ok & (final > bound)
@@ -340,6 +385,24 @@ def check_tolerances_by_simulation(base: str | Path | Config, tolerances: dict, 
         "holds": bool(good.size and not (above & ~collinear).any()),
         "separated": pred["separated"], "elapsed_s": time.perf_counter() - t0,
     }
+
+
+def _hybrid_runs(systems, cfg, inits, t_read: float):
+    """Runs of balls beside a liquid (:func:`autobalance.simulate`, the films of
+    :mod:`autobalance.simulate.hybrid`) read out at ``t_read`` [s], in the fields of a
+    BatchResult that :func:`check_tolerances_by_simulation` reads."""
+    from types import SimpleNamespace
+
+    from ..simulate import simulate
+
+    sims = [simulate(s, cfg.spin, initial=i, options=cfg.options, throw=False)
+            for s, i in zip(systems, inits)]
+    k = [int(np.argmin(np.abs(r.t - t_read))) for r in sims]
+    return SimpleNamespace(
+        residual_unbalance=np.array([[r.residual_unbalance[j]] for r, j in zip(sims, k)]),
+        grade_G=np.array([[r.grade_G[j]] for r, j in zip(sims, k)]),
+        alpha=np.array([[r.alpha[j]] for r, j in zip(sims, k)]),
+        status=[r.status for r in sims])
 
 
 def _collinear(alpha, contact_angle: float) -> bool:
