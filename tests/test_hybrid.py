@@ -71,6 +71,7 @@ def test_locked_balls_are_the_film_rotor():
         < 2e-2 * abs(ref.liquid_unbalance[-1])
 
 
+@pytest.mark.slow          # 2.2 s: the fast tier stays under a minute
 def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
     """The same limit on a horizontal axis (leblanc_washer, gravity in the plane: the films see
     the chamber about the rotation axis, static sag included, and gravity's offset of their

@@ -68,7 +68,8 @@ def test_laminar_layer_spins_up_as_its_closed_form():
     assert np.max(np.abs(run.liquid_speed[k] / exact - 1)) < 1e-2
 
 
-@pytest.mark.parametrize("rate, tol", [(0.2, 0.005), (1.0, 0.02)])
+@pytest.mark.parametrize("rate, tol", [pytest.param(0.2, 0.005, marks=pytest.mark.slow),
+                                       (1.0, 0.02)])     # the slow rate: 2.2 s
 def test_viscous_slow_run_up_is_quasi_static(rate, tol):
     """A liquid 100 times as viscous as water follows the chamber: it reaches the lid at 003 eq
     6's speed (measured +0.26 % at 0.2 1/s^2, +1.3 % at 1 1/s^2)."""
@@ -88,6 +89,7 @@ def test_entrainment_speed_converges_under_grid_refinement():
     assert abs(w[1] - w[2]) < 5e-4 * w[2]
 
 
+@pytest.mark.slow          # 2.2 s: the fast tier stays under a minute
 def test_lag_grows_with_the_run_up_rate_and_shrinks_with_viscosity():
     rates = (0.5, 2.0, 8.0)
     w = [spinup_run(R, H, V, ramp(r), 100.0 / r).mode_changes()[-1]["speed_rad_s"]
