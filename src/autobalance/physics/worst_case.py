@@ -98,6 +98,8 @@ LIQUID_ASSUMPTIONS = (
     "the liquid in rigid rotation about the rotation axis with the chamber displaced by the "
     "rotor's synchronous whirl (quasi-static: moment kappa z_r while its rings stay intact; "
     "first order in z_r with partitions)",
+    "that synchronous whirl is reached: the liquid's own waves do not destabilise it (study "
+    "speed-map judges the balanced state with the films)",
 )
 
 
