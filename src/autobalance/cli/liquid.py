@@ -274,10 +274,7 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
                 for c in s.liquid.chambers]
     if s.liquid.n_chambers > 1:
         require_liquid_machine(s)
-        if any(c.partitions for c in s.liquid.chambers):
-            raise ParameterError("liquid.partitions", s.liquid.partitions, "must be 0 for liquid "
-                                 "simulate (the quasi-static liquid has no partitions; "
-                                 "autobalance simulate has)")
+        s.liquid.unpartitioned("liquid simulate")
         return cfg, film_rotor(s), None, chambers
     rot, bal = liquid_parts(s)
     if liquid:
