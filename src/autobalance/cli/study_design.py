@@ -279,11 +279,11 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                f"G{res['expected_grade_G_mm_s']:.3g}")
     if "liquid_added_mass_kg" in res:
         r_lin = res["liquid_linear_range_m"]
-        typer.echo(f"  beside the liquid: its synchronous moment is an added mass of "
-                   f"{res['liquid_added_mass_kg']:.4g} kg on the rotor"
-                   + (f" while its rings hold (whirl up to {du.fmt(r_lin, 'length')})"
-                      if math.isfinite(r_lin) else " (a pool at this speed: none)")
-                   + " (docs/liquid.md sec. 3l)")
+        typer.echo("  beside the liquid: " + (
+            f"its synchronous moment is an added mass of {res['liquid_added_mass_kg']:.4g} kg "
+            f"on the rotor while its rings hold (whirl up to {du.fmt(r_lin, 'length')})"
+            if math.isfinite(r_lin) else "a pool at this speed (below its entrainment speed, "
+            "003 eq 6): no moment, its mass moves with the rotor") + " (docs/liquid.md sec. 3l)")
     for wmsg in res.get("warnings", []):
         typer.echo(f"  note: {wmsg}")
     if "simulation_check" in res:
