@@ -186,6 +186,15 @@ def test_refusals(sets, field):
     assert e.value.field == field and "\n" not in str(e.value)
 
 
+def test_two_partitions_in_one_of_three_chambers_name_it():
+    from autobalance.studies.tolerances import compute_tolerances
+
+    with pytest.raises(ParameterError) as e:
+        compute_tolerances(load_config("leblanc_003_three", [
+            *BALLS, "balancer.race_radius=0.3 m", "liquid.partitions=[0, 2, 0]"]))
+    assert e.value.field == "liquid.partitions[1]" and e.value.value == 2
+
+
 def test_refusals_horizontal_and_the_000_estimate():
     from autobalance.studies.tolerances import compute_tolerances
 

@@ -40,7 +40,7 @@ if TYPE_CHECKING:
 __all__ = ["check_synchronous", "partition_factor", "synchronous_liquid"]
 
 
-def partition_factor(partitions: int) -> float:
+def partition_factor(partitions: int, field: str = "liquid.partitions") -> float:
     """f(p) = 1 - (p/pi)^2 sin^2(pi/p) [-]: the share of the open ring's synchronous moment
     that p equally spaced radial partitions leave, to first order in the whirl (module
     docstring); 1 without partitions.
@@ -49,10 +49,12 @@ def partition_factor(partitions: int) -> float:
     ----------
     partitions : int
         Radial walls p [-]: 0 or >= 3 (two walls make the response direction-dependent).
+    field : str
+        The config key named in the error [-] (a chamber's index with several).
     """
     p = int(partitions)
     if p != partitions or p < 0 or p in (1, 2):
-        raise ParameterError("liquid.partitions", partitions,
+        raise ParameterError(field, partitions,
                              "must be 0 or >= 3 for the synchronous liquid (two walls make its "
                              "moment depend on the whirl's direction: 1 along them, 1 - 8/pi^2 "
                              "across)")
@@ -72,8 +74,9 @@ def check_synchronous(device: LiquidDevice) -> None:
         raise ParameterError("liquid.axis", device.axis, "must be vertical for the synchronous "
                              "liquid (on a horizontal axis gravity in the chamber's plane moves "
                              "the films once per revolution); the studies that simulate take it")
-    for c in device.chambers:
-        partition_factor(c.partitions)
+    many = device.n_chambers > 1
+    for i, c in enumerate(device.chambers):
+        partition_factor(c.partitions, f"liquid.partitions[{i}]" if many else "liquid.partitions")
 
 
 def _chamber(c, speed: float, g: float) -> tuple[float, float]:
