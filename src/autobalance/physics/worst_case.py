@@ -46,7 +46,7 @@ tends to 000 eq (61)'s m R Delta alpha = M_t R f/r.
 Leblanc chamber turns rigidly about the rotation axis while the chamber is displaced by the
 rotor's whirl z_r = z - rho e^{i beta}; while its rings stay intact its moment about the chamber
 centre is U_L = kappa z_r, kappa the mass of the missing core (intact ring, Ehrich 1992 sec. 5;
-:func:`autobalance.liquid.quasistatic.synchronous_liquid`). The rotor's whirl then obeys
+:func:`autobalance.liquid.synchronous.synchronous_liquid`). The rotor's whirl then obeys
 D z_r = w^2 (W_b + kappa z_r) + Phi, i.e. the rotor with the added mass kappa:
 z_r = h_b W_b + eps_b, h_b and eps_b the gain and friction shift with M_t + kappa. The balls'
 rest test and the circle test take h_b (and e_f with M_t + kappa); the residual the rotor feels,
@@ -105,7 +105,7 @@ LIQUID_ASSUMPTIONS = (
 
 class SyncLiquid(NamedTuple):
     """A liquid beside the balls as their averaged model sees it in a synchronous whirl
-    (module docstring; made by :func:`autobalance.liquid.quasistatic.synchronous_liquid`).
+    (module docstring; made by :func:`autobalance.liquid.synchronous.synchronous_liquid`).
 
     Parameters
     ----------
