@@ -238,3 +238,22 @@ def test_runs_beside_the_films_stay_within_the_bound():
     txt = subprocess.run([sys.executable, "-m", "autobalance", "study", "tolerances",
                           "leblanc_003", *sets], capture_output=True, text=True, timeout=300)
     assert txt.returncode == 0 and "added mass of 6.133 kg" in txt.stdout
+
+
+@pytest.mark.slow
+def test_no_design_where_the_rings_touch_a_wall():
+    """At the entrainment speed the surface reaches the lid at the wall: the linear range is 0
+    and the design says so instead of returning tolerances of 0."""
+    from autobalance.liquid.steady import start_speed
+    from autobalance.physics.tolerance import tolerances_for_grade
+
+    s = machine()
+    c = s.liquid
+    w0 = start_speed(c.volume, c.chamber_radius, c.chamber_height, inner_radius=c.inner_radius)
+    L = synchronous_liquid(c, w0 * (1 + 1e-9))
+    assert L.added_mass > 0 and L.linear_range < 1e-6
+    # (22.7 1/s is below these balls' onset; the same liquid without its margin at 100 1/s)
+    touching = synchronous_liquid(c, 100.0)._replace(linear_range=0.0)
+    d = tolerances_for_grade(s, 100.0, 16.0, liquid=touching)
+    assert not d["feasible"] and "not intact" in d["reason"]
+    assert tolerances_for_grade(s, 100.0, 16.0, liquid=synchronous_liquid(c, 100.0))["feasible"]

@@ -315,6 +315,10 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
         return {**out, "feasible": False,
                 "reason": f"capacity short: the balls (sum m_i R = {base['capacity_kg_m']:.4g} "
                           f"kg*m) cannot cancel the unbalance {system.rotor.unbalance:.4g} kg*m"}
+    if liquid is not None and not liquid.linear_range > 0:
+        return {**out, "feasible": False,
+                "reason": f"at {w:.4g} rad/s the liquid's rings are not intact (they touch a "
+                          "wall): no bound beside it (docs/liquid.md sec. 3l)"}
     gain = base["gain_m_per_kg_m"]
     per_n = residual_bound(system, w, **{**zero, "friction_force": 1.0})["friction_displacement_m"]
 
