@@ -104,7 +104,7 @@ def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
     (("liquid.axis=horizontal",), None, "gravity.g"),          # no in-plane gravity given
     (("gravity.g=9.81 m/s^2",), None, "gravity.g"),            # in the plane of a vertical axis
     (("profile.end_speed=10 1/s",), None, "profile"),
-    ((), MotorDrive("constant", 10.0, 50.0, 5.0), "profile.kind"),
+    ((), MotorDrive("constant", 10.0, 50.0, 5.0), "profile.initial_speed"),   # from rest
 ])
 def test_refusals(sets, spin, field):
     cfg = machine(*sets)

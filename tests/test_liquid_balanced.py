@@ -57,7 +57,7 @@ def film_run_slope(system, speed, alpha, end, n_cells=64):
                              atol, h_max, 10 ** 7, out_t, out_y, stats,
                              np.zeros(carry_size(2)), st.h, st.q, st.theta, st.starts, st.Rs,
                              st.Hs, st.rhos, st.nus, st.wall, 0.0, 0.0, 0j, np.zeros(1), none,
-                             none.copy())
+                             none.copy(), np.zeros(1))
     assert steps > 100 and stats[0] == 0.0
     late = out_t > end / 2
     return np.polyfit(out_t[late], np.log(np.hypot(out_y[late, 0], out_y[late, 1])), 1)[0]

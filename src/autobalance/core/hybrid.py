@@ -20,8 +20,13 @@ rotor): over a step [t, t + dt] (the films' CFL step)
    rates (docs/liquid.md sec. 3k).
 
 With a film of no mass this is the ball kernel's run stepped at the films' pace; with balls that
-cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both). Prescribed
-spin only (psi'' known).
+cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both).
+
+A motor-driven spin (layout.P_SPIN = 1; docs/liquid.md sec. 3i): the films take Omega = psi'
+from the kernel's state at t and Omega' from its last step; the kernel holds, besides U and U',
+the films' second moment I_c (in its spin row, with -i psi'' U in its mass matrix) and their
+torque on the spin, -(the films' change of relative angular momentum H_rel) / dt of the last
+film step (films_spin): the wall shear's and the partitions' torque, one step late.
 """
 from __future__ import annotations
 
@@ -33,10 +38,10 @@ from numba import njit
 from .jit import kernel
 
 from .integrate import _integrate
-from .layout import P_LQDX, P_LQDY, P_LQX, P_LQY, P_MT, S_STATUS, RunStatus
+from .layout import P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS, RunStatus
 from .ramp import RAMP_TAYLOR, RAMP_TERMS
 from .rhs import profile_eval, profile_segment
-from .shallow_water import _emit, films_dt, films_moment, films_step, gravity_offset
+from .shallow_water import _emit, films_dt, films_moment, films_spin, films_step, gravity_offset
 
 _RUNNING = float(RunStatus.RUNNING)
 
@@ -84,13 +89,39 @@ def _accept(h: np.ndarray, q: np.ndarray, hn: np.ndarray, qn: np.ndarray) -> boo
 
 
 @kernel
-def _freeze(P: np.ndarray, U: complex, Ud: complex) -> None:
-    """The films' moment U [kg*m] and rate U' [kg*m/s] that the ball kernel holds fixed over a
-    coupling step (layout.P_LQX..P_LQDY)."""
+def _freeze(P: np.ndarray, U: complex, Ud: complex, Ic: float, Tl: float) -> None:
+    """The films' moment U [kg*m], rate U' [kg*m/s], second moment I_c [kg*m^2] and torque on
+    the spin [N*m] that the ball kernel holds fixed over a coupling step (layout.P_LQX..P_LQT;
+    the last two read only with a motor-driven spin)."""
     P[P_LQX] = U.real
     P[P_LQY] = U.imag
     P[P_LQDX] = Ud.real
     P[P_LQDY] = Ud.imag
+    P[P_LQI] = Ic
+    P[P_LQT] = Tl
+
+
+@kernel
+def _spin_speed(t: float, y: np.ndarray, motor: bool, prof_t: np.ndarray,
+                prof_w: np.ndarray) -> float:
+    """The spin speed [rad/s] at t [s]: the kernel's psi' (motor-driven) or the profile's."""
+    if motor:
+        return y[y.shape[0] - 1]
+    W, _ = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
+    return W
+
+
+@njit(cache=True)
+def _ball_work(N: int):
+    """The ball kernel's work arrays for N balls (as integrate_span allocates them)."""
+    nq = N + 3
+    n = 2 * nq
+    return (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+            np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)), np.zeros(nq),
+            np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
+            np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
+            np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
+            np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)))
 
 
 @njit(cache=True)
@@ -101,7 +132,8 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                      carry: np.ndarray, h: np.ndarray, q: np.ndarray, theta: np.ndarray,
                      starts: np.ndarray, Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray,
                      nus: np.ndarray, wall: np.ndarray, gp: float, gdir: float, sag: complex,
-                     film_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray) -> int:
+                     film_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray,
+                     out_psi: np.ndarray) -> int:
     """From t0 [s] to t_end [s]: the ball run (P, B, N, profile, unbalance table, y, rtol, atol,
     h_max, max_steps, out_t, out_y, stats as integrate.integrate_span; ``carry`` its paused
     state at t0, or carry[C_WHERE] = 0 with t0 = 0) with the films of concentric chambers
@@ -112,8 +144,9 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     kernel's deflection is from the static equilibrium, the films need the chamber's position
     about the rotation axis). out_h, out_q (len(film_t), cells) receive the films at their own
     sorted output times film_t [s] from t0 on (dense enough for the revolution average, whatever
-    the balls' outputs; rows before t0 are left alone). Returns the film steps; -1 on a
-    non-finite film. The run's status is the ball kernel's (stats)."""
+    the balls' outputs; rows before t0 are left alone), out_psi the kernel's spin angle [rad]
+    there. Returns the film steps; -1 on a non-finite film. The run's status is the ball
+    kernel's (stats)."""
     nq = N + 3
     n = 2 * nq
     n_c = h.shape[0]
@@ -122,48 +155,38 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     pw = np.zeros(np_)
     fw = np.zeros((9, n_c))              # the films' work arrays
     hn, qn, fh, fq, fqr, hl, hr, b, a = fw[0], fw[1], fw[2], fw[3], fw[4], fw[5], fw[6], fw[7], fw[8]
-    # the ball kernel's work arrays (as integrate_span)
-    K = np.zeros((6, n))
-    ytmp = np.zeros(n)
-    y1 = np.zeros(n)
-    f0 = np.zeros(n)
-    f1 = np.zeros(n)
-    ftmp = np.zeros(n)
-    err = np.zeros(n)
-    lam = np.zeros(3 * N + 1)
-    Mm = np.zeros((nq, nq))
-    fv = np.zeros(nq)
-    A = np.zeros((nq, nq))
-    bb = np.zeros(nq)
-    idx = np.zeros(nq, dtype=np.int64)
-    stuck = np.zeros(N, dtype=np.int64)
-    sgn = np.ones(N)
-    gs = np.zeros(N)
-    ge = np.zeros(N)
-    spin = np.zeros(2)
-    in_contact = np.zeros(N, dtype=np.int64)
-    viol = np.zeros(N, dtype=np.int64)
-    trig = np.full(3 * N, np.nan)
-    ser = np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128)
-    qr = np.zeros((10, N))
+    K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx, stuck, sgn, gs, ge, spin, \
+        in_contact, viol, trig, ser, qr = _ball_work(N)
 
     Mt = P[P_MT]
+    motor = P[P_SPIN] == 1.0
     t = t0
     kout = 0
     while kout < film_t.shape[0] and film_t[kout] < t - 1e-12 * max(1.0, t):
         kout += 1
     U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
-    W0, _ = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
+    Ic, Hr = films_spin(h, q, starts, Rs, Hs, rhos)
+    Tl = 0.0
+    W0 = _spin_speed(t, y, motor, prof_t, prof_w)
+    W_prev = W0
+    Wd_m = 0.0
     wd_prev = complex(y[nq], y[nq + 1]) - 1j * W0 * sag * complex(math.cos(y[nq - 1]),
                                                                   -math.sin(y[nq - 1]))
     wdd = 0j
     steps = 0
     tol = 1e-12 * max(1.0, t_end)
     while True:
+        k0 = kout
         kout = _emit(film_t, out_h, out_q, kout, t, h, q)
+        for k in range(k0, kout):
+            out_psi[k] = y[nq - 1]
         if t >= t_end - tol:
             break
-        W, Wd = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
+        if motor:                   # the kernel's spin; its rate from the last step
+            W = y[n - 1]
+            Wd = Wd_m
+        else:
+            W, Wd = profile_eval(t, profile_segment(t, prof_t), prof_t, prof_w)
         psi = y[nq - 1]
         rot = complex(math.cos(psi), -math.sin(psi))
         w = complex(y[0], y[1]) + sag * rot              # the chamber about the rotation axis
@@ -180,7 +203,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         films_step(h, q, theta, starts, Rs, nus, wall, W, Wd, w, off, wd, wdd, dt, hn, qn, fh,
                    fq, fqr, hl, hr, b, a)
         # 2. rotor and balls over [t, t1] with the films' moment frozen
-        _freeze(P, U, Ud)
+        _freeze(P, U, Ud, Ic, Tl)
         m = with_knot(prof_t, prof_w, t1, pt, pw)
         t_pause = t1 if t1 < t_end else np.inf
         _integrate(P, B, N, pt[:m], pw[:m], unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
@@ -202,7 +225,13 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         y[nq + 1] -= dUd.imag
         U = U1
         Ud = Ud1
-        Wn, _ = profile_eval(t1, profile_segment(t1, prof_t), prof_t, prof_w)
+        if motor:                   # the films' torque on the spin over the next step
+            Ic, Hr1 = films_spin(h, q, starts, Rs, Hs, rhos)
+            Tl = -(Hr1 - Hr) / dt
+            Hr = Hr1
+            Wd_m = (y[n - 1] - W_prev) / dt
+            W_prev = y[n - 1]
+        Wn = _spin_speed(t1, y, motor, prof_t, prof_w)
         psi1 = y[nq - 1]
         wd_new = complex(y[nq], y[nq + 1]) - 1j * Wn * sag * complex(math.cos(psi1),
                                                                     -math.sin(psi1))
@@ -211,5 +240,5 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         t = t1
         if stats[S_STATUS] != _RUNNING and t < t_end:
             break                  # the ball run failed (step budget, stall): its status says
-    _freeze(P, 0j, 0j)
+    _freeze(P, 0j, 0j, 0.0, 0.0)
     return steps

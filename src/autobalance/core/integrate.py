@@ -408,7 +408,9 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     = RUNNING, its state in y, out_y filled up to that time and everything else the loop
     carries in ``carry``. Called again with that y, carry, out_y and stats, and a profile equal
     up to that time, it continues bit for bit as the run without the pause. With t_pause a
-    knot, the stop is on the knot and the later segments may differ (branching). t_pause = inf:
+    knot, the stop is on the knot and the later segments may differ (branching). With a
+    motor-driven spin (no knots) the step is clipped to t_pause and the run stops there (the
+    coupling steps of core/hybrid.py; not bit for bit the run without the pause). t_pause = inf:
     the whole run.
     """
     nq = N + 3
@@ -623,10 +625,12 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         nrhs += 2 * N + 3
                         continue
                 next_try = nsteps + 20
-        # hard stops at profile knots
+        # hard stops at profile knots (a motor-driven spin: at the pause, core/hybrid.py)
         t_stop = t_end
         if spin[0] == 0.0 and seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_stop:
             t_stop = prof_t[seg + 1]
+        elif spin[0] != 0.0 and t_pause < t_stop:
+            t_stop = t_pause
         last = False
         if t + h >= t_stop - 1e-12 * max(1.0, abs(t_stop)):
             h = t_stop - t
@@ -826,6 +830,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 paused = 4
                 break
             seg = profile_segment(t, prof_t)
+        elif last and t >= t_pause:
+            paused = 4                 # a motor-driven spin, at the pause (no knot)
+            break
         # ---- mode changes ----------------------------------------------------------------
         if ev_kind >= 0 or last:
             nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,

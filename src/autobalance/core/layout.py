@@ -52,7 +52,9 @@ P_LQX = 36        # a liquid beside the balls (core/hybrid.py): its first moment
 P_LQY = 37        #   chamber centre, rotor frame [kg*m], and its rate U' [kg*m/s], frozen over
 P_LQDX = 38       #   a coupling step; all 0 without a liquid
 P_LQDY = 39
-N_P = 40
+P_LQI = 40        #   with a motor-driven spin: the films' second moment about the chamber
+P_LQT = 41        #   centre [kg*m^2] and their torque on the spin [N*m], held likewise
+N_P = 42
 # P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
 # autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 

@@ -27,8 +27,8 @@ from typing import TYPE_CHECKING
 from .jit import inline_kernel, kernel
 from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
-                     P_GDRY, P_KX, P_KY, P_LAW, P_LQDX, P_LQDY, P_LQX, P_LQY, P_MT, P_NMODEL,
-                     P_R, P_RHO, P_T0, P_VDRY, P_VSAT, P_WF, P_ISO)
+                     P_GDRY, P_KX, P_KY, P_LAW, P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY,
+                     P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY, P_VSAT, P_WF, P_ISO)
 
 if TYPE_CHECKING:
     import numpy as np
@@ -293,6 +293,14 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
 
     if not driven:
         return _solve_prescribed(y, P, N, stuck, Mm, fv, dy, lam, bb, B, psid, psidd)
+    # a motor-driven spin beside a liquid (docs/liquid.md sec. 3i): -i psi'' U joins M (the
+    # translational rows here, the psi row in _solve_driven); the psi row gains the films'
+    # second moment I_c, Re(conj(U) w) and Im(conj(U) a), a the velocity part of the rotor-frame
+    # acceleration, and their held torque (0 without a liquid: no bit changes)
+    Mm[0, ip] -= lqy
+    Mm[1, ip] += lqx
+    Mpp += P[P_LQI] + lqx * u + lqy * v
+    fpp += P[P_LQT] - (lqx * a_v + lqy * a_u)
     return _solve_driven(y, P, B, N, stuck, Mm, fv, dy, lam, bb, A, idx, psid, U, Sm, SmS, SmC,
                          cb, sb, Mpp, fpp)
 
@@ -511,8 +519,8 @@ def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np
             idx[nf_] = 2 + i
             nf_ += 1
     # psi row = old psi row + u*(v row) - v*(u row)  (coordinate change, docs/model.md)
-    Mm[ip, 0] = -Sm * rho * sb - R * SmS
-    Mm[ip, 1] = U + Sm * rho * cb + R * SmC
+    Mm[ip, 0] = -Sm * rho * sb - R * SmS - P[P_LQY]      # (+ the liquid's held moment)
+    Mm[ip, 1] = U + Sm * rho * cb + R * SmC + P[P_LQX]
     Mm[ip, ip] = Mpp
     fpp += motor_torque(P[P_LAW], P[P_T0], P[P_WF], psid) - P[P_CPHI] * psid
     if has_g:

@@ -314,6 +314,29 @@ def films_moment(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.nda
 
 
 @kernel
+def films_spin(h: np.ndarray, q: np.ndarray, starts: np.ndarray, Rs: np.ndarray,
+               Hs: np.ndarray, rhos: np.ndarray) -> tuple[float, float]:
+    """The thin films' (:func:`films_moment`'s layout) second moment about the chamber centre
+    I_c = sum rho H R^3 sum(eta) dtheta [kg*m^2] (the liquid at R) and their angular momentum
+    relative to the wall H_rel = sum rho H R^2 sum(q) dtheta [kg*m^2/s] (q = eta v, v relative
+    to the wall): the liquid's terms in the spin equation (docs/liquid.md sec. 3i)."""
+    ic = 0.0
+    hr = 0.0
+    for f in range(starts.shape[0] - 1):
+        o0 = starts[f]
+        o1 = starts[f + 1]
+        sh = 0.0
+        sq = 0.0
+        for i in range(o0, o1):
+            sh += h[i]
+            sq += q[i]
+        c = rhos[f] * Hs[f] * Rs[f] * Rs[f] * 2.0 * math.pi / (o1 - o0)
+        ic += c * Rs[f] * sh
+        hr += c * sq
+    return ic, hr
+
+
+@kernel
 def films_dt(h: np.ndarray, q: np.ndarray, starts: np.ndarray, Rs: np.ndarray, W: float,
              dt: float) -> float:
     """The CFL step [s] of the most restrictive of the films stored one after the other

@@ -77,16 +77,40 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
     g_axial : float
         Gravity along the vertical axis [m/s^2] (003 eq 6).
     """
-    if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
-        raise ParameterError("profile.kind", "motor", "balls beside a liquid need a prescribed "
-                             "speed profile (constant, ramp, table, std or tsr)")
+    if isinstance(spin, MotorDrive):
+        return _motor_start(system, spin, g_axial)
+    if not isinstance(spin, SpeedProfile):
+        raise ParameterError("profile.kind", type(spin).__name__, "must be a speed profile or "
+                             "a motor drive")
     require_axis_gravity(system)
     fs = film_start(system, spin, g_axial)
     chamber_films(system, fs, 256, 0j)           # the wall film's checks, before any work
     return fs
 
 
-def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState | None = None,
+def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
+    """A motor drive beside a liquid (docs/liquid.md sec. 3i): a vertical axis, and a drive
+    that starts and ends at or above the film's start speed (the pool's spin-up under the
+    kernel's spin is not modelled); the films start at t = 0 turning with the chamber."""
+    if system.liquid.axis != "vertical":
+        raise ParameterError("liquid.axis", system.liquid.axis, "must be vertical with a motor "
+                             "drive beside a liquid (in-plane gravity torques the films from "
+                             "outside: docs/liquid.md sec. 3i); a prescribed profile takes it")
+    require_axis_gravity(system)
+    w_f = film_start_speed(system.liquid, system.gravity.g, g_axial)
+    for field, w in (("profile.initial_speed", spin.initial_speed),
+                     ("profile.final_speed", spin.final_speed)):
+        if w < w_f:
+            raise ParameterError(field, w, f"must be >= the film's start speed {w_f:.4g} rad/s "
+                                 "with a motor drive beside a liquid (the pool's spin-up under "
+                                 "a motor is not modelled: docs/liquid.md sec. 3i)")
+    fs = FilmStart(0.0, float(spin.initial_speed), (0.0,) * system.liquid.n_chambers,
+                   "quasi-static")
+    chamber_films(system, fs, 256, 0j)           # the wall film's checks, before any work
+    return fs
+
+
+def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *, initial: InitialState | None = None,
                     options: SimOptions | None = None, n_cells: int = 256,
                     g_axial: float = G_STANDARD, throw: bool = True) -> Simulation:
     """Run a machine with balls beside a liquid through its speed profile (module docstring).
@@ -142,21 +166,29 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     sag = system.total_mass * gp * complex(np.cos(gam) / s.kx, np.sin(gam) / s.ky)
     psi0 = y[N + 2]
     # the films at the film's start: the chamber about the rotation axis, + gravity's offset
+    off0 = gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0)) if gp else 0j
     st = chamber_films(system, fs, n_cells, complex(y[0], y[1]) + sag * np.exp(-1j * psi0)
-                + gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0)))
+                       + off0)
     # the films' own output grid from t0, dense enough for the revolution average (as a liquid
-    # alone: liquid.simulate.film_samples), whatever the balls' output times
-    _, tt, ww = _film_table(spin, film_start_speed(liq, system.gravity.g, g_axial), t0)
+    # alone: liquid.simulate.film_samples), whatever the balls' output times; a motor's spin
+    # stays below its final speed (or starts above it and slows down to it)
+    motor = isinstance(spin, MotorDrive)
+    if motor:
+        w_top = max(spin.final_speed, spin.initial_speed)
+        tt, ww = np.array([0.0, t_end]), np.array([w_top, w_top])
+    else:
+        _, tt, ww = _film_table(spin, film_start_speed(liq, system.gravity.g, g_axial), t0)
     dt_f = float(tt[-1]) / (film_samples(tt, ww) - 1)
     tf = np.arange(0.0, tt[-1] + 0.5 * dt_f, dt_f)
     out_h = np.zeros((tf.size, st.h.size))
     out_q = np.zeros((tf.size, st.h.size))
+    out_psi = np.zeros(tf.size)
     steps = 0
     if t0 == 0.0 or stats[S_STATUS] == float(RunStatus.RUNNING):
         steps = hybrid_integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t0, t_end, rtol,
                                  atol, h_max, budget, out_t, out_y, stats, carry, st.h, st.q,
                                  st.theta, st.starts, st.Rs, st.Hs, st.rhos, st.nus, st.wall,
-                                 gp, gam, sag, t0 + tf, out_h, out_q)
+                                 gp, gam, sag, t0 + tf, out_h, out_q, out_psi)
         if steps < 0:
             raise FloatingPointError("simulate_hybrid: the film state became non-finite")
     runs = [FilmRun(tf, st.theta[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f.radius, f.height,
@@ -166,7 +198,8 @@ def simulate_hybrid(system: System, spin: SpeedProfile, *, initial: InitialState
     if status != "ok" and stats[S_STATUS] == 0.0:   # the balls' run completed; the film did not
         stats[S_STATUS] = float(RunStatus.OUTSIDE_MODEL)
     per_f = np.stack([r.unbalance for r in runs], axis=-1)          # (film samples, chambers)
-    sync_f = revolution_average(spin_angle(tf, tt, ww), per_f.sum(axis=1))
+    sync_f = revolution_average(out_psi if motor else spin_angle(tf, tt, ww),
+                                per_f.sum(axis=1))
 
     def at_outputs(v):            # film grid -> the balls' output times; 0 before the film
         x = out_t - t0
