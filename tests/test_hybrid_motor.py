@@ -10,9 +10,10 @@ import pytest
 
 from autobalance.config import load_config
 from autobalance.core.hybrid import hybrid_integrate
-from autobalance.core.layout import carry_size
+from autobalance.core.layout import S_STEPS, carry_size
 from autobalance.core.shallow_water import films_spin
 from autobalance.liquid.film import films_state
+from autobalance.liquid.simulate import run_seconds_estimate
 from autobalance.models import InitialState, ParameterError, SimOptions
 from autobalance.simulate import simulate
 from autobalance.simulate.run import run_inputs
@@ -37,6 +38,7 @@ def acceleration(sim):
     return (sim.speed[-1] - sim.speed[0]) / (sim.t[-1] - sim.t[0])
 
 
+@pytest.mark.slow
 def test_a_liquid_locked_to_its_wall_adds_its_inertia():
     """A very viscous film (1e-2 m^2/s: the wall friction rate 3 nu/eta^2 ~ 5e3 1/s) turns with
     the chamber: the motor accelerates rotor, balls and liquid, T / (J + m_L R^2). J from the
@@ -125,3 +127,23 @@ def test_refusals_of_a_motor_beside_a_liquid():
     with pytest.raises(ParameterError) as e:
         simulate(cfg.system, cfg.spin)
     assert e.value.field == "liquid.axis" and "\n" not in str(e.value)
+
+
+@pytest.mark.slow
+def test_a_sweep_of_motor_torques_beside_a_liquid(tmp_path):
+    """`sweep` over the motor's torque with balls beside the liquid: its run-time estimate takes
+    a motor (it read the profile's speed table before: a traceback), and each stored run is the
+    machine's own simulate run."""
+    from autobalance.sweep import spec_from_dict, sweep
+
+    sets = [*LOCKED, *MOTOR, "profile.duration=0.3 s"]
+    d = {"sweep": {"name": "motor", "base": "leblanc_003", "set": sets},
+         "grid": {"profile.torque": ["0.5 N*m", "1 N*m"]}}
+    ds = sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False)
+    assert int((ds["status"] != 0).sum()) == 0
+    cfg = load_config("leblanc_003", [*sets, "profile.torque=1 N*m"])
+    sim = simulate(cfg.system, cfg.spin)
+    cell = ds.isel(profile__torque=1)
+    assert int(cell["steps"].values.ravel()[0]) == int(sim.stats[S_STEPS])
+    assert float(cell["grade_G"].values.ravel()[-1]) == pytest.approx(sim.grade_G[-1], rel=1e-12)
+    assert 0 < run_seconds_estimate(cfg.system, cfg.spin) < 60

@@ -422,7 +422,8 @@ def chamber_films(system: System, fs: FilmStart, n_cells: int, centre: complex) 
                        [lag * c.chamber_radius for lag, c in zip(fs.lag, ch)], centre)
 
 
-def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256) -> float:
+def run_seconds_estimate(system: System, spin: SpeedProfile | MotorDrive,
+                         n_cells: int = 256) -> float:
     """Estimated wall time of :func:`simulate_liquid` [s], or of a run of balls beside the
     liquid (the films' steps dominate it): film steps from the CFL condition on the uniform film
     (wave speed Omega sqrt(R eta), cell 2 pi R / n) over the profile from omega_0, times the
@@ -432,18 +433,21 @@ def run_seconds_estimate(system: System, spin: SpeedProfile, n_cells: int = 256)
     ----------
     system : System
         The machine (checked by :func:`check_liquid_run` without balls).
-    spin : SpeedProfile
-        Its profile.
+    spin : SpeedProfile or MotorDrive
+        Its profile, or a motor drive beside balls (taken at the larger of its initial and
+        final speeds throughout: an upper bound).
     n_cells : int
         Film cells [-].
     """
     from ..core.shallow_water import CFL
 
-    if system.balancer.n_balls:
-        w0 = film_start_speed(system.liquid, system.gravity.g)
+    if isinstance(spin, MotorDrive):
+        w_top = max(spin.initial_speed, spin.final_speed)
+        tt, ww = np.array([0.0, spin.duration]), np.array([w_top, w_top])
     else:
-        w0 = check_liquid_run(system, spin)
-    t0, tt, ww = _film_table(spin, w0)
+        w0 = (film_start_speed(system.liquid, system.gravity.g) if system.balancer.n_balls
+              else check_liquid_run(system, spin))
+        _, tt, ww = _film_table(spin, w0)
     mean_speed = float(np.sum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt)) / tt[-1])
     chambers = system.liquid.chambers
     # the step is the most restrictive chamber's; a step costs as many cells as all films hold
