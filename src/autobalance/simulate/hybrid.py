@@ -110,7 +110,8 @@ def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
     return fs
 
 
-def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *, initial: InitialState | None = None,
+def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
+                    initial: InitialState | None = None,
                     options: SimOptions | None = None, n_cells: int = 256,
                     g_axial: float = G_STANDARD, throw: bool = True) -> Simulation:
     """Run a machine with balls beside a liquid through its speed profile (module docstring).
@@ -120,8 +121,9 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *, initial:
     system : System
         Rotor, suspension (any the ball simulator takes), balls and a ``[liquid]`` section
         ([gravity] in the plane on a horizontal axis).
-    spin : SpeedProfile
-        Prescribed speed [rad/s] over time [s].
+    spin : SpeedProfile or MotorDrive
+        Prescribed speed [rad/s] over time [s], or a motor drive (vertical axis, from and to
+        speeds at or above the film's start [rad/s]; docs/liquid.md sec. 3i).
     initial : InitialState, optional
         Ball angles [rad] and rotor state at t = 0 (:func:`autobalance.simulate`'s default).
     options : SimOptions, optional
