@@ -434,16 +434,14 @@ def run_seconds_estimate(system: System, spin: SpeedProfile | MotorDrive,
     system : System
         The machine (checked by :func:`check_liquid_run` without balls).
     spin : SpeedProfile or MotorDrive
-        Its profile, or a motor drive beside balls (taken at the larger of its initial and
-        final speeds throughout: an upper bound).
+        Its profile, or a motor drive (at its larger end speed throughout: an upper bound).
     n_cells : int
         Film cells [-].
     """
     from ..core.shallow_water import CFL
 
     if isinstance(spin, MotorDrive):
-        w_top = max(spin.initial_speed, spin.final_speed)
-        tt, ww = np.array([0.0, spin.duration]), np.array([w_top, w_top])
+        tt, ww = np.array([0.0, spin.duration]), np.full(2, max(spin.initial_speed, spin.final_speed))
     else:
         w0 = (film_start_speed(system.liquid, system.gravity.g) if system.balancer.n_balls
               else check_liquid_run(system, spin))
