@@ -257,11 +257,9 @@ def require_vertical(system: System) -> None:
     system : autobalance.models.System
         A machine with a ``[liquid]`` section.
     """
-    if system.liquid.axis != "vertical":
-        raise ParameterError("liquid.axis", system.liquid.axis, "must be vertical for the "
-                             "linear stability (its centred state, uniform films, exists "
-                             "without gravity in the chamber's plane); autobalance simulate "
-                             "runs a horizontal machine")
+    system.liquid.vertical("for the linear stability (its centred state, uniform films, exists "
+                           "without gravity in the chamber's plane); autobalance simulate runs a "
+                           "horizontal machine")
 
 
 def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) -> dict:

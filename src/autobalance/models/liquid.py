@@ -154,6 +154,19 @@ class LiquidDevice:
                              "(simulate, sweep, study fill-map and liquid simulate's physical model take "
                              "several; docs/liquid.md sec. 3g)")
 
+    def vertical(self, why: str) -> LiquidDevice:
+        """This device if it turns about a vertical axis; a one-line ParameterError on
+        ``liquid.axis`` otherwise, "must be vertical " + ``why``.
+
+        Parameters
+        ----------
+        why : str
+            What needs the vertical axis and why, for the message [-].
+        """
+        if self.axis != "vertical":
+            raise ParameterError("liquid.axis", self.axis, f"must be vertical {why}")
+        return self
+
     def unpartitioned(self, what: str) -> LiquidDevice:
         """This device if no chamber has radial partitions; a one-line ParameterError naming
         ``what`` (an analysis on the quasi-static liquid, which has none) otherwise.

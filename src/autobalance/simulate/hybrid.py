@@ -92,10 +92,9 @@ def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
     """A motor drive beside a liquid (docs/liquid.md sec. 3i): a vertical axis, and a drive
     that starts and ends at or above the film's start speed (the pool's spin-up under the
     kernel's spin is not modelled); the films start at t = 0 turning with the chamber."""
-    if system.liquid.axis != "vertical":
-        raise ParameterError("liquid.axis", system.liquid.axis, "must be vertical with a motor "
-                             "drive beside a liquid (in-plane gravity torques the films from "
-                             "outside: docs/liquid.md sec. 3i); a prescribed profile takes it")
+    system.liquid.vertical("with a motor drive beside a liquid (in-plane gravity torques the "
+                           "films from outside: docs/liquid.md sec. 3i); a prescribed profile "
+                           "takes it")
     require_axis_gravity(system)
     w_f = film_start_speed(system.liquid, system.gravity.g, g_axial)
     for field, w in (("profile.initial_speed", spin.initial_speed),

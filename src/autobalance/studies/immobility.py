@@ -123,7 +123,7 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     cfg = load(base, allow_liquid=True)
     s0 = cfg.system
     sus = s0.suspension
-    if sus.kx != sus.ky or sus.cx != sus.cy:
+    if not sus.is_isotropic:
         from ..models import ParameterError
 
         raise ParameterError("suspension", f"kx={sus.kx:g}, ky={sus.ky:g}, cx={sus.cx:g}, "

@@ -62,7 +62,7 @@ def liquid_at(system: System):
     from ..liquid.synchronous import check_synchronous, synchronous_liquid
 
     sus = system.suspension
-    if sus.kx != sus.ky or sus.cx != sus.cy:
+    if not sus.is_isotropic:
         raise ParameterError("suspension", f"kx={sus.kx:g}, ky={sus.ky:g}, cx={sus.cx:g}, "
                              f"cy={sus.cy:g}", "must be isotropic for the tolerances beside a "
                              "liquid (the liquid follows the forward whirl only)")
@@ -136,6 +136,7 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
                              "'bound' takes the liquid beside the balls")
     liq = liquid_at(s)
     w, basis = _settle_speed(cfg, speed)
+    liq_w = liq(w)                    # the liquid at the bound's speed (None without one)
     Om = cfg.spin.nominal_speed
     U, mt = s.rotor.unbalance, s.total_mass
     if residual_fraction is not None:
@@ -152,9 +153,9 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
                                  f"most the unbalance (G{float(grade_value(U, mt, Om)):.4g} here)")
         d = tolerances_000(s, w, q, nominal_speed=Om, split=split)
     else:
-        d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split, liquid=liq(w))
-    p = worst_case_prediction(s, w, nominal_speed=Om, liquid=liq(w))
-    att = attained_residual(s, w, eccentricity_angle=None, n_starts=8, liquid=liq(w))
+        d = tolerances_for_grade(s, w, grade, nominal_speed=Om, split=split, liquid=liq_w)
+    p = worst_case_prediction(s, w, nominal_speed=Om, liquid=liq_w)
+    att = attained_residual(s, w, eccentricity_angle=None, n_starts=8, liquid=liq_w)
     u_g = d["target_unbalance_kg_m"]
     warnings = []
     if not d["feasible"]:
