@@ -104,7 +104,7 @@ def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
     (("liquid.axis=horizontal",), None, "gravity.g"),          # no in-plane gravity given
     (("gravity.g=9.81 m/s^2",), None, "gravity.g"),            # in the plane of a vertical axis
     (("profile.end_speed=10 1/s",), None, "profile"),
-    ((), MotorDrive("constant", 10.0, 50.0, 5.0), "profile.initial_speed"),   # from rest
+    ((), MotorDrive("constant", 10.0, 10.0, 5.0), "profile.final_speed"),  # ends as a pool
 ])
 def test_refusals(sets, spin, field):
     cfg = machine(*sets)
@@ -379,6 +379,8 @@ def test_run_up_with_massless_locked_balls_is_the_liquid_alone_run_up():
     is the liquid-alone film run (simulate_liquid, sw_coupled) through the transient, not only
     in a steady whirl. Measured (stop 30): peak 5.2500 vs 5.2505 mm, |w| within 0.2 % at 6-16 s.
     Before the fix of the coupling's kick the hybrid lagged: 25 % off at 14 s, 10 % at 16 s.
+    Since stop 32 the spin-up takes the ramp's acceleration whole (it took it interpolated down
+    to 0 at the ramp's end) and the film starts at 6.05 s, not 5.69: compared from 7 s on.
     Tolerance 0.5 %: the two integrate the rotor differently (DOPRI5 on w / RK4 on Z)."""
     from autobalance.config import load_config
 
@@ -392,7 +394,7 @@ def test_run_up_with_massless_locked_balls_is_the_liquid_alone_run_up():
     hyb = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=(np.pi / 2, 1.5 * np.pi)),
                    options=dataclasses.replace(cfg.options, save_dt=0.01))
     assert hyb.liquid.film_start == pytest.approx(liq.film_start, rel=1e-12)
-    T = np.arange(6.0, 16.01, 1.0)
+    T = np.arange(7.0, 16.01, 1.0)
     a_liq = np.interp(T, liq.t, np.abs(liq.deflection))
     a_hyb = np.interp(T, hyb.t, hyb.amplitude)
     np.testing.assert_allclose(a_hyb, a_liq, rtol=5e-3)

@@ -151,9 +151,9 @@ def run_config(cfg: Config) -> tuple[Simulation | LiquidSimulation, float]:
     """
     t0 = time.perf_counter()
     if cfg.system.liquid is not None and not cfg.system.balancer.n_balls:
-        from ..liquid.simulate import simulate_liquid
+        from ..simulate.hybrid import liquid_run
 
-        sim = simulate_liquid(cfg.system, cfg.spin)
+        sim = liquid_run(cfg.system, cfg.spin)
         return sim, time.perf_counter() - t0
     from ..simulate import simulate
 

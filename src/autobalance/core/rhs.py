@@ -524,7 +524,12 @@ def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np
     Mm[ip, ip] = Mpp
     fpp += motor_torque(P[P_LAW], P[P_T0], P[P_WF], psid) - P[P_CPHI] * psid
     if has_g:
-        fpp -= g * U * math.sin(psi - gdir)
+        sg = math.sin(psi - gdir)
+        fpp -= g * U * sg
+        if P[P_LQX] != 0.0 or P[P_LQY] != 0.0:
+            # and on a liquid's held moment U_L beside the balls (core/hybrid.py; a horizontal
+            # axis): -g Im(U_L e^(i(psi - gdir))), as on the unbalance (docs/liquid.md sec. 3i)
+            fpp -= g * (P[P_LQX] * sg + P[P_LQY] * math.cos(psi - gdir))
     for j in range(nq):
         Mm[ip, j] += u * Mm[1, j] - v * Mm[0, j]
     fv[ip] = fpp + u * fv[1] - v * fv[0]

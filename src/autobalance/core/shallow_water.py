@@ -32,7 +32,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .jit import kernel
-from .rhs import table_interp
+from .rhs import profile_eval, profile_segment, table_interp
 
 if TYPE_CHECKING:
     import numpy as np
@@ -207,15 +207,16 @@ def _emit(out_t, out_h, out_q, kout, t, h, q):
 
 @kernel
 def sw_integrate(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, nu: float,
-                 t_end: float, tt: np.ndarray, tw: np.ndarray, twd: np.ndarray,
+                 t_end: float, tt: np.ndarray, tw: np.ndarray,
                  tcx: np.ndarray, tcy: np.ndarray, tvx: np.ndarray, tvy: np.ndarray,
                  tax: np.ndarray, tay: np.ndarray, gp: float, gdir: float, wall: np.ndarray,
                  out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray, hn: np.ndarray,
                  qn: np.ndarray, fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray,
                  hl: np.ndarray, hr: np.ndarray, b: np.ndarray, a: np.ndarray) -> int:
     """Integrate the film from t = 0 to t_end [s] with the CFL time step, the forcing read from
-    the tables tt [s] of spin w [rad/s], w' [rad/s^2] and the chamber's displacement c, c', c''
-    ([m], [m/s], [m/s^2]; x and y parts), linearly interpolated; in-plane gravity gp [m/s^2] at
+    the tables tt [s] of spin w [rad/s] (linear; w' [rad/s^2] the slope of each segment,
+    rhs.profile_eval) and the chamber's displacement c, c', c'' ([m], [m/s], [m/s^2]; x and y
+    parts), linearly interpolated; in-plane gravity gp [m/s^2] at
     the inertial angle gdir [rad], the spin angle psi = 0 at t = 0; partitions at the interfaces
     where wall != 0 (:func:`sw_step`). h, q hold the initial state
     and are overwritten by the final one; out_h, out_q (len(out_t), n) receive the state at the
@@ -229,7 +230,7 @@ def sw_integrate(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, nu: 
     steps = 0
     kout = _emit(out_t, out_h, out_q, kout, t, h, q)
     while t < t_end:
-        w = table_interp(t, tt, tw)
+        w, wd = profile_eval(t, profile_segment(t, tt), tt, tw)
         g = w * w * R
         s = sw_max_speed(h, q, g, R)
         dt = t_end - t
@@ -239,7 +240,6 @@ def sw_integrate(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, nu: 
             dt = out_t[kout] - t
         cx = table_interp(t, tt, tcx)
         cy = table_interp(t, tt, tcy)
-        wd = table_interp(t, tt, twd)
         off = gravity_offset(gp, gdir, psi, w) if gp != 0.0 else 0j
         wall_height(theta, cx + off.real, cy + off.imag, b)
         frame_acceleration(theta, R, w, wd, cx, cy, table_interp(t, tt, tvx),
@@ -378,16 +378,16 @@ def films_step(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
 def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarray,
                Rs: np.ndarray, Hs: np.ndarray, rhos: np.ndarray, nus: np.ndarray, Mt: float,
                k: float, c: float, D: float, Z0: complex, Y0: complex, t_end: float,
-               tt: np.ndarray, tw: np.ndarray, twd: np.ndarray, gp: float, gdir: float,
+               tt: np.ndarray, tw: np.ndarray, gp: float, gdir: float,
                wall: np.ndarray, out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray,
                out_w: np.ndarray, hn: np.ndarray, qn: np.ndarray, fh: np.ndarray, fq: np.ndarray,
                fqr: np.ndarray, hl: np.ndarray, hr: np.ndarray, b: np.ndarray,
                a: np.ndarray, wdd0: complex) -> tuple[int, complex, complex, complex]:
     """The films of one or more concentric chambers coupled two-way with an isotropic Jeffcott
     rotor (mass M_t = M + the liquids' masses, stiffness k [N/m], damping c [N*s/m], unbalance
-    D [kg*m] on the rotor frame's x axis) at the prescribed spin w(t) (tables tt [s], tw
-    [rad/s], twd [rad/s^2]). Film f holds the cells starts[f] to starts[f + 1] - 1 of h, q,
-    theta and wall (and of the work arrays), with its wall radius Rs[f] [m], height Hs[f] [m],
+    D [kg*m] on the rotor frame's x axis) at the prescribed spin w(t) (table tt [s], tw
+    [rad/s], linear; w' the slope of each segment, rhs.profile_eval). Film f holds the cells
+    starts[f] to starts[f + 1] - 1 of h, q, theta and wall (and of the work arrays), with its wall radius Rs[f] [m], height Hs[f] [m],
     density rhos[f] [kg/m^3] and viscosity nus[f] [m^2/s]; every chamber is on the same rotor,
     so every film sees the same deflection.
 
@@ -414,8 +414,7 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
     wd_prev = (Y - Ud) / Mt
     while t < t_end:
-        W = table_interp(t, tt, tw)
-        Wd = table_interp(t, tt, twd)
+        W, Wd = profile_eval(t, profile_segment(t, tt), tt, tw)
         U, Ud = films_moment(h, q, theta, starts, Rs, Hs, rhos)
         w = (Z - U) / Mt
         wd = (Y - Ud) / Mt

@@ -40,7 +40,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .jit import kernel
-from .rhs import table_interp
+from .rhs import profile_eval, profile_segment
 from .shallow_water import CFL, DRY_FRACTION, friction_rate, hll_flux, sw_max_speed
 
 if TYPE_CHECKING:
@@ -164,14 +164,15 @@ def wall_level(h: np.ndarray, rf: np.ndarray, w: float, g: float) -> float:
 @kernel
 def spinup_integrate(h: np.ndarray, q: np.ndarray, s: np.ndarray, rf: np.ndarray, g: float,
                      nu: float, lid: float, t_end: float, tt: np.ndarray, tw: np.ndarray,
-                     twd: np.ndarray, out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray,
+                     out_t: np.ndarray, out_h: np.ndarray, out_q: np.ndarray,
                      out_s: np.ndarray, hn: np.ndarray, qn: np.ndarray, sn: np.ndarray,
                      fh: np.ndarray, fq: np.ndarray, fql: np.ndarray, fqr: np.ndarray,
                      fs: np.ndarray) -> tuple[int, float]:
     """Integrate from t = 0 until t_end [s] or until the free surface at the outer wall reaches
     the lid height ``lid`` [m] (:func:`wall_level`), with the CFL step (half of the wall film's
     Courant number: the cell next to the axis drains through a face of twice its mean radius),
-    the spin from the tables tt [s], tw [rad/s], twd [rad/s^2] (linear); gravity g [m/s^2];
+    the spin from the table tt [s], tw [rad/s] (linear: its acceleration the slope of each
+    segment, rhs.profile_eval); gravity g [m/s^2];
     nu [m^2/s]. h, q, s hold the initial state and are overwritten by the final one; out_h,
     out_q, out_s (len(out_t), n) receive the state at the sorted output times out_t [s] (rows
     after the stop are left alone). Returns (steps, stop time [s]); steps = -1 on a non-finite
@@ -193,10 +194,9 @@ def spinup_integrate(h: np.ndarray, q: np.ndarray, s: np.ndarray, rf: np.ndarray
                 out_q[k, i] = q[i]
                 out_s[k, i] = s[i]
             k += 1
-        w = table_interp(t, tt, tw)
+        w, wd = profile_eval(t, profile_segment(t, tt), tt, tw)
         if wall_level(h, rf, w, g) >= lid or t >= t_end:
             return steps, t
-        wd = table_interp(t, tt, twd)
         sp = sw_max_speed(h, q, g, R)
         dt = t_end - t
         if sp > 0.0 and 0.5 * CFL * dr_min / sp < dt:

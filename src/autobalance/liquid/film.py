@@ -314,7 +314,6 @@ def film_run(radius: float, height: float, volume: float,
     tt = np.union1d(tw, tc)
     wv = np.interp(tt, tw, w.real)
     cv = np.interp(tt, tc, c.real) + 1j * np.interp(tt, tc, c.imag)
-    wd = np.gradient(wv, tt) if tt.size > 2 else np.full(tt.size, (wv[-1] - wv[0]) / (tt[-1] - tt[0]))
     cd = np.gradient(cv, tt) if tt.size > 2 else np.full(tt.size, (cv[-1] - cv[0]) / (tt[-1] - tt[0]))
     cdd = np.gradient(cd, tt) if tt.size > 2 else np.zeros(tt.size, complex)
     th = _theta(n)
@@ -330,7 +329,7 @@ def film_run(radius: float, height: float, volume: float,
     out_h = np.zeros((out_t.size, n))
     out_q = np.zeros((out_t.size, n))
     work = [np.zeros(n) for _ in range(9)]
-    steps = sw_integrate(h, q, th, R, nu, T, tt, wv, wd, cv.real, cv.imag, cd.real, cd.imag,
+    steps = sw_integrate(h, q, th, R, nu, T, tt, wv, cv.real, cv.imag, cd.real, cd.imag,
                          cdd.real, cdd.imag, nonneg("gravity", gravity),
                          finite("gravity_direction", gravity_direction),
                          partition_walls(n, partitions), out_t, out_h, out_q, *work)
@@ -512,7 +511,6 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
 
     T = positive("t_end", t_end)
     tw, wv = _speed_table(speed, T)
-    wd = np.gradient(wv, tw) if tw.size > 2 else np.full(tw.size, (wv[-1] - wv[0]) / (tw[-1] - tw[0]))
     gp, gdir = nonneg("gravity", gravity), finite("gravity_direction", gravity_direction)
     off = gp / wv[0] ** 2 * np.exp(1j * gdir)
     st = films_state(radius, height, volume, density, viscosity, n_cells, partitions,
@@ -527,7 +525,7 @@ def coupled_run(rotor: VerticalRotor, radius: float | Sequence[float],
     out_w = np.zeros(out_t.size, complex)
     work = [np.zeros(h.size) for _ in range(9)]
     steps, Z, Y, _ = sw_coupled(h, q, th, starts, Rs, Hs, rhos, nus, Mt, rotor.stiffness,
-                                rotor.damping, rotor.unbalance, Z0, complex(Y0), T, tw, wv, wd,
+                                rotor.damping, rotor.unbalance, Z0, complex(Y0), T, tw, wv,
                                 gp, gdir, wall, out_t, out_h, out_q, out_w, *work, 0j)
     if steps < 0:
         raise FloatingPointError("coupled_run: the state became non-finite")

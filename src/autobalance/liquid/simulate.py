@@ -30,6 +30,7 @@ from .dynamics import RunUp
 from .film import FilmsState, coupled_run, films_state
 from .models import G_STANDARD, LiquidBalancer, VerticalRotor
 from .start import FilmStart, _film_table, film_start, film_start_speed
+from .series import film_samples, revolution_average, spin_angle
 from .steady import pool_response
 
 if TYPE_CHECKING:
@@ -90,6 +91,11 @@ class LiquidSimulation:
     chamber_unbalance : ndarray (nt, chambers) of complex or None
         Each chamber's film moment, from the axis outwards, for several concentric chambers
         (their sum is ``liquid_unbalance``) [kg*m]; None for one chamber.
+    motor : bool
+        Whether the spin was a motor drive (``autobalance.simulate.hybrid.simulate_liquid_motor``)
+        rather than a prescribed profile [-].
+    time_to_final_speed : float or None
+        Under a motor, when the spin first reached the drive's hold speed (None: never) [s].
     """
 
     system: System
@@ -105,6 +111,8 @@ class LiquidSimulation:
     status: str = "ok"
     message: str = ""
     chamber_unbalance: np.ndarray | None = None
+    motor: bool = False
+    time_to_final_speed: float | None = None
 
     @property
     def amplitude(self) -> np.ndarray:
@@ -183,6 +191,7 @@ class LiquidSimulation:
             "max_amplitude_without_liquid_m": float(np.max(self.amplitude_without_liquid)),
             "max_amplitude_before_film_m": self.max_amplitude_before_film,
             "film_steps": self.steps,
+            **({"time_to_final_speed_s": self.time_to_final_speed} if self.motor else {}),
             **({} if self.chamber_unbalance is None else {"chambers": [
                 {"chamber_radius_m": c.chamber_radius,
                  "liquid_unbalance_kg_m": float(abs(u)),
@@ -325,41 +334,9 @@ def _check(system: System, spin: SpeedProfile | MotorDrive) -> None:
     (:func:`require_liquid_machine`) and a motor drive."""
     require_liquid_machine(system)
     if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
-        raise ParameterError("profile.kind", "motor", "a liquid balancer needs a prescribed "
-                             "speed profile (constant, ramp, table, std or tsr)")
-
-
-def revolution_average(psi: npt.ArrayLike, values: npt.ArrayLike) -> np.ndarray:
-    """The mean of ``values`` over one revolution of the spin angle around each sample,
-    (1/2 pi) integral over [psi - pi, psi + pi] of values d(psi) (trapezoid rule); within half
-    a revolution of either end of the run the window is the first or last whole revolution (the
-    whole run if it is shorter). A component turning at -Omega in the rotor frame (gravity's)
-    averages out exactly at constant speed.
-
-    Parameters
-    ----------
-    psi : array_like
-        Spin angle at the samples, increasing [rad].
-    values : array_like
-        Samples (real or complex) [any unit].
-
-    Returns
-    -------
-    ndarray
-        The averages, in the unit of ``values``.
-    """
-    p = np.asarray(psi, float)
-    v = np.asarray(values)
-    c = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(p))])
-    span = min(2 * np.pi, p[-1] - p[0])
-    lo = np.clip(p - 0.5 * span, p[0], p[-1] - span)
-    hi = lo + span
-
-    def cum(x):
-        return np.interp(x, p, c.real) + (1j * np.interp(x, p, c.imag) if np.iscomplexobj(c)
-                                          else 0.0)
-
-    return (cum(hi) - cum(lo)) / max(span, 1e-300)
+        raise ParameterError("profile.kind", "motor", "simulate_liquid needs a prescribed "
+                             "speed profile (constant, ramp, table, std or tsr); a motor drive "
+                             "runs with autobalance.simulate.hybrid.liquid_run")
 
 
 def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) -> float:
@@ -454,24 +431,6 @@ def run_seconds_estimate(system: System, spin: SpeedProfile | MotorDrive,
                / (2 * np.pi * c.chamber_radius / n_cells) for c in chambers)
     steps = STEP_FACTOR * tt[-1] * mean_speed * rate / CFL
     return float(steps * STEP_COST_256 * n_cells * len(chambers) / 256)
-
-
-def spin_angle(t: npt.ArrayLike, tt: np.ndarray, ww: np.ndarray) -> np.ndarray:
-    """The spin angle [rad] at the times t [s] of a linear speed table (tt [s] from 0, ww
-    [rad/s]), 0 at tt[0]: exact (the integral of the linear speed)."""
-    t = np.asarray(t, float)
-    psi_knots = np.concatenate([[0.0], np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))])
-    i = np.clip(np.searchsorted(tt, t, side="right") - 1, 0, tt.size - 2)
-    tau = t - tt[i]
-    slope = (ww[i + 1] - ww[i]) / (tt[i + 1] - tt[i])
-    return psi_knots[i] + ww[i] * tau + 0.5 * slope * tau * tau
-
-
-def film_samples(tt: np.ndarray, ww: np.ndarray) -> int:
-    """Output samples of a film run over the speed table (tt [s], ww [rad/s]) [-]: 1001, or 8
-    per revolution if more (for :func:`revolution_average`), at most 200 001."""
-    psi_end = np.cumsum(0.5 * (ww[1:] + ww[:-1]) * np.diff(tt))[-1]
-    return int(min(max(1001, 8 * psi_end / (2 * np.pi) + 1), 200001))
 
 
 def chamber_cells(chambers: Sequence[LiquidDevice], n_cells: int) -> list[int]:

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 
     import numpy.typing as npt
 
-__all__ = ["SpinUp", "chamber_spinup", "rigid_pool", "spinup_of", "spinup_run", "within_spinup"]
+__all__ = ["PoolSpin", "SpinUp", "chamber_spinup", "rigid_pool", "spinup_of", "spinup_run", "within_spinup"]
 
 #: Mode 1 (full priority of gravity) lasts while the surface at the inner wall (the axis) has
 #: sunk by less than this fraction of the rest level (as :func:`.free_surface.gravity_mode_speed`,
@@ -195,9 +195,6 @@ def spinup_run(radius: float, height: float, volume: float,
     if tt.ndim != 1 or tt.size < 2 or tw.shape != tt.shape or np.any(np.diff(tt) <= 0) \
             or np.any(tw < 0) or not np.all(np.isfinite(tw)):
         raise ParameterError("speed", "table", "needs increasing times and speeds >= 0 [rad/s]")
-    twd = np.empty_like(tw)            # the slope of the segment that starts at each point
-    twd[:-1] = np.diff(tw) / np.diff(tt)
-    twd[-1] = 0.0
     rf = np.sqrt(np.linspace(ri * ri, R * R, n + 1))       # cells of equal bottom area
     rc = 0.5 * (rf[1:] + rf[:-1])
     h0 = V / area
@@ -215,7 +212,7 @@ def spinup_run(radius: float, height: float, volume: float,
                                                                    positive("save_dt", save_dt))
     out = [np.full((out_t.size, n), np.nan) for _ in range(3)]
     work = [np.zeros(n) for _ in range(3)] + [np.zeros(n + 1) for _ in range(5)]
-    steps, t_stop = spinup_integrate(h, q, s, rf, gg, nu, H, T, tt, tw, twd, out_t, *out, *work)
+    steps, t_stop = spinup_integrate(h, q, s, rf, gg, nu, H, T, tt, tw, out_t, *out, *work)
     if steps < 0:
         raise FloatingPointError("spinup_run: the state became non-finite")
     keep = out_t <= t_stop + 1e-12 * max(1.0, t_stop)
@@ -344,3 +341,85 @@ def rigid_pool(radius: float, inner_radius: float, volume: float, speed: float, 
     h = np.maximum(0.0, hi + rise)
     h *= volume / (2.0 * np.pi * h @ area)  # the volume to round-off
     return h, np.zeros_like(h), np.zeros_like(h)
+
+
+class PoolSpin:
+    """A chamber's liquid in its spin-up (:func:`spinup_run`'s model) advanced one coupling step
+    at a time under a spin known only step by step: a motor drive, whose torque the liquid's
+    change of angular momentum loads (docs/liquid.md sec. 3i). From rest (a flat layer at rest
+    in the inertial frame) or, for a drive that starts turning, from the pool turning with the
+    chamber (:func:`rigid_pool`); until its surface reaches the lid at the outer wall.
+
+    Parameters
+    ----------
+    radius, height, inner_radius : float
+        R, h, r_i [m].
+    volume : float
+        V [m^3], at most half the chamber (:func:`within_spinup`).
+    density : float
+        rho [kg/m^3].
+    viscosity : float
+        nu [m^2/s].
+    g : float
+        Gravity along the axis [m/s^2].
+    speed : float
+        The chamber's spin at the start [rad/s].
+    n_cells : int
+        Cells of equal bottom area [-].
+    """
+
+    def __init__(self, radius: float, height: float, inner_radius: float, volume: float,
+                 density: float, viscosity: float, g: float, speed: float,
+                 n_cells: int = DEFAULT_CELLS):
+        n = int(n_cells)
+        self.rf = np.sqrt(np.linspace(inner_radius ** 2, radius ** 2, n + 1))
+        self.rc = 0.5 * (self.rf[1:] + self.rf[:-1])
+        self.weights = 0.5 * np.diff(self.rf ** 2)          # integral of r dr per cell [m^2]
+        if speed == 0.0:
+            self.h = np.full(n, volume / (math.pi * (radius ** 2 - inner_radius ** 2)))
+            self.q, self.s = np.zeros(n), np.zeros(n)
+        else:
+            self.h, self.q, self.s = rigid_pool(radius, inner_radius, volume, speed, g, n)
+        self.lid, self.rho, self.nu, self.g = float(height), float(density), float(viscosity), g
+        self.lid_time: float | None = None
+        self._out = (np.zeros(0), np.zeros((0, n)), np.zeros((0, n)), np.zeros((0, n)))
+        self._work = [np.zeros(n) for _ in range(3)] + [np.zeros(n + 1) for _ in range(5)]
+
+    def advance(self, t: float, dt: float, w0: float, w1: float) -> bool:
+        """Advance over [t, t + dt] with the chamber's spin linear from w0 to w1; stops where
+        the surface reaches the lid (``lid_time`` [s] set). Returns whether it has.
+
+        Parameters
+        ----------
+        t : float
+            The step's start on the run's clock [s].
+        dt : float
+            Its length [s].
+        w0, w1 : float
+            The chamber's spin at its start and end [rad/s].
+        """
+        if self.lid_time is not None:
+            return True
+        tt = np.array([0.0, dt])
+        tw = np.array([w0, w1])
+        steps, t_stop = spinup_integrate(self.h, self.q, self.s, self.rf, self.g, self.nu,
+                                         self.lid, dt, tt, tw, *self._out, *self._work)
+        if steps < 0:
+            raise FloatingPointError("PoolSpin.advance: the state became non-finite")
+        if t_stop < dt * (1.0 - 1e-9):
+            self.lid_time = t + t_stop
+        return self.lid_time is not None
+
+    def momentum(self, w: float) -> tuple[float, float]:
+        """(H, I): the liquid's angular momentum about the axis in the inertial frame [kg*m^2/s]
+        (the azimuthal discharge is relative to the chamber), and its moment of inertia about
+        the axis [kg*m^2] (2 pi rho sum of r^2 h r dr).
+
+        Parameters
+        ----------
+        w : float
+            The chamber's spin [rad/s].
+        """
+        c = 2.0 * math.pi * self.rho
+        inertia = c * float((self.h * self.rc ** 2) @ self.weights)
+        return c * float((self.s * self.rc) @ self.weights) + inertia * w, inertia

@@ -87,7 +87,6 @@ def _step_map(rotor, st, Mt, speed, dt):
     n = st.h.size
     tt = np.array([0.0, 1.0])
     tw = np.full(2, float(speed))
-    twd = np.zeros(2)
     empty = np.zeros(0)
 
     def f(x):
@@ -96,7 +95,7 @@ def _step_map(rotor, st, Mt, speed, dt):
         work = [np.zeros(n) for _ in range(9)]
         steps, Z, Y, wdd = sw_coupled(h, q, st.theta, st.starts, st.Rs, st.Hs, st.rhos, st.nus,
                                       Mt, rotor.stiffness, rotor.damping, 0.0,
-                                      complex(x[0], x[1]), complex(x[2], x[3]), dt, tt, tw, twd,
+                                      complex(x[0], x[1]), complex(x[2], x[3]), dt, tt, tw,
                                       0.0, 0.0, st.wall, empty, np.zeros((0, n)),
                                       np.zeros((0, n)), np.zeros(0, complex), *work,
                                       complex(x[4], x[5]))

@@ -19,17 +19,23 @@ import numpy as np
 
 from ..core.hybrid import hybrid_integrate, with_knot
 from ..core.integrate import integrate_span
-from ..core.layout import S_STATUS, RunStatus, carry_size
+from ..core.layout import P_LQI, P_LQT, S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import FilmRun
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import (chamber_films, film_samples, inner_wall_status,
-                               require_axis_gravity, revolution_average, spin_angle)
+from ..liquid.simulate import (LiquidSimulation, chamber_films, film_samples, inner_wall_status,
+                               require_axis_gravity, require_liquid_machine, revolution_average,
+                               simulate_liquid, spin_angle)
+from ..liquid.spinup import PoolSpin, within_spinup
 from ..liquid.start import FilmStart, _film_table, film_start, film_start_speed
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
 from .result import Simulation, SimulationError
 
-__all__ = ["LiquidPart", "check_hybrid", "simulate_hybrid"]
+#: Coupling step of a pool's spin-up beside a motor-driven spin (:func:`_pool_phase`) [s]: the
+#: pools' torque lags by one step (docs/liquid.md sec. 3i).
+POOL_STEP = 1.0e-3
+
+__all__ = ["LiquidPart", "check_hybrid", "liquid_run", "simulate_hybrid", "simulate_liquid_motor"]
 
 
 @dataclass(frozen=True)
@@ -89,24 +95,79 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
 
 
 def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
-    """A motor drive beside a liquid (docs/liquid.md sec. 3i): a vertical axis, and a drive
-    that starts and ends at or above the film's start speed (the pool's spin-up under the
-    kernel's spin is not modelled); the films start at t = 0 turning with the chamber."""
-    system.liquid.vertical("with a motor drive beside a liquid (in-plane gravity torques the "
-                           "films from outside: docs/liquid.md sec. 3i); a prescribed profile "
-                           "takes it")
+    """A motor drive beside a liquid (docs/liquid.md sec. 3i). A drive that starts at or above
+    the film's start speed starts the films at t = 0 turning with the chamber (rule
+    "quasi-static"); on a vertical axis one that starts below it spins the pool up beside the
+    kernel (rule "pool": :func:`_pool_phase` finds where the film starts). Its end speed must
+    reach the film's start speed. On a horizontal axis the kernel's spin row takes gravity's
+    torque on the films' held moment (core/rhs.py)."""
     require_axis_gravity(system)
-    w_f = film_start_speed(system.liquid, system.gravity.g, g_axial)
-    for field, w in (("profile.initial_speed", spin.initial_speed),
-                     ("profile.final_speed", spin.final_speed)):
-        if w < w_f:
-            raise ParameterError(field, w, f"must be >= the film's start speed {w_f:.4g} rad/s "
-                                 "with a motor drive beside a liquid (the pool's spin-up under "
-                                 "a motor is not modelled: docs/liquid.md sec. 3i)")
-    fs = FilmStart(0.0, float(spin.initial_speed), (0.0,) * system.liquid.n_chambers,
-                   "quasi-static")
-    chamber_films(system, fs, 256, 0j)           # the wall film's checks, before any work
-    return fs
+    liq = system.liquid
+    w_f = film_start_speed(liq, system.gravity.g, g_axial)
+    if spin.final_speed < w_f:
+        raise ParameterError("profile.final_speed", spin.final_speed, f"must be >= the film's "
+                             f"start speed {w_f:.4g} rad/s with a motor drive and a liquid "
+                             "(below it the liquid stays a pool: docs/liquid.md sec. 3e)")
+    n = liq.n_chambers
+    if spin.initial_speed >= w_f:
+        fs = FilmStart(0.0, float(spin.initial_speed), (0.0,) * n, "quasi-static")
+        chamber_films(system, fs, 256, 0j)       # the wall film's checks, before any work
+        return fs
+    why = ("on a horizontal axis (the pool's drag under gravity is not modelled)"
+           if liq.axis != "vertical" else next(
+               (f"with the chamber R = {c.chamber_radius:.4g} m more than half full (outside "
+                "the spin-up model, docs/liquid.md sec. 3h)" for c in liq.chambers
+                if not within_spinup(c.chamber_radius, c.chamber_height, c.inner_radius,
+                                     c.volume)), None))
+    if why is not None:
+        raise ParameterError("profile.initial_speed", spin.initial_speed, f"must be >= the "
+                             f"film's start speed {w_f:.4g} rad/s with a motor drive {why}")
+    return FilmStart(0.0, float(spin.initial_speed), (0.0,) * n, "pool")
+
+
+def _pool_phase(system: System, g_axial: float, P: np.ndarray, B: np.ndarray, N: int,
+                prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray,
+                y: np.ndarray, t_end: float, rtol: float, atol: np.ndarray, h_max: float,
+                budget: int, out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray,
+                carry: np.ndarray) -> FilmStart | None:
+    """A motor drive from below the film's start speed on a vertical axis (docs/liquid.md sec.
+    3i): each chamber's pool spins up (:class:`autobalance.liquid.spinup.PoolSpin`, the
+    axisymmetric model of sec. 3h) beside the kernel, one coupling step of
+    :data:`POOL_STEP` at a time. The pools' change of angular momentum reaches the spin as a
+    torque one step late (as the films'); a chamber whose liquid has reached the lid turns on
+    with the chamber at its lag, its moment of inertia in the kernel's spin row. Returns where
+    the film starts (the end of the step in which the last chamber reached the lid, with each
+    chamber's lag), or None when the run ends (or fails) first: a pool throughout."""
+    liq = system.liquid
+    W = y[-1]
+    pools = [PoolSpin(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume, liq.density,
+                      liq.kinematic_viscosity, g_axial, W) for c in liq.chambers]
+    H = [p.momentum(W)[0] for p in pools]
+    lags = [0.0] * len(pools)
+    t, Ic, Tl = 0.0, 0.0, 0.0
+    while True:
+        t1 = min(t + POOL_STEP, t_end)
+        P[P_LQI], P[P_LQT] = Ic, Tl
+        integrate_span(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t_end, rtol, atol, h_max,
+                       budget, out_t, out_y, stats, t1 if t1 < t_end else np.inf, carry)
+        if stats[S_STATUS] != float(RunStatus.RUNNING):
+            P[P_LQI] = P[P_LQT] = 0.0
+            return None                         # the end (or a failure) before the lid
+        W1, dH = y[-1], 0.0
+        for k, p in enumerate(pools):
+            if p.lid_time is None:
+                p.advance(t, t1 - t, W, W1)
+                Hk, Ik = p.momentum(W1)
+                dH += Hk - H[k]
+                H[k] = Hk
+                if p.lid_time is not None:      # from the next step on: rigid, at its lag
+                    lags[k] = Hk / Ik - W1
+                    Ic += Ik
+        Tl = -dH / (t1 - t)
+        t, W = t1, W1
+        if all(p.lid_time is not None for p in pools):
+            P[P_LQI] = P[P_LQT] = 0.0
+            return FilmStart(t, float(W), tuple(lags), "spin-up")
 
 
 def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
@@ -121,8 +182,8 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
         Rotor, suspension (any the ball simulator takes), balls and a ``[liquid]`` section
         ([gravity] in the plane on a horizontal axis).
     spin : SpeedProfile or MotorDrive
-        Prescribed speed [rad/s] over time [s], or a motor drive (vertical axis, from and to
-        speeds at or above the film's start [rad/s]; docs/liquid.md sec. 3i).
+        Prescribed speed [rad/s] over time [s], or a motor drive (from and to speeds at or
+        above the film's start [rad/s]; docs/liquid.md sec. 3i).
     initial : InitialState, optional
         Ball angles [rad] and rotor state at t = 0 (:func:`autobalance.simulate`'s default).
     options : SimOptions, optional
@@ -154,29 +215,40 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
         run_inputs(system, spin, initial, options, liquid_ok=True)
     carry = np.zeros(carry_size(N))
     rtol, budget = options.rtol, int(options.max_steps)
-    if t0 > 0.0:                     # the pool: the ball run up to the film's start
+    motor = isinstance(spin, MotorDrive)
+    if fs.rule == "pool":            # a motor from below the film's start: the pools spin up
+        fs = _pool_phase(system, g_axial, P, B, N, prof_t, prof_w, unb_t, unb_u, y, t_end, rtol,
+                         atol, h_max, budget, out_t, out_y, stats, carry)
+        if fs is None:               # the run's end (or its failure) came first: a pool
+            nan = float("nan")
+            part = LiquidPart(np.zeros(out_t.size, complex), np.zeros(out_t.size, complex),
+                              np.zeros((out_t.size, system.liquid.n_chambers), complex), nan,
+                              nan, 0)
+            return _finish(Simulation(system, spin, initial, options, out_t, out_y, stats,
+                                      order, liquid=part), "ok", "", throw)
+        t0, w0 = fs.time, fs.speed
+    elif t0 > 0.0:                   # the pool: the ball run up to the film's start
         pt, pw = np.zeros(prof_t.size + 1), np.zeros(prof_t.size + 1)
         m = with_knot(prof_t, prof_w, t0, pt, pw)
         integrate_span(P, B, N, pt[:m], pw[:m], unb_t, unb_u, y, t_end, rtol, atol, h_max,
                        budget, out_t, out_y, stats, t0, carry)
     liq = system.liquid
-    ch = liq.chambers
     gp = system.gravity.g if liq.axis == "horizontal" else 0.0
     gam = system.gravity.direction
     s = system.suspension                      # the static sag (inertial frame) [m]
     sag = system.total_mass * gp * complex(np.cos(gam) / s.kx, np.sin(gam) / s.ky)
     psi0 = y[N + 2]
     # the films at the film's start: the chamber about the rotation axis, + gravity's offset
-    off0 = gp / spin.speed(t0) ** 2 * np.exp(1j * (gam - psi0)) if gp else 0j
+    w_start = w0 if motor else spin.speed(t0)
+    off0 = gp / w_start ** 2 * np.exp(1j * (gam - psi0)) if gp else 0j
     st = chamber_films(system, fs, n_cells, complex(y[0], y[1]) + sag * np.exp(-1j * psi0)
                        + off0)
     # the films' own output grid from t0, dense enough for the revolution average (as a liquid
     # alone: liquid.simulate.film_samples), whatever the balls' output times; a motor's spin
     # stays below its final speed (or starts above it and slows down to it)
-    motor = isinstance(spin, MotorDrive)
     if motor:
         w_top = max(spin.final_speed, spin.initial_speed)
-        tt, ww = np.array([0.0, t_end]), np.array([w_top, w_top])
+        tt, ww = np.array([0.0, t_end - t0]), np.array([w_top, w_top])
     else:
         _, tt, ww = _film_table(spin, film_start_speed(liq, system.gravity.g, g_axial), t0)
     dt_f = float(tt[-1]) / (film_samples(tt, ww) - 1)
@@ -195,7 +267,7 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
     runs = [FilmRun(tf, st.theta[o0:o1], out_h[:, o0:o1], out_q[:, o0:o1], f.radius, f.height,
                     f.density, steps)
             for f, o0, o1 in zip(st.films, st.starts[:-1], st.starts[1:])]
-    status, message = inner_wall_status(runs, ch, t0)
+    status, message = inner_wall_status(runs, liq.chambers, t0)
     if status != "ok" and stats[S_STATUS] == 0.0:   # the balls' run completed; the film did not
         stats[S_STATUS] = float(RunStatus.OUTSIDE_MODEL)
     per_f = np.stack([r.unbalance for r in runs], axis=-1)          # (film samples, chambers)
@@ -207,12 +279,91 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
         return np.where(x >= -1e-12 * max(1.0, t0),
                         np.interp(x, tf, v.real) + 1j * np.interp(x, tf, v.imag), 0.0)
 
-    per = np.stack([at_outputs(per_f[:, j]) for j in range(len(ch))], axis=-1)
-    U = per.sum(axis=1)
-    part = LiquidPart(U, at_outputs(sync_f), per, float(t0), float(w0), int(steps))
-    sim = Simulation(system, spin, initial, options, out_t, out_y, stats, order, liquid=part)
+    per = np.stack([at_outputs(per_f[:, j]) for j in range(per_f.shape[1])], axis=-1)
+    part = LiquidPart(per.sum(axis=1), at_outputs(sync_f), per, float(t0), float(w0),
+                      int(steps))
+    return _finish(Simulation(system, spin, initial, options, out_t, out_y, stats, order,
+                              liquid=part), status, message, throw)
+
+
+def _finish(sim: Simulation, status: str, message: str, throw: bool) -> Simulation:
+    """The run with the film's own message when its status is the film's (a chamber's film
+    at its inner wall: names the chamber and the time); raises for a failed run if ``throw``."""
     if status != "ok" and sim.status == status:
-        sim.message = message                   # names the chamber and the time
+        sim.message = message
     if throw and sim.status != "ok":
         raise SimulationError(sim.message)
     return sim
+
+
+def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 256,
+                          n_out: int | None = None,
+                          g_axial: float = G_STANDARD) -> LiquidSimulation:
+    """A liquid alone (no balls) under a motor drive: :func:`simulate_hybrid`'s kernel with no
+    balls, the spin a degree of freedom taking the films' inertia and torque (docs/liquid.md
+    sec. 3i), read as a run of :func:`autobalance.liquid.simulate.simulate_liquid`. The drive
+    starts and ends at or above the film's start speed; the run starts on the steady orbit of
+    the rotor carrying the liquid as a rigid centred mass (as ``simulate_liquid``'s), the films
+    turning with the chamber.
+
+    Parameters
+    ----------
+    system : System
+        Rotor (mass [kg], polar inertia [kg*m^2], unbalance [kg*m]), isotropic suspension and a
+        ``[liquid]`` section; no balls; [gravity] in the plane for a horizontal axis.
+    spin : MotorDrive
+        The motor's torque law [N*m] from its initial speed [rad/s].
+    n_cells : int
+        Film cells around each wall [-].
+    n_out : int or None
+        Output samples over the run [-]; None: 1001, or 8 per revolution at the drive's larger
+        end speed if more, at most 200 001 (as ``simulate_liquid``).
+    g_axial : float
+        Gravity along the vertical axis, for the entrainment speed [m/s^2].
+
+    Returns
+    -------
+    LiquidSimulation
+    """
+    require_liquid_machine(system)
+    if not isinstance(spin, MotorDrive):
+        raise ParameterError("profile.kind", type(spin).__name__, "must be 'motor' here (a "
+                             "prescribed profile runs with simulate_liquid)")
+    w_top = max(spin.final_speed, spin.initial_speed)
+    if n_out is None:
+        n_out = film_samples(np.array([0.0, spin.duration]), np.array([w_top, w_top]))
+    if isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2:
+        raise ParameterError("n_out", n_out, "must be an integer >= 2")
+    # from the steady orbit of the rotor carrying the liquid as a rigid centred mass at the
+    # initial speed, as simulate_liquid starts
+    sim = simulate_hybrid(system, spin, initial=InitialState(steady_state=True),
+                          options=SimOptions(save_dt=spin.duration / (n_out - 1)),
+                          n_cells=n_cells, g_axial=g_axial, throw=False)
+    part = sim.liquid
+    ch = system.liquid.chambers
+    return LiquidSimulation(system, sim.t, sim.speed, sim.u + 1j * sim.v, part.unbalance,
+                            part.synchronous_unbalance, part.film_start, part.film_start_speed,
+                            float(spin.nominal_speed), part.steps, sim.status,
+                            "" if sim.status == "ok" else sim.message,
+                            None if len(ch) == 1 else part.chamber_unbalance, motor=True,
+                            time_to_final_speed=sim.summary()["time_to_final_speed_s"])
+
+
+def liquid_run(system: System, spin: SpeedProfile | MotorDrive, *,
+               n_cells: int = 256) -> LiquidSimulation:
+    """A run of a liquid alone (no balls): :func:`autobalance.liquid.simulate.simulate_liquid`
+    through a prescribed profile, :func:`simulate_liquid_motor` under a motor drive. The one
+    dispatch of the CLI's ``simulate``, the sweeps and the studies.
+
+    Parameters
+    ----------
+    system : System
+        A ``[liquid]`` section and no balls.
+    spin : SpeedProfile or MotorDrive
+        Prescribed speed [rad/s] over time [s], or a motor's torque law [N*m].
+    n_cells : int
+        Film cells around each wall [-].
+    """
+    if isinstance(spin, MotorDrive):
+        return simulate_liquid_motor(system, spin, n_cells=n_cells)
+    return simulate_liquid(system, spin, n_cells=n_cells)

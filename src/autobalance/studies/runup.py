@@ -103,17 +103,20 @@ def _cases(cfg, laws):
 
 def _liquid_case(s, spin, tg, ecc, fraction):
     """One case of a liquid balancer alone (no balls): the film model
-    (:func:`autobalance.liquid.simulate.simulate_liquid`), its whirl read on ``tg`` [s]; before
-    the film starts the liquid is a centred pool (quasi-steady, as
+    (:func:`autobalance.simulate.hybrid.liquid_run`: a prescribed profile or a motor), its whirl
+    read on ``tg`` [s]; before the film starts the liquid is a centred pool (quasi-steady, as
     ``LiquidSimulation.max_amplitude_before_film``). (row, histories) as compute_runup's."""
-    from ..liquid.simulate import film_rotor, simulate_liquid, spin_angle
+    from ..liquid.simulate import film_rotor, spin_angle
     from ..liquid.steady import pool_response
+    from ..simulate.hybrid import liquid_run
 
-    sim = simulate_liquid(s, spin)
+    sim = liquid_run(s, spin)
     if sim.status != "ok":
         raise ParameterError("liquid", "the run-up", sim.message)
     S = sim.summary()
-    tt, ww = np.asarray(spin.times, float), np.asarray(spin.speeds, float)
+    # the spin over the run: the profile's table, or the motor's speed at the outputs
+    tt, ww = (sim.t, sim.speed) if sim.motor else (np.asarray(spin.times, float),
+                                                   np.asarray(spin.speeds, float))
     speed = np.interp(tg, tt, ww, right=np.nan)
     before = tg < sim.film_start
     amp = np.interp(tg, sim.t, sim.amplitude, right=np.nan)

@@ -11,11 +11,11 @@ import numpy as np
 
 def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
     """:func:`autobalance.sweep.task.run_task` for liquid balancers: one wall-film run per system
-    (:func:`autobalance.liquid.simulate.simulate_liquid`), read at the checkpoints and history
+    (:func:`autobalance.simulate.hybrid.liquid_run`: a prescribed profile or a motor), read at the checkpoints and history
     times as the ball runs are; no balls (``ball_angle`` all NaN), no stick-slip events."""
     from ..core.layout import RunStatus
-    from ..liquid.simulate import simulate_liquid
     from ..physics.iso1940 import grade_value
+    from ..simulate.hybrid import liquid_run
 
     spin, systems = payload["spin"], payload["systems"]
     n, n_cp = len(systems), cps.size
@@ -30,7 +30,7 @@ def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
         for name in ("grade_G_history", "amplitude_history", "speed_history"):
             out[name] = np.full((n, hist.size), np.nan)
     for i, s in enumerate(systems):
-        sim = simulate_liquid(s, spin)
+        sim = liquid_run(s, spin)
         at = sim.at(cps)
         out["grade_G"][i], out["residual_unbalance"][i] = at["grade_G"], at["residual_unbalance"]
         out["max_amplitude"][i] = max(float(np.max(sim.amplitude)), sim.max_amplitude_before_film)
