@@ -387,9 +387,9 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     rotor (mass M_t = M + the liquids' masses, stiffness k [N/m], damping c [N*s/m], unbalance
     D [kg*m] on the rotor frame's x axis) at the prescribed spin w(t) (table tt [s], tw
     [rad/s], linear; w' the slope of each segment, rhs.profile_eval). Film f holds the cells
-    starts[f] to starts[f + 1] - 1 of h, q, theta and wall (and of the work arrays), with its wall radius Rs[f] [m], height Hs[f] [m],
-    density rhos[f] [kg/m^3] and viscosity nus[f] [m^2/s]; every chamber is on the same rotor,
-    so every film sees the same deflection.
+    starts[f] to starts[f + 1] - 1 of h, q, theta and wall (and of the work arrays), with its
+    wall radius Rs[f] [m], height Hs[f] [m], density rhos[f] [kg/m^3] and viscosity nus[f]
+    [m^2/s]; every chamber is on the same rotor, so every film sees the same deflection.
 
     The rotor's balance in the rotor frame, with the liquid's pull written through the total
     first moment Z = M_t w + U (w the chamber's deflection [m], U the films' summed moment

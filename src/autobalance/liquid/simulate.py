@@ -140,7 +140,12 @@ class LiquidSimulation:
     def max_amplitude_before_film(self) -> float:
         """Largest synchronous amplitude before the film forms [m]: the rotor with its liquid as
         a rigid centred mass, quasi-steady over the profile's speeds up to omega_0 (Jeffcott
-        closed form; exact for a slow run-up, an upper bound of its transient otherwise)."""
+        closed form; exact for a slow run-up, an upper bound of its transient otherwise). Under
+        a motor the run itself from its start (the pool's spin-up, sec. 3i; 0 when the film
+        starts with the run)."""
+        if self.motor:
+            before = ~(self.t >= self.film_start)            # all of it when no film formed
+            return float(np.max(self.amplitude[before], initial=0.0))
         L = self.system.liquid
         w = np.linspace(0.0, self.film_start_speed, 2001)
         return float(np.max(np.abs(pool_response(film_rotor(self.system), L.total_volume,
@@ -227,6 +232,7 @@ class LiquidSimulation:
         attrs = {"model": "wall film coupled with the rotor (autobalance.liquid.simulate)",
                  "film_start_speed_rad_s": self.film_start_speed,
                  "film_start_s": self.film_start, "status": self.status,
+                 "spin": "motor" if self.motor else "profile",
                  "system": json.dumps({"name": self.system.name})}
         return xr.Dataset(data, coords=coords, attrs=attrs)
 

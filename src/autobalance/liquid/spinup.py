@@ -24,7 +24,8 @@ if TYPE_CHECKING:
 
     import numpy.typing as npt
 
-__all__ = ["PoolSpin", "SpinUp", "chamber_spinup", "rigid_pool", "spinup_of", "spinup_run", "within_spinup"]
+__all__ = ["PoolSpin", "SpinUp", "chamber_spinup", "rigid_pool", "spinup_of", "spinup_run",
+           "within_spinup"]
 
 #: Mode 1 (full priority of gravity) lasts while the surface at the inner wall (the axis) has
 #: sunk by less than this fraction of the rest level (as :func:`.free_surface.gravity_mode_speed`,

@@ -23,7 +23,8 @@ from ..core.layout import P_LQI, P_LQT, S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import FilmRun
 from ..liquid.models import G_STANDARD
-from ..liquid.simulate import (LiquidSimulation, chamber_films, film_samples, inner_wall_status,
+from ..liquid.simulate import (LiquidSimulation, chamber_films, check_liquid_run, film_samples,
+                               inner_wall_status,
                                require_axis_gravity, require_liquid_machine, revolution_average,
                                simulate_liquid, spin_angle)
 from ..liquid.spinup import PoolSpin, within_spinup
@@ -35,7 +36,8 @@ from .result import Simulation, SimulationError
 #: pools' torque lags by one step (docs/liquid.md sec. 3i).
 POOL_STEP = 1.0e-3
 
-__all__ = ["LiquidPart", "check_hybrid", "liquid_run", "simulate_hybrid", "simulate_liquid_motor"]
+__all__ = ["LiquidPart", "check_hybrid", "check_liquid", "liquid_run", "simulate_hybrid",
+           "simulate_liquid_motor"]
 
 
 @dataclass(frozen=True)
@@ -92,6 +94,30 @@ def check_hybrid(system: System, spin: SpeedProfile | MotorDrive,
     fs = film_start(system, spin, g_axial)
     chamber_films(system, fs, 256, 0j)           # the wall film's checks, before any work
     return fs
+
+
+def check_liquid(system: System, spin: SpeedProfile | MotorDrive,
+                 g_axial: float = G_STANDARD) -> None:
+    """One-line errors, before any work, for a run of a machine with a liquid that the models
+    do not cover: balls beside it (:func:`check_hybrid`), a liquid alone under a motor (the
+    liquid machine's checks, then :func:`check_hybrid`'s of the drive), a liquid alone through
+    a profile (:func:`autobalance.liquid.simulate.check_liquid_run`).
+
+    Parameters
+    ----------
+    system : System
+        A machine with a ``[liquid]`` section.
+    spin : SpeedProfile or MotorDrive
+        Its spin.
+    g_axial : float
+        Gravity along the vertical axis [m/s^2].
+    """
+    if not system.balancer.n_balls:
+        if not isinstance(spin, MotorDrive):
+            check_liquid_run(system, spin, g_axial)
+            return
+        require_liquid_machine(system)
+    check_hybrid(system, spin, g_axial)
 
 
 def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:

@@ -118,7 +118,7 @@ def _liquid_case(s, spin, tg, ecc, fraction):
     tt, ww = (sim.t, sim.speed) if sim.motor else (np.asarray(spin.times, float),
                                                    np.asarray(spin.speeds, float))
     speed = np.interp(tg, tt, ww, right=np.nan)
-    before = tg < sim.film_start
+    before = tg < sim.t[0]           # before the run's own samples: a prescribed profile's pool
     amp = np.interp(tg, sim.t, sim.amplitude, right=np.nan)
     amp[before] = np.abs(pool_response(film_rotor(s), s.liquid.total_volume, s.liquid.density,
                                        speed[before]))

@@ -491,10 +491,8 @@ def make_plan(spec: SweepSpec) -> Plan:
             cells.append(replace_values(cells[0], pairs) if cells else build(pairs))
             c = cells[-1]
             if c.system.liquid is not None:               # the film model's scope, up front
-                from ..liquid.simulate import check_liquid_run
-                from ..simulate.hybrid import check_hybrid
-                (check_hybrid if c.system.balancer.n_balls else check_liquid_run)(c.system,
-                                                                                  c.spin)
+                from ..simulate.hybrid import check_liquid
+                check_liquid(c.system, c.spin)
         except Exception as e:   # ConfigError / ParameterError / ResourceError
             field = str(e).split(" ", 1)[0].split("[", 1)[0].rstrip(":")
             culprit = (f"grid point {where}" if n_axis is not None and field in _FOLLOW
