@@ -22,6 +22,14 @@ f(3) = 0.316, f(4) = 1 - 8/pi^2 = 0.189, f(8) = 0.050; f -> 0 as p grows (the li
 the chamber). Two walls make the response depend on the whirl's direction (1 along them,
 1 - 8/pi^2 across): not a scalar added mass, refused. The films of ``simulate`` at rest on a displaced
 wall give f(p) within 1e-4 on 960 cells (6.7e-5 for p = 8; tests/test_tolerances_liquid.py).
+
+**A horizontal axis** (since stop 32). Gravity in the plane moves the surface's axis by
+x0 = g/Omega^2 from the rotation axis (:func:`.quasistatic.quasi_static`, "horizontal"): the
+surface is the cylinder |x - x0| = r_s, pi r_s^2 h = pi R^2 h - V, through the whole height. The
+core's moment is linear in the chamber's offset from x0, so the whirl's part is the same
+kappa z_r; gravity's part stands still in the inertial frame (a static load, not in the
+synchronous residual). The ring stays intact while |z_r| + g/Omega^2 keeps the core inside the
+outer wall and clear of the inner one, in the worst relative direction.
 """
 from __future__ import annotations
 
@@ -63,25 +71,31 @@ def partition_factor(partitions: int, field: str = "liquid.partitions") -> float
 
 def check_synchronous(device: LiquidDevice) -> None:
     """One-line errors, before any work, for a liquid :func:`synchronous_liquid` does not take:
-    a horizontal axis, two partitions.
+    two partitions.
 
     Parameters
     ----------
     device : autobalance.models.LiquidDevice
-        The ``[liquid]`` section (axis, partitions [-]).
+        The ``[liquid]`` section (partitions [-]).
     """
-    device.vertical("for the synchronous liquid (on a horizontal axis gravity in the "
-                    "chamber's plane moves the films once per revolution); the studies that "
-                    "simulate take it")
     many = device.n_chambers > 1
     for i, c in enumerate(device.chambers):
         partition_factor(c.partitions, f"liquid.partitions[{i}]" if many else "liquid.partitions")
 
 
 def _chamber(c, speed: float, g: float) -> tuple[float, float]:
-    """(kappa [kg], linear range [m]) of one chamber on a vertical axis at ``speed``."""
+    """(kappa [kg], linear range [m]) of one chamber at ``speed``; g along a vertical axis or
+    in the plane of a horizontal one."""
     R, h, ri, V = c.chamber_radius, c.chamber_height, c.inner_radius, c.volume
     f = partition_factor(c.partitions)
+    kappa = f * intact_ring_unbalance(c.density, math.pi * R * R * h, V, 1.0).real
+    shift = 2.0 if c.partitions else 1.0    # a compartment's surface moves by up to 2 |offset|
+    if c.axis == "horizontal":
+        if speed < start_speed(V, R, h, g, axis="horizontal", inner_radius=ri):
+            return 0.0, 0.0               # a puddle held by gravity, not a ring: no bound
+        r_s = math.sqrt(R * R - V / (math.pi * h))
+        margin = min(R - r_s, r_s - ri) if ri > 0.0 else R - r_s
+        return kappa, max(margin / shift - g / speed ** 2, 0.0)
     if speed < start_speed(V, R, h, g, inner_radius=ri):
         return 0.0, math.inf              # a pool: a mass moving with the chamber (003 eq 6)
     zs = quasi_static(R, h, V, c.density, speed, 0j, inner_radius=ri, g=g).surface
@@ -91,27 +105,25 @@ def _chamber(c, speed: float, g: float) -> tuple[float, float]:
     margin = R - r_top
     if ri > 0.0:
         margin = min(margin, r_bottom - ri)
-    # each compartment's surface moves by up to 2 |z_r| against its wall (module docstring)
-    reach = max(margin, 0.0) / (2.0 if c.partitions else 1.0)
-    kappa = f * intact_ring_unbalance(c.density, math.pi * R * R * h, V, 1.0).real
-    return kappa, reach
+    return kappa, max(margin, 0.0) / shift
 
 
 def synchronous_liquid(device: LiquidDevice, speed: float, g: float = G_STANDARD) -> SyncLiquid:
     """A machine's liquid in a synchronous whirl at ``speed`` (module docstring): its added
     mass kappa (summed over the chambers; 0 for a chamber below its entrainment speed, 003
     eq 6, whose liquid is a pool), the whirl up to which every chamber's ring stays intact
-    (0 if one is not a ring from bottom to lid at this speed) and its capacity rho V R.
+    (0 if one is not a ring from bottom to lid at this speed, or, on a horizontal axis, below
+    the film's start g/Omega^2 = R/10: a puddle) and its capacity rho V R.
 
     Parameters
     ----------
     device : autobalance.models.LiquidDevice
         The ``[liquid]`` section: chambers (R, h, r_i [m], V [m^3], partitions [-]), density
-        [kg/m^3], axis (vertical only).
+        [kg/m^3], axis.
     speed : float
         Spin speed Omega [rad/s], > 0.
     g : float
-        Gravity along the axis [m/s^2].
+        Gravity along a vertical axis, or in the plane of a horizontal one [m/s^2].
 
     Returns
     -------

@@ -48,9 +48,9 @@ TOLERANCE_KEYS = ("max_eccentricity_m", "max_rolling_resistance", "max_suspensio
 
 def liquid_at(system: System):
     """speed [rad/s] -> the machine's liquid in a synchronous whirl (SyncLiquid), or None for
-    no liquid; one-line errors for what the bound beside a liquid does not take (a horizontal
-    axis, two partitions: :func:`~autobalance.liquid.synchronous.synchronous_liquid`; an
-    anisotropic suspension).
+    no liquid; one-line errors for what the bound beside a liquid does not take (two
+    partitions: :func:`~autobalance.liquid.synchronous.synchronous_liquid`; an anisotropic
+    suspension). On a horizontal axis the liquid sees the machine's in-plane gravity.
 
     Parameters
     ----------
@@ -67,7 +67,10 @@ def liquid_at(system: System):
                              f"cy={sus.cy:g}", "must be isotropic for the tolerances beside a "
                              "liquid (the liquid follows the forward whirl only)")
     check_synchronous(system.liquid)
-    return lambda speed: synchronous_liquid(system.liquid, speed)
+    from ..liquid.models import G_STANDARD
+
+    g = system.gravity.g if system.liquid.axis == "horizontal" else G_STANDARD
+    return lambda speed: synchronous_liquid(system.liquid, speed, g)
 
 
 def _settle_speed(cfg, speed):
@@ -210,6 +213,11 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
                     "liquid_linear": p["liquid_linear"]})
         warnings.append("beside a liquid the collinear residuals are of the rotor and balls "
                         "alone (the liquid's rings are broken at such whirls)")
+        if s.liquid.axis == "horizontal":
+            warnings.append("on a horizontal axis whether the balanced state beside the liquid "
+                            "is stable is not known (the speed map refuses it): partly filled "
+                            "rotors can whirl asynchronously, beyond the rings' range, where the "
+                            "bound says nothing; check with --check (docs/liquid.md sec. 3l)")
     if getattr(cfg, "profile_kind", "") == "tsr":
         wp = plateau_speed(cfg.spin)
         pp = residual_bound(s, wp, eccentricity_angle=None, liquid=liq(wp))
