@@ -105,6 +105,7 @@ def test_a_motor_that_stops_before_the_lid_leaves_a_pool():
     cfg = machine("profile.initial_speed=0 1/s", "profile.duration=0.3 s")
     a = simulate_liquid_motor(cfg.system, cfg.spin)
     assert a.status == "ok" and math.isnan(a.film_start) and a.steps == 0
+    assert a.message.startswith("no film")
     assert np.all(a.liquid_unbalance == 0) and a.speed[-1] > 2.0
 
 
@@ -135,7 +136,8 @@ def test_refusals_of_a_motor_with_a_liquid():
 @pytest.mark.slow
 def test_cli_simulates_a_liquid_alone_under_a_motor_from_rest(tmp_path):
     """`autobalance simulate` of a liquid alone under a motor from rest: exit 0, the film's
-    start and the time to full speed in the JSON summary, a NetCDF file xarray opens."""
+    start and the time to full speed in the JSON summary, a NetCDF file xarray opens; a drive
+    too short for the lid says so in a note."""
     from typer.testing import CliRunner
 
     from autobalance.cli import app
@@ -153,6 +155,9 @@ def test_cli_simulates_a_liquid_alone_under_a_motor_from_rest(tmp_path):
     with xr.open_dataset(out) as ds:
         assert ds["speed"].values[-1] > 50 and ds.attrs["spin"] == "motor"
         assert float(ds.attrs["film_start_s"]) == pytest.approx(S["film_start_s"])
+    res = CliRunner().invoke(app, ["simulate", "leblanc_003", *sets, "--set",
+                                   "profile.initial_speed=0/s", "--set", "profile.duration=0.3s"])
+    assert res.exit_code == 0 and "note: no film" in res.output
 
 
 @pytest.mark.slow

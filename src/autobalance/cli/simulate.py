@@ -254,6 +254,8 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
         print_json(result)
     else:
         typer.echo(f"{cfg.name}: status {sim.status} ({wall:.1f} s wall)")
+        if ok and hasattr(sim, "film_start") and sim.message:   # a liquid's run: its note,
+            typer.echo(f"  note: {sim.message}")                 # e.g. it stayed a pool
         typer.echo(f"  {'target grade':<32} {grade_text(grade)}")
         for key, value in result.items():
             if key not in ("name", "config", "status", "files", "wall_time_s", "message",

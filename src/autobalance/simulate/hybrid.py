@@ -370,7 +370,9 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
     return LiquidSimulation(system, sim.t, sim.speed, sim.u + 1j * sim.v, part.unbalance,
                             part.synchronous_unbalance, part.film_start, part.film_start_speed,
                             float(spin.nominal_speed), part.steps, sim.status,
-                            "" if sim.status == "ok" else sim.message,
+                            sim.message if sim.status != "ok" else "" if part.film_start >= 0
+                            else "no film: the drive ended before the liquid reached the lid "
+                            "(a pool throughout)",
                             None if len(ch) == 1 else part.chamber_unbalance, motor=True,
                             time_to_final_speed=sim.summary()["time_to_final_speed_s"])
 
