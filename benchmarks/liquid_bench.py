@@ -11,6 +11,9 @@ F. The fill x speed map of the steady whirl with the quasi-static liquid (0-350 
 G. The same fills x 12 constant speeds 40-84 1/s (above every fill's omega_0) with the dynamic film, each run 4 s, as one sweep on
    all cores (autobalance.sweep, local processes): the map that also shows where the steady
    whirl is not reached (asynchronous whirl). Target: minutes.
+H. Four runs of two 80 g balls beside the liquid (0 -> 150 1/s in 20 s, held to 30 s), one
+   after another and on two threads (the kernels release the GIL; the tolerances' simulation
+   check runs them so), side by side, with the results compared bit for bit.
 Results are written to out/liquid_bench.json.
 """
 from __future__ import annotations
@@ -80,6 +83,34 @@ def main() -> dict:
     res["G_dynamic_map"] = {"s": t_g, "runs": n}
     lines.append(f"G. fill x speed map, dynamic film (4 s per run, one sweep, local processes): "
                  f"{n} runs in {t_g:.1f} s ({n / t_g:.2f} runs/s; target: minutes)")
+
+    from concurrent.futures import ThreadPoolExecutor
+
+    from autobalance.models import InitialState
+    from autobalance.simulate import simulate
+
+    hb = load_config("leblanc_003", [
+        "balancer.n_balls=2", "balancer.ball_mass=0.08 kg", "balancer.race_radius=0.25 m",
+        "balancer.ball_radius=10 mm", "balancer.damping=20 N*mm*s/rad",
+        "profile.end_speed=150 1/s", "profile.duration=30 s"])
+    inits = [InitialState(ball_angles=(a, a + 2.0)) for a in (0.3, 1.1, 2.2, 3.3)]
+
+    def one(i):
+        return simulate(hb.system, hb.spin, initial=i, options=hb.options, throw=False)
+
+    def threads():
+        with ThreadPoolExecutor(2) as ex:
+            return list(ex.map(one, inits))
+
+    one(inits[0])                                                           # compile
+    t_ser, a = timed(lambda: [one(i) for i in inits], repeat=2)
+    t_thr, b = timed(threads, repeat=2)
+    same = all(np.array_equal(x.states, y.states)
+               and np.array_equal(x.liquid.unbalance, y.liquid.unbalance) for x, y in zip(a, b))
+    res["H_hybrid_threads"] = {"serial_s": t_ser, "threads_s": t_thr, "identical": same}
+    lines.append(f"H. 4 runs of balls beside the liquid (30 s each): one after another "
+                 f"{t_ser:.2f} s, on 2 threads {t_thr:.2f} s ({t_ser / t_thr:.2f}x); "
+                 f"identical: {same}")
     return report(lines, res, "liquid_bench.json")
 
 

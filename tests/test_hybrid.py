@@ -399,3 +399,29 @@ def test_run_up_with_massless_locked_balls_is_the_liquid_alone_run_up():
     a_hyb = np.interp(T, hyb.t, hyb.amplitude)
     np.testing.assert_allclose(a_hyb, a_liq, rtol=5e-3)
     assert hyb.amplitude.max() == pytest.approx(np.abs(liq.deflection).max(), rel=1e-3)
+
+
+@pytest.mark.slow
+def test_runs_beside_a_liquid_on_threads_are_the_serial_runs():
+    """The compiled kernels release the GIL (integrate, integrate_span, hybrid_integrate), so
+    runs of balls beside a liquid share the cores on threads (the tolerances' simulation check
+    does): two at once give the bits of the two one after another."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from autobalance.config import load_config
+
+    cfg = load_config("leblanc_003", [
+        "balancer.n_balls=2", "balancer.ball_mass=0.08 kg", "balancer.race_radius=0.25 m",
+        "balancer.ball_radius=10 mm", "balancer.damping=20 N*mm*s/rad",
+        "profile.end_speed=100 1/s", "profile.ramp_time=8 s", "profile.duration=10 s"])
+    inits = [InitialState(ball_angles=(a, a + 2.0)) for a in (0.3, 2.2)]
+
+    def one(i):
+        return simulate(cfg.system, cfg.spin, initial=i, options=cfg.options)
+
+    serial = [one(i) for i in inits]
+    with ThreadPoolExecutor(2) as ex:
+        threaded = list(ex.map(one, inits))
+    for a, b in zip(serial, threaded):
+        np.testing.assert_array_equal(a.states, b.states)
+        np.testing.assert_array_equal(a.liquid.unbalance, b.liquid.unbalance)

@@ -124,7 +124,7 @@ def _ball_work(N: int):
             np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                      prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, y: np.ndarray,
                      t0: float, t_end: float, rtol: float, atol: np.ndarray, h_max: float,

@@ -399,13 +399,19 @@ def check_tolerances_by_simulation(base: str | Path | Config, tolerances: dict, 
 def _hybrid_runs(systems, cfg, inits, t_read: float):
     """Runs of balls beside a liquid (:func:`autobalance.simulate`, the films of
     :mod:`autobalance.simulate.hybrid`) read out at ``t_read`` [s], in the fields of a
-    BatchResult that :func:`check_tolerances_by_simulation` reads."""
+    BatchResult that :func:`check_tolerances_by_simulation` reads. The runs share the cores in
+    threads: their compiled kernels release the GIL (core/integrate.py, core/hybrid.py)."""
+    import os
+    from concurrent.futures import ThreadPoolExecutor
     from types import SimpleNamespace
 
     from ..simulate import simulate
 
-    sims = [simulate(s, cfg.spin, initial=i, options=cfg.options, throw=False)
-            for s, i in zip(systems, inits)]
+    def one(pair):
+        return simulate(pair[0], cfg.spin, initial=pair[1], options=cfg.options, throw=False)
+
+    with ThreadPoolExecutor(max_workers=max(1, min(len(systems), os.cpu_count() or 1))) as ex:
+        sims = list(ex.map(one, zip(systems, inits)))
     k = [int(np.argmin(np.abs(r.t - t_read))) for r in sims]
     return SimpleNamespace(
         residual_unbalance=np.array([[r.residual_unbalance[j]] for r, j in zip(sims, k)]),
