@@ -12,8 +12,8 @@ G. The same fills x 12 constant speeds 40-84 1/s (above every fill's omega_0) wi
    all cores (autobalance.sweep, local processes): the map that also shows where the steady
    whirl is not reached (asynchronous whirl). Target: minutes.
 H. Four runs of two 80 g balls beside the liquid (0 -> 150 1/s in 20 s, held to 30 s), one
-   after another and on two threads (the kernels release the GIL; the tolerances' simulation
-   check runs them so), side by side, with the results compared bit for bit.
+   after another and on two threads (the hybrid kernel releases the GIL; the tolerances'
+   simulation check runs them so), side by side, with the results compared bit for bit.
 Results are written to out/liquid_bench.json.
 """
 from __future__ import annotations

@@ -403,9 +403,9 @@ def test_run_up_with_massless_locked_balls_is_the_liquid_alone_run_up():
 
 @pytest.mark.slow
 def test_runs_beside_a_liquid_on_threads_are_the_serial_runs():
-    """The compiled kernels release the GIL (integrate, integrate_span, hybrid_integrate), so
-    runs of balls beside a liquid share the cores on threads (the tolerances' simulation check
-    does): two at once give the bits of the two one after another."""
+    """The hybrid kernel releases the GIL (hybrid_integrate), so runs of balls beside a liquid
+    share the cores on threads (the tolerances' simulation check does): two at once give the
+    bits of the two one after another."""
     from concurrent.futures import ThreadPoolExecutor
 
     from autobalance.config import load_config

@@ -367,7 +367,7 @@ def _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0):
             int(carry[C_KOUT]), int(carry[C_EVK]), int(carry[C_EVI]))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
               unb_t: np.ndarray, unb_u: np.ndarray, y0: np.ndarray, t_end: float, rtol: float,
               atol: np.ndarray, h_max: float, max_steps: int, out_t: np.ndarray,
@@ -393,7 +393,7 @@ def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: 
     return y
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                    prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, y: np.ndarray,
                    t_end: float, rtol: float, atol: np.ndarray, h_max: float, max_steps: int,

@@ -400,7 +400,7 @@ def _hybrid_runs(systems, cfg, inits, t_read: float):
     """Runs of balls beside a liquid (:func:`autobalance.simulate`, the films of
     :mod:`autobalance.simulate.hybrid`) read out at ``t_read`` [s], in the fields of a
     BatchResult that :func:`check_tolerances_by_simulation` reads. The runs share the cores in
-    threads: their compiled kernels release the GIL (core/integrate.py, core/hybrid.py)."""
+    threads: the hybrid kernel releases the GIL (core/hybrid.py; docs/numerics.md)."""
     import os
     from concurrent.futures import ThreadPoolExecutor
     from types import SimpleNamespace
