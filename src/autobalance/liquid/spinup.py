@@ -43,6 +43,22 @@ DEFAULT_CELLS = 100
 MAX_CELLS = 2000
 
 
+def _cells(radius: float, inner_radius: float, n: int) -> tuple[np.ndarray, np.ndarray,
+                                                                  np.ndarray]:
+    """(faces [m], centres [m], integral of r dr per cell [m^2]) of the model's n cells of equal
+    bottom area from the inner wall r_i (or the axis) to the outer wall R [m]."""
+    rf = np.sqrt(np.linspace(inner_radius * inner_radius, radius * radius, n + 1))
+    return rf, 0.5 * (rf[1:] + rf[:-1]), 0.5 * np.diff(rf ** 2)
+
+
+def _spin_sums(depth: np.ndarray, azimuthal: np.ndarray, r: np.ndarray,
+               weights: np.ndarray) -> tuple:
+    """(sum r h v r dr [m^4/s], sum r^2 h r dr [m^5]) over the cells (the last axis): the
+    liquid's angular momentum relative to the chamber and its moment of inertia about the axis,
+    each over 2 pi rho (v relative to the chamber)."""
+    return (azimuthal * r) @ weights, (depth * r ** 2) @ weights
+
+
 @dataclass(frozen=True)
 class SpinUp:
     """A run of :func:`spinup_run`.
@@ -95,8 +111,8 @@ class SpinUp:
     def liquid_speed(self) -> np.ndarray:
         """The liquid's mean angular velocity in the inertial frame [rad/s]: its angular
         momentum over its moment of inertia, Omega + sum(r h v dA) / sum(r^2 h dA)."""
-        A = self._weights
-        return self.speed + (self.azimuthal * self.r) @ A / ((self.depth * self.r ** 2) @ A)
+        rel, inertia = _spin_sums(self.depth, self.azimuthal, self.r, self._weights)
+        return self.speed + rel / inertia
 
     @property
     def mode(self) -> np.ndarray:
@@ -196,8 +212,7 @@ def spinup_run(radius: float, height: float, volume: float,
     if tt.ndim != 1 or tt.size < 2 or tw.shape != tt.shape or np.any(np.diff(tt) <= 0) \
             or np.any(tw < 0) or not np.all(np.isfinite(tw)):
         raise ParameterError("speed", "table", "needs increasing times and speeds >= 0 [rad/s]")
-    rf = np.sqrt(np.linspace(ri * ri, R * R, n + 1))       # cells of equal bottom area
-    rc = 0.5 * (rf[1:] + rf[:-1])
+    rf, rc, _ = _cells(R, ri, n)
     h0 = V / area
     if initial is None:
         h = np.full(n, h0)
@@ -327,9 +342,7 @@ def rigid_pool(radius: float, inner_radius: float, volume: float, speed: float, 
     n_cells : int
         Cells [-].
     """
-    rf = np.sqrt(np.linspace(inner_radius ** 2, radius ** 2, int(n_cells) + 1))
-    rc = 0.5 * (rf[1:] + rf[:-1])
-    area = 0.5 * np.diff(rf ** 2)
+    _, rc, area = _cells(radius, inner_radius, int(n_cells))
     rise = speed * speed * rc * rc / (2.0 * g)
 
     def vol(C):
@@ -373,9 +386,7 @@ class PoolSpin:
                  density: float, viscosity: float, g: float, speed: float,
                  n_cells: int = DEFAULT_CELLS):
         n = int(n_cells)
-        self.rf = np.sqrt(np.linspace(inner_radius ** 2, radius ** 2, n + 1))
-        self.rc = 0.5 * (self.rf[1:] + self.rf[:-1])
-        self.weights = 0.5 * np.diff(self.rf ** 2)          # integral of r dr per cell [m^2]
+        self.rf, self.rc, self.weights = _cells(radius, inner_radius, n)
         if speed == 0.0:
             self.h = np.full(n, volume / (math.pi * (radius ** 2 - inner_radius ** 2)))
             self.q, self.s = np.zeros(n), np.zeros(n)
@@ -422,5 +433,5 @@ class PoolSpin:
             The chamber's spin [rad/s].
         """
         c = 2.0 * math.pi * self.rho
-        inertia = c * float((self.h * self.rc ** 2) @ self.weights)
-        return c * float((self.s * self.rc) @ self.weights) + inertia * w, inertia
+        rel, inertia = _spin_sums(self.h, self.s, self.rc, self.weights)
+        return c * float(rel) + c * float(inertia) * w, c * float(inertia)

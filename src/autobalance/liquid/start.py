@@ -85,7 +85,9 @@ class FilmStart(NamedTuple):
     rule : str
         ``"spin-up"`` (a vertical axis, a profile starting below omega_f: where the spin-up
         model's liquid reaches the lid, the latest chamber's) or ``"quasi-static"`` (where the
-        profile first reaches :func:`film_start_speed`).
+        profile first reaches :func:`film_start_speed`); or ``"pool"`` before a run of a
+        motor drive from below omega_f, whose film's start the run finds
+        (:func:`autobalance.simulate.hybrid.simulate_hybrid`).
     """
 
     time: float

@@ -59,6 +59,7 @@ def liquid_at(system: System):
     """
     if system.liquid is None:
         return lambda speed: None
+    from ..liquid.models import G_STANDARD
     from ..liquid.synchronous import check_synchronous, synchronous_liquid
 
     sus = system.suspension
@@ -67,8 +68,6 @@ def liquid_at(system: System):
                              f"cy={sus.cy:g}", "must be isotropic for the tolerances beside a "
                              "liquid (the liquid follows the forward whirl only)")
     check_synchronous(system.liquid)
-    from ..liquid.models import G_STANDARD
-
     g = system.gravity.g if system.liquid.axis == "horizontal" else G_STANDARD
     return lambda speed: synchronous_liquid(system.liquid, speed, g)
 

@@ -11,8 +11,9 @@ import numpy as np
 
 def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
     """:func:`autobalance.sweep.task.run_task` for liquid balancers: one wall-film run per system
-    (:func:`autobalance.simulate.hybrid.liquid_run`: a prescribed profile or a motor), read at the checkpoints and history
-    times as the ball runs are; no balls (``ball_angle`` all NaN), no stick-slip events."""
+    (:func:`autobalance.simulate.hybrid.liquid_run`: a prescribed profile or a motor), read at
+    the checkpoints and history times as the ball runs are; no balls (``ball_angle`` all NaN),
+    no stick-slip events."""
     from ..core.layout import RunStatus
     from ..physics.iso1940 import grade_value
     from ..simulate.hybrid import liquid_run
