@@ -3,6 +3,7 @@ physics, for any vertical-axis machine (studies/fill_map.py; docs/liquid.md sec.
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 
@@ -102,7 +103,7 @@ def test_linear_map_is_ring_stability_per_point_and_a_pool_below_entrainment():
     machine's chamber), NaN below the fill's entrainment speed (003 eq 6: a pool, no film); a
     horizontal axis is refused in one line."""
     from autobalance.liquid.simulate import film_rotor
-    from autobalance.liquid.stability import ring_stability
+    from autobalance.liquid.stability import machine_stability, ring_stability
     from autobalance.studies.fill_map import compute_linear_map
 
     cfg = load_config("leblanc_003")
@@ -113,8 +114,12 @@ def test_linear_map_is_ring_stability_per_point_and_a_pool_below_entrainment():
     r = ring_stability(film_rotor(cfg.system), L.chamber_radius, L.chamber_height, 300e-6,
                        60.0, density=L.density, viscosity=L.kinematic_viscosity)
     assert g[1, 1] == r.growth_rate and not lm["balanced_stable"].values[1, 1]
-    with pytest.raises(ParameterError, match="^liquid.axis"):
-        compute_linear_map("leblanc_washer", fills=[1e-3], speeds=[100.0])
+    # a horizontal axis: Floquet about the periodic state (sec. 3m), the machine's own
+    w = compute_linear_map("leblanc_washer", fills=[1e-3], speeds=[1000 * math.pi / 30],
+                           n_cells=32)["growth_rate"].values[0, 0]
+    washer = load_config("leblanc_washer").system
+    ref = machine_stability(washer, [1000 * math.pi / 30], n_cells=32)["growth_rate_1_s"][0]
+    assert w == pytest.approx(ref, rel=1e-6) and w < 0      # the fill scaled: round-off
 
 
 @pytest.mark.slow

@@ -119,9 +119,10 @@ def test_cli_end_to_end(tmp_path):
     assert t.returncode == 0, t.stderr
     assert "rpm - " in t.stdout and "1/s" not in t.stdout
     bad = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
-                          "leblanc_washer"], capture_output=True, text=True, timeout=600)
+                          "leblanc_003", "--cells", "4"], capture_output=True, text=True,
+                         timeout=600)
     lines = bad.stderr.strip().splitlines()
-    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: liquid.axis")
+    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: n_cells")
 
 
 def test_unstable_ranges_start_at_the_first_film_or_grid_speed():

@@ -520,8 +520,8 @@ def spinup(source: Annotated[str, typer.Argument(
 
 @app.command()
 def stability(source: Annotated[str, typer.Argument(
-                  metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
-                  "axis), alone or beside balls.")] = "leblanc_003",
+                  metavar="PRESET|CONFIG", help="A machine with a [liquid] section, alone (a "
+                  "vertical or horizontal axis) or beside balls (vertical).")] = "leblanc_003",
               sets: SetOpt = None,
               omega: Annotated[str, typer.Option(help="Speeds.")] = "10:120 1/s:45",
               cells: Annotated[int, typer.Option(
@@ -529,14 +529,15 @@ def stability(source: Annotated[str, typer.Argument(
               plot: PlotOpt = None, as_json: JsonOpt = False):
     """Linear stability of the centred state (no unbalance) against speed: the growth rate of
     the least stable perturbation of the rotor with its wall films and the unstable ranges
-    (Kollmann's band of partly filled rotors; docs/liquid.md sec. 3j). With balls beside the
-    liquid: the balanced state's, balls and films together (sec. 3k).\f
+    (Kollmann's band of partly filled rotors; docs/liquid.md sec. 3j); on a horizontal axis
+    of the periodic state under gravity (Floquet, sec. 3m). With balls beside the liquid: the
+    balanced state's, balls and films together (sec. 3k).\f
 
     Parameters
     ----------
     source : str
-        Preset or config with a ``[liquid]`` section on a vertical axis (balls beside it: the
-        balanced state).
+        Preset or config with a ``[liquid]`` section (balls beside it: the balanced state, a
+        vertical axis).
     sets : list of str
         ``--set`` overrides.
     omega : str
@@ -581,13 +582,17 @@ def stability(source: Annotated[str, typer.Argument(
         w0 = res["film_from_rad_s"]
         verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
             res["growth_rate_1_s"]).any() else "not decided (no speed with a film)")
-        state = "balanced state of the balls" if balls else "centred state"
+        state = ("balanced state of the balls" if balls else "periodic state under gravity "
+                 "(horizontal axis)" if res.get("axis") == "horizontal" else "centred state")
         if balls:
             verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
                 res["growth_rate_1_s"]).any() else "not decided (no balanced state: the "
                 "balls' capacity is short)")
         typer.echo(f"{cfg.system.name}: {state} {verdict} over {sp(ws[0])} - {sp(ws[-1])} "
                    f"(a film from {sp(w0)}; {cells} cells; omega_n {sp(res['omega_n_rad_s'])})")
+        if res.get("no_periodic_film_rad_s"):
+            typer.echo("no verdict at " + ", ".join(sp(w) for w in res["no_periodic_film_rad_s"])
+                       + ": no periodic state with an intact film under gravity")
         if plot:
             typer.echo(f"plot: {plot}")
         return

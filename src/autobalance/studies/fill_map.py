@@ -170,8 +170,9 @@ def compute_linear_map(base: str | Path | Config, *, fills: Sequence[float],
                        speeds: Sequence[float], n_cells: int = 64) -> xr.Dataset:
     """The linear stability of the balanced (centred) state over fill x speed
     (:func:`autobalance.liquid.stability.ring_stability`, docs/liquid.md sec. 3j): the growth
-    rate of its least stable perturbation; NaN below the fill's entrainment speed (a pool).
-    A vertical axis only.
+    rate of its least stable perturbation; NaN below the fill's entrainment speed (a pool). On
+    a horizontal axis about the periodic state under gravity (Floquet, docs/liquid.md sec. 3m;
+    NaN also where no periodic state with an intact film exists).
 
     Parameters
     ----------
@@ -198,10 +199,6 @@ def compute_linear_map(base: str | Path | Config, *, fills: Sequence[float],
 
     s = (base if hasattr(base, "system") else load_config(base)).system
     L = s.liquid
-    if L.axis != "vertical":
-        raise ParameterError("liquid.axis", L.axis, "must be vertical for the linear stability "
-                             "(its centred state needs no gravity in the chamber's plane); "
-                             "--dynamic runs the films on a horizontal axis")
     g = np.full((len(fills), len(speeds)), np.nan)
     for i, v in enumerate(fills):            # the machine with this fill, every chamber scaled
         vols = chamber_fills(L, v)
