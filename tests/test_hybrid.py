@@ -235,6 +235,7 @@ def test_liquid_moment_does_not_depend_on_the_output_spacing():
         assert r.liquid.synchronous_unbalance[-1] == runs[0].liquid.synchronous_unbalance[-1]
 
 
+@pytest.mark.slow
 def test_outside_the_wall_film_is_refused_or_reported():
     """The wall film's limits hold beside balls as for a liquid alone (liquid/film.films_state,
     liquid/simulate.inner_wall_status): a liquid too thick for a wall film is refused in one

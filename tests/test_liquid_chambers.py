@@ -194,6 +194,7 @@ def test_sweep_of_a_three_chamber_machine(tmp_path):
 
 
 # -- the fill map ----------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_fill_map_of_three_chambers_is_pools_and_intact_rings():
     """Large fills (1350 ml per chamber) stay intact rings: above its entrainment speed each
     chamber adds the mass of its full outer cylinder rho pi R^2 h and balances nothing, below it

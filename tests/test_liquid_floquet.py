@@ -40,7 +40,7 @@ def films(volume, n=64, partitions=0):
                        L.kinematic_viscosity, n, partitions, 0.0, 0j)
 
 
-@pytest.mark.parametrize("speed", [60.0, 100.0])
+@pytest.mark.parametrize("speed", [pytest.param(60.0, marks=pytest.mark.slow), 100.0])
 def test_without_gravity_the_monodromy_is_the_step_maps_power(speed):
     """g -> 0: the period map is m steps of the one-step map about the centred state, so its
     multipliers are mu^m of that map's on the same grid dt = T / m (the vertical axis's
@@ -88,6 +88,7 @@ def _kernel_run(r, volume, t_end, kick, grid=False):
     return out_t, out_w * np.exp(1j * W * out_t), w0
 
 
+@pytest.mark.slow
 def test_periodic_state_is_the_kernels_steady_whirl():
     """Without a kick the kernel's run from the periodic state stays on it: in the inertial
     frame the chamber hangs at its sag, M_t g / k = 3.34 mm below the axis. On the period's
@@ -108,6 +109,7 @@ def test_periodic_state_is_the_kernels_steady_whirl():
     assert (h.max() - h.min()) / h.mean() < 0.05 < 9.81 / 100.0 ** 2 / h.mean()
 
 
+@pytest.mark.slow
 def test_growth_rate_is_the_kernels_run():
     """Kicked by 0.1 nm, the kernel's run on 003's bench at 60 1/s (150 ml, in Kollmann's band)
     grows at the Floquet rate lambda = 1.426 1/s (the vertical axis's 1.795: gravity's sag
@@ -129,6 +131,7 @@ def test_growth_rate_is_the_kernels_run():
     assert slope == pytest.approx(r.growth_rate, abs=0.05)
 
 
+@pytest.mark.slow
 def test_shooting_keeps_every_compartments_volume():
     """The shooting's steps keep each compartment's volume (its rows sum(s) = 0): with four
     partitions every compartment of the periodic state holds a quarter of the liquid to

@@ -100,6 +100,7 @@ def test_lag_grows_with_the_run_up_rate_and_shrinks_with_viscosity():
     assert EQ6 < wv < w[1]
 
 
+@pytest.mark.slow
 def test_machine_chambers_spin_up_independently():
     """spinup_of runs each chamber of leblanc_003_three on its own: the same as spinup_run
     with that chamber's values."""
