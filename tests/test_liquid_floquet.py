@@ -3,7 +3,9 @@ ring_floquet; docs/liquid.md sec. 3m): Floquet multipliers about the periodic st
 turning in the rotor frame makes of the centred one. Its limit without gravity (the one-step
 map's eigenvalues), the periodic state and the growth rate against the film kernel's own run,
 the compartments' volumes, Kollmann's band of the washer, no verdict on a crescent, bad input
-and the CLI."""
+and the CLI. Balls beside the films (studies/liquid_floquet.py): the balls alone's Floquet
+multipliers beside a liquid of no mass, the growth rate against the run of balls beside the
+films, the verdicts over speed and the refusals."""
 from __future__ import annotations
 
 import json
@@ -15,12 +17,19 @@ import numpy as np
 import pytest
 
 from autobalance.config import load_config
+from autobalance.core.hybrid import hybrid_integrate
+from autobalance.core.layout import carry_size
 from autobalance.core.shallow_water import films_moment, sw_coupled
 from autobalance.liquid.film import films_state
 from autobalance.liquid.simulate import film_rotor
 from autobalance.liquid.stability import (NoPeriodicFilm, _step_map, compartments, linear_modes,
                                           machine_stability, ring_stability)
-from autobalance.models import ParameterError
+from autobalance.liquid.start import pool_machine
+from autobalance.models import InitialState, ParameterError, SimOptions, SpeedProfile
+from autobalance.simulate.run import run_inputs
+from autobalance.studies.equilibria import floquet_full
+from autobalance.studies.liquid_balanced import (_balanced_states, balanced_machine_stability,
+                                                 balanced_stability)
 
 BENCH = load_config("leblanc_003").system
 ROTOR = film_rotor(BENCH)
@@ -193,5 +202,110 @@ def test_cli_on_a_horizontal_axis():
     assert 300 * RPM < lo < 450 * RPM < hi < 600 * RPM
     t = subprocess.run(args, capture_output=True, text=True, timeout=600)
     assert t.returncode == 0, t.stderr
-    assert "periodic state under gravity" in t.stdout and "unstable at 392.5 rpm" in t.stdout
+    assert "centred state under gravity" in t.stdout and "unstable at 392.5 rpm" in t.stdout
     assert "no verdict at 190 rpm" in t.stdout
+
+
+# -- balls beside the liquid on a horizontal axis (studies/liquid_floquet.py) ------------------
+BALLS = ("balancer.n_balls=2", "balancer.ball_mass=0.5 kg", "balancer.race_radius=0.27 m",
+         "balancer.ball_radius=10 mm", "balancer.damping=20 N*mm*s/rad")
+
+
+def washer(*sets):
+    return load_config("leblanc_washer", [*BALLS, *sets]).system
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("rpm, tol", [(600, 2e-3), (1000, 3e-4)])
+def test_massless_liquid_leaves_the_balls_floquet(rpm, tol):
+    """A liquid of 1e-3 kg/m^3 beside two balls on the washer: among the multipliers of the
+    balanced state's periodic state are those of the balls alone on the horizontal axis
+    (studies/equilibria.floquet_full: Newton shooting on the nonlinear model at rtol 1e-11, an
+    independent route). Measured within 1.1e-3 at 600 rpm and 1.5e-4 at 1000 rpm: the balls are
+    linear about their balanced angles, so gravity's effect is kept to first order in
+    g / (Omega^2 R) = 0.0092 and 0.0033, and the differences scale as its square (ratio 7 against
+    7.8)."""
+    s = washer("liquid.density=0.001 kg/m^3")
+    W = rpm * RPM
+    a = _balanced_states(s, W)[0][0]
+    r = balanced_stability(s, W, a, n_cells=32)
+    f = floquet_full(pool_machine(s), W, a)
+    assert f["converged"] and r.dt == pytest.approx(2 * math.pi / W)
+    mu = np.exp(r.eigenvalues * r.dt)
+    for m in f["multipliers"]:
+        assert np.min(np.abs(mu - m)) < tol
+
+
+def _hybrid_run(s, r, kick, t_end):
+    """The run of balls beside the films (core/hybrid.py) on the horizontal axis at the constant
+    speed of ``r`` from its periodic state, the first ball ``kick`` [rad] off: the deflection
+    (rotor frame, from the static equilibrium) at 0.01 s."""
+    N = 2
+    W = r.speed
+    x = r.state
+    spin = SpeedProfile.constant(W, t_end)
+    opts = SimOptions(save_dt=0.01, rtol=1e-9)
+    P, B, y, _, prof_t, prof_w, te, unb_t, unb_u, out_t, out_y, stats, atol, h_max = \
+        run_inputs(s, spin, InitialState(), opts, liquid_ok=True)
+    nq = N + 3
+    a, ad = x[2:2 + N] % (2 * math.pi), x[N + 4:2 * N + 4]
+    order = np.argsort(a)
+    y[0], y[1], y[nq], y[nq + 1] = x[0], x[1], x[N + 2], x[N + 3]
+    y[2:2 + N], y[nq + 2:nq + 2 + N] = a[order], ad[order]
+    y[2 + int(np.argmin(order))] += kick
+    liq = s.liquid
+    st = films_state(liq.chamber_radius, liq.chamber_height, liq.volume, liq.density,
+                     liq.kinematic_viscosity, 32, 0, 0.0, 0j)
+    nc = st.h.size
+    h, q = x[2 * N + 6:2 * N + 6 + nc].copy(), x[2 * N + 6 + nc:].copy()
+    g, gdir = s.gravity.g, s.gravity.direction
+    sag = s.total_mass * g / s.suspension.kx * complex(math.cos(gdir), math.sin(gdir))
+    none = np.zeros((1, nc))
+    steps = hybrid_integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, y, 0.0, te, opts.rtol, atol,
+                             h_max, 10 ** 7, out_t, out_y, stats, np.zeros(carry_size(N)), h, q,
+                             st.theta, st.starts, st.Rs, st.Hs, st.rhos, st.nus, st.wall, g,
+                             gdir, sag, np.zeros(1), none, none.copy(), np.zeros(1))
+    assert steps > 100 and stats[0] == 0.0
+    return out_t, out_y[:, 0] + 1j * out_y[:, 1]
+
+
+@pytest.mark.slow
+def test_hybrid_run_from_the_periodic_state_stays_balanced():
+    """The run of balls beside the films (core/hybrid.py: DOPRI5 on the nonlinear balls, the
+    films on their CFL steps) at 1000 rpm from the Floquet periodic state (stable there): the
+    chamber's deflection from its static equilibrium stays within 0.3 mm over 6 s (measured at
+    most 0.154 mm: the transient from the map's periodic state, 0.037 mm at psi = 0, to the
+    run's own on another grid), against the unbalance's free whirl D / M_t = 3.1 mm."""
+    s = washer()
+    W = 1000 * RPM
+    r = balanced_stability(s, W, _balanced_states(s, W)[0][0], n_cells=32)
+    assert r.stable
+    t, w = _hybrid_run(s, r, 0.0, 6.0)
+    assert np.max(np.abs(w)) < 3e-4
+    assert s.rotor.unbalance / s.total_mass > 3e-3
+
+
+@pytest.mark.slow
+def test_balanced_machine_stability_on_the_washer():
+    """balanced_machine_stability on the washer with two balls (32 cells): at 100 rpm, below the
+    film's start (185 rpm), the balls' Floquet multipliers with the liquid as a puddle
+    (floquet_full on the pool machine: unstable below resonance); unstable at 400 rpm (in the
+    ring's Kollmann band), stable at 1000 rpm."""
+    s = washer()
+    res = balanced_machine_stability(s, np.array([100.0, 400.0, 1000.0]) * RPM, n_cells=32)
+    g = res["growth_rate_1_s"]
+    assert res["axis"] == "horizontal" and res["film_from_rad_s"] == pytest.approx(185.5 * RPM,
+                                                                                    rel=1e-3)
+    f = floquet_full(pool_machine(s), 100 * RPM, res["ball_angles_rad"][0])
+    assert g[0] == pytest.approx(math.log(f["max_modulus"]) * 100 * RPM / (2 * math.pi),
+                                 rel=1e-12)
+    assert g[0] > 0 and g[1] > 0 > g[2]
+
+
+def test_balls_beside_a_horizontal_liquid_refusals():
+    """Three balls under gravity (a family kept only nearly): one line on balancer.n_balls; no
+    in-plane gravity: one line on gravity.g."""
+    with pytest.raises(ParameterError, match="^balancer.n_balls"):
+        balanced_stability(washer("balancer.n_balls=3"), 100.0, [0.0, 2.0, 4.0])
+    with pytest.raises(ParameterError, match="^gravity.g"):
+        balanced_stability(washer("gravity.g=0"), 100.0, [0.0, 2.0])

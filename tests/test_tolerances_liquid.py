@@ -225,8 +225,9 @@ def test_added_mass_on_a_horizontal_axis_is_the_quasi_static_moment():
 def test_tolerances_of_balls_beside_a_horizontal_ring():
     """`study tolerances` of the washer's ring with two 0.5 kg balls at 1000 rpm: the bound
     takes the ring's added mass (5.371 kg) and its range less gravity's offset (21.3 - 0.9 mm),
-    and the text says that the balanced state's stability is not known there (runs of this
-    machine whirl at 22-33 mm, beyond the rings' range, docs/liquid.md sec. 3l). The 000
+    and the text gives the balanced state's Floquet verdict at the nominal speed (linearly
+    stable, docs/liquid.md sec. 3m) and says that a run-up can still end in an asynchronous
+    whirl (runs of this machine whirl at 22-33 mm, beyond the rings' range, sec. 3l). The 000
     estimate is refused beside a liquid."""
     import subprocess
     import sys
@@ -240,6 +241,8 @@ def test_tolerances_of_balls_beside_a_horizontal_ring():
     assert d["feasible"] and d["liquid_linear"]
     assert d["liquid_added_mass_kg"] == pytest.approx(5.371, rel=1e-3)
     assert d["liquid_linear_range_m"] == pytest.approx(0.02038, rel=1e-3)
+    assert d["balanced_growth_rate_1_s"] < 0
+    assert any("linearly stable at the nominal speed" in w for w in d["warnings"])
     txt = subprocess.run([sys.executable, "-m", "autobalance", "study", "tolerances",
                           "leblanc_washer", *[a for s in sets for a in ("--set", s)]],
                          capture_output=True, text=True, timeout=300)

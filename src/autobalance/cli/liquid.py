@@ -582,8 +582,8 @@ def stability(source: Annotated[str, typer.Argument(
         w0 = res["film_from_rad_s"]
         verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
             res["growth_rate_1_s"]).any() else "not decided (no speed with a film)")
-        state = ("balanced state of the balls" if balls else "periodic state under gravity "
-                 "(horizontal axis)" if res.get("axis") == "horizontal" else "centred state")
+        state = ("balanced state of the balls" if balls else "centred state") + (
+            " under gravity (horizontal axis)" if res.get("axis") == "horizontal" else "")
         if balls:
             verdict = ("unstable at " + rng if rng else "stable" if np.isfinite(
                 res["growth_rate_1_s"]).any() else "not decided (no balanced state: the "

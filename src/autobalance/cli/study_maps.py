@@ -165,9 +165,12 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
                + ", ".join(du.fmt(w, "speed") for w in res["natural_frequencies_rad_s"])
                + f"; nominal {du.fmt(res['nominal_speed_rad_s'], 'speed')}")
     if "film_from_rad_s" in res:
-        typer.echo(f"  beside the liquid: a pool below {du.fmt(res['film_from_rad_s'], 'speed')} "
-                   "(the balls' verdicts, with its mass), a film from there: only the balanced "
-                   "state is judged, with the films (docs/liquid.md sec. 3k)")
+        h = res.get("liquid_axis") == "horizontal"
+        typer.echo(f"  beside the liquid: a {'puddle' if h else 'pool'} below "
+                   f"{du.fmt(res['film_from_rad_s'], 'speed')} (the balls' verdicts, with its "
+                   "mass), a film from there: only the balanced state is judged, with the films "
+                   + ("(Floquet about its periodic state under gravity, docs/liquid.md sec. 3m)"
+                      if h else "(docs/liquid.md sec. 3k)"))
     if res["no_verdict"]:
         typer.echo(f"  no verdict at {res['no_verdict']} of {res['evaluations']} evaluations "
                    "(no fixed point or orbit found there; counted as not stable)")

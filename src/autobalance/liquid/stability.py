@@ -424,7 +424,7 @@ def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) 
     gp = system.gravity.g if L.axis == "horizontal" else 0.0
     # below a chamber's entrainment speed (003 eq 6; g / Omega^2 = R / 10 on a horizontal axis)
     # its liquid is a pool or a puddle, not a film
-    w0 = film_start_speed(L, gp)
+    w0 = film_start_speed(L, system.gravity.g)
     g = np.full(W.size, np.nan)
     f = np.full(W.size, np.nan)
     none = []

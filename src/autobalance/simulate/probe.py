@@ -71,13 +71,14 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
 
 
 def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
-                           liquid_moment: tuple[complex, complex] = (0j, 0j)) -> np.ndarray:
+                           liquid_moment: tuple[complex, complex] = (0j, 0j),
+                           phase: float = 0.0) -> np.ndarray:
     """Time derivative of rotor-frame states at constant spin speed, from the compiled kernel
     (core/rhs.py, every ball free to roll): the right-hand side whose Jacobian is the linearised
     full model about a steady state (autobalance.studies.equilibria).
 
-    A state is z = (u, v, alpha_1..N, u', v', alpha_1'..N') with psi = 0 and psi' = speed held
-    (the kernel's held-speed mode). The balls are passed to the kernel in angular order and the
+    A state is z = (u, v, alpha_1..N, u', v', alpha_1'..N') with psi = ``phase`` and psi' =
+    speed held (the kernel's held-speed mode). The balls are passed to the kernel in angular order and the
     derivatives returned in the caller's order. Friction enters as the kernel computes it for
     sliding balls (sign +1 of sliding); pass a system without rolling resistance for a smooth
     right-hand side.
@@ -95,6 +96,9 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
         balls beside a liquid holds them over a coupling step (core/hybrid.py): the chamber
         feels W^2 U - 2 i W U'. The system itself has no ``[liquid]`` (its mass in the rotor's,
         :func:`autobalance.liquid.start.pool_machine`).
+    phase : float
+        The spin angle psi [rad] at which to evaluate: where in-plane gravity points in the
+        rotor frame (0: the rotor frame is the inertial frame; no effect without gravity).
 
     Returns
     -------
@@ -130,7 +134,7 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
         y[2:2 + N] = a[order]
         y[nq], y[nq + 1] = z[N + 2], z[N + 3]
         y[nq + 2:nq + 2 + N] = z[N + 4:][order]
-        y[psi_index(N)] = 0.0
+        y[psi_index(N)] = float(phase)
         y[speed_index(N)] = w
         rhs(0.0, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, np.zeros(N, dtype=np.int64),
             np.ones(N), held, dy, lam, Mm, fv, A, bb, idx)

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..liquid.stability import DT_FRACTION, RingStability, linear_modes, require_vertical
+from ..liquid.stability import DT_FRACTION, RingStability, linear_modes
 from ..models import ParameterError
 from ..models._validate import positive
 
@@ -70,11 +70,13 @@ def uniform_films(system: System, n_cells: int):
 
 
 def require_balanced_liquid(system: System) -> System:
-    """One-line errors for a machine of balls beside a liquid whose balanced state is not a
-    fixed point of the rotor frame with uniform films (a horizontal axis, an anisotropic
-    suspension, base motion, an unbalance schedule, a race eccentricity) or whose liquid is
-    not a thin wall film (:func:`uniform_films`'s checks, before any work); returns its ideal
-    pool machine (the liquid's mass in the rotor's, rolling resistance and dry friction off).
+    """One-line errors for a machine of balls beside a liquid whose balanced state is neither a
+    fixed point of the rotor frame with uniform films nor, on a horizontal axis, a periodic
+    state about one (an anisotropic suspension, base motion, an unbalance schedule, a race
+    eccentricity, gravity that does not fit the axis, a family of 3 or more balls under
+    gravity) or whose liquid is not a thin wall film (:func:`uniform_films`'s checks, before
+    any work); returns its ideal pool machine (the liquid's mass in the rotor's, rolling
+    resistance and dry friction off; in-plane gravity kept).
 
     Parameters
     ----------
@@ -85,6 +87,7 @@ def require_balanced_liquid(system: System) -> System:
     -------
     autobalance.models.System
     """
+    from ..liquid.simulate import require_axis_gravity
     from ..liquid.start import pool_machine
     from .equilibria import _ideal, steady_rotor_frame
 
@@ -92,14 +95,18 @@ def require_balanced_liquid(system: System) -> System:
         raise ParameterError("machine", system.name or "machine",
                              "needs balls and a [liquid] section for the balanced state beside "
                              "a liquid")
-    require_vertical(system)
+    require_axis_gravity(system)
+    if system.liquid.axis == "horizontal" and system.balancer.n_balls > 2:
+        raise ParameterError("balancer.n_balls", system.balancer.n_balls, "must be 1 or 2 beside "
+                             "a liquid on a horizontal axis (gravity keeps the balanced family "
+                             "of 3 or more balls only nearly; not yet)")
     if system.balancer.eccentricity != 0.0:
         raise ParameterError("balancer.eccentricity", system.balancer.eccentricity,
                              "must be 0 beside a liquid: the balanced state then has a residual "
                              "whirl, and the films are not uniform")
     uniform_films(system, 64)
     pool = pool_machine(system)
-    if not steady_rotor_frame(pool):
+    if not steady_rotor_frame(_flat(pool)):
         s = system.suspension
         raise ParameterError("suspension", f"kx {s.kx:.6g} N/m, ky {s.ky:.6g} N/m",
                              "must be isotropic, without base motion or an unbalance schedule, "
@@ -108,33 +115,50 @@ def require_balanced_liquid(system: System) -> System:
     return _ideal(pool)
 
 
-def _ball_propagator(pool, W, alpha, dt, L):
-    """(Phi, Gamma): the ideal pool machine's rotor and balls over dt [s] at W [rad/s], linear
-    about the balanced angles alpha [rad], z -> Phi z + Gamma (U, U') (real pairs), and the
-    balanced state's scaled residual."""
+def _flat(pool):
+    """The machine without in-plane gravity (its rotor frame's steadiness and its balanced
+    angles are those of the machine without gravity)."""
+    import dataclasses
+
+    return dataclasses.replace(pool, gravity=dataclasses.replace(pool.gravity, g=0.0))
+
+
+def _ball_propagator(pool, W, alpha, dt, L, phase=None):
+    """(Phi, Gamma, c, res): the ideal pool machine's rotor and balls over dt [s] at W [rad/s],
+    linear about the balanced angles alpha [rad], z -> z_ref + Phi (z - z_ref) + Gamma (U, U')
+    (real pairs) + c, and the balanced state's scaled residual. With the spin angle ``phase``
+    [rad] (a horizontal axis) the right-hand side is taken there, frozen over the step (the
+    exponential midpoint rule when ``phase`` is the step's middle), and c is the drift of
+    gravity's pull on the balls (the affine term; 0 without a phase)."""
     from scipy.linalg import expm
 
     from ..simulate.probe import rotor_frame_derivative
 
+    ps = 0.0 if phase is None else float(phase)
     n = alpha.size
     z0 = np.concatenate([[0.0, 0.0], alpha, np.zeros(n + 2)])
     h = np.concatenate([[1e-4 * L] * 2, [1e-5] * n, [1e-4 * L * W] * 2, [1e-7 * W] * n])
-    F = rotor_frame_derivative(pool, W, np.concatenate([z0 + np.diag(h), z0 - np.diag(h)]))
+    F = rotor_frame_derivative(pool, W, np.concatenate([z0 + np.diag(h), z0 - np.diag(h)]),
+                               phase=ps)
     m = z0.size
     A = ((F[:m] - F[m:]) / (2 * h)[:, None]).T
     fscale = np.concatenate([[L * W] * 2, [W] * n, [L * W * W] * 2, [W * W] * n])
-    res = float(np.max(np.abs(rotor_frame_derivative(pool, W, z0) / fscale)))
+    f0 = rotor_frame_derivative(pool, W, z0, phase=ps)
+    res = float(np.max(np.abs(f0 / fscale)))
     Bm = np.empty((m, 4))
     u = pool.total_mass * L              # the held moment's scale [kg*m]
     for j, (U, Ud) in enumerate([(u, 0j), (1j * u, 0j), (0j, u * W), (0j, 1j * u * W)]):
         d = abs(U) + abs(Ud)
-        Bm[:, j] = (rotor_frame_derivative(pool, W, z0, (U, Ud))
-                    - rotor_frame_derivative(pool, W, z0, (-U, -Ud))) / (2 * d)
-    aug = np.zeros((m + 4, m + 4))
+        Bm[:, j] = (rotor_frame_derivative(pool, W, z0, (U, Ud), phase=ps)
+                    - rotor_frame_derivative(pool, W, z0, (-U, -Ud), phase=ps)) / (2 * d)
+    k = m + 4 if phase is None else m + 5
+    aug = np.zeros((k, k))
     aug[:m, :m] = A
-    aug[:m, m:] = Bm
+    aug[:m, m:m + 4] = Bm
+    if phase is not None:
+        aug[:m, m + 4] = f0
     E = expm(aug * dt)
-    return E[:m, :m], E[:m, m:], res
+    return E[:m, :m], E[:m, m:m + 4], (E[:m, m + 4] if phase is not None else np.zeros(m)), res
 
 
 def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
@@ -179,11 +203,15 @@ def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
     Mt = pool.total_mass
     L = max(pool.rotor.unbalance, pool.balancer.capacity) / Mt
     dt = DT_FRACTION * films_dt(st.h, st.q, st.starts, st.Rs, W, math.inf)
-    Phi, Gam, res = _ball_propagator(pool, W, a, dt, L)
+    Phi, Gam, _, res = _ball_propagator(_flat(pool), W, a, dt, L)
     if res > BALANCED_TOL:
         raise ParameterError("alpha", [round(float(x), 6) for x in a],
                              f"is not a balanced state at {W:.6g} rad/s (scaled residual "
                              f"force {res:.3g})")
+    if system.liquid.axis == "horizontal":
+        from .liquid_floquet import balanced_floquet
+
+        return balanced_floquet(system, pool, W, a, st)
     m = Phi.shape[0]
     nc = st.h.size
     work = [np.zeros(nc) for _ in range(9)]
@@ -218,11 +246,13 @@ def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
 
 def _balanced_states(system, w: float) -> list:
     """(alpha [rad], family) of every reachable balanced state at w [rad/s] of the machine with
-    its liquid as a pool (the balls' closed forms; a family's four sample points)."""
+    its liquid as a pool, without in-plane gravity (the balls' closed forms; a family's four
+    sample points)."""
     from ..liquid.start import pool_machine
     from ..physics.equilibria import find_equilibrium_set
 
-    es = find_equilibrium_set(pool_machine(system), w, method="closed_form", n_samples=4)
+    es = find_equilibrium_set(_flat(pool_machine(system)), w, method="closed_form",
+                              n_samples=4)
     out = [(e.alpha, False) for e, b in zip(es.isolated, es.balanced) if b and not e.overlap]
     return out + [(p.alpha, True) for f in es.families for p in f.points if not p.overlap]
 
@@ -233,8 +263,10 @@ def balanced_machine_stability(system: System, speeds: npt.ArrayLike,
     frequency of its least stable perturbation (of its most stable sample on a family), the
     unstable ranges, and the balls' angles. Below the film's start (003 eq 6) the liquid is a
     pool and the balls' linearised full model of the pool machine decides
-    (:func:`autobalance.studies.equilibria.linearised_full`); from there
-    :func:`balanced_stability`.
+    (:func:`autobalance.studies.equilibria.linearised_full`; on a horizontal axis, where it is
+    a puddle, their Floquet multipliers, :func:`autobalance.studies.equilibria.floquet_full`);
+    from there :func:`balanced_stability` (Floquet about the periodic state under gravity on a
+    horizontal axis, docs/liquid.md sec. 3m).
 
     Parameters
     ----------
@@ -251,25 +283,37 @@ def balanced_machine_stability(system: System, speeds: npt.ArrayLike,
         As :func:`autobalance.liquid.stability.machine_stability` (omega_rad_s,
         growth_rate_1_s, whirl_frequency_rad_s, film_from_rad_s, unstable_ranges_rad_s,
         omega_n_rad_s, cells; NaN where no balanced state exists: the balls' capacity is short),
-        and ball_angles_rad (speed, ball).
+        ball_angles_rad (speed, ball), axis, no_periodic_film_rad_s (speeds left undecided:
+        no periodic state with an intact film under gravity).
     """
     from ..liquid.start import film_start_speed
-    from ..liquid.stability import unstable_ranges
-    from .equilibria import linearised_full
+    from ..liquid.stability import NoPeriodicFilm, unstable_ranges
+    from .equilibria import floquet_full, linearised_full
 
     pool = require_balanced_liquid(system)
     from ..liquid.steady import increasing_speeds
 
     W = increasing_speeds(speeds)
     N = system.balancer.n_balls
-    w0 = film_start_speed(system.liquid)
+    horizontal = system.liquid.axis == "horizontal"
+    w0 = film_start_speed(system.liquid, system.gravity.g)
     g, f = np.full(W.size, np.nan), np.full(W.size, np.nan)
     angles = np.full((W.size, N), np.nan)
+    none = []
     for i, w in enumerate(W):
         for a, fam in _balanced_states(system, float(w)):
             if w >= w0:
-                r = balanced_stability(system, w, a, n_cells=n_cells, family=fam)
+                try:
+                    r = balanced_stability(system, w, a, n_cells=n_cells, family=fam)
+                except NoPeriodicFilm:          # under gravity: not decided
+                    none.append(float(w))
+                    continue
                 gi, fi = r.growth_rate, r.whirl_frequency
+            elif horizontal:        # the balls' Floquet multipliers with the liquid as a puddle
+                lf = floquet_full(pool, w, a)
+                gi = math.log(max(lf["max_modulus"], 1e-300)) * w / (2 * math.pi)
+                fi = float(abs(np.angle(lf["multipliers"][np.argmax(np.abs(
+                    lf["multipliers"]))]))) * w / (2 * math.pi)
             else:
                 lf = linearised_full(pool, w, a, family=fam)
                 gi = math.log(max(lf["max_modulus"], 1e-300)) * w / (2 * math.pi)
@@ -280,4 +324,5 @@ def balanced_machine_stability(system: System, speeds: npt.ArrayLike,
     return {"omega_rad_s": W, "growth_rate_1_s": g, "whirl_frequency_rad_s": f,
             "film_from_rad_s": w0, "unstable_ranges_rad_s": unstable_ranges(W, g),
             "omega_n_rad_s": float(system.natural_frequencies[0]), "cells": int(n_cells),
-            "ball_angles_rad": angles}
+            "ball_angles_rad": angles, "axis": system.liquid.axis,
+            "no_periodic_film_rad_s": sorted(set(none))}

@@ -131,7 +131,7 @@ def _evaluate(system, w: float, full: bool, floquet: bool, counts: dict,
     only the balanced states are judged, with the films (:func:`_film_stable`)."""
     films = False
     if system.liquid is not None:
-        films = w >= film_start_speed(system.liquid)
+        films = w >= film_start_speed(system.liquid, system.gravity.g)
         liquid, system = system, pool_machine(system)
         balanced_only |= films
     es = find_equilibrium_set(system, w, method="closed_form", n_samples=FAMILY_SAMPLES)
@@ -327,8 +327,8 @@ def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None
                              {"units": "1", "long_name": "the liquid is a film (003 eq 6): only "
                                                          "the balanced states are judged, with "
                                                          "the films"})
-        ds.attrs.update({"film_from_rad_s": float(film_start_speed(system.liquid)),
-                         "film_cells": FILM_CELLS})
+        ds.attrs.update({"film_from_rad_s": float(film_start_speed(system.liquid, system.gravity.g)),
+                         "film_cells": FILM_CELLS, "liquid_axis": system.liquid.axis})
     ds.attrs.update({
         "study": "speed_map", "machine": cfg.name or str(base), "n_balls": int(system.balancer.n_balls),
         "stable_ranges_rad_s": np.array(ranges, float).ravel(),
@@ -339,8 +339,10 @@ def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None
         "evaluations": int(counts["evaluations"]), "no_verdict": int(counts["failed"]),
         "definitions": "balanced: W = W* (zero residual without race eccentricity); only states "
                        "without ball overlap count; best stable state: least residual among stable ones"
-                       + ("; beside a liquid: a pool below film_from_rad_s (its mass in the "
-                          "rotor's), only the balanced states judged, with the films, above it"
+                       + ("; beside a liquid: a pool (a puddle on a horizontal axis) below "
+                          "film_from_rad_s (its mass in the rotor's), only the balanced states "
+                          "judged, with the films (Floquet under gravity on a horizontal axis), "
+                          "above it"
                           if system.liquid is not None else ""),
         "wall_s": float(time.perf_counter() - t0),
     })
@@ -436,5 +438,6 @@ def speed_map_summary(ds: xr.Dataset) -> dict:
         "evaluations": int(a["evaluations"]),
         "no_verdict": int(a["no_verdict"]),
         "wall_s": float(a["wall_s"]),
-        **({"film_from_rad_s": float(a["film_from_rad_s"])} if "film_from_rad_s" in a else {}),
+        **({"film_from_rad_s": float(a["film_from_rad_s"]),
+            "liquid_axis": str(a.get("liquid_axis", "vertical"))} if "film_from_rad_s" in a else {}),
     }

@@ -213,10 +213,7 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         warnings.append("beside a liquid the collinear residuals are of the rotor and balls "
                         "alone (the liquid's rings are broken at such whirls)")
         if s.liquid.axis == "horizontal":
-            warnings.append("on a horizontal axis whether the balanced state beside the liquid "
-                            "is stable is not known (the speed map refuses it): partly filled "
-                            "rotors can whirl asynchronously, beyond the rings' range, where the "
-                            "bound says nothing; check with --check (docs/liquid.md sec. 3l)")
+            out["balanced_growth_rate_1_s"] = _horizontal_verdict(s, Om, warnings)
     if getattr(cfg, "profile_kind", "") == "tsr":
         wp = plateau_speed(cfg.spin)
         pp = residual_bound(s, wp, eccentricity_angle=None, liquid=liq(wp))
@@ -225,6 +222,26 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
                     "plateau_worst_grade_G_mm_s": float(grade_value(pp["worst_residual_kg_m"], mt, Om))})
     out["elapsed_s"] = time.perf_counter() - t0
     return out
+
+
+def _horizontal_verdict(system: System, speed: float, warnings: list) -> float:
+    """The growth rate [1/s] of the balanced state of balls beside a liquid on a horizontal
+    axis at ``speed`` [rad/s] (Floquet about its periodic state under gravity, docs/liquid.md
+    sec. 3m; NaN where not decided), and its note appended to ``warnings``."""
+    from .liquid_balanced import balanced_machine_stability
+
+    try:
+        gr = float(balanced_machine_stability(system, [speed])["growth_rate_1_s"][0])
+    except ParameterError:      # e.g. three balls under gravity: not yet
+        gr = math.nan
+    verdict = ("not decided" if not math.isfinite(gr) else
+               "linearly stable" if gr < 0 else "unstable")
+    warnings.append(f"on a horizontal axis the balanced state beside the liquid is {verdict} "
+                    f"at the nominal speed (growth rate {gr:.3g} 1/s, Floquet about its periodic "
+                    "state, docs/liquid.md sec. 3m); a run-up can still end in an asynchronous "
+                    "whirl beyond the rings' range, where the bound says nothing: check with "
+                    "--check (sec. 3l)")
+    return gr
 
 
 def collinear_residuals(system: System, max_balls: int = 12) -> list:
