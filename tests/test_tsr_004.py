@@ -476,3 +476,57 @@ def test_cli_every_target_listed():
     assert r.exit_code == 0
     for tg in t.TARGETS:
         assert tg.id in r.output
+
+
+# -- immobility with in-plane gravity (a horizontal axis; physics/immobility.py) -------------
+@pytest.mark.parametrize("alpha, f_hz", [((0.3, 2.0), 30.0), ((1.0, -2.5), 100.0)])
+def test_immobility_with_gravity_is_the_kernels_over_a_revolution(alpha, f_hz):
+    """004's rig turned horizontal (g = 9.81 m/s^2 in the plane): at any spin angle the kernel's
+    stuck-ball friction is the steady part less the weight's tangential part, m g sin(phi) R,
+    and its limit mu_s m R (R Omega^2 + g cos phi) (000 eq 50, phi the ball's angle from
+    gravity; 8 angles, to 1e-9). Through a revolution the ball stays iff |F_t| + m g
+    sqrt(1 + mu_s^2) <= mu_s m R Omega^2: the mask agrees with those expressions sampled at
+    3600 angles, and differs from the mask without gravity where gravity decides."""
+    import dataclasses
+
+    s0 = t._cfg().system
+    s = dataclasses.replace(s0, gravity=dataclasses.replace(s0.gravity, g=9.81))
+    w = 2 * np.pi * f_hz
+    a = np.array(alpha)
+    m, R, mu = s.balancer.masses, s.balancer.race_radius, np.asarray(s.balancer.stiction)
+    Ft = t.tangential_force(s, w, a)
+    gdir = s.gravity.direction
+    for psi in np.linspace(0.0, 2 * np.pi, 8, endpoint=False):
+        lam, lim, _ = t.kernel_required_friction(s, w, a, phase=psi)
+        phi = psi + a - gdir
+        np.testing.assert_allclose(lam, -(Ft - m * 9.81 * np.sin(phi)) * R, rtol=1e-9,
+                                   atol=1e-12 * float(np.max(m)) * R * R * w * w)
+        np.testing.assert_allclose(lim, mu * m * R * (R * w * w + 9.81 * np.cos(phi)),
+                                   rtol=1e-9)
+    phi = np.linspace(0.0, 2 * np.pi, 3600, endpoint=False)[:, None]
+    margin = np.abs(Ft - m * 9.81 * np.sin(phi)) - mu * m * (R * w * w + 9.81 * np.cos(phi))
+    closed = np.abs(Ft) + m * 9.81 * np.sqrt(1 + mu * mu) - mu * m * R * w * w
+    np.testing.assert_allclose(margin.max(axis=0), closed, rtol=0, atol=1e-6 * float(m.max()))
+    assert bool(t.immobile_mask(s, w, a)) == bool(np.all(closed <= 0))
+    if f_hz < 59.6:             # below gravity's own speed: it alone moves the balls
+        assert t.immobile_mask(s0, w, a) and not t.immobile_mask(s, w, a)
+
+
+def test_gravity_alone_moves_balls_below_its_speed():
+    """Below Omega^2 = g sqrt(1 + mu_s^2) / (mu_s R) (59.6 Hz on 004's rig: mu_s = 0.002,
+    R = 35 mm) no ball at rest stays: immobility 0, G* = 0; far above it (167 Hz) G* moves by
+    the relative g / (mu_s R Omega^2) only. Until stop 33 the closed forms left gravity out, and
+    `study immobility` gave a horizontal machine the vertical one's numbers."""
+    import dataclasses
+
+    s0 = t._cfg().system
+    s = dataclasses.replace(s0, gravity=dataclasses.replace(s0.gravity, g=9.81))
+    R, mu = s.balancer.race_radius, float(np.max(s.balancer.stiction))
+    w_g = math.sqrt(9.81 * math.sqrt(1 + mu * mu) / (mu * R))
+    wn = t._cfg().spin.nominal_speed
+    assert t.immobility(s, 0.9 * w_g, n_conf=24) == 0.0
+    assert t.stick_threshold_grade(s, 0.9 * w_g, wn) == 0.0
+    assert t.immobility(s0, 0.9 * w_g, n_conf=24) == 1.0          # without gravity: all stay
+    hi = 2 * np.pi * 167.0
+    assert float(t.stick_threshold_grade(s, hi, wn)) == pytest.approx(
+        float(t.stick_threshold_grade(s0, hi, wn)), rel=2 * 9.81 / (mu * R * hi * hi))

@@ -517,11 +517,10 @@ def spinup(source: Annotated[str, typer.Argument(
     _out(out, True)
 
 
-
 @app.command()
 def stability(source: Annotated[str, typer.Argument(
-                  metavar="PRESET|CONFIG", help="A machine with a [liquid] section, alone (a "
-                  "vertical or horizontal axis) or beside balls (vertical).")] = "leblanc_003",
+                  metavar="PRESET|CONFIG", help="A machine with a [liquid] section (a vertical "
+                  "or horizontal axis), alone or beside balls.")] = "leblanc_003",
               sets: SetOpt = None,
               omega: Annotated[str, typer.Option(help="Speeds.")] = "10:120 1/s:45",
               cells: Annotated[int, typer.Option(
@@ -536,8 +535,8 @@ def stability(source: Annotated[str, typer.Argument(
     Parameters
     ----------
     source : str
-        Preset or config with a ``[liquid]`` section (balls beside it: the balanced state, a
-        vertical axis).
+        Preset or config with a ``[liquid]`` section (balls beside it: the balanced state; on
+        a horizontal axis one or two balls).
     sets : list of str
         ``--set`` overrides.
     omega : str
@@ -565,6 +564,8 @@ def stability(source: Annotated[str, typer.Argument(
         res = machine_stability(cfg.system, ws, cells)
         model = ("the film runs' step linearised about the centred state "
                  "(autobalance.liquid.stability)")
+    if res.get("axis") == "horizontal":
+        model += "; on a horizontal axis over a revolution: Floquet (docs/liquid.md sec. 3m)"
     out = {"system": cfg.system.name, "model": model, **res}
     if plot:
         from ..plotting.liquid import stability_figure

@@ -5,6 +5,16 @@ A ball at rest on the race of a rotor spinning at constant speed Omega feels the
 vibratory force F_t = m z Omega^2 sin(gamma) (004 eq 1) and sticks while |F_t| <= mu_s m R Omega^2.
 The compiled kernel's stuck-ball friction agrees (tests/test_tsr_004.py, via
 :func:`autobalance.simulate.probe.kernel_required_friction`).
+
+Gravity g in the rotor's plane (a horizontal axis; our extension, docs/tsr-studies.md): the
+steady orbit is the synchronous one plus the static sag, which does not accelerate the race, but
+the ball's weight turns once a revolution in the rotor frame. At the angle phi of the ball from
+gravity's direction it adds -m g sin(phi) to the tangential force and m g cos(phi) to the normal
+force (000 eq 50; the kernel's ball row). The ball stays at rest through a whole revolution iff
+|F_t - m g sin(phi)| <= mu_s m (R Omega^2 + g cos(phi)) for every phi, and the largest of
++-(F_t - m g sin phi) - mu_s m g cos phi over phi is |F_t| + m g sqrt(1 + mu_s^2):
+|F_t| + m g sqrt(1 + mu_s^2) <= mu_s m R Omega^2. Below Omega^2 = g sqrt(1 + mu_s^2) / (mu_s R)
+no ball stays at rest anywhere.
 """
 from __future__ import annotations
 
@@ -96,14 +106,16 @@ def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike,
     """True where every ball at rest stays stuck: |F_t| <= mu_s N with N = m R Omega^2 (004 eq 1
     against Coulomb friction mu F_n, 004 sec. 3.1; normal force of a ball at rest on the race).
 
-    Omega cancels: ball i sticks iff |Im(w e^{-i alpha_i})| <= mu_s R. Shape of ``speed`` broadcast
-    with ``alpha[..., 0]``.
+    Omega cancels: ball i sticks iff |Im(w e^{-i alpha_i})| <= mu_s R. With gravity g in the
+    plane (module docstring) through a whole revolution: iff |Im(w e^{-i alpha_i})| <= mu_s R -
+    g sqrt(1 + mu_s^2) / Omega^2. Shape of ``speed`` broadcast with ``alpha[..., 0]``.
 
     Parameters
     ----------
     system : System
         Isotropic suspension (k [N/m], c [N s/m]), rotor unbalance U [kg m], balls at radius
-        R [m] with static friction coefficients mu_s [-] (``balancer.stiction``).
+        R [m] with static friction coefficients mu_s [-] (``balancer.stiction``); in-plane
+        gravity g [m/s^2] (``gravity.g``).
     speed : array_like
         Spin speed Omega [rad/s]; broadcast against ``alpha[..., 0]``.
     alpha : array_like (..., N)
@@ -120,7 +132,19 @@ def immobile_mask(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike,
     w = np.asarray(steady_deflection(system, speed, a, response))
     mus = np.asarray(system.balancer.stiction, float)
     R = system.balancer.race_radius
-    return np.all(np.abs(np.imag(w[..., None] * np.exp(-1j * a))) <= mus * R, axis=-1)
+    return np.all(np.abs(np.imag(w[..., None] * np.exp(-1j * a))) <= _stick_limit(
+        system, speed, mus, R), axis=-1)
+
+
+def _stick_limit(system: System, speed, mus, R: float):
+    """mu_s R, less g sqrt(1 + mu_s^2) / Omega^2 with in-plane gravity g (module docstring) [m]:
+    the largest |Im(w e^{-i alpha})| at which a ball at rest stays at rest (speed [rad/s],
+    broadcast with the balls' axis; mus [-] per ball; R [m])."""
+    g = system.gravity.g
+    if g == 0.0:
+        return mus * R
+    W = np.asarray(speed, float)[..., None]
+    return mus * R - g * np.sqrt(1.0 + mus * mus) / (W * W)
 
 
 #: Peak memory of :func:`immobility` per ball configuration and ball [B] (the meshgrid, the
@@ -212,7 +236,9 @@ def stick_threshold_grade(system: System, speed: npt.ArrayLike, nominal_speed: f
     So every configuration sticks when A e <= mu_s R, i.e. below
     G* = 1e3 Omega_nom mu_s R / A  (ISO 1940 grade at Omega_nom, 004 sec. 4).
     Above G* only configurations whose balls lie nearly along w can stay at rest, so balls that
-    relocate at speed Omega stop near G*.
+    relocate at speed Omega stop near G*. With in-plane gravity mu_s R is the limit of
+    :func:`immobile_mask`, mu_s R - g sqrt(1 + mu_s^2) / Omega^2, and G* = 0 where that is <= 0
+    (gravity alone moves the balls).
 
     Parameters
     ----------
@@ -234,4 +260,8 @@ def stick_threshold_grade(system: System, speed: npt.ArrayLike, nominal_speed: f
         raise ValueError("stick_threshold_grade: needs an isotropic (Jeffcott) suspension")
     mt = system.total_mass
     amp, _ = axis_response(mt, s.kx, s.cx, mt, speed)      # |w| per metre of eccentricity
-    return 1e3 * nominal_speed * float(np.max(b.stiction)) * b.race_radius / amp
+    mus = float(np.max(b.stiction))
+    if system.gravity.g == 0.0:
+        return 1e3 * nominal_speed * mus * b.race_radius / amp
+    lim = _stick_limit(system, speed, np.array([mus]), b.race_radius)[..., 0]
+    return 1e3 * nominal_speed * np.maximum(lim, 0.0) / amp

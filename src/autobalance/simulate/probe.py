@@ -14,8 +14,8 @@ if TYPE_CHECKING:
 __all__ = ["kernel_required_friction", "rotor_frame_derivative"]
 
 
-def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
-                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike,
+                             phase: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Friction torque [N m] each stuck ball needs and its static limit mu_s N R [N m], from the
     compiled kernel (core/rhs.py, exact stick-slip branch) with both balls stuck, the rotor on its
     steady orbit (physics/response.steady_orbit_start) at constant speed. Also returns the rotor-frame
@@ -30,6 +30,9 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
         Constant spin speed [rad/s].
     alpha : array_like
         Ball angles from the unbalance [rad], one per ball.
+    phase : float
+        The spin angle psi [rad] (where in-plane gravity points in the rotor frame; the
+        deflection is the kernel's, from the static equilibrium).
 
     Returns
     -------
@@ -40,7 +43,7 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
     accel : ndarray (2,)
         Rotor-frame accelerations (u'', v'') [m/s^2].
     """
-    from ..core.layout import P_FLAW, n_q, speed_index
+    from ..core.layout import P_FLAW, n_q, psi_index, speed_index
     from ..physics.response import steady_orbit_start
     from .pack import pack_params, spin_arrays
     from ..core.rhs import profile_segment, rhs
@@ -59,6 +62,7 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike
     st[nq], st[nq + 1] = vx + speed * y, vy - speed * x
     st[2:2 + N] = np.mod(a[order], 2 * np.pi)
     st[speed_index(N)] = speed
+    st[psi_index(N)] = float(phase)
     prof_t, prof_w, _ = spin_arrays(spin)
     unb_t, unb_u = system.rotor.unbalance_table()
     dy, lam = np.zeros(2 * nq), np.zeros(3 * N + 1)
