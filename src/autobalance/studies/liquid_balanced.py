@@ -21,7 +21,9 @@ The eigenvalues of the map's Jacobian (:func:`autobalance.liquid.stability.linea
 the growth rates; a compartment's volume and, for N >= 3 balls, the balanced family's N - 2
 directions are neutral and dropped. The liquid's mass moves with the rotor; below the film's
 start (003 eq 6) the liquid is a pool and the balls-alone closed forms hold on
-:func:`autobalance.liquid.start.pool_machine`.
+:func:`autobalance.liquid.start.pool_machine`. On a horizontal axis the same map over a
+revolution, Floquet's about the periodic state under gravity (studies/liquid_floquet.py,
+sec. 3m).
 """
 from __future__ import annotations
 
@@ -164,20 +166,22 @@ def _ball_propagator(pool, W, alpha, dt, L, phase=None):
 def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
                        n_cells: int = 64, family: bool = False) -> RingStability:
     """The linear stability of a balanced state of balls beside a liquid at the constant spin
-    ``speed`` (module docstring).
+    ``speed`` (module docstring); on a horizontal axis Floquet's about its periodic state under
+    gravity (:func:`autobalance.studies.liquid_floquet.balanced_floquet`, docs/liquid.md
+    sec. 3m).
 
     Parameters
     ----------
     system : autobalance.models.System
-        Balls and a ``[liquid]`` section on a vertical axis, isotropic suspension
-        (:func:`require_balanced_liquid`); M [kg], k [N/m], c [N*s/m], the balls' m [kg],
-        R [m] and damping.
+        Balls and a ``[liquid]`` section, isotropic suspension (:func:`require_balanced_liquid`;
+        on a horizontal axis one or two balls and [gravity] in the plane); M [kg], k [N/m],
+        c [N*s/m], the balls' m [kg], R [m] and damping.
     speed : float
         Omega [rad/s], > 0, where every chamber's liquid is a film (above 003 eq 6's
         entrainment speed: the caller's choice).
     alpha : array_like (N,)
         The balanced state's ball angles [rad] (sum m_i R e^{i alpha_i} cancels the unbalance;
-        :func:`autobalance.physics.equilibria.find_equilibrium_set`).
+        :func:`autobalance.physics.equilibria.find_equilibrium_set`; without gravity).
     n_cells : int
         Cells around each wall [-].
     family : bool
