@@ -475,6 +475,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                "nominal_speed_rad_s": cfg.spin.nominal_speed,
                "stick_threshold_at_nominal_grade_G_mm_s": float(np.interp(
                    cfg.spin.nominal_speed, w, ds["G_stick"].values))}
+        if "ring_holds" in ds:          # beside a liquid on a horizontal axis
+            res["ring_holds"] = ds["ring_holds"].sel(c_r=cs[0] if 1.0 not in cs else 1.0).values
         res.update(_finish(ds, cfg, out, plot, fig, "study immobility", t0))
     if json_:
         print_json(res)
@@ -487,10 +489,25 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         typer.echo("  beside the liquid: the balls at rest on the rotor's steady orbit with the "
                    "quasi-static liquid (docs/liquid.md sec. 3k); no stick threshold G* (a "
                    "closed form of the balls alone)")
+        if "ring_holds" in res:
+            typer.echo(_ring_holds_text(res["ring_holds"], w, du))
         return
     typer.echo(f"  stick threshold at the nominal speed: G*{gs:.3g} mm/s "
                f"({'below' if gs <= G else 'above'} the target {grade_text(G)}): balls that "
                "stop at this speed leave about this grade")
+
+
+def _ring_holds_text(share, speeds, du) -> str:
+    """The text line of `study immobility` beside a liquid on a horizontal axis: where the
+    steady orbit keeps the rings intact under gravity's offset (share [-] per speed [rad/s])."""
+    import numpy as np
+
+    full = speeds[share >= 1.0]
+    where = (f"every configuration's from {du.fmt(float(full.min()), 'speed')}" if full.size
+             else f"at most {100 * float(np.nanmax(share)):.0f} % of the configurations'")
+    return ("  horizontal axis: the liquid's orbit is planar (gravity's offset g/Omega^2 of its "
+            f"surface left out, its pull on the balls kept); exact while the rings hold, {where} "
+            "(elsewhere first order in g/(Omega^2 R); ring_holds in --json and --out)")
 
 
 def _factors(spec: str, name: str) -> tuple:

@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from ..models import System
 
 __all__ = ["NoPeriodicFilm", "RingStability", "compartments", "jacobian", "linear_modes",
-           "machine_stability", "multiplier_modes", "periodic_state", "require_vertical",
+           "machine_stability", "multiplier_modes", "periodic_state",
            "ring_floquet", "ring_stability", "unstable_ranges"]
 
 #: The map's step as a fraction of the films' CFL step at the centred state [-] (the runs' own step;
@@ -366,21 +366,6 @@ def unstable_ranges(speeds: np.ndarray, growth: np.ndarray) -> list[tuple[float,
     if lo is not None:
         out.append((float(lo), float(speeds[-1])))
     return out
-
-
-def require_vertical(system: System) -> None:
-    """One-line error unless the machine's liquid turns about a vertical axis: the balanced
-    state (uniform films) is a fixed point of the rotor frame only without gravity in the
-    chamber's plane.
-
-    Parameters
-    ----------
-    system : autobalance.models.System
-        A machine with a ``[liquid]`` section.
-    """
-    system.liquid.vertical("for the linear stability (its centred state, uniform films, exists "
-                           "without gravity in the chamber's plane); autobalance simulate runs a "
-                           "horizontal machine")
 
 
 def machine_stability(system: System, speeds: npt.ArrayLike, n_cells: int = 64) -> dict:

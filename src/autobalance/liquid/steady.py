@@ -303,14 +303,19 @@ def _split(chambers, omega, g, axis):
 def chambers_steady_response(rotor: VerticalRotor,
                              chambers: Sequence[tuple[float, float, float, float]],
                              density: float, speeds: npt.ArrayLike,
-                             g: float = G_STANDARD) -> dict:
-    """A vertical rotor's steady whirl over ``speeds`` with the quasi-static liquid of one or
+                             g: float = G_STANDARD, axis: str = "vertical") -> dict:
+    """A rotor's steady whirl over ``speeds`` with the quasi-static liquid of one or
     more concentric chambers (:func:`synchronous_deflection`, followed upwards in speed from
     root to root as :func:`response_curve`), in the keys of
     :func:`autobalance.liquid.steady_response` (the lumped model), so that the CLI and the
-    figures take either. A chamber below its entrainment speed omega_0 (003 eq 6) holds a
-    centred pool: a mass without unbalance (:func:`pool_response` if every chamber does; the
-    liquid's angle is then NaN).
+    figures take either. A chamber below its start speed (:func:`start_speed`: 003 eq 6's
+    entrainment speed on a vertical axis) holds a centred pool, or a puddle held by gravity on
+    a horizontal axis: a mass without unbalance (:func:`pool_response` if every chamber does;
+    the liquid's angle is then NaN). On a horizontal axis the ring is the planar quasi-static
+    liquid, as :func:`steady_amplitude`'s: gravity's offset g/Omega^2 of the surface (below
+    R/10 there) is left out. While the rings stay intact that is exact for the whirl (the
+    core's moment is linear in the chamber's offset and gravity's part stands still in the
+    inertial frame, :mod:`.synchronous`); once they break it is first order in g/(Omega^2 R).
 
     Parameters
     ----------
@@ -323,7 +328,9 @@ def chambers_steady_response(rotor: VerticalRotor,
     speeds : array_like
         Increasing speeds [rad/s], > 0.
     g : float
-        Gravity along the axis [m/s^2].
+        Gravity [m/s^2] (along a vertical axis, in the plane of a horizontal one).
+    axis : str
+        "vertical" or "horizontal".
 
     Returns
     -------
@@ -332,13 +339,16 @@ def chambers_steady_response(rotor: VerticalRotor,
         deflection_m (complex, rotor frame), liquid_angle_deg (of U_l from D) [deg],
         liquid_unbalance_kg_m (summed over the chambers), phase_deg (of w from D).
     """
+    if axis not in ("vertical", "horizontal"):
+        raise ParameterError("axis", axis, "must be 'vertical' or 'horizontal'")
+    qs_axis = "planar" if axis == "horizontal" else "vertical"
     om = increasing_speeds(speeds)
     w = np.full(om.size, complex(math.nan, math.nan))
     U = np.zeros(om.size, complex)
     ok = np.zeros(om.size, bool)
     guess = None
     for i, W in enumerate(om):
-        ring, v_pool = _split(chambers, W, g, "vertical")
+        ring, v_pool = _split(chambers, W, g, axis)
         if not ring:
             w[i] = pool_response(rotor, v_pool, density, W)
             guess = None
@@ -346,10 +356,10 @@ def chambers_steady_response(rotor: VerticalRotor,
         ok[i] = True
         R, h, ri, V = (list(x) for x in zip(*ring))
         w[i] = synchronous_deflection(rotor, R, h, V, density, W, inner_radius=ri, g=g,
-                                      guess=guess, pool_mass=density * v_pool)
+                                      axis=qs_axis, guess=guess, pool_mass=density * v_pool)
         guess = w[i] if np.isfinite(w[i]) else None
         U[i] = (sum(quasi_static(*c[:2], c[3], density, W, w[i], inner_radius=c[2],
-                                 g=g).unbalance for c in ring)
+                                 g=g, axis=qs_axis).unbalance for c in ring)
                 if np.isfinite(w[i]) else complex(math.nan, math.nan))
     dry = np.abs(pool_response(rotor, 0.0, density, om))        # the empty chambers
     amp = np.abs(w)

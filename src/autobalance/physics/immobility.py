@@ -31,8 +31,8 @@ if TYPE_CHECKING:
     from ..models import System
 
 __all__ = ["IMMOBILITY_BYTES", "IMMOBILITY_BYTES_PER_BALL", "IMMOBILITY_COST_S", "check_immobility",
-           "immobile_mask", "immobility", "steady_deflection", "stick_threshold_grade",
-           "tangential_force"]
+           "configurations", "immobile_mask", "immobility", "steady_deflection",
+           "stick_threshold_grade", "tangential_force"]
 
 
 def steady_deflection(system: System, speed: npt.ArrayLike, alpha: npt.ArrayLike,
@@ -190,6 +190,27 @@ def check_immobility(n_conf: int, n_balls: int, n_speeds: int = 1, n_sets: int =
     check_runtime(field, n_conf, k * n_balls * n_speeds * n_sets * IMMOBILITY_COST_S,
                   f"immobility grid ({k:.3g} configurations x {n_speeds * n_sets} speeds)")
 
+def configurations(n_conf: int, n_balls: int) -> np.ndarray:
+    """The ball configurations of :func:`immobility`: n_conf equispaced positions per ball, the
+    full product (uniform on the torus).
+
+    Parameters
+    ----------
+    n_conf : int
+        Equispaced positions per ball [-].
+    n_balls : int
+        Number of balls N [-].
+
+    Returns
+    -------
+    ndarray (n_conf ** n_balls, n_balls)
+        Ball angles [rad].
+    """
+    pos = 2 * np.pi * np.arange(n_conf) / n_conf
+    grids = np.meshgrid(*([pos] * n_balls), indexing="ij")
+    return np.stack([g.ravel() for g in grids], axis=-1)
+
+
 def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100,
                response: Callable | None = None):
     """004 sec. 4.4 immobility: share [-] of ball configurations (n_conf equispaced positions per
@@ -217,9 +238,7 @@ def immobility(system: System, speeds: float | npt.ArrayLike, n_conf: int = 100,
     """
     b = system.balancer
     check_immobility(n_conf, b.n_balls, np.atleast_1d(speeds).size)
-    pos = 2 * np.pi * np.arange(n_conf) / n_conf
-    grids = np.meshgrid(*([pos] * b.n_balls), indexing="ij")
-    alpha = np.stack([g.ravel() for g in grids], axis=-1)           # (K, N)
+    alpha = configurations(n_conf, b.n_balls)
     out = np.empty(len(np.atleast_1d(speeds)))
     for j, w in enumerate(np.atleast_1d(speeds)):
         out[j] = immobile_mask(system, float(w), alpha, response).mean()

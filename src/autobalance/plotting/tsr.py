@@ -155,7 +155,8 @@ def plot_immobility(ds: xr.Dataset, title: str | None = None, stick: bool = Fals
     """004 Fig. 8/10 from :func:`compute_immobility`: bands over c_r, lines at c_r = 1 (or the
     first c_r), the profile's speeds dashed, the natural frequency dotted and, with ``stick``,
     the stick threshold G* [mm/s] on a second axis (004's figures have none); speeds in
-    ``speed_unit`` (a pint speed unit, e.g. "rpm"; 004 uses Hz)."""
+    ``speed_unit`` (a pint speed unit, e.g. "rpm"; 004 uses Hz). Beside a liquid on a
+    horizontal axis, the share of configurations whose rings hold (``ring_holds``) grey dashed."""
     from .speed_map import _per_unit
 
     fig, (ax,) = _fig(1, w=6.5)
@@ -171,6 +172,10 @@ def plot_immobility(ds: xr.Dataset, title: str | None = None, stick: bool = Fals
         if np.isfinite(x):
             ax.axvline(k_hz * x, color="k", ls="--", lw=0.8)
     ax.axvline(k_hz * ds.attrs["f_n_hz"], color="r", ls=":", lw=0.8)
+    if "ring_holds" in ds:          # beside a liquid on a horizontal axis
+        c_line = 1.0 if 1.0 in ds["c_r"].values else ds["c_r"].values[0]
+        ax.plot(f, ds["ring_holds"].sel(c_r=c_line).values, color="0.5", lw=1.0, ls="--",
+                label="rings intact under gravity (share)")
     ax.set_xlabel(f"speed [{speed_unit}]")
     ax.set_ylabel("immobility [-]")
     ax.set_title(title or f"004 Fig. 8/10: immobility, G_ini = G{ds.attrs['G_ini']:g} "

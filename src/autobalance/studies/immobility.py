@@ -13,7 +13,7 @@ from .common import load
 from .statistics import plateau_speed
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Callable, Sequence
     from pathlib import Path
 
     import numpy.typing as npt
@@ -31,20 +31,24 @@ LIQUID_MAGNITUDES, LIQUID_MAGNITUDES_QUICK = 33, 17
 
 
 def liquid_response(system: System, speeds: npt.ArrayLike, n_mag: int = LIQUID_MAGNITUDES):
-    """The steady orbit of balls at rest beside a liquid on a vertical axis, as
+    """The steady orbit of balls at rest beside a liquid, as
     :func:`autobalance.physics.immobility.steady_deflection` takes it: the rotor with the balls'
     mass and the residual unbalance U_t (rotor and balls) and the quasi-static liquid of its
     chambers (:func:`autobalance.liquid.steady.chambers_steady_response`: a pool below a
     chamber's entrainment speed, 003 eq 6; a ring on the displaced wall above it, followed up
-    the speeds). The liquid is axisymmetric, so w(U_t) = w(|U_t|) U_t / |U_t|; w(|U_t|) is
+    the speeds). On a horizontal axis a puddle below the film's start (g/Omega^2 = R/10) and
+    the planar ring above it: the whirl's orbit about the static sag, exact while the rings
+    hold under gravity's offset (:func:`ring_holds`; docs/liquid.md sec. 3k). The liquid is
+    axisymmetric, so w(U_t) = w(|U_t|) U_t / |U_t|; w(|U_t|) is
     tabulated on ``n_mag`` magnitudes from 0 to |U| + the balls' capacity and interpolated
     linearly.
 
     Parameters
     ----------
     system : autobalance.models.System
-        Balls beside a ``[liquid]`` section (vertical axis, isotropic suspension): M [kg],
-        k [N/m], c [N*s/m], the balls' masses [kg] and capacity [kg*m], the chambers.
+        Balls beside a ``[liquid]`` section (isotropic suspension; [gravity] in the plane on a
+        horizontal axis): M [kg], k [N/m], c [N*s/m], the balls' masses [kg] and capacity
+        [kg*m], the chambers.
     speeds : array_like
         The increasing speeds [rad/s] the callable will be asked at.
     n_mag : int
@@ -55,17 +59,19 @@ def liquid_response(system: System, speeds: npt.ArrayLike, n_mag: int = LIQUID_M
     callable
         (speed [rad/s], one of ``speeds``; U_t [kg*m], complex array) -> w [m] (rotor frame).
     """
-    from ..liquid.models import VerticalRotor
+    from ..liquid.models import G_STANDARD, VerticalRotor
     from ..liquid.steady import chambers_steady_response
 
     W = np.asarray(speeds, float)
     r, s, b, liq = system.rotor, system.suspension, system.balancer, system.liquid
+    g = system.gravity.g if liq.axis == "horizontal" else G_STANDARD
     mags = np.linspace(0.0, abs(r.unbalance) + b.capacity, n_mag)
     ch = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume) for c in liq.chambers]
     table = np.zeros((W.size, n_mag), complex)
     for k, D in enumerate(mags[1:], 1):
         rotor = VerticalRotor(r.mass + b.total_mass, s.kx, s.cx, float(D))
-        table[:, k] = chambers_steady_response(rotor, ch, liq.density, W)["deflection_m"]
+        table[:, k] = chambers_steady_response(rotor, ch, liq.density, W, g,
+                                               liq.axis)["deflection_m"]
 
     def response(speed, Ut):
         i = int(np.argmin(np.abs(W - float(speed))))
@@ -75,6 +81,40 @@ def liquid_response(system: System, speeds: npt.ArrayLike, n_mag: int = LIQUID_M
         return np.where(a > 0, w * u / np.where(a > 0, a, 1.0), 0j)
 
     return response
+
+
+def ring_holds(system: System, speeds: npt.ArrayLike, n_conf: int,
+               response: Callable) -> np.ndarray:
+    """On a horizontal axis, the share [-] of the ball configurations (n_conf positions per
+    ball, as :func:`autobalance.physics.immobility.immobility`) whose steady orbit keeps every
+    chamber's ring intact under gravity's offset g/Omega^2 of the surface, at each speed
+    [rad/s]: |w| within :func:`autobalance.liquid.synchronous.synchronous_liquid`'s linear
+    range (the whirl up to which the core stays inside the outer wall and clear of the inner
+    one in the worst direction; 0 below the film's start, where the liquid is a puddle). There
+    the planar orbit of :func:`liquid_response` is exact; beyond it, first order in
+    g/(Omega^2 R) (docs/liquid.md sec. 3k).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        Balls beside a horizontal-axis ``[liquid]`` section, [gravity] g [m/s^2] in the plane.
+    speeds : array_like
+        Spin speeds [rad/s].
+    n_conf : int
+        Equispaced positions per ball [-].
+    response : callable
+        :func:`liquid_response` over ``speeds``.
+    """
+    from ..liquid.synchronous import synchronous_liquid
+    from ..physics.immobility import configurations, steady_deflection
+
+    alpha = configurations(n_conf, system.balancer.n_balls)
+    W = np.atleast_1d(np.asarray(speeds, float))
+    out = np.empty(W.size)
+    for j, w in enumerate(W):
+        reach = synchronous_liquid(system.liquid, float(w), system.gravity.g).linear_range
+        out[j] = np.mean(np.abs(steady_deflection(system, float(w), alpha, response)) <= reach)
+    return out
 
 
 def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[float] = (1.0,),
@@ -136,13 +176,12 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     n_conf = 36 if quick else n_conf
     check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
     U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
+    horizontal = s0.liquid is not None and s0.liquid.axis == "horizontal"
     if s0.liquid is not None:                   # beside a liquid: its steady orbit (sec. 3k)
-        from ..liquid.stability import require_vertical
-
-        require_vertical(s0)
         s0.liquid.unpartitioned("study immobility beside a liquid (its steady orbit)")
     mu0 = np.asarray(s0.balancer.rolling_resistance, float)      # each ball's own
     out = np.empty((len(mu_r), len(c_r), f.size))
+    holds = np.full((len(c_r), f.size), np.nan)
     resps = {}
     for i, mr in enumerate(mu_r):
         for j, cr in enumerate(c_r):
@@ -156,6 +195,8 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
             if s0.liquid is not None and j not in resps:     # the orbit depends on c, not mu
                 resps[j] = liquid_response(s, 2 * np.pi * f, LIQUID_MAGNITUDES_QUICK if quick
                                            else LIQUID_MAGNITUDES)
+                if horizontal:
+                    holds[j] = ring_holds(s, 2 * np.pi * f, n_conf, resps[j])
             out[i, j] = immobility(s, 2 * np.pi * f, n_conf, resps.get(j))
     ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,
                                     {"units": "-", "long_name": "share of immobile configurations"}),
@@ -164,12 +205,20 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
                                  {"units": "mm/s", "long_name": "stick threshold G* (mu_r = c_r = 1)"})},
                     coords={"mu_r": list(mu_r), "c_r": list(c_r),
                             "speed": ("speed", f, {"units": "Hz"})})
+    if horizontal:
+        ds["ring_holds"] = (("c_r", "speed"), holds,
+                            {"units": "-", "long_name": "share of configurations whose orbit "
+                             "keeps the rings intact under gravity's offset (there the orbit is "
+                             "exact; elsewhere first order in g/(Omega^2 R))"})
     ds.attrs.update({"study": "immobility", "G_ini": float(G_ini), "n_conf": n_conf,
                      "f_n_hz": fn, "nominal_hz": wn / (2 * np.pi), "plateau_hz": _plateau_hz(cfg.spin),
                      "method": "closed form |Im(w e^-i alpha)| <= mu R (004 eq 1), checked "
                                "against the kernel's stuck-ball friction"
                                + ("; w: the steady orbit with the quasi-static liquid"
-                                  if s0.liquid is not None else ""),
+                                  if s0.liquid is not None else "")
+                               + (" (planar: gravity's offset g/Omega^2 of its surface left "
+                                  "out; in-plane gravity on the balls kept)" if horizontal
+                                  else ""),
                      "wall_s": time.perf_counter() - t0})
     return ds
 
