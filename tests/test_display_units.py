@@ -249,3 +249,56 @@ def test_simulate_plot_speed_axis_and_grade_line(tmp_path, monkeypatch):
     limit = [line for line in grade_ax.lines if line.get_label().startswith("G2.5")]
     assert len(limit) == 1 and limit[0].get_label() == grade_text(2.5)
     assert list(limit[0].get_ydata()) == [2.5, 2.5]
+
+
+# -- refusals in the units the user wrote (config/display.as_written) ----------------------------
+@settings(max_examples=40, deadline=None)
+@given(rpm=st.floats(1.0, 1e5), limit=st.floats(1.0, 1e4))
+def test_a_refusal_shows_its_value_as_written(rpm, limit):
+    """A refusal ``key = <SI>: ... <x> rad/s`` of a key written in rpm reads ``key = <as
+    written> (<SI> rad/s): ... <x> rad/s (<x in rpm> rpm)``: the written text itself, and the
+    bound converted to 4 digits."""
+    from autobalance.config.display import as_written
+
+    text = f"{rpm!r} rpm"
+    si = rpm * 2 * math.pi / 60
+    msg = f"profile.speed = {si!r}: must be >= {limit:.6g} rad/s here"
+    got = as_written(msg, {"profile": {"speed": text}})
+    head, tail = got.split(": ", 1)
+    assert head == f"profile.speed = {text} ({si:.6g} rad/s)"
+    shown = float(tail.split("rad/s (")[1].split(" rpm)")[0])
+    assert shown == pytest.approx(float(f"{limit:.6g}") * 60 / (2 * math.pi), rel=5e-4)
+
+
+def test_a_refusal_is_unchanged_unless_its_value_is_the_written_one():
+    """Bare numbers (SI as written), a refused number that is not the written value (a derived
+    one), a key of no display kind and no configuration leave the message as it is."""
+    from autobalance.config.display import as_written
+
+    raw = {"rotor": {"mass": "-2 g"}, "balancer": {"race_radius": -0.1},
+           "liquid": {"partitions": 2}}
+    assert as_written("rotor.mass = -0.003: must be > 0", raw) == "rotor.mass = -0.003: must be > 0"
+    assert as_written("balancer.race_radius = -0.1: must be > 0", raw).startswith(
+        "balancer.race_radius = -0.1: ")
+    assert as_written("liquid.partitions = 2: must be 0 or >= 3", raw).startswith(
+        "liquid.partitions = 2: ")
+    assert as_written("rotor.mass = -0.002: must be > 0", None) == "rotor.mass = -0.002: must be > 0"
+    assert as_written("rotor.mass = -0.002: must be > 0", raw) == \
+        "rotor.mass = -2 g (-0.002 kg): must be > 0"
+
+
+def test_cli_refusals_speak_the_written_units():
+    """End to end: a bad value at load time (the model's check) and a refusal after loading (a
+    motor drive on a horizontal axis from below the film's start, before any work) both name
+    the value as written and, for the second, the film's start speed in rpm too; one line,
+    exit 2."""
+    r = run("simulate", "washer_000", *sets(["rotor.mass=-2 g"]))
+    assert r.exit_code == 2
+    assert_one_line_error(r.stderr, "rotor.mass = -2 g (-0.002 kg): must be > 0")
+    r = run("simulate", "examples/toploader-ring.toml", "--profile", "motor",
+            *sets(["profile.law=linear", "profile.torque=25 N*m", "profile.final_speed=700 rpm",
+                   "profile.initial_speed=30 rpm", "profile.duration=5 s",
+                   "liquid.axis=horizontal", "gravity.g=9.81"]))
+    assert r.exit_code == 2
+    assert_one_line_error(r.stderr, "profile.initial_speed = 30 rpm (3.14159 rad/s)",
+                          "19.06 rad/s (182 rpm)")

@@ -23,12 +23,14 @@ import json
 import math
 import os
 from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 from typing import Annotated, Iterator, NoReturn, Optional
 
 import typer
 
 from ..config import ConfigError, load_config
+from ..config.display import as_written
 from ..jsonable import to_jsonable
 from ..limits import ResourceError
 from ..models import ParameterError
@@ -75,6 +77,9 @@ UnitsOpt = Annotated[Optional[str], typer.Option(
 # -- errors -------------------------------------------------------------------------------------
 #: Exceptions that are the user's input errors: one line on stderr, exit code 2.
 USER_ERRORS = (ConfigError, ParameterError, ResourceError, OSError)
+#: The configuration of the command, as written (:attr:`Config.raw`), once :func:`load_machine`
+#: has loaded it inside :func:`guard`: a refusal then shows its value as the user wrote it.
+_WRITTEN: ContextVar[dict | None] = ContextVar("written", default=None)
 
 
 def one_line(exc: BaseException) -> str:
@@ -138,10 +143,15 @@ def guard() -> Iterator[None]:
     typer.Exit
         With code 2, after printing the error line.
     """
+    token = _WRITTEN.set(None)
     try:
         yield
     except USER_ERRORS as exc:
-        fail(one_line(exc))
+        raw = getattr(exc, "written", None) or _WRITTEN.get()
+        fail(as_written(one_line(exc), raw) if isinstance(exc, (ConfigError, ParameterError))
+             else one_line(exc))
+    finally:
+        _WRITTEN.reset(token)
 
 
 # -- output -------------------------------------------------------------------------------------
@@ -187,6 +197,7 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
         Bad file, value or override (one line).
     """
     cfg = load_config(source, list(sets or []) + ([f"profile.kind={profile}"] if profile else []))
+    _WRITTEN.set(cfg.raw)           # a later refusal shows its value as written (guard)
     if balls == "liquid":
         if cfg.system.liquid is None:
             raise ConfigError("liquid: missing; this study needs a liquid balancer, a [liquid] "

@@ -29,7 +29,8 @@ from .units import KINDS, TWO_PI, ConfigError, registry
 if TYPE_CHECKING:
     from .load import Config
 
-__all__ = ["DISPLAY_KINDS", "WRITTEN_KEYS", "DisplayUnits", "display_units", "written_unit"]
+__all__ = ["DISPLAY_KINDS", "WRITTEN_KEYS", "DisplayUnits", "as_written", "display_units",
+           "written_unit"]
 
 #: The kinds shown in display units, and their SI unit (grade: ISO 1940's mm/s, always).
 DISPLAY_KINDS: dict[str, str] = {"speed": "rad/s", "unbalance": "kg*m", "length": "m",
@@ -297,3 +298,67 @@ def display_units(cfg: Config | dict | None, choice: str | None = None) -> Displ
         units.update(written)
         units.update(_parse_choice(choice))
     return DisplayUnits(units=units, written=written)
+
+
+#: A refusal's one-line message: ``<section>.<key> = <value>: <what is allowed>``.
+_REFUSAL = re.compile(r"^([a-z_]+\.[a-z_]+) = ([^:]+): (.*)$", re.S)
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+
+@functools.lru_cache(maxsize=1)
+def _kind_of_key() -> dict[str, str]:
+    """Config key -> its display kind (the first kind that lists it)."""
+    out: dict[str, str] = {}
+    for kind in DISPLAY_KINDS:
+        if kind != "grade":
+            for path in _keys_of_kind(kind):
+                out.setdefault(path, kind)
+    return out
+
+
+def as_written(message: str, raw: dict | None) -> str:
+    """A refusal's one-line message with the refused value as the configuration wrote it.
+
+    The models refuse values in SI (``profile.initial_speed = 3.14159: must be >= ... 19.06
+    rad/s``). When ``raw`` (:attr:`Config.raw`, the keys as written after ``--set``) wrote that
+    key as a string with a unit, and the refused number is that string in SI, the message
+    shows the written value with its SI value in brackets, and every "<number> <SI unit>" of
+    the key's kind in the rest of the message also in the written unit:
+    ``profile.initial_speed = 30 rpm (3.142 rad/s): must be >= ... 19.06 rad/s (182 rpm)``.
+    Any other message is returned unchanged.
+
+    Parameters
+    ----------
+    message : str
+        The one-line message (``<section>.<key> = <value>: <allowed>``).
+    raw : dict or None
+        The configuration as written; None leaves the message as it is.
+
+    Returns
+    -------
+    str
+    """
+    from .units import parse_quantity
+
+    m = _REFUSAL.match(message)
+    if m is None or not isinstance(raw, dict):
+        return message
+    path, value, allowed = m.groups()
+    kind = _kind_of_key().get(path)
+    section, key = path.split(".", 1)
+    table = raw.get(section)
+    written = table.get(key) if isinstance(table, dict) else None
+    unit = written_unit(written, kind) if kind is not None and isinstance(written, str) else None
+    if unit is None:
+        return message
+    try:
+        v = float(value)
+        same = math.isclose(parse_quantity(written, kind, path), v, rel_tol=1e-9, abs_tol=0.0)
+    except (ValueError, ConfigError):
+        return message
+    if not same:
+        return message
+    si, f = DISPLAY_KINDS[kind], _factor(unit, kind)
+    also = re.sub(rf"({_NUM}) {re.escape(si)}(?![\w*/^])",
+                  lambda x: f"{x.group(0)} ({float(x.group(1)) * f:.4g} {unit})", allowed)
+    return f"{path} = {written.strip()} ({v:.6g} {si}): {also}"

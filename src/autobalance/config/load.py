@@ -7,8 +7,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..models import (BallBalancer, Gravity, InitialState, LiquidDevice, MotorDrive, Rotor,
-                      SimOptions, SpeedProfile, Suspension, System)
+from ..models import (BallBalancer, Gravity, InitialState, LiquidDevice, MotorDrive,
+                      ParameterError, Rotor, SimOptions, SpeedProfile, Suspension, System)
 from .overrides import apply_overrides
 from .presets import _preset_dir, preset_path
 from .schema import (_MODELS, _PROFILE_MODELS, PROFILE_KINDS, REQUIRED_SECTIONS, SECTIONS,
@@ -265,4 +265,8 @@ def load_config(source: str | Path, overrides: Iterable[str] = ()) -> Config:
     merged = apply_overrides(raw, overrides)
     for item in overrides:
         comments[item.split("=", 1)[0].strip()] = f"--set {item}"
-    return from_dict(merged, source=label, sources=comments)
+    try:
+        return from_dict(merged, source=label, sources=comments)
+    except (ConfigError, ParameterError) as e:
+        e.written = merged        # the keys as written, for the CLI's message (display.as_written)
+        raise
