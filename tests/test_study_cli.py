@@ -290,6 +290,27 @@ def test_design_ranks_cheapest_meeting_design_first_and_marks_the_pareto_front()
 
 
 @pytest.mark.slow
+def test_design_of_a_machine_on_its_own_ramp():
+    """A machine on a ramp (000's washer run up to 1000 rpm) has no std/slow/tsr variants:
+    `design` designs for its own profile ('given') and says so; `--profiles given` is that
+    choice, and asking for a variant it lacks is one line naming the profile kind. Until stop
+    33 the default refused every such machine ("none applies ..., available: given") and
+    `--profiles given` was itself refused."""
+    ramp = ["--profile", "ramp", "--set", "profile.start_speed=0 rpm", "--set",
+            "profile.end_speed=1000 rpm", "--set", "profile.ramp_time=6 s", "--set",
+            "profile.duration=8 s"]
+    common = ["--balls", "2", "--capacity", "1.5", "--starts", 3, "--n-unbalance", 1,
+              "--grade", 40, "--executor", "serial"]
+    r = run("design", "washer_000", *ramp, *common)
+    assert r.exit_code == 0, r.output
+    assert "the machine's own ramp profile" in r.output
+    d = run_json("design", "washer_000", *ramp, *common, "--profiles", "given")
+    assert d["n_designs"] == 1 and d["designs"][0]["name"].endswith("-given")
+    assert d["simulations"] == 3
+    one_line_error(run("design", "washer_000", *ramp, *common, "--profiles", "tsr"), "ramp")
+
+
+@pytest.mark.slow
 def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys(tmp_path):
     """The plateau study runs on the best TSR candidate; its recommended plateau (the argmin of
     its mean 95th percentiles) joins as a candidate judged like the others, and its --set

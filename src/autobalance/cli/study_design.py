@@ -37,8 +37,10 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                "--radii", help="Race radii to try, e.g. '40 mm,50 mm' (default the "
                                "machine's).")] = None,
            profiles: Annotated[Optional[str], typer.Option(
-               "--profiles", help="Speed profiles to try: std, slow (3x slower run-up), tsr "
-                                  "(default all three; quick std,tsr).")] = None,
+               "--profiles", help="Speed profiles to try: given (the machine's own), std, "
+                                  "slow (3x slower run-up), tsr (default std,slow,tsr; quick "
+                                  "std,tsr; a machine whose profile is not std or tsr: "
+                                  "given).")] = None,
            starts: Annotated[Optional[int], typer.Option(
                "--starts", help="Random start positions per unbalance and design (default "
                                 "40; quick 10).")] = None,
@@ -69,7 +71,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     radii : str
         Comma-separated race radii (lengths; bare numbers: m).
     profiles : str
-        Comma-separated profile variants (std, slow, tsr).
+        Comma-separated profile variants (given, std, slow, tsr); None: std, slow, tsr (quick
+        std, tsr), or given where the machine's profile has no variants (a ramp, a motor).
     starts, n_unbalance : int
         Random starts per unbalance and design; unbalances across the range (>= 1).
     seed : int
@@ -113,11 +116,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                                 for r in radii.split(",") if r.strip())
             if not kw["radii"] or min(kw["radii"]) <= 0:
                 raise ConfigError(f"--radii = {radii!r}: expected positive lengths")
-        if profiles is not None:
-            names = tuple(p.strip() for p in profiles.split(",") if p.strip())
-            bad = [p for p in names if p not in ("std", "slow", "tsr")]
-            if bad or not names:
-                raise ConfigError(f"--profiles = {profiles!r}: must be from std, slow, tsr")
+        names, own = _profiles(profiles, cfg)
+        if names:
             kw["profiles"] = names
         _counts(starts=starts, n_unbalance=n_unbalance)
         import dataclasses
@@ -155,6 +155,10 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    "the natural frequency (mean 95th percentile " + ", ".join(
                        f"{r:.3g}: G{v:.3g}" for r, v in zip(p["ratios"], p["mean_p95_grade_G_mm_s"]))
                    + ")" + ("; at the edge of the ratios studied" if p["at_grid_edge"] else ""))
+    if own:
+        typer.echo(f"  every design on the machine's own {getattr(cfg.spin, 'name', 'motor')} "
+                   "profile ('given'; the std, slow and tsr variants are of std and tsr "
+                   "profiles)")
     typer.echo(f"  {res['n_meeting']} design{' meets' if res['n_meeting'] == 1 else 's meet'} "
                "the target" + (
         f"; cheapest: {res['best']['name']} (margin {res['best']['margin_grade_G_mm_s']:.2f} mm/s)"
@@ -176,6 +180,30 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                        f"friction simulated here the worst case is G{t['own_worst_grade_G_mm_s']:.3g}")
         else:
             typer.echo(f"  tolerances of {t['design']}: not feasible ({t['reason']})")
+
+
+def _profiles(spec: str | None, cfg) -> tuple[tuple, bool]:
+    """The profiles `design` tries: (names, whether they are the machine's own by default).
+
+    Parameters
+    ----------
+    spec : str or None
+        ``--profiles`` (comma-separated: given, std, slow, tsr); None: the design space's
+        default, or ``("given",)`` for a machine whose profile has no variants (a ramp, a table,
+        a motor; :func:`autobalance.studies.design.profile_variants`).
+    cfg : autobalance.config.Config
+        The machine.
+    """
+    from ..studies.design import profile_variants
+
+    if spec is None:
+        own = list(profile_variants(cfg)) == ["given"]
+        return (("given",) if own else ()), own
+    names = tuple(p.strip() for p in spec.split(",") if p.strip())
+    if not names or any(p not in ("given", "std", "slow", "tsr") for p in names):
+        raise ConfigError(f"--profiles = {spec!r}: must be from given (the machine's own), std, "
+                          "slow, tsr")
+    return names, False
 
 
 @app.command("tolerances")
