@@ -308,6 +308,9 @@ def test_design_of_a_machine_on_its_own_ramp():
     assert d["n_designs"] == 1 and d["designs"][0]["name"].endswith("-given")
     assert d["simulations"] == 3
     one_line_error(run("design", "washer_000", *ramp, *common, "--profiles", "tsr"), "ramp")
+    # a TSR machine's own profile beside the variants
+    d = run_json("design", CENTRIFUGE, *common, "--profiles", "given,std", "--no-refine-plateau")
+    assert sorted(r["name"].rsplit("-", 1)[1] for r in d["designs"]) == ["given", "std"]
 
 
 @pytest.mark.slow

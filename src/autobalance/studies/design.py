@@ -84,7 +84,8 @@ def profile_variants(cfg: Config, plateau_ratio: float = PLATEAU_RATIO,
     (004 sec. 4.4: the standard run-up, a 3x slower run-up; 004 sec. 3.2: a temporary speed
     reduction to :data:`PLATEAU_RATIO` x the first natural frequency for 10/20/10 s).
 
-    Only a std or tsr profile has variants; any other profile kind gives {"given": []}.
+    "given" is the machine's own profile as it is (no overrides). Only a std or tsr profile
+    has variants; any other profile kind gives {"given": []} alone.
 
     Parameters
     ----------
@@ -113,6 +114,7 @@ def profile_variants(cfg: Config, plateau_ratio: float = PLATEAU_RATIO,
     fn = cfg.system.natural_frequencies[0] if natural_frequency is None else natural_frequency
     wp = plateau_ratio * fn
     out = {
+        "given": [],
         "std": ["profile.kind=std", f"profile.nominal={wn!r}", f"profile.runup_time={t_ru!r}",
                 f"profile.duration={std_dur!r}", f"profile.runup_fraction={t_read / std_dur!r}"],
         "slow": ["profile.kind=std", f"profile.nominal={wn!r}", f"profile.runup_time={slow_ru!r}",
