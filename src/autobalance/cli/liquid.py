@@ -266,10 +266,8 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
                  f"liquid.kinematic_viscosity={L.kinematic_viscosity!r}"]
     cfg = load_machine(source, sets, balls="liquid")
     s = cfg.system
-    if s.liquid.axis != "vertical":
-        raise ParameterError("liquid.axis", s.liquid.axis, "liquid simulate analyses a "
-                             "vertical axis (003's bench); a horizontal machine runs with "
-                             "autobalance simulate (the film model with gravity)")
+    s.liquid.vertical("for liquid simulate (003's bench); a horizontal machine runs with "
+                      "autobalance simulate (the film model with gravity)")
     chambers = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume)
                 for c in s.liquid.chambers]
     if s.liquid.n_chambers > 1:

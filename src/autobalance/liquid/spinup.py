@@ -267,9 +267,8 @@ def spinup_of(system: System, spin: SpeedProfile | MotorDrive, *, n_cells: int =
     if liq is None:
         raise ParameterError("liquid", None, "needs a [liquid] section (e.g. the preset "
                              "leblanc_003)")
-    if liq.axis != "vertical":
-        raise ParameterError("liquid.axis", liq.axis, "must be 'vertical' for the spin-up "
-                             "model (gravity along the axis holds the liquid on the bottom)")
+    liq.vertical("for the spin-up model (gravity along the axis holds the liquid on the "
+                 "bottom)")
     if not isinstance(spin, SpeedProfile):
         raise ParameterError("profile.kind", "motor", "the spin-up model needs a prescribed "
                              "speed profile (constant, ramp, table, std or tsr)")
