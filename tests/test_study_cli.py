@@ -314,6 +314,33 @@ def test_design_of_a_machine_on_its_own_ramp():
 
 
 @pytest.mark.slow
+def test_design_beside_a_horizontal_liquid_keeps_the_tolerances_notes():
+    """The washer's ring with two balls on its own ramp: design gives the tolerances of study
+    tolerances with that study's notes (there the balanced state's Floquet verdict on a
+    horizontal axis and the warning that a run-up can end in an asynchronous whirl), in the
+    JSON and the text. Until stop 33 design dropped them."""
+    from autobalance.studies.tolerances import compute_tolerances
+
+    balls = ["balancer.n_balls=2", "balancer.ball_mass=0.5 kg", "balancer.race_radius=0.3 m",
+             "balancer.ball_radius=15 mm", "balancer.damping=20 N*mm*s/rad",
+             "balancer.rolling_resistance=0.001"]
+    args = ["design", "leblanc_washer", *[x for b in balls for x in ("--set", b)], "--balls", "2",
+            "--capacity", "1.5", "--starts", 1, "--n-unbalance", 1, "--grade", 100,
+            "--executor", "serial"]
+    d = run_json(*args)
+    notes = d["tolerances"]["notes"]
+    assert any("Floquet" in n and "asynchronous whirl" in n for n in notes), notes
+    name = d["tolerances"]["design"]
+    row = next(r for r in d["designs"] if r["name"] == name)
+    from autobalance.config import load_config
+
+    cfg = load_config("leblanc_washer", [*balls, *row["sets"]])
+    assert notes == compute_tolerances(cfg, grade=100.0)["warnings"]
+    r = run(*args)
+    assert r.exit_code == 0 and "    note: on a horizontal axis the balanced state" in r.output
+
+
+@pytest.mark.slow
 def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys(tmp_path):
     """The plateau study runs on the best TSR candidate; its recommended plateau (the argmin of
     its mean 95th percentiles) joins as a candidate judged like the others, and its --set

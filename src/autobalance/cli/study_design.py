@@ -180,6 +180,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                        f"friction simulated here the worst case is G{t['own_worst_grade_G_mm_s']:.3g}")
         else:
             typer.echo(f"  tolerances of {t['design']}: not feasible ({t['reason']})")
+        for n in t.get("notes", []):
+            typer.echo(f"    note: {n}")
 
 
 def _profiles(spec: str | None, cfg) -> tuple[tuple, bool]:

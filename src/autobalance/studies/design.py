@@ -409,14 +409,16 @@ def _refine_plateau(cfg, cand: dict, Us, starts: int, quick: bool, *, seed, stor
 
 def _design_tolerances(config, grade: float) -> dict:
     """The tolerances for the target grade of a design (:func:`.tolerances.compute_tolerances`,
-    the true bound) as flat SI attrs; feasible = 0 with the study's reason (and NaN
-    tolerances) when it refuses, e.g. below the balancing onset."""
+    the true bound) as flat SI attrs, with the study's notes (e.g. beside a liquid on a
+    horizontal axis, the balanced state's Floquet verdict); feasible = 0 with the study's
+    reason (and NaN tolerances) when it refuses, e.g. below the balancing onset."""
     from .tolerances import compute_tolerances
 
     t = compute_tolerances(config, grade=grade)
     keys = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")
     out = {"feasible": int(bool(t["feasible"])), "reason": t["reason"] or "",
-           "own_worst_grade_G_mm_s": float(t["worst_grade_G_mm_s"])}
+           "own_worst_grade_G_mm_s": float(t["worst_grade_G_mm_s"]),
+           "notes": "\n".join(t.get("warnings", []))}   # the study's notes, one a line
     out.update({k: float(t[k]) if t[k] is not None else math.nan for k in keys})
     return out
 
@@ -483,5 +485,7 @@ def design_summary(ds: xr.Dataset, top: int = 5) -> dict:
                                     else float(a[f"tolerance_{k}"]))
                                 for k in ("max_eccentricity_m", "max_rolling_resistance",
                                           "max_suspension_friction_N")},
-                             "own_worst_grade_G_mm_s": float(a["tolerance_own_worst_grade_G_mm_s"])}
+                             "own_worst_grade_G_mm_s": float(a["tolerance_own_worst_grade_G_mm_s"]),
+                             "notes": [n for n in str(a.get("tolerance_notes", "")).split("\n")
+                                       if n]}
     return out
