@@ -168,6 +168,12 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    f"{1e3 * r['total_ball_mass_kg']:.3g} g, worst {100 * confidence:g} % grade "
                    f"G{r['worst_quantile_grade_G_mm_s']:.3g}, margin "
                    f"{r['margin_grade_G_mm_s']:+.2f} mm/s" + ("  (Pareto)" if r["pareto"] else ""))
+    _echo_tolerances(res, G, du)
+
+
+def _echo_tolerances(res: dict, G: float, du) -> None:
+    """The text of `design`'s tolerances: those of the recommended design for the target grade
+    G [mm/s] (or why there are none) and the tolerances study's notes; lengths in ``du``."""
     t = res.get("tolerances")
     if res.get("tolerances_skipped"):
         typer.echo(f"  no tolerances: {res['tolerances_skipped']}")
