@@ -113,6 +113,9 @@ def ring_holds(system: System, speeds: npt.ArrayLike, n_conf: int,
     out = np.empty(W.size)
     for j, w in enumerate(W):
         reach = synchronous_liquid(system.liquid, float(w), system.gravity.g).linear_range
+        if reach <= 0.0:                # a puddle (or a ring broken by gravity alone)
+            out[j] = 0.0
+            continue
         out[j] = np.mean(np.abs(steady_deflection(system, float(w), alpha, response)) <= reach)
     return out
 
