@@ -190,6 +190,7 @@ def check_immobility(n_conf: int, n_balls: int, n_speeds: int = 1, n_sets: int =
     check_runtime(field, n_conf, k * n_balls * n_speeds * n_sets * IMMOBILITY_COST_S,
                   f"immobility grid ({k:.3g} configurations x {n_speeds * n_sets} speeds)")
 
+
 def configurations(n_conf: int, n_balls: int) -> np.ndarray:
     """The ball configurations of :func:`immobility`: n_conf equispaced positions per ball, the
     full product (uniform on the torus).
