@@ -96,6 +96,51 @@ def test_simulate_takes_any_liquid_machine_and_its_overrides():
     assert d["omega_n_rad_s"] == pytest.approx(54.0) and c["omega_n_rad_s"] < 54.0  # same k
 
 
+def test_simulate_on_a_horizontal_axis_is_the_fill_maps_model(tmp_path):
+    """``liquid simulate`` on the washer's ring (horizontal axis): its start speed is
+    sqrt(g / (R/10)), its steady amplitudes are the fill map's (steady_amplitude, axis
+    "horizontal": a puddle below the start, the planar ring above) to the root's tolerance, and
+    so are its fill sweeps; the lumped model (003's vertical bench) is refused. Until stop 33
+    the command refused a horizontal axis."""
+    import math
+
+    from autobalance.config import load_config
+    from autobalance.liquid.simulate import film_rotor
+    from autobalance.liquid.steady import chambers_fill_sweep, steady_amplitude
+
+    d = _json(["simulate", "leblanc_washer", "--omega", "10:120 1/s:12", "--fill-sweep",
+               "--plot", str(tmp_path / "f.png")])
+    s = load_config("leblanc_washer").system
+    c, g = s.liquid.chambers[0], s.gravity.g
+    ch = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume)]
+    assert d["axis"] == "horizontal"
+    assert d["omega_0_rad_s"] == pytest.approx(math.sqrt(g / (0.1 * c.chamber_radius)), rel=1e-12)
+    rot = film_rotor(s)
+    ref = [steady_amplitude(rot, ch, s.liquid.density, w, g, axis="horizontal")
+           for w in d["omega_rad_s"]]
+    assert d["amplitude_m"] == pytest.approx(ref, rel=1e-8)
+    sw = d["fill_sweep"][2]                                      # at omega_n
+    per = [[ch[0][:3] + (v,)] for v in sw["volume_m3"]]
+    want = chambers_fill_sweep(rot, per, s.liquid.density, sw["omega_rad_s"], g, "horizontal")
+    assert sw["amplitude_m"] == pytest.approx(list(want["amplitude_m"]), rel=1e-8)
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_simulate_run_up_on_a_horizontal_axis_is_the_machines_run():
+    """``liquid simulate --run-up`` on the washer (a linear run-up 0 -> 1000 rpm in 30 s, the
+    preset's own profile) is the film model with gravity through that profile: its peak equals
+    `autobalance simulate`'s run of the machine."""
+    from autobalance.config import load_config
+    from autobalance.liquid.simulate import simulate_liquid
+
+    d = _json(["simulate", "leblanc_washer", "--omega", "20, 60, 100 1/s", "--run-up"])
+    cfg = load_config("leblanc_washer")
+    sim = simulate_liquid(cfg.system, cfg.spin)
+    assert d["run_up"]["peak_amplitude_m"] == pytest.approx(float(sim.amplitude.max()), rel=1e-9)
+    assert d["run_up"]["final_amplitude_m"] == pytest.approx(float(sim.amplitude[-1]), rel=1e-9)
+
+
 @pytest.mark.parametrize("args, exc", [
     (["simulate", "--model", "exact"], ConfigError),
     (["surface", "--volume", "7 l"], ParameterError),          # larger than the chamber
@@ -104,7 +149,7 @@ def test_simulate_takes_any_liquid_machine_and_its_overrides():
     (["kinetostatic", "--k", "-1"], ParameterError),
     (["simulate", "--liquid", "honey"], ConfigError),
     (["simulate", "--placement", "magic"], ParameterError),
-    (["simulate", "leblanc_washer"], ParameterError),                      # horizontal axis
+    (["simulate", "leblanc_washer", "--model", "lumped"], ParameterError),  # horizontal axis
     (["simulate", "vub_jeffcott_004"], ConfigError),                       # no [liquid]
     (["simulate", "--set", "liquid.partitions=4"], ParameterError),        # not in this model
     (["simulate", "--set", "suspension.ky=1e5"], ParameterError),          # anisotropic

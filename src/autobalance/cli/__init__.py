@@ -20,7 +20,7 @@ import typer
 
 from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
 from . import study_design, study_liquid, study_maps, study_runup  # noqa: F401  (register their study commands)
-from .common import USER_ERRORS, one_line, print_error
+from .common import USER_ERRORS, error_text, forget_written, one_line, print_error
 
 __all__ = ["app", "main"]
 
@@ -67,6 +67,7 @@ def main(argv: Optional[list[str]] = None) -> None:
     """
     from typer._click.exceptions import NoArgsIsHelpError, UsageError
 
+    forget_written()
     try:
         rv = app(args=argv, prog_name="autobalance", standalone_mode=False)
     except NoArgsIsHelpError:           # the help was printed
@@ -76,7 +77,7 @@ def main(argv: Optional[list[str]] = None) -> None:
         print_error(f"{' '.join(exc.format_message().split())} (see {cmd} --help)")
         sys.exit(2)
     except USER_ERRORS as exc:
-        print_error(one_line(exc))
+        print_error(error_text(exc))
         sys.exit(2)
     except KeyboardInterrupt as exc:    # a SweepInterrupted says what was kept
         print_error(one_line(exc) if str(exc) else "interrupted")

@@ -147,11 +147,29 @@ def guard() -> Iterator[None]:
     try:
         yield
     except USER_ERRORS as exc:
-        raw = getattr(exc, "written", None) or _WRITTEN.get()
-        fail(as_written(one_line(exc), raw) if isinstance(exc, (ConfigError, ParameterError))
-             else one_line(exc))
+        fail(error_text(exc))
     finally:
         _WRITTEN.reset(token)
+
+
+def error_text(exc: BaseException) -> str:
+    """The one line of an input error as the CLI prints it: :func:`one_line`, a refused value
+    shown as the configuration wrote it (:func:`autobalance.config.display.as_written`, with
+    the configuration the error carries or the one :func:`load_machine` loaded last).
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error.
+    """
+    if isinstance(exc, (ConfigError, ParameterError)):
+        return as_written(one_line(exc), getattr(exc, "written", None) or _WRITTEN.get())
+    return one_line(exc)
+
+
+def forget_written() -> None:
+    """Forget the configuration :func:`load_machine` loaded last (a new command starts)."""
+    _WRITTEN.set(None)
 
 
 # -- output -------------------------------------------------------------------------------------

@@ -25,6 +25,7 @@ from ..config import ConfigError
 from ..jsonable import to_jsonable
 from ..models import ParameterError
 from .common import JsonOpt, PlotOpt, SetOpt, check_plot, load_machine, print_json
+from .liquid_figures import plot_run
 
 app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False,
@@ -266,8 +267,6 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
                  f"liquid.kinematic_viscosity={L.kinematic_viscosity!r}"]
     cfg = load_machine(source, sets, balls="liquid")
     s = cfg.system
-    s.liquid.vertical("for liquid simulate (003's bench); a horizontal machine runs with "
-                      "autobalance simulate (the film model with gravity)")
     chambers = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume)
                 for c in s.liquid.chambers]
     if s.liquid.n_chambers > 1:
@@ -280,35 +279,9 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
     return cfg, rot, bal, chambers
 
 
-def _plot_run(plot, st, w0, wn, ru, sw, device, name, rot, model, label=None) -> None:
-    """The steady response (with the run-up) or, with a fill sweep, the amplitude vs fill;
-    ``device`` is the machine's ``[liquid]`` section (its chambers and liquid), ``name`` its
-    liquid's."""
-    import logging
-
-    from ..plotting.liquid import fill_figure, response_figure
-
-    # matplotlib logs a fallback line per missing TeX font when a log axis is drawn
-    logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
-
-    R = "/".join(f"{c.chamber_radius:g}" for c in device.chambers)
-    rho = name if name != "liquid" else f"rho = {device.density:g} kg/m³"
-    if sw is not None:
-        # the fill sweep varies V: name the fixed quantities only
-        fixed = (f"R = {R} m, {rho}, "
-                 f"D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
-        fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
-                          "Amplitude vs fill (003 Fig. 5)\n" + fixed)
-    else:
-        title = (f"R = {R} m, V = {device.total_volume * 1e6:.4g} ml "
-                 f"({rho}), D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
-        fig = response_figure(st, w0, wn, ru, title)
-    fig.savefig(plot, dpi=120)
-
-
 @app.command()
 def simulate(source: Annotated[str, typer.Argument(
-                 metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
+                 metavar="PRESET|CONFIG", help="A machine with a [liquid] section (either "
                  "axis).")] = "leblanc_003",
              sets: SetOpt = None,
              volume: Annotated[Optional[str], typer.Option(
@@ -333,9 +306,11 @@ def simulate(source: Annotated[str, typer.Argument(
              as_json: JsonOpt = False, plot: PlotOpt = None):
     """A machine's rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
 
-    The machine is any config with a ``[liquid]`` section on a vertical axis (default the
-    ``leblanc_003`` preset, 003's bench); ``autobalance simulate`` runs it through its own
-    profile with the coupled film instead.
+    The machine is any config with a ``[liquid]`` section (default the ``leblanc_003``
+    preset, 003's bench); ``autobalance simulate`` runs it through its own profile with the
+    coupled film instead. On a horizontal axis (physical model only) the liquid is a puddle
+    below the film's start g/Omega^2 = R/10 and the planar ring above it (as ``study
+    fill-map``; docs/liquid.md sec. 3k), and the run-up is the film model's with gravity.
 
     Parameters
     ----------
@@ -361,7 +336,8 @@ def simulate(source: Annotated[str, typer.Argument(
     plot : str
         Figure (.png, .pdf, .svg): the response, or the fill sweep with ``--fill-sweep``.
     """
-    from ..liquid import LiquidModel, entrainment_speed, fill_sweep, run_up, steady_response
+    from ..liquid import LiquidModel, fill_sweep, run_up, steady_response
+    from ..liquid.steady import start_speed
     from ..studies.fill_map import default_fills
 
     if model_kind not in ("lumped", "physical"):
@@ -376,21 +352,26 @@ def simulate(source: Annotated[str, typer.Argument(
         raise ParameterError("liquid.chamber_radius", list(L.chamber_radius), f"{L.n_chambers} "
                              "concentric chambers: the lumped model takes one chamber (--model "
                              "physical takes several)")
+    if not physical:                # the lumped model is 003's vertical bench
+        L.vertical("for --model lumped (003's bench); --model physical takes a horizontal axis")
+    # gravity: along a vertical axis (the entrainment), in the plane of a horizontal one (the
+    # film's start g/Omega^2 = R/10; the ring planar, docs/liquid.md sec. 3k)
+    g = cfg.system.gravity.g if L.axis == "horizontal" else model.g
     if physical:
         from ..liquid.film import physical_run_up as run_up  # noqa: F811
         from ..liquid.steady import chambers_fill_sweep, chambers_steady_response
 
         if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
             raise ConfigError(f"--omega = {omega!r}: the physical model needs increasing speeds > 0")
-        st = chambers_steady_response(rot, chambers, L.density, ws, model.g)
+        st = chambers_steady_response(rot, chambers, L.density, ws, g, L.axis)
     else:
         st = steady_response(rot, bal, ws, model)
-    w0s = [entrainment_speed(V, R, h, model.g, ri) for R, h, ri, V in chambers]
+    w0s = [start_speed(V, R, h, g, axis=L.axis, inner_radius=ri) for R, h, ri, V in chambers]
     w0 = max(w0s)                                   # every chamber's liquid a ring above it
     wn = rot.natural_frequency(L.density * L.total_volume)
     w_end, t_end = float(cfg.spin.nominal_speed), float(cfg.spin.duration)
     capacity = L.density * sum(V * R for R, _, _, V in chambers)
-    out = {"machine": cfg.name, "model": model_kind, "volume_m3": L.total_volume,
+    out = {"machine": cfg.name, "model": model_kind, "axis": L.axis, "volume_m3": L.total_volume,
            "radius_m": L.chamber_radius, "chambers": len(chambers),
            "liquid": bal.liquid.name if bal is not None else (liquid or "liquid"),
            "unbalance_kg_m": rot.unbalance,
@@ -401,7 +382,7 @@ def simulate(source: Annotated[str, typer.Argument(
         out["omega_0_per_chamber_rad_s"] = w0s
     ru = sw = None
     if run:
-        if bal is None:
+        if bal is None or L.axis == "horizontal":       # the film model through the profile
             from ..liquid.simulate import ramp_run_up
 
             ru = ramp_run_up(cfg.system, w_end, t_end)
@@ -415,7 +396,7 @@ def simulate(source: Annotated[str, typer.Argument(
         vols = default_fills(L)
         if physical:
             per = [[c[:3] + (v,) for c, v in zip(chambers, chamber_fills(L, f))] for f in vols]
-            sw = [chambers_fill_sweep(rot, per, L.density, f * wn, model.g)
+            sw = [chambers_fill_sweep(rot, per, L.density, f * wn, g, L.axis)
                   for f in (0.6, 0.8, 1.0, 1.2)]
         else:
             sw = [fill_sweep(rot, bal, vols, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
@@ -423,7 +404,7 @@ def simulate(source: Annotated[str, typer.Argument(
                               "amplitude_m": s["amplitude_m"],
                               "optimum_volume_m3": s["optimum_volume_m3"]} for s in sw]
     if plot:
-        _plot_run(plot, st, w0, wn, ru, sw, L, out["liquid"], rot, model,
+        plot_run(plot, st, w0, wn, ru, sw, L, out["liquid"], rot, model,
                   "physical model" if physical else None)
         out["plot"] = plot
     if not as_json:

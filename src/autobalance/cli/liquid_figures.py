@@ -1,0 +1,61 @@
+"""The figures of ``autobalance liquid simulate`` (:mod:`autobalance.cli.liquid`)."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..liquid import LiquidModel, RunUp
+    from ..liquid.models import VerticalRotor
+    from ..models import LiquidDevice
+
+
+def plot_run(plot: str, st: dict, w0: float, wn: float, ru: RunUp | None, sw: list | None,
+             device: LiquidDevice, name: str, rot: VerticalRotor, model: LiquidModel,
+             label: str | None = None) -> None:
+    """The figure of ``liquid simulate``: the steady response (with the run-up) or, with a fill
+    sweep, the amplitude vs fill.
+
+    Parameters
+    ----------
+    plot : str
+        The figure's file (.png, .pdf, .svg).
+    st : dict
+        The steady response (:func:`autobalance.liquid.steady.chambers_steady_response`'s keys).
+    w0, wn : float
+        The film's start speed and the natural frequency [rad/s].
+    ru : RunUp or None
+        The run-up, if integrated.
+    sw : list of dict or None
+        The fill sweeps at 0.6-1.2 omega_n (:func:`autobalance.liquid.steady.
+        chambers_fill_sweep`'s keys), if computed.
+    device : autobalance.models.LiquidDevice
+        The machine's ``[liquid]`` section (its chambers and liquid).
+    name : str
+        Its liquid's name, or "liquid".
+    rot : VerticalRotor
+        The rotor (D [kg*m] for the title).
+    model : LiquidModel
+        The lumped model (its placement law names the curve unless ``label``).
+    label : str or None
+        The model's name in the title.
+    """
+    import logging
+
+    from ..plotting.liquid import fill_figure, response_figure
+
+    # matplotlib logs a fallback line per missing TeX font when a log axis is drawn
+    logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
+
+    R = "/".join(f"{c.chamber_radius:g}" for c in device.chambers)
+    rho = name if name != "liquid" else f"rho = {device.density:g} kg/m³"
+    if sw is not None:
+        # the fill sweep varies V: name the fixed quantities only
+        fixed = (f"R = {R} m, {rho}, "
+                 f"D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
+        fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
+                          "Amplitude vs fill (003 Fig. 5)\n" + fixed)
+    else:
+        title = (f"R = {R} m, V = {device.total_volume * 1e6:.4g} ml "
+                 f"({rho}), D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
+        fig = response_figure(st, w0, wn, ru, title)
+    fig.savefig(plot, dpi=120)
