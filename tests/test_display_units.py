@@ -302,3 +302,15 @@ def test_cli_refusals_speak_the_written_units():
     assert r.exit_code == 2
     assert_one_line_error(r.stderr, "profile.initial_speed = 30 rpm (3.14159 rad/s)",
                           "19.06 rad/s (182 rpm)")
+
+
+def test_the_entry_point_shows_the_liquid_groups_refusals_as_written(capsys):
+    """The liquid group raises its errors to autobalance's entry point (main), which prints
+    them as the other commands do: the value as written, its SI value beside it."""
+    from autobalance.cli import main
+
+    with pytest.raises(SystemExit) as e:
+        main(["liquid", "simulate", "--set", "liquid.volume=-3 ml"])
+    assert e.value.code == 2
+    assert_one_line_error(capsys.readouterr().err,
+                          "liquid.volume = -3 ml (-3e-06 m^3): must be > 0")
