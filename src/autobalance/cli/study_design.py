@@ -156,7 +156,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                        f"{r:.3g}: G{v:.3g}" for r, v in zip(p["ratios"], p["mean_p95_grade_G_mm_s"]))
                    + ")" + ("; at the edge of the ratios studied" if p["at_grid_edge"] else ""))
     if own:
-        typer.echo(f"  every design on the machine's own {getattr(cfg.spin, 'name', 'motor')} "
+        typer.echo(f"  every design on the machine's own {cfg.spin.name} "
                    "profile ('given'; the std, slow and tsr variants are of std and tsr "
                    "profiles)")
     typer.echo(f"  {res['n_meeting']} design{' meets' if res['n_meeting'] == 1 else 's meet'} "

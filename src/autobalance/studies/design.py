@@ -277,7 +277,7 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
     cands = candidate_designs(cfg, space, hi, variants)
     if not cands:
         raise ParameterError("profiles", space.profiles, f"none applies to this machine's "
-                             f"{getattr(cfg.spin, 'name', 'motor')} profile; available: "
+                             f"{cfg.spin.name} profile; available: "
                              f"{', '.join(variants)}")
     M, wn = cfg.system.total_mass, cfg.spin.nominal_speed
     run = dict(seed=seed, store_dir=store_dir, executor=executor, workers=workers,
