@@ -324,7 +324,7 @@ def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
     msg = str(e.value)
     assert msg.startswith("liquid") and "\n" not in msg
     assert "unbalance-range, plateau, sensitivity and runup" in msg
-    assert "speed-map, immobility and tolerances (vertical axis) and design" in msg
+    assert "speed-map, immobility and tolerances (either axis) and design" in msg
 
 
 def test_sensitivity_varies_the_liquid_viscosity_beside_balls():

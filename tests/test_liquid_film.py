@@ -84,6 +84,47 @@ def test_spin_up_lag_of_a_laminar_film():
     assert 4 * eta0 * abs(v[0]) / nu < 2300                         # laminar indeed
 
 
+def test_spin_up_lag_of_a_turbulent_film_converges_at_first_order():
+    """Water (nu = 1e-6 m^2/s) 2 mm thick under a spin-up of 5 1/s^2: the Euler force -Omega' R
+    is balanced by the Blasius wall friction lambda/(8 eta) v^2, lambda = 0.3164 Re^-1/4,
+    Re = 4 eta |v| / nu, so the film lags at |v| = (8 eta Omega' R (4 eta/nu)^(1/4) /
+    0.3164)^(4/7) = 0.656 m/s (Re 5250, in the turbulent branch of core/shallow_water.py::
+    friction_rate, above the laminar law's 3 nu / eta^2). The scheme's friction rate is taken
+    after the step's forcing, so the lag is short by O(dt): measured 5.1e-3, 2.6e-3, 1.3e-3,
+    6.6e-4 on 32-256 cells (the CFL step halves with the cell)."""
+    nu, wd, eta0 = 1e-6, 5.0, 2e-3
+    t = np.array([0.0, 5.0])
+    v_blasius = (8 * eta0 * wd * R * (4 * eta0 / nu) ** 0.25 / 0.3164) ** (4 / 7)
+    err = []
+    for n in (64, 128, 256):
+        r = film_run(R, H, eta0 * 2 * math.pi * R * H, (t, W + wd * t), 5.0, viscosity=nu,
+                     n_cells=n)
+        v = r.discharge[-1] / r.thickness[-1]
+        assert np.ptp(v) < 1e-12                   # uniform: no wave
+        err.append(-v[0] / v_blasius - 1)
+    assert all(1.9 < a / b < 2.1 for a, b in zip(err, err[1:]))   # first order in dt
+    assert -1e-3 < err[-1] < 0
+    re = 4 * eta0 * v_blasius / nu
+    assert re > 2039 and 0.3164 * re ** -0.25 * v_blasius / (8 * eta0) > 3 * nu / eta0 ** 2
+
+
+def test_wall_friction_is_continuous_where_blasius_overtakes_the_laminar_law():
+    """friction_rate is the larger of the laminar 3 nu / eta^2 and Blasius: they cross at Re =
+    (96 / 0.3164)^(4/3) = 2039, so k has no jump there (a switch at Re 2300 jumped by 9 %)."""
+    from autobalance.core.shallow_water import friction_rate
+
+    nu, eta = 1e-6, 2e-3
+    re_x = (96 / 0.3164) ** (4 / 3)
+    ks = [friction_rate(eta, re * nu / (4 * eta), nu, R) for re in (re_x * 0.999, re_x,
+                                                                    re_x * 1.001)]
+    assert ks[0] == pytest.approx(3 * nu / eta ** 2, rel=1e-12)
+    assert max(ks) / min(ks) - 1 < 2e-3          # continuous: 1e-3 of Re moves k by < 2e-3
+    v = 5000 * nu / (4 * eta)                     # well into the turbulent branch
+    assert friction_rate(eta, v, nu, R) == pytest.approx(0.3164 * 5000 ** -0.25 * v / (8 * eta),
+                                                         rel=1e-12)
+    assert friction_rate(1e-15, v, nu, R) == 0.0  # a dry cell
+
+
 @pytest.mark.parametrize("kw,field", [({"speed": 0.0}, "speed"), ({"volume": 0.01}, "volume"),
                                       ({"n_cells": 4}, "n_cells"),
                                       ({"initial": (np.zeros(3), np.zeros(3))}, "initial")])
@@ -226,3 +267,27 @@ def test_film_at_rest_on_a_centred_wall_is_uniform(volume):
                                         "profile.duration=4 s", "profile.ramp_time=4 s",
                                         "profile.end_speed=40 1/s"])
         assert simulate_liquid(c.system, c.spin).status == "ok"
+
+
+def test_the_coupled_run_up_converges_under_grid_refinement():
+    """A nonlinear run: 003's bench with 150 ml of water, the film coupled with the rotor from
+    omega_0 through resonance to 80 1/s (physical_run_up, the bench's 5 1/s^2). Doubling the
+    cells (64 -> 512; the CFL step halves with them) halves the change of the amplitude at
+    65 1/s (measured ratios 2.11, 2.09, 2.01: first order, as the scheme) and shrinks the peak's
+    change faster (3.3, 3.5). Richardson's limit at 65 1/s from 256/512 cells is 2.1356 mm (1024
+    cells: 2.1404); 256 cells, the default, are 0.9 % above it."""
+    from autobalance.liquid.film import physical_run_up
+    from autobalance.papers.p003.bench import bench
+
+    b = bench()
+    peak, at65 = [], []
+    for n in (64, 128, 256, 512):
+        r = physical_run_up(b.rotor, b.balancer_with(150e-6), 80.0, 16.0, n_cells=n)
+        a = np.asarray(r.amplitude)
+        peak.append(a.max())
+        at65.append(np.interp(65.0, r.omega, a))
+    d65, dpk = np.abs(np.diff(at65)), np.abs(np.diff(peak))
+    assert all(1.7 < x / y < 2.4 for x, y in zip(d65, d65[1:]))
+    assert all(x / y > 2.4 for x, y in zip(dpk, dpk[1:]))
+    limit = at65[-1] - d65[-1]                        # Richardson, first order
+    assert abs(at65[2] / limit - 1) < 0.012

@@ -19,7 +19,7 @@ from typing import Optional
 import typer
 
 from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
-from . import study_design, study_liquid, study_maps, study_runup  # noqa: F401  (register their study commands)
+from . import liquid_check, study_design, study_liquid, study_maps, study_runup  # noqa: F401  (register their commands)
 from .common import USER_ERRORS, error_text, forget_written, one_line, print_error
 
 __all__ = ["app", "main"]

@@ -60,7 +60,7 @@ class System:
                  "unbalance-range and runup, and `autobalance liquid stability`")
         if self.liquid is not None and not allow_liquid:
             other = ("the studies start-positions, unbalance-range, plateau, sensitivity and "
-                     "runup (simulations), speed-map, immobility and tolerances (vertical axis) "
+                     "runup (simulations), speed-map, immobility and tolerances (either axis) "
                      "and design take balls beside a liquid; a liquid balancer runs "
                      "with `autobalance simulate` (and `sweep`)" if self.balancer.n_balls
                      else alone)

@@ -1,0 +1,115 @@
+"""``autobalance liquid kinetostatic-check``: 001's kinetostatic laws against the liquid from
+physics on a machine (:func:`autobalance.liquid.kinetostatic_check.kinetostatic_vs_physics`;
+docs/liquid.md sec. 2b). Registered on the liquid group (:mod:`autobalance.cli.liquid`)."""
+from __future__ import annotations
+
+from typing import Annotated, Optional
+
+import numpy as np
+import typer
+
+from ..config import ConfigError
+from .common import JsonOpt, PlotOpt, SetOpt
+from .liquid import _check_plot, _list, _machine, _out, _q, app
+
+
+@app.command("kinetostatic-check")
+def kinetostatic_check(source: Annotated[str, typer.Argument(
+                           metavar="PRESET|CONFIG", help="A machine with a [liquid] section "
+                           "(one chamber, vertical axis).")] = "leblanc_003",
+                       sets: SetOpt = None,
+                       liquid: Annotated[Optional[str], typer.Option(
+                           help="One of 001's liquids (sets density and viscosity).")] = None,
+                       omega: Annotated[str, typer.Option(help="Speeds.")] = "40:100 1/s:13",
+                       settle: Annotated[str, typer.Option(
+                           help="Also run the coupled film this long at each speed ('0 s': "
+                                "the quasi-static liquid only).")] = "4 s",
+                       as_json: JsonOpt = False, plot: PlotOpt = None):
+    """001's liquid angle (eq 3), friction angle (eq 6) and residual (eq 1) against the liquid
+    from physics, speed by speed.\f
+
+    Parameters
+    ----------
+    source : str
+        Preset name or .toml file of the machine (one chamber on a vertical axis).
+    sets : list of str
+        ``PATH=VALUE`` overrides (``--set``).
+    liquid : str
+        One of 001's liquids (density and viscosity); default the machine's.
+    omega : str
+        Increasing speeds [1/s, or with units].
+    settle : str
+        Time of each coupled-film run [s, or with units]; 0: none.
+    as_json : bool
+        One JSON object instead of text.
+    plot : str
+        Figure (.png, .pdf, .svg): the liquid's angle and the residual against speed.
+    """
+    from ..liquid.kinetostatic_check import kinetostatic_vs_physics
+
+    cfg, rot, bal, chambers = _machine(source, sets, None, liquid, None, None)
+    L = cfg.system.liquid
+    if bal is None:
+        raise ConfigError(f"liquid.chamber_radius = {list(L.chamber_radius)}: 001's laws take "
+                          "one chamber")
+    L.vertical("for 001's kinetostatic laws (a vertical rotor)")
+    _check_plot(plot)
+    ws = _list(omega, "speed", "omega")
+    if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
+        raise ConfigError(f"--omega = {omega!r}: must be increasing speeds > 0")
+    t = _q(settle, "time", "settle")
+    if not 0 <= t <= 60:
+        raise ConfigError(f"--settle = {settle!r}: must be 0-60 s")
+    res = kinetostatic_vs_physics(rot, chambers[0], L.density, L.kinematic_viscosity, ws,
+                                  arc=bal.arc, settle_time=t)
+    out = {"machine": cfg.name, "liquid": bal.liquid.name, "density_kg_m3": L.density,
+           "kinematic_viscosity_m2_s": L.kinematic_viscosity, "arc_rad": bal.arc,
+           "settle_s": t, **res}
+    if plot:
+        _figure(res, f"{cfg.name}: 001's kinetostatics against the liquid from physics",
+                t > 0).savefig(plot, dpi=120)
+        out["plot"] = plot
+    if as_json:
+        _out(out, True)
+        return
+    _table(out)
+
+
+def _table(out: dict) -> None:
+    """The comparison as a table, one speed per row, angles in degrees."""
+    film = "alpha_film_deg" in out
+    typer.echo(f"{out['machine']}: {out['liquid']} (rho {out['density_kg_m3']:g} kg/m^3, nu "
+               f"{out['kinematic_viscosity_m2_s']:.3g} m^2/s); angles from the unbalance D [deg]")
+    head = ("omega[1/s]  delta     k   alpha_qs" + ("  alpha_film" if film else "")
+            + "  alpha0(001)  beta(001)  ec/e  ec/e(001)")
+    typer.echo(head)
+    for i, w in enumerate(out["omega_rad_s"]):
+        row = (f"{w:10.4g} {out['delta_deg'][i]:6.1f} {out['k'][i]:5.3f} "
+               f"{out['alpha_deg'][i]:10.1f}")
+        if film:
+            row += f" {out['alpha_film_deg'][i]:11.1f}"
+        row += (f" {out['alpha0_deg'][i]:12.1f} {out['beta_deg'][i]:10.2f} "
+                f"{out['ec_over_e'][i]:5.3f} {out['ec_over_e_001'][i]:10.3f}")
+        typer.echo(row)
+    typer.echo("nan: no liquid ring (below the entrainment speed) or no root of 001 eq 2 "
+               "(k < sin delta)")
+
+
+def _figure(res: dict, title: str, film: bool):
+    """Two panels against speed: |liquid angle| (physics, 001 eq 3, eq 3 - eq 6) and the
+    residual ratio e_c/e (physics, 001 eq 1)."""
+    from ..plotting.liquid import curves_figure
+
+    w = res["omega_rad_s"]
+    ang = [("quasi-static liquid", np.abs(res["alpha_deg"]), "k-"),
+           ("001 eq 3: α0", np.abs(res["alpha0_deg"]), "b--"),
+           ("001 eq 3 − eq 6: α0 − β", np.abs(res["alpha_001_deg"]), "c:")]
+    if film:
+        ang.insert(1, ("coupled film (settled)", np.abs(res["alpha_film_deg"]), "ro"))
+    return curves_figure(
+        [{"x": w, "xlabel": "speed Ω [1/s]", "ylabel": "liquid angle from D |α| [deg]",
+          "title": "where the liquid sits", "curves": ang},
+         {"x": w, "xlabel": "speed Ω [1/s]", "ylabel": "residual e_c/e = |D + U_l|/|D| [-]",
+          "title": "residual unbalance",
+          "curves": [("physics", res["ec_over_e"], "k-"),
+                     ("001 eq 1 at α0 − β", res["ec_over_e_001"], "c:")]}], title)
