@@ -30,7 +30,7 @@ __all__ = ["compute_fill_map", "compute_linear_map", "compute_stability_map", "d
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
 SPEED_RATIOS = (0.3, 2.0)
 #: Efficiencies within this fraction of the best count as equal [-] (above resonance the
-#: physical model's efficiency is flat in the fill once the film breaks).
+#: physical model's efficiency is flat in the fill once the film closes into an intact ring).
 TIE = 0.01
 
 

@@ -116,10 +116,10 @@ def _overfill_row(rows: Rows, b: Bench) -> None:
     rows.add("overfill_worse", "water at omega_r: A(200-350 ml) > A(optimum) ",
              f"optimum {sw['optimum_volume_m3'] / ML:.0f} ml; "
              + ("all larger fills worse" if worse else "not all worse"), "direction", worse,
-             "" if worse else "at resonance the whirl falls with the fill until the film "
-             "breaks, then stays flat: over-filling does not hurt the steady whirl (physics); "
-             "001 explains its loss by surface waves, which the stability map shows as a whirl "
-             "not reached")
+             "" if worse else "at resonance the whirl falls with the fill while the film is "
+             "broken (a crescent), then stays flat once it closes into an intact ring: "
+             "over-filling does not hurt the steady whirl (physics); 001 explains its loss by "
+             "surface waves, which the stability map shows as a whirl not reached")
 
 
 def run_fig3_6(ctx: Context) -> Outcome:

@@ -25,7 +25,8 @@ if TYPE_CHECKING:
 __all__ = ["PHYSICAL_NOTE", "TIE", "fill_grid", "resonance_speeds", "run_fig5", "run_fig6"]
 
 #: Fills whose amplitude is within this fraction of the least count as optimal [-] (our tie
-#: rule: above resonance the physical model's amplitude is flat once the film breaks).
+#: rule: above resonance the physical model's amplitude is flat once the film closes into an
+#: intact ring).
 TIE = 0.01
 #: The model behind Fig. 5 and 6 (shown in the report).
 PHYSICAL_NOTE = ("Model: the liquid from physics (docs/liquid.md sec. 3b, 3d): Newton's bucket "
@@ -86,7 +87,8 @@ def _optimum_rows(rows: Rows, b: Bench, g: dict) -> None:
         note = ("" if ok else "below resonance every fill raises the whirl, so the least fill "
                 "is best (the liquid gathers on the deflection's side, the unbalance's side "
                 "below resonance: classical physics, not 003's claim); at and above resonance "
-                "the whirl falls with the fill until the film breaks, then stays flat")
+                "the whirl falls with the fill while the film is broken (a crescent), then stays "
+                "flat once it closes into an intact ring")
         rows.add(f"optimum_fill_ml/{key}", f"least-amplitude fills (within {TIE:.0%}), R = "
                  f"{R:g} m, per omega/omega_r [ml]", shown, "published optimum at every speed",
                  ok, note)
