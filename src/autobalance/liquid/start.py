@@ -87,7 +87,8 @@ class FilmStart(NamedTuple):
         model's liquid reaches the lid, the latest chamber's) or ``"quasi-static"`` (where the
         profile first reaches :func:`film_start_speed`); or ``"pool"`` before a run of a
         motor drive from below omega_f, whose film's start the run finds
-        (:func:`autobalance.simulate.hybrid.simulate_hybrid`).
+        (:func:`autobalance.simulate.hybrid.simulate_hybrid`): then ``"spin-up"`` on a
+        vertical axis, ``"rigid"`` on a horizontal one (the liquid turned with the chamber).
     """
 
     time: float

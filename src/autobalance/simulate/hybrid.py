@@ -35,6 +35,9 @@ from .result import Simulation, SimulationError
 #: Coupling step of a pool's spin-up beside a motor-driven spin (:func:`_pool_phase`) [s]: the
 #: pools' torque lags by one step (docs/liquid.md sec. 3i).
 POOL_STEP = 1.0e-3
+#: The note of a run whose motor started below the film's start on a horizontal axis.
+RIGID_NOTE = ("before the film's start the liquid turned with the drum: its pool flow is not "
+              "modelled, its effect on the run-up is bounded (docs/liquid.md sec. 3i)")
 
 __all__ = ["LiquidPart", "check_hybrid", "check_liquid", "liquid_run", "simulate_hybrid",
            "simulate_liquid_motor"]
@@ -123,10 +126,11 @@ def check_liquid(system: System, spin: SpeedProfile | MotorDrive,
 def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
     """A motor drive beside a liquid (docs/liquid.md sec. 3i). A drive that starts at or above
     the film's start speed starts the films at t = 0 turning with the chamber (rule
-    "quasi-static"); on a vertical axis one that starts below it spins the pool up beside the
-    kernel (rule "pool": :func:`_pool_phase` finds where the film starts). Its end speed must
-    reach the film's start speed. On a horizontal axis the kernel's spin row takes gravity's
-    torque on the films' held moment (core/rhs.py)."""
+    "quasi-static"); one that starts below it runs :func:`_pool_phase` first (rule "pool"):
+    on a vertical axis the pools spin up beside the kernel, on a horizontal one the liquid turns
+    with the chamber until the film's start speed. Its end speed must reach the film's start
+    speed. On a horizontal axis the kernel's spin row takes gravity's torque on the films' held
+    moment (core/rhs.py)."""
     require_axis_gravity(system)
     liq = system.liquid
     w_f = film_start_speed(liq, system.gravity.g, g_axial)
@@ -139,12 +143,13 @@ def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
         fs = FilmStart(0.0, float(spin.initial_speed), (0.0,) * n, "quasi-static")
         chamber_films(system, fs, 256, 0j)       # the wall film's checks, before any work
         return fs
-    why = ("on a horizontal axis (the pool's drag under gravity is not modelled)"
-           if liq.axis != "vertical" else next(
-               (f"with the chamber R = {c.chamber_radius:.4g} m more than half full (outside "
+    if liq.axis == "horizontal":                 # the liquid turns with the chamber (_pool_phase)
+        chamber_films(system, FilmStart(0.0, w_f, (0.0,) * n, "quasi-static"), 256, 0j)
+        return FilmStart(0.0, float(spin.initial_speed), (0.0,) * n, "pool")
+    why = next((f"with the chamber R = {c.chamber_radius:.4g} m more than half full (outside "
                 "the spin-up model, docs/liquid.md sec. 3h)" for c in liq.chambers
                 if not within_spinup(c.chamber_radius, c.chamber_height, c.inner_radius,
-                                     c.volume)), None))
+                                     c.volume)), None)
     if why is not None:
         raise ParameterError("profile.initial_speed", spin.initial_speed, f"must be >= the "
                              f"film's start speed {w_f:.4g} rad/s with a motor drive {why}")
@@ -156,21 +161,29 @@ def _pool_phase(system: System, g_axial: float, P: np.ndarray, B: np.ndarray, N:
                 y: np.ndarray, t_end: float, rtol: float, atol: np.ndarray, h_max: float,
                 budget: int, out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray,
                 carry: np.ndarray) -> FilmStart | None:
-    """A motor drive from below the film's start speed on a vertical axis (docs/liquid.md sec.
-    3i): each chamber's pool spins up (:class:`autobalance.liquid.spinup.PoolSpin`, the
-    axisymmetric model of sec. 3h) beside the kernel, one coupling step of
-    :data:`POOL_STEP` at a time. The pools' change of angular momentum reaches the spin as a
-    torque one step late (as the films'); a chamber whose liquid has reached the lid turns on
-    with the chamber at its lag, its moment of inertia in the kernel's spin row. Returns where
-    the film starts (the end of the step in which the last chamber reached the lid, with each
-    chamber's lag), or None when the run ends (or fails) first: a pool throughout."""
+    """A motor drive from below the film's start speed (docs/liquid.md sec. 3i), one coupling
+    step of :data:`POOL_STEP` at a time. On a vertical axis each chamber's pool spins up
+    (:class:`autobalance.liquid.spinup.PoolSpin`, the axisymmetric model of sec. 3h) beside
+    the kernel: the pools' change of angular momentum reaches the spin as a torque one step late
+    (as the films'); a chamber whose liquid has reached the lid turns on with the chamber at its
+    lag, its moment of inertia in the kernel's spin row. On a horizontal axis the liquid turns
+    with the chamber from the start, its moment of inertia rho V R^2 (the films' at their start)
+    in the spin row, until the spin reaches the film's start speed. Returns where the film
+    starts (the end of the step in which the last chamber reached the lid, with each chamber's
+    lag; or in which the spin reached the film's start speed, lag 0), or None when the run ends
+    (or fails) first: a pool throughout."""
     liq = system.liquid
     W = y[-1]
-    pools = [PoolSpin(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume, liq.density,
-                      liq.kinematic_viscosity, g_axial, W) for c in liq.chambers]
+    horizontal = liq.axis == "horizontal"
+    pools = [] if horizontal else [
+        PoolSpin(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume, liq.density,
+                 liq.kinematic_viscosity, g_axial, W) for c in liq.chambers]
     H = [p.momentum(W)[0] for p in pools]
-    lags = [0.0] * len(pools)
-    t, Ic, Tl = 0.0, 0.0, 0.0
+    lags = [0.0] * liq.n_chambers
+    t, Tl = 0.0, 0.0
+    Ic = sum(liq.density * c.volume * c.chamber_radius ** 2 for c in liq.chambers) \
+        if horizontal else 0.0
+    w_f = film_start_speed(liq, system.gravity.g, g_axial) if horizontal else np.inf
     while True:
         t1 = min(t + POOL_STEP, t_end)
         P[P_LQI], P[P_LQT] = Ic, Tl
@@ -191,9 +204,9 @@ def _pool_phase(system: System, g_axial: float, P: np.ndarray, B: np.ndarray, N:
                     Ic += Ik
         Tl = -dH / (t1 - t)
         t, W = t1, W1
-        if all(p.lid_time is not None for p in pools):
+        if W >= w_f or (pools and all(p.lid_time is not None for p in pools)):
             P[P_LQI] = P[P_LQT] = 0.0
-            return FilmStart(t, float(W), tuple(lags), "spin-up")
+            return FilmStart(t, float(W), tuple(lags), "rigid" if horizontal else "spin-up")
 
 
 def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
@@ -308,8 +321,11 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
     per = np.stack([at_outputs(per_f[:, j]) for j in range(per_f.shape[1])], axis=-1)
     part = LiquidPart(per.sum(axis=1), at_outputs(sync_f), per, float(t0), float(w0),
                       int(steps))
-    return _finish(Simulation(system, spin, initial, options, out_t, out_y, stats, order,
-                              liquid=part), status, message, throw)
+    sim = _finish(Simulation(system, spin, initial, options, out_t, out_y, stats, order,
+                             liquid=part), status, message, throw)
+    if fs.rule == "rigid" and sim.status == "ok":
+        sim.message = RIGID_NOTE
+    return sim
 
 
 def _finish(sim: Simulation, status: str, message: str, throw: bool) -> Simulation:
@@ -370,9 +386,10 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
     return LiquidSimulation(system, sim.t, sim.speed, sim.u + 1j * sim.v, part.unbalance,
                             part.synchronous_unbalance, part.film_start, part.film_start_speed,
                             float(spin.nominal_speed), part.steps, sim.status,
-                            sim.message if sim.status != "ok" else "" if part.film_start >= 0
-                            else "no film: the drive ended before the liquid reached the lid "
-                            "(a pool throughout)",
+                            sim.message if sim.status != "ok" or sim.message == RIGID_NOTE
+                            else "" if part.film_start >= 0
+                            else "no film: the drive ended before the film's start (on a "
+                            "vertical axis the liquid reaching the lid; a pool throughout)",
                             None if len(ch) == 1 else part.chamber_unbalance, motor=True,
                             time_to_final_speed=sim.summary()["time_to_final_speed_s"])
 
