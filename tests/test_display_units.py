@@ -289,18 +289,19 @@ def test_a_refusal_is_unchanged_unless_its_value_is_the_written_one():
 
 def test_cli_refusals_speak_the_written_units():
     """End to end: a bad value at load time (the model's check) and a refusal after loading (a
-    motor drive on a horizontal axis from below the film's start, before any work) both name
-    the value as written and, for the second, the film's start speed in rpm too; one line,
-    exit 2."""
+    motor drive on a horizontal axis that ends below the film's start, before any work) both
+    name the value as written and, for the second, the film's start speed in rpm too; one
+    line, exit 2."""
     r = run("simulate", "washer_000", *sets(["rotor.mass=-2 g"]))
     assert r.exit_code == 2
     assert_one_line_error(r.stderr, "rotor.mass = -2 g (-0.002 kg): must be > 0")
     r = run("simulate", "examples/toploader-ring.toml", "--profile", "motor",
-            *sets(["profile.law=linear", "profile.torque=25 N*m", "profile.final_speed=700 rpm",
+            *sets(["profile.law=linear", "profile.torque=25 N*m", "profile.final_speed=150 rpm",
                    "profile.initial_speed=30 rpm", "profile.duration=5 s",
-                   "liquid.axis=horizontal", "gravity.g=9.81"]))
+                   "rotor.polar_inertia=0.5 kg*m^2", "liquid.axis=horizontal",
+                   "gravity.g=9.81"]))
     assert r.exit_code == 2
-    assert_one_line_error(r.stderr, "profile.initial_speed = 30 rpm (3.14159 rad/s)",
+    assert_one_line_error(r.stderr, "profile.final_speed = 150 rpm (15.708 rad/s)",
                           "19.06 rad/s (182 rpm)")
 
 

@@ -126,6 +126,21 @@ def test_simulate_on_a_horizontal_axis_is_the_fill_maps_model(tmp_path):
     assert (tmp_path / "f.png").stat().st_size > 10_000
 
 
+def test_simulate_text_speaks_the_machines_units():
+    """The text of ``liquid simulate`` shows unit-suffixed values in the units the machine was
+    written in (the washer's speeds in rpm), or SI with ``--units si``; JSON stays SI."""
+    import math
+
+    r = runner.invoke(app, ["simulate", "leblanc_washer", "--omega", "10:120 1/s:12"])
+    assert r.exit_code == 0, r.output
+    w0 = math.sqrt(9.81 / 0.026) * 30 / math.pi                # sqrt(g/(R/10)) [rpm]
+    line = next(x for x in r.output.splitlines() if x.startswith("omega_0 "))
+    assert line.split()[-1] == "rpm" and float(line.split()[1]) == pytest.approx(w0, rel=1e-3)
+    r = runner.invoke(app, ["simulate", "leblanc_washer", "--omega", "10:120 1/s:12",
+                            "--units", "si"])
+    assert any(x.startswith("omega_0 ") and x.endswith("rad/s") for x in r.output.splitlines())
+
+
 @pytest.mark.slow
 def test_simulate_run_up_on_a_horizontal_axis_is_the_machines_run():
     """``liquid simulate --run-up`` on the washer (a linear run-up 0 -> 1000 rpm in 30 s, the

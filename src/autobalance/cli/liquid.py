@@ -24,7 +24,7 @@ import typer
 from ..config import ConfigError
 from ..jsonable import to_jsonable
 from ..models import ParameterError
-from .common import JsonOpt, PlotOpt, SetOpt, check_plot, load_machine, print_json
+from .common import JsonOpt, PlotOpt, SetOpt, UnitsOpt, check_plot, load_machine, print_json
 from .liquid_figures import plot_run
 
 app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
@@ -40,12 +40,17 @@ GOpt = Annotated[str, typer.Option("--g", help="Gravity; 003's printed speeds us
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 
-def _out(obj: dict, as_json: bool) -> None:
-    """One JSON object, or ``key  value`` lines (long lists cut to their first 8 values)."""
+def _out(obj: dict, as_json: bool, units=None) -> None:
+    """One JSON object, or ``key  value`` lines (long lists cut to their first 8 values; with
+    ``units``, a DisplayUnits, unit-suffixed numbers in those units: :func:`.simulate.shown`)."""
     if as_json:
         print_json(obj)
         return
+    from .simulate import shown
+
     for k, v in to_jsonable(obj).items():
+        if units is not None and isinstance(v, (int, float)) and not isinstance(v, bool):
+            k, v = shown(k, v, units)
         if isinstance(v, list) and len(v) > 8:
             v = f"[{', '.join(f'{x:.4g}' if isinstance(x, float) else str(x) for x in v[:8])}, ...]"
         elif isinstance(v, float):
@@ -303,7 +308,7 @@ def simulate(source: Annotated[str, typer.Argument(
                  "--model", help="physical (the liquid in the displaced chamber; the run-up "
                                  "couples the wall film and starts at omega_0) or lumped (the "
                                  "calibrated engagement of the first release).")] = "physical",
-             as_json: JsonOpt = False, plot: PlotOpt = None):
+             as_json: JsonOpt = False, plot: PlotOpt = None, units: UnitsOpt = None):
     """A machine's rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
 
     The machine is any config with a ``[liquid]`` section (default the ``leblanc_003``
@@ -335,7 +340,10 @@ def simulate(source: Annotated[str, typer.Argument(
         "physical" (docs/liquid.md sec. 3b-3d) or "lumped" (sec. 3).
     plot : str
         Figure (.png, .pdf, .svg): the response, or the fill sweep with ``--fill-sweep``.
+    units : str
+        Units of the text (JSON stays SI): default as written in the machine's config.
     """
+    from ..config.display import display_units
     from ..liquid import LiquidModel, fill_sweep, run_up, steady_response
     from ..liquid.steady import start_speed
     from ..studies.fill_map import default_fills
@@ -411,7 +419,7 @@ def simulate(source: Annotated[str, typer.Argument(
         out = {k: v for k, v in out.items() if not isinstance(v, (np.ndarray, list, dict))} | {
             "max_amplitude_m": float(np.nanmax(st["amplitude_m"])),
             "max_amplitude_dry_m": float(np.max(st["amplitude_dry_m"]))}
-    _out(out, as_json)
+    _out(out, as_json, None if as_json else display_units(cfg, units))
 
 
 @app.command()
