@@ -103,3 +103,18 @@ def test_cli_refusals_are_one_line(args, field):
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:") and field in lines[0], p.stderr
+
+
+def test_the_001_report_shows_the_comparison():
+    """``reproduce 001-eq3-4`` carries the comparison beside 001's closed forms: a figure, a
+    dataset over speed and a note with its figures (not a published number: no row)."""
+    from autobalance.papers.p001.kinetostatics import run_eq3_4
+    from autobalance.validation.target import Context
+
+    out = run_eq3_4(Context(quick=True))
+    ds = out.data["vs-physics"]
+    assert set(out.figures) == {"eq3_4", "vs-physics"} and ds.sizes["omega_rad_s"] == 7
+    ring = np.isfinite(ds["alpha_film_deg"].values)
+    assert ring.all()                                # 40-100 1/s: above omega_0 (22.7 1/s)
+    assert np.abs(ds["alpha_film_deg"] - ds["alpha_deg"]).max() < 1.5
+    assert "Against the physics" in out.notes and len(out.rows) == 4

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 from typing import Annotated, Optional
 
-import numpy as np
 import typer
 
 from ..config import ConfigError
@@ -46,6 +45,7 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
         Figure (.png, .pdf, .svg): the liquid's angle and the residual against speed.
     """
     from ..liquid.kinetostatic_check import kinetostatic_vs_physics
+    from ..plotting.liquid_check import kinetostatic_check_figure
 
     cfg, rot, bal, chambers = _machine(source, sets, None, liquid, None, None)
     L = cfg.system.liquid
@@ -66,8 +66,8 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
            "kinematic_viscosity_m2_s": L.kinematic_viscosity, "arc_rad": bal.arc,
            "settle_s": t, **res}
     if plot:
-        _figure(res, f"{cfg.name}: 001's kinetostatics against the liquid from physics",
-                t > 0).savefig(plot, dpi=120)
+        kinetostatic_check_figure(res, f"{cfg.name}: 001's kinetostatics against the liquid "
+                                       "from physics").savefig(plot, dpi=120)
         out["plot"] = plot
     if as_json:
         _out(out, True)
@@ -93,23 +93,3 @@ def _table(out: dict) -> None:
         typer.echo(row)
     typer.echo("nan: no liquid ring (below the entrainment speed) or no root of 001 eq 2 "
                "(k < sin delta)")
-
-
-def _figure(res: dict, title: str, film: bool):
-    """Two panels against speed: |liquid angle| (physics, 001 eq 3, eq 3 - eq 6) and the
-    residual ratio e_c/e (physics, 001 eq 1)."""
-    from ..plotting.liquid import curves_figure
-
-    w = res["omega_rad_s"]
-    ang = [("quasi-static liquid", np.abs(res["alpha_deg"]), "k-"),
-           ("001 eq 3: α0", np.abs(res["alpha0_deg"]), "b--"),
-           ("001 eq 3 − eq 6: α0 − β", np.abs(res["alpha_001_deg"]), "c:")]
-    if film:
-        ang.insert(1, ("coupled film (settled)", np.abs(res["alpha_film_deg"]), "ro"))
-    return curves_figure(
-        [{"x": w, "xlabel": "speed Ω [1/s]", "ylabel": "liquid angle from D |α| [deg]",
-          "title": "where the liquid sits", "curves": ang},
-         {"x": w, "xlabel": "speed Ω [1/s]", "ylabel": "residual e_c/e = |D + U_l|/|D| [-]",
-          "title": "residual unbalance",
-          "curves": [("physics", res["ec_over_e"], "k-"),
-                     ("001 eq 1 at α0 − β", res["ec_over_e_001"], "c:")]}], title)

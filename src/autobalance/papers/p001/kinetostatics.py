@@ -64,7 +64,38 @@ def run_eq3_4(ctx: Context) -> Outcome:
     ds = xr.Dataset({"alpha0_deg": (("k", "delta_deg"), np.degrees(a0)),
                      "efficiency": (("k", "delta_deg"), ef)},
                     coords={"k": ks, "delta_deg": np.degrees(d)}, attrs={"source": "001 eq 3-4"})
-    return Outcome(rows, {"eq3_4": fig}, ds, f"closed forms on {d.size} phase angles")
+    vs, fig_vs, note = _against_physics(ctx)
+    return Outcome(rows, {"eq3_4": fig, "vs-physics": fig_vs}, {"": ds, "vs-physics": vs},
+                   f"closed forms on {d.size} phase angles. {note}")
+
+
+def _against_physics(ctx: Context) -> tuple:
+    """001's laws at the physical phase and ratio of 003's bench (150 ml of water), beside the
+    quasi-static liquid and the settled coupled film (docs/liquid.md sec. 2b): (Dataset,
+    figure, note)."""
+    from ...liquid.kinetostatic_check import kinetostatic_vs_physics
+    from ...plotting.liquid_check import kinetostatic_check_figure
+
+    b = bench()
+    c, L = b.balancer.chamber, b.balancer.liquid
+    ws = np.linspace(40.0, 100.0, grid(ctx, 7, 13))
+    res = kinetostatic_vs_physics(b.rotor, (c.radius, c.height, c.inner_radius, b.balancer.volume),
+                                  L.density, L.kinematic_viscosity, ws, arc=b.balancer.arc,
+                                  settle_time=4.0)
+    gap = np.abs(res["alpha_deg"]) - np.abs(res["alpha0_deg"])
+    film = np.abs(res["alpha_film_deg"] - res["alpha_deg"])
+    ok = np.isfinite(gap)
+    note = (f"Against the physics (003's bench, 150 ml of water, {ws[0]:g}-{ws[-1]:g} 1/s, not a "
+            "published number): the quasi-static liquid sits on the deflection, the coupled film "
+            f"settles within {np.nanmax(film):.2f} deg of it, and 001 eq 3 at the physical "
+            f"phase and k puts it {gap[ok].min():.1f}-{gap[ok].max():.1f} deg short where eq 2 "
+            f"has a root ({int(ok.sum())} of {ws.size} speeds; docs/liquid.md sec. 2b).")
+    fig = kinetostatic_check_figure(res, "001's kinetostatics against the liquid from physics "
+                                         "(003's bench, 150 ml water)")
+    ds = xr.Dataset({k: ("omega_rad_s", np.asarray(v, float)) for k, v in res.items()
+                     if k != "omega_rad_s"}, coords={"omega_rad_s": ws},
+                    attrs={"source": "001 eq 1, 3, 6 against docs/liquid.md sec. 2b's physics"})
+    return ds, fig, note
 
 
 def run_eq5_7(ctx: Context) -> Outcome:
