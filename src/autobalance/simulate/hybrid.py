@@ -221,8 +221,9 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
         Rotor, suspension (any the ball simulator takes), balls and a ``[liquid]`` section
         ([gravity] in the plane on a horizontal axis).
     spin : SpeedProfile or MotorDrive
-        Prescribed speed [rad/s] over time [s], or a motor drive (from and to speeds at or
-        above the film's start [rad/s]; docs/liquid.md sec. 3i).
+        Prescribed speed [rad/s] over time [s], or a motor drive (from any speed, on a
+        vertical axis with every chamber at most half full below the film's start; to a speed
+        at or above the film's start [rad/s]; docs/liquid.md sec. 3i).
     initial : InitialState, optional
         Ball angles [rad] and rotor state at t = 0 (:func:`autobalance.simulate`'s default).
     options : SimOptions, optional
@@ -344,9 +345,11 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
     """A liquid alone (no balls) under a motor drive: :func:`simulate_hybrid`'s kernel with no
     balls, the spin a degree of freedom taking the films' inertia and torque (docs/liquid.md
     sec. 3i), read as a run of :func:`autobalance.liquid.simulate.simulate_liquid`. The drive
-    starts and ends at or above the film's start speed; the run starts on the steady orbit of
-    the rotor carrying the liquid as a rigid centred mass (as ``simulate_liquid``'s), the films
-    turning with the chamber.
+    ends at or above the film's start speed. The run starts on the steady orbit of the rotor
+    carrying the liquid as a rigid centred mass (as ``simulate_liquid``'s); from the film's
+    start speed or above with the films turning with the chamber, from below it through
+    :func:`_pool_phase` (the pools' spin-up on a vertical axis, the liquid turning with the
+    drum on a horizontal one).
 
     Parameters
     ----------

@@ -85,11 +85,12 @@ def _against_physics(ctx: Context) -> tuple:
     gap = np.abs(res["alpha_deg"]) - np.abs(res["alpha0_deg"])
     film = np.abs(res["alpha_film_deg"] - res["alpha_deg"])
     ok = np.isfinite(gap)
+    eq3 = (f"puts it {gap[ok].min():.1f}-{gap[ok].max():.1f} deg short where eq 2 has a root "
+           f"({int(ok.sum())} of {ws.size} speeds" if ok.any() else "has no root at any speed (")
     note = (f"Against the physics (003's bench, 150 ml of water, {ws[0]:g}-{ws[-1]:g} 1/s, not a "
             "published number): the quasi-static liquid sits on the deflection, the coupled film "
             f"settles within {np.nanmax(film):.2f} deg of it, and 001 eq 3 at the physical "
-            f"phase and k puts it {gap[ok].min():.1f}-{gap[ok].max():.1f} deg short where eq 2 "
-            f"has a root ({int(ok.sum())} of {ws.size} speeds; docs/liquid.md sec. 2b).")
+            f"phase and k {eq3}; docs/liquid.md sec. 2b).")
     fig = kinetostatic_check_figure(res, "001's kinetostatics against the liquid from physics "
                                          "(003's bench, 150 ml water)")
     ds = xr.Dataset({k: ("omega_rad_s", np.asarray(v, float)) for k, v in res.items()
