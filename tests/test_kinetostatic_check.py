@@ -93,11 +93,27 @@ def test_cli_text_json_and_figure(tmp_path):
     assert "alpha_film" not in t.stdout
 
 
+def test_cli_text_speaks_the_machines_units():
+    """A machine of one's own (examples/toploader-ring.toml, speeds written in rpm): the table's
+    speeds in rpm, as written; ``--units speed=1/s`` switches them."""
+    p = _cli("examples/toploader-ring.toml", "--omega", "300, 600 rpm", "--settle", "0 s")
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert lines[1].split()[0] == "omega[rpm]"
+    assert [float(x.split()[0]) for x in lines[2:4]] == pytest.approx([300.0, 600.0])
+    q = _cli("examples/toploader-ring.toml", "--omega", "300, 600 rpm", "--settle", "0 s",
+             "--units", "speed=1/s")
+    assert q.stdout.splitlines()[1].split()[0] == "omega[1/s]"
+    assert float(q.stdout.splitlines()[2].split()[0]) == pytest.approx(300 * np.pi / 30,
+                                                                       rel=1e-3)
+
+
 @pytest.mark.parametrize("args,field", [
     (["leblanc_washer"], "liquid.axis"),
     (["--omega", "80, 60 1/s"], "--omega"),
     (["--settle", "-1 s"], "--settle"),
-    (["leblanc_003_three"], "liquid.chamber_radius")])
+    (["leblanc_003_three"], "liquid.chamber_radius"),
+    (["--set", "rotor.unbalance=0 kg*m", "--settle", "0 s"], "rotor.unbalance")])
 def test_cli_refusals_are_one_line(args, field):
     p = _cli(*args)
     assert p.returncode == 2

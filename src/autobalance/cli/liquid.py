@@ -75,6 +75,12 @@ def _list_unit(value: str) -> str:
     return items[-1].strip().partition(" ")[2].strip() if items else ""
 
 
+def _increasing(ws: list[float], omega: str, allowed: str) -> None:
+    """ConfigError naming ``--omega`` unless the speeds ``ws`` [rad/s] increase and are > 0."""
+    if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
+        raise ConfigError(f"--omega = {omega!r}: {allowed}")
+
+
 def _list(value: str, kind: str, field: str) -> list[float]:
     """'a:b:n' (linspace) or 'a,b,c' with units on each item or on the last; n >= 1 must fit
     the memory limit (:func:`autobalance.limits.check_memory`), checked before allocating."""
@@ -369,8 +375,7 @@ def simulate(source: Annotated[str, typer.Argument(
         from ..liquid.film import physical_run_up as run_up  # noqa: F811
         from ..liquid.steady import chambers_fill_sweep, chambers_steady_response
 
-        if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
-            raise ConfigError(f"--omega = {omega!r}: the physical model needs increasing speeds > 0")
+        _increasing(ws, omega, "the physical model needs increasing speeds > 0")
         st = chambers_steady_response(rot, chambers, L.density, ws, g, L.axis)
     else:
         st = steady_response(rot, bal, ws, model)

@@ -8,8 +8,8 @@ from typing import Annotated, Optional
 import typer
 
 from ..config import ConfigError
-from .common import JsonOpt, PlotOpt, SetOpt
-from .liquid import _check_plot, _list, _machine, _out, _q, app
+from .common import JsonOpt, PlotOpt, SetOpt, UnitsOpt
+from .liquid import _check_plot, _increasing, _list, _machine, _out, _q, app
 
 
 @app.command("kinetostatic-check")
@@ -23,7 +23,8 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
                        settle: Annotated[str, typer.Option(
                            help="Also run the coupled film this long at each speed ('0 s': "
                                 "the quasi-static liquid only).")] = "4 s",
-                       as_json: JsonOpt = False, plot: PlotOpt = None):
+                       as_json: JsonOpt = False, plot: PlotOpt = None,
+                       units: UnitsOpt = None):
     """001's liquid angle (eq 3), friction angle (eq 6) and residual (eq 1) against the liquid
     from physics, speed by speed.\f
 
@@ -43,7 +44,10 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
         One JSON object instead of text.
     plot : str
         Figure (.png, .pdf, .svg): the liquid's angle and the residual against speed.
+    units : str
+        Units of the text's speeds (JSON stays SI): default as written in the machine's config.
     """
+    from ..config.display import display_units
     from ..liquid.kinetostatic_check import kinetostatic_vs_physics
     from ..plotting.liquid_check import kinetostatic_check_figure
 
@@ -55,8 +59,7 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
     L.vertical("for 001's kinetostatic laws (a vertical rotor)")
     _check_plot(plot)
     ws = _list(omega, "speed", "omega")
-    if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
-        raise ConfigError(f"--omega = {omega!r}: must be increasing speeds > 0")
+    _increasing(ws, omega, "must be increasing speeds > 0")
     t = _q(settle, "time", "settle")
     if not 0 <= t <= 60:
         raise ConfigError(f"--settle = {settle!r}: must be 0-60 s")
@@ -72,19 +75,21 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
     if as_json:
         _out(out, True)
         return
-    _table(out)
+    _table(out, display_units(cfg, units))
 
 
-def _table(out: dict) -> None:
-    """The comparison as a table, one speed per row, angles in degrees."""
+def _table(out: dict, du) -> None:
+    """The comparison as a table, one speed per row, speeds in ``du``'s unit (a DisplayUnits),
+    angles in degrees."""
     film = "alpha_film_deg" in out
     typer.echo(f"{out['machine']}: {out['liquid']} (rho {out['density_kg_m3']:g} kg/m^3, nu "
                f"{out['kinematic_viscosity_m2_s']:.3g} m^2/s); angles from the unbalance D [deg]")
-    head = ("omega[1/s]  delta     k   alpha_qs" + ("  alpha_film" if film else "")
+    head = (f"{'omega[' + du.unit('speed') + ']':>10}  delta     k   alpha_qs"
+            + ("  alpha_film" if film else "")
             + "  alpha0(001)  beta(001)  ec/e  ec/e(001)")
     typer.echo(head)
     for i, w in enumerate(out["omega_rad_s"]):
-        row = (f"{w:10.4g} {out['delta_deg'][i]:6.1f} {out['k'][i]:5.3f} "
+        row = (f"{w * du.factor('speed'):10.4g} {out['delta_deg'][i]:6.1f} {out['k'][i]:5.3f} "
                f"{out['alpha_deg'][i]:10.1f}")
         if film:
             row += f" {out['alpha_film_deg'][i]:11.1f}"

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..models._validate import ParameterError
 from .kinetostatic import alpha0, eccentricity_ratio, friction_angle
 from .models import G_STANDARD
 from .steady import chambers_steady_response
@@ -76,11 +77,19 @@ def kinetostatic_vs_physics(rotor: VerticalRotor, chamber: tuple[float, float, f
         magnitude, same side); ec_over_e (|D + U_l|/|D|, physical) and ec_over_e_001 (001 eq 1
         at k and alpha0 - beta); with ``settle_time``
         also alpha_film_deg, k_film and delta_film_deg (the coupled film's, NaN where not run).
+
+    Raises
+    ------
+    ParameterError
+        A rotor without unbalance: 001's ratio k and every angle are taken from D.
     """
+    D = complex(rotor.unbalance)
+    if D == 0:
+        raise ParameterError("rotor.unbalance", rotor.unbalance, "must be != 0 for 001's laws "
+                             "(k = |U_l|/|D| and every angle are taken from D)")
     R, H, ri, V = chamber
     ws = np.asarray(speeds, float)
     st = chambers_steady_response(rotor, [chamber], density, ws, g)
-    D = complex(rotor.unbalance)
     w = np.asarray(st["deflection_m"], complex)
     U = np.asarray(st["liquid_unbalance_kg_m"], float) * np.exp(
         1j * np.radians(np.nan_to_num(np.asarray(st["liquid_angle_deg"], float)))) * D / abs(D)
