@@ -117,10 +117,10 @@ def test_a_motor_from_rest_on_a_horizontal_axis_turns_the_liquid_with_the_chambe
     starts at the end of the coupling step in which the spin reaches that speed, turning with
     the chamber, and the run goes on to the drive's hold."""
     J, T0, w_max = 1.0, 20.0, 1000 * math.pi / 30
-    cfg = load_config("leblanc_washer", [
-        "profile.kind=motor", "profile.law=linear", f"profile.torque={T0} N*m",
-        "profile.final_speed=1000 rpm", "profile.initial_speed=0 rpm", "profile.duration=3 s",
-        f"rotor.polar_inertia={J} kg*m^2", "rotor.unbalance=0 kg*m"])
+    cfg_sets = ["profile.kind=motor", "profile.law=linear", f"profile.torque={T0} N*m",
+                "profile.final_speed=1000 rpm", "profile.initial_speed=0 rpm",
+                f"rotor.polar_inertia={J} kg*m^2", "rotor.unbalance=0 kg*m"]
+    cfg = load_config("leblanc_washer", [*cfg_sets, "profile.duration=3 s"])
     a = simulate_liquid_motor(cfg.system, cfg.spin)
     L = cfg.system.liquid
     tau = (J + L.density * L.volume * L.chamber_radius ** 2) * w_max / T0
@@ -134,6 +134,10 @@ def test_a_motor_from_rest_on_a_horizontal_axis_turns_the_liquid_with_the_chambe
     assert np.all(a.liquid_unbalance[before] == 0) and a.steps > 0
     assert a.speed[-1] > 2 * w_f
     assert a.message == RIGID_NOTE                       # the run says what it assumed
+    short = load_config("leblanc_washer", [*cfg_sets, "profile.duration=0.5 s"])
+    b = simulate_liquid_motor(short.system, short.spin)  # ends before the film's start
+    assert b.status == "ok" and math.isnan(b.film_start)
+    assert b.message.startswith("no film") and "turned with the drum" in b.message
 
 
 def test_refusals_of_a_motor_with_a_liquid():

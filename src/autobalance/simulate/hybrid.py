@@ -391,8 +391,10 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
                             float(spin.nominal_speed), part.steps, sim.status,
                             sim.message if sim.status != "ok" or sim.message == RIGID_NOTE
                             else "" if part.film_start >= 0
-                            else "no film: the drive ended before the film's start (on a "
-                            "vertical axis the liquid reaching the lid; a pool throughout)",
+                            else "no film: the drive ended before the film's start (" + (
+                                "its speed; the liquid turned with the drum throughout)"
+                                if system.liquid.axis == "horizontal" else
+                                "the liquid reaching the lid; a pool throughout)"),
                             None if len(ch) == 1 else part.chamber_unbalance, motor=True,
                             time_to_final_speed=sim.summary()["time_to_final_speed_s"])
 
