@@ -52,6 +52,7 @@ bench: setup
 	$(BIN)/python benchmarks/run.py
 	$(BIN)/python benchmarks/sweep_bench.py
 	$(BIN)/python benchmarks/plateau_bench.py
+	$(BIN)/python benchmarks/slip_etd_bench.py
 	$(BIN)/python benchmarks/liquid_bench.py
 
 # Fault-injection trials of the sweep store (kill -9, Ctrl-C, SIGTERM, concurrent resumes).

@@ -1,0 +1,354 @@
+"""Exponential integration of slipping phases (issue 17, first step; docs/numerics.md, "An
+exponential integrator for the slipping phases").
+
+Not yet used by ``integrate``: these kernels take constant steps over an event-free window of one
+run, for measuring what the method would save (``benchmarks/slip_etd_bench.py``).
+
+The stiffness of 004's rig in the rotor frame lives in the coupled rotor-ball dynamics (rotor
+modes at omega_n +- Omega, up to ~1640 1/s). DOPRI5 then steps at its stability limit (~2 ms)
+while a ball slips. Here the state, extended by the time, z = (y, t), obeys z' = F(z). It is
+split as F(z) = L z + (F(z) - L z), with L the Jacobian of F at the window's start (finite
+differences) and the remainder non-stiff as long as the Jacobian changes little. The explicit
+exponential Runge-Kutta method of Hochbruck & Ostermann (2005, SIAM J. Numer. Anal. 43,
+1069-1090, eq. (5.19), "ETDRK4-B"; stiff order 4 for any fixed L) then integrates the linear
+part exactly:
+
+    U_i = e^{c_i h L} z + h sum_j a_ij(h L) G_j,    G_j = F(U_j) - L U_j,
+    z_new = e^{h L} z + h sum_i b_i(h L) G_i
+
+with c = (0, 1/2, 1/2, 1, 1/2) and the coefficients a_ij, b_i built from the phi functions
+phi_k(z) = sum_j z^j / (j + k)! at c_i h L. The phi functions of a small matrix are computed by
+scaling and squaring (Skaflestad & Wright 2009, Appl. Numer. Math. 59, 783-799): a Taylor series
+at A / 2^s, ||A / 2^s||_1 <= 1/2, then s doublings
+phi_k(2A) = 2^-k [phi_0(A) phi_k(A) + sum_{j=1..k} phi_j(A) / (k - j)!].
+The last doubling's input is phi_k(A / 2), which the method needs too.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .jit import kernel
+from .rhs import profile_eval, profile_segment, rhs
+
+#: Highest phi function computed (ETDRK4-B needs phi_0 .. phi_3) [-].
+K_PHI = 3
+#: Degree of the Taylor polynomial of phi_3 at the scaled argument (||B||_1 <= 1/2: the first
+#: omitted term is below 0.5^13 / 16! = 5.8e-18) [-].
+TAYLOR_DEGREE = 12
+
+
+@kernel
+def _matmul(A, B, C, m):
+    """C[:m, :m] = A[:m, :m] @ B[:m, :m] (row-wise saxpy: the inner loop runs along rows)."""
+    for i in range(m):
+        for j in range(m):
+            C[i, j] = 0.0
+        for k in range(m):
+            a = A[i, k]
+            for j in range(m):
+                C[i, j] += a * B[k, j]
+
+
+@kernel
+def phi_functions(A: np.ndarray, m: int, half: np.ndarray, full: np.ndarray,
+                  work: np.ndarray) -> int:
+    """phi_0 .. phi_3 of the m x m matrix A into full[k, :m, :m], and of A / 2 into half.
+
+    Parameters
+    ----------
+    A : ndarray (>= m, >= m)
+        The matrix (leading m x m block) [-].
+    m : int
+        Its size.
+    half, full : ndarray (4, >= m, >= m)
+        Outputs: phi_k(A / 2), phi_k(A).
+    work : ndarray (6, >= m, >= m)
+        Work space.
+
+    Returns
+    -------
+    int
+        The number of doublings s (A was scaled by 2^-s, s >= 1).
+    """
+    nrm = 0.0
+    for j in range(m):
+        c = 0.0
+        for i in range(m):
+            c += abs(A[i, j])
+        nrm = max(nrm, c)
+    s = 1
+    while nrm / 2.0 ** s > 0.5:
+        s += 1
+    sc = 2.0 ** -s
+    B = work[0]
+    T = work[1]
+    for i in range(m):
+        for j in range(m):
+            B[i, j] = A[i, j] * sc
+    # phi_3(B) = sum_{j<=12} B^j / (j + 3)! by Paterson & Stockmeyer (1973): with B2, B3, B4,
+    # phi_3 = ((q3 B4 + q2) B4 + q1) B4 + q0, q_i = sum_{r<4} B^r / (4i + r + 3)! (q3 = I / 15!);
+    # then phi_k = I / k! + B phi_{k+1}: 9 products in all
+    B2 = work[2]
+    B3 = work[3]
+    B4 = work[4]
+    _matmul(B, B, B2, m)
+    _matmul(B2, B, B3, m)
+    _matmul(B2, B2, B4, m)
+    P = full
+    P3 = P[K_PHI]
+    for i in range(m):
+        for j in range(m):
+            P3[i, j] = 1.0 / math.gamma(TAYLOR_DEGREE + K_PHI + 1) if i == j else 0.0
+    for blk in range(2, -1, -1):
+        _matmul(P3, B4, T, m)
+        c0 = 1.0 / math.gamma(4 * blk + 4)
+        c1 = 1.0 / math.gamma(4 * blk + 5)
+        c2 = 1.0 / math.gamma(4 * blk + 6)
+        c3 = 1.0 / math.gamma(4 * blk + 7)
+        for i in range(m):
+            for j in range(m):
+                P3[i, j] = (T[i, j] + c1 * B[i, j] + c2 * B2[i, j] + c3 * B3[i, j]
+                            + (c0 if i == j else 0.0))
+    for k in range(K_PHI - 1, -1, -1):
+        _matmul(B, P[k + 1], T, m)
+        for i in range(m):
+            for j in range(m):
+                P[k, i, j] = T[i, j] + (1.0 / math.gamma(k + 1) if i == j else 0.0)
+    # s doublings; the input of the last one is phi_k(A / 2)
+    Q = work[2:6]
+    for level in range(s):
+        if level == s - 1:
+            for k in range(K_PHI + 1):
+                for i in range(m):
+                    for j in range(m):
+                        half[k, i, j] = P[k, i, j]
+        for k in range(K_PHI, -1, -1):
+            _matmul(P[0], P[k], Q[k], m)
+            for jj in range(1, k + 1):
+                c = 1.0 / math.gamma(k - jj + 1)
+                for i in range(m):
+                    for j in range(m):
+                        Q[k, i, j] += c * P[jj, i, j]
+            f = 2.0 ** -k
+            for i in range(m):
+                for j in range(m):
+                    Q[k, i, j] *= f
+        for k in range(K_PHI + 1):
+            for i in range(m):
+                for j in range(m):
+                    P[k, i, j] = Q[k, i, j]
+    return s
+
+
+@kernel
+def _matvec_add(M, x, out, m, scale, accumulate):
+    """out[:m] (+)= scale * M[:m, :m] @ x[:m]."""
+    for i in range(m):
+        s = 0.0
+        for j in range(m):
+            s += M[i, j] * x[j]
+        out[i] = (out[i] if accumulate else 0.0) + scale * s
+
+
+@kernel
+def _F(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, out, yw, fw, lam, Mm,
+       fv, A, bb, idx, trig):
+    """F(z) of the method's state z (``etd_window``): the right-hand side of the run with its
+    modes, without the spin's rows (prescribed), and dt/dt = 1. yw, fw: work (n,)."""
+    nq = n // 2
+    m = n - 1
+    t = z[m - 1]
+    for i in range(nq - 1):
+        yw[i] = z[i]
+        yw[nq + i] = z[nq - 1 + i]
+    yw[nq - 1] = z[m]          # psi and psi' ride along; the prescribed spin uses the profile
+    yw[n - 1] = z[m + 1]
+    seg = profile_segment(t, prof_t)
+    rhs(t, yw, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fw, lam, Mm, fv, A,
+        bb, idx, trig)
+    for i in range(nq - 1):
+        out[i] = fw[i]
+        out[nq - 1 + i] = fw[nq + i]
+    out[m - 1] = 1.0
+
+
+@kernel
+def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int,
+             prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray,
+             stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, scale: np.ndarray,
+             L: np.ndarray, f0: np.ndarray, f1: np.ndarray, zt: np.ndarray, yw: np.ndarray,
+             fw: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray,
+             bb: np.ndarray, idx: np.ndarray, trig: np.ndarray) -> None:
+    """L = dF/dz (m = n - 1 components of z: ``etd_window``) by forward differences, column j
+    with the increment 1.5e-8 max(|z_j|, scale[j]) (scale: each component's typical magnitude).
+    Any L serves the method (its order holds for every fixed L); a good one makes the remainder
+    small."""
+    m = n - 1
+    _F(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, yw, fw, lam, Mm, fv,
+       A, bb, idx, trig)
+    for i in range(m + 2):
+        zt[i] = z[i]
+    for j in range(m):
+        d = 1.5e-8 * max(scale[j], abs(z[j]))
+        zt[j] = z[j] + d
+        _F(zt, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f1, yw, fw, lam, Mm,
+           fv, A, bb, idx, trig)
+        zt[j] = z[j]
+        for i in range(m):
+            L[i, j] = (f1[i] - f0[i]) / d
+
+
+@kernel
+def _stage(i, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+           lam, Mm, fv, A, bb, idx, trig):
+    """G[i] = F(U) - L U (fz: work)."""
+    m = n - 1
+    _F(U, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw, lam, Mm, fv, A,
+       bb, idx, trig)
+    for r in range(m):
+        s = 0.0
+        for c in range(m):
+            s += L[r, c] * U[c]
+        G[i, r] = fz[r] - s
+
+
+@kernel
+def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf: np.ndarray,
+             P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
+             unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
+             spin: np.ndarray, G: np.ndarray, U: np.ndarray, fz: np.ndarray, yw: np.ndarray,
+             fw: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray,
+             bb: np.ndarray, idx: np.ndarray, trig: np.ndarray) -> None:
+    """One ETDRK4-B step of size h [s] on the method's state z in place (module docstring;
+    layout: ``etd_window``). Ph, Pf: phi_0..3 of h L / 2 and h L (phi_functions of h L); G
+    (5, n - 1), U (n + 1,), fz (n - 1,), yw, fw (n,) work arrays."""
+    m = n - 1
+    U[m] = z[m]                 # psi and psi' of the stages: not used by the rotor frame's rhs
+    U[m + 1] = z[m + 1]
+    for r in range(m):
+        U[r] = z[r]
+    _stage(0, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+           lam, Mm, fv, A, bb, idx, trig)
+    # U2 = e^{hL/2} z + h/2 phi1(hL/2) G1
+    _matvec_add(Ph[0], z, U, m, 1.0, False)
+    _matvec_add(Ph[1], G[0], U, m, 0.5 * h, True)
+    _stage(1, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+           lam, Mm, fv, A, bb, idx, trig)
+    # U3 = e^{hL/2} z + h [(phi1/2 - phi2)(hL/2) G1 + phi2(hL/2) G2]
+    _matvec_add(Ph[0], z, U, m, 1.0, False)
+    _matvec_add(Ph[1], G[0], U, m, 0.5 * h, True)
+    _matvec_add(Ph[2], G[0], U, m, -h, True)
+    _matvec_add(Ph[2], G[1], U, m, h, True)
+    _stage(2, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+           lam, Mm, fv, A, bb, idx, trig)
+    # U4 = e^{hL} z + h [(phi1 - 2 phi2)(hL) G1 + phi2(hL) (G2 + G3)]
+    _matvec_add(Pf[0], z, U, m, 1.0, False)
+    _matvec_add(Pf[1], G[0], U, m, h, True)
+    _matvec_add(Pf[2], G[0], U, m, -2.0 * h, True)
+    _matvec_add(Pf[2], G[1], U, m, h, True)
+    _matvec_add(Pf[2], G[2], U, m, h, True)
+    _stage(3, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+           lam, Mm, fv, A, bb, idx, trig)
+    # U5 = e^{hL/2} z + h [a51 G1 + a52 (G2 + G3) + a54 G4] with
+    # a52 = phi2(hL/2)/2 - phi3(hL) + phi2(hL)/4 - phi3(hL/2)/2, a54 = phi2(hL/2)/4 - a52,
+    # a51 = phi1(hL/2)/2 - 2 a52 - a54 = phi1(hL/2)/2 - a52 - phi2(hL/2)/4
+    _matvec_add(Ph[0], z, U, m, 1.0, False)
+    _matvec_add(Ph[1], G[0], U, m, 0.5 * h, True)
+    _matvec_add(Ph[2], G[0], U, m, -0.25 * h, True)
+    _matvec_add(Ph[2], G[3], U, m, 0.25 * h, True)
+    for r in range(m):
+        fz[r] = G[1, r] + G[2, r] - G[0, r] - G[3, r]     # a52 multiplies (G2 + G3 - G1 - G4)
+    _matvec_add(Ph[2], fz, U, m, 0.5 * h, True)
+    _matvec_add(Pf[3], fz, U, m, -h, True)
+    _matvec_add(Pf[2], fz, U, m, 0.25 * h, True)
+    _matvec_add(Ph[3], fz, U, m, -0.5 * h, True)
+    _stage(4, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+           lam, Mm, fv, A, bb, idx, trig)
+    # z_new = e^{hL} z + h [(phi1 - 3 phi2 + 4 phi3) G1 + (4 phi3 - phi2) G4 + (4 phi2 - 8 phi3) G5]
+    _matvec_add(Pf[0], z, U, m, 1.0, False)
+    _matvec_add(Pf[1], G[0], U, m, h, True)
+    for r in range(m):
+        fz[r] = -3.0 * G[0, r] - G[3, r] + 4.0 * G[4, r]
+    _matvec_add(Pf[2], fz, U, m, h, True)
+    for r in range(m):
+        fz[r] = 4.0 * G[0, r] + 4.0 * G[3, r] - 8.0 * G[4, r]
+    _matvec_add(Pf[3], fz, U, m, h, True)
+    for r in range(m):
+        z[r] = U[r]
+
+
+@njit(cache=True)
+def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
+               unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
+               y: np.ndarray, t0: float, t1: float, nsteps: int, refresh: int,
+               scale: np.ndarray) -> np.ndarray:
+    """Integrate y from t0 to t1 [s] in nsteps equal ETDRK4-B steps with the balls' modes fixed
+    (stuck, sgn), L refreshed every ``refresh`` steps; returns y at t1. The caller guarantees
+    that the window has no stick-slip event and no profile knot, and a prescribed spin (a
+    measuring tool, not a solver: benchmarks/slip_etd_bench.py).
+
+    The method's state z (m = n - 1 components, then psi and psi'): the rotor's and the balls'
+    coordinates, their rates and the time t; the spin (psi, psi') is prescribed, so it is left
+    out of the exponential and set from the profile at t1 (psi by the trapezoid rule, exact on a
+    linear speed ramp). ``scale``: the typical magnitude of each state component (n,).
+    """
+    n = y.shape[0]
+    nq = n // 2
+    m = n - 1
+    z = np.empty(m + 2)
+    for i in range(nq - 1):
+        z[i] = y[i]
+        z[nq - 1 + i] = y[nq + i]
+    z[m - 1] = t0
+    z[m] = y[nq - 1]
+    z[m + 1] = y[n - 1]
+    sc = np.empty(m)
+    for i in range(nq - 1):
+        sc[i] = scale[i]
+        sc[nq - 1 + i] = scale[nq + i]
+    sc[m - 1] = max(1.0, abs(t1))
+    h = (t1 - t0) / nsteps
+    L = np.zeros((m, m))
+    hL = np.zeros((m, m))
+    Ph = np.zeros((K_PHI + 1, m, m))
+    Pf = np.zeros((K_PHI + 1, m, m))
+    work = np.zeros((6, m, m))
+    G = np.zeros((5, m))
+    U = np.zeros(m + 2)
+    fz = np.zeros(m)
+    f0 = np.zeros(m)
+    zt = np.zeros(m + 2)
+    yw = np.zeros(n)
+    fw = np.zeros(n)
+    lam = np.zeros(3 * N + 1)
+    Mm = np.zeros((nq, nq))
+    fv = np.zeros(nq)
+    A = np.zeros((nq, nq))
+    bb = np.zeros(nq)
+    idx = np.zeros(nq, dtype=np.int64)
+    trig = np.full(3 * N, np.nan)
+    spin = np.zeros(2)
+    for k in range(nsteps):
+        if k % refresh == 0:
+            jacobian(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L, f0,
+                     fz, zt, yw, fw, lam, Mm, fv, A, bb, idx, trig)
+            for i in range(m):
+                for j in range(m):
+                    hL[i, j] = h * L[i, j]
+            phi_functions(hL, m, Ph, Pf, work)
+        etd_step(z, h, n, L, Ph, Pf, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                 G, U, fz, yw, fw, lam, Mm, fv, A, bb, idx, trig)
+    out = np.empty(n)
+    for i in range(nq - 1):
+        out[i] = z[i]
+        out[nq + i] = z[nq - 1 + i]
+    seg0 = profile_segment(t0, prof_t)
+    seg1 = profile_segment(t1, prof_t)
+    w0, _ = profile_eval(t0, seg0, prof_t, prof_w)
+    w1, _ = profile_eval(t1, seg1, prof_t, prof_w)
+    out[nq - 1] = y[nq - 1] + 0.5 * (w0 + w1) * (t1 - t0)
+    out[n - 1] = w1
+    return out
