@@ -11,7 +11,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
@@ -22,6 +22,7 @@ from autobalance.core.layout import P_CX, P_KX, P_MT
 from autobalance.core.ramp import RAMP_TAYLOR, RAMP_TERMS, ramp_series
 from autobalance.models._validate import ParameterError
 from autobalance.simulate import simulate
+from autobalance.simulate.result import SimulationError
 from autobalance.simulate.pack import pack_params
 
 from conftest import vub_004
@@ -92,7 +93,7 @@ def _pair(system, prof, initial):
     return out
 
 
-def _assert_same(exact, integ, fine, amax):
+def _assert_same(exact, integ, fine, amax, alpha_stop=0.0):
     """Same states at every output: the jump differs from the stepped run by at most twice the
     stepped run's own change from rtol 1e-10 to 1e-11, plus 1e-7 of the quantity's scale (where
     balls slide several radians that change is up to 1e-8 rad in the angle and 1e-6 of the
@@ -101,16 +102,16 @@ def _assert_same(exact, integ, fine, amax):
     a stepped part (the series refused near a lightly damped resonance) both runs sample |w| at
     their step ends only, up to 1.3e-6 low, each on its own step sequence: 2e-6 below the
     lower of the two references is allowed."""
-    def close(get, scale):
+    def close(get, scale, extra=0.0):
         err = np.abs(get(exact) - get(integ)).max()
         own = np.abs(get(integ) - get(fine)).max()
-        assert err <= 2.0 * own + 1e-7 * scale, (err, own, scale)
+        assert err <= 2.0 * own + 1e-7 * scale + extra, (err, own, scale)
 
     wmax = max(np.abs(integ.u).max(), np.abs(integ.v).max())
     close(lambda x: x.u, wmax)
     close(lambda x: x.v, wmax)
     if exact.alpha.size:
-        close(lambda x: x.alpha, 0.01)
+        close(lambda x: x.alpha, 0.01, alpha_stop)
         close(lambda x: x.alpha_dot, max(1.0, np.abs(integ.alpha_dot).max()))
     close(lambda x: x.psi, 0.01 * np.abs(integ.psi).max())
     close(lambda x: x.speed, 0.01 * np.abs(integ.speed).max())
@@ -152,14 +153,33 @@ def test_exact_ramp_equals_integrated_ramp(name):
 @settings(max_examples=8, deadline=None)
 @given(mu=st.floats(0.001, 0.02), f0=st.floats(60.0, 200.0), f1=st.floats(60.0, 200.0),
        a1=st.floats(0.0, 2 * np.pi), gap=st.floats(0.5, 5.5), c=st.floats(300.0, 3000.0))
+@example(mu=0.005859375, f0=87.0, f1=90.0, a1=0.5, gap=2.25, c=301.0)
 @pytest.mark.slow
 def test_exact_ramps_equal_integrated_ramps_property(mu, f0, f1, a1, gap, c):
-    """A hold at f0, a ramp to f1 and a hold: the same run with and without the jump."""
+    """A hold at f0, a ramp to f1 and a hold: the same run with and without the jump.
+
+    The claim is made where the stepped reference has converged: the same stick-slip events at
+    rtol 1e-10 and 1e-11, within the step budget. Near a lightly damped resonance a ball can
+    ratchet, and the micro-cycles follow the last bit. A fresh run of hypothesis (stop 35)
+    found 199, 233 and 6 events at rtol 1e-10 (jump), 1e-10 and 1e-11 (mu 0.00586, 91 Hz,
+    c = 300 N s/m). It also found a run at rtol 1e-11 that chattered to the step budget
+    (mu 0.0053, 90 -> 60 Hz).
+
+    A ball's angle after it stops is allowed 3e-8 rad on top of the comparison of
+    _assert_same. The example above measured, against the same run at rtol 1e-12: 9.5e-9 and
+    4.9e-10 rad for the jump and the stepped run at 1e-10 (the state at the stop from the
+    continuous extension), and 4.1e-9 and 5.5e-9 rad with the step redone to the stop. The
+    stepped run's own change to 1e-11 (7.6e-10 rad) understates that.
+    """
     prof = ab.SpeedProfile((0.0, 1.0, 1.5, 3.5, 4.0), (0.0, W * f0, W * f0, W * f1, W * f1))
-    exact, integ, fine, amax = _pair(vub_004(mu=mu, c=c), prof,
-                                     ab.InitialState(ball_angles=(a1, a1 + gap)))
+    try:
+        exact, integ, fine, amax = _pair(vub_004(mu=mu, c=c), prof,
+                                         ab.InitialState(ball_angles=(a1, a1 + gap)))
+    except SimulationError:
+        assume(False)                  # chattered to the step budget at rtol 1e-10 or 1e-11
+    assume(integ.summary()["solver"]["events"] == fine.summary()["solver"]["events"])
     assert exact.summary()["solver"]["events"] == integ.summary()["solver"]["events"]
-    _assert_same(exact, integ, fine, amax)
+    _assert_same(exact, integ, fine, amax, alpha_stop=3e-8)
 
 
 def test_exact_ramps_follow_the_fast_path_conditions():
