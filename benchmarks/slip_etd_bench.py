@@ -10,8 +10,10 @@ slipping or one of them stuck), side by side in one process:
 * their times: the kernel's window as the difference of the runs to its end and to its start,
   best of 7; ETDRK4-B's window, best of 7.
 
-Part of ``make bench`` (about 2 minutes). The method is not wired into the kernel yet: this
-measures what it would save where it applies (docs/numerics.md).
+Then whole runs of 004's profile with and without the slip jumps in the kernel
+(``options.exponential_slip``, off by default), side by side: ``whole_runs``.
+
+Part of ``make bench`` (about 4 minutes; docs/numerics.md).
 """
 from __future__ import annotations
 
@@ -99,6 +101,46 @@ def window(cfg, r, t0, t1):
 
 WINDOWS = np.arange(0.5, 17.5, 1.0)
 
+#: Whole runs: (mu_r, G_ini (-1: 004's nominal), starts)
+RUN_CASES = [(1.0, -1.0, 30), (0.5, 20.0, 30), (0.25, 30.0, 30), (0.25, 50.0, 15)]
+
+
+def whole_runs() -> None:
+    """004's 90 s profile, one start at a time, with and without options.exponential_slip
+    (the slip jumps in the kernel), alternated start by start: wall time of simulate (checkpoints
+    only, best of 3), DOPRI5 steps, right-hand-side evaluations, and the largest change of the
+    STD and TSR grades (18 s, 90 s) against issue 17's 0.02 mm/s."""
+    import dataclasses
+
+    from autobalance.core.layout import S_RHS, S_STEPS
+    from autobalance.models import InitialState
+    from autobalance.simulate import simulate
+    print("\nwhole runs, 004's 90 s profile, with the slip jumps (options.exponential_slip) "
+          "against without")
+    print("case                  starts | time: off      on    ratio | steps: off    on    | "
+          "RHS ratio | max |dG| [mm/s]")
+    for mu_r, grade, n in RUN_CASES:
+        cfg, _ = _setup(mu_r, grade, 0)
+        rng = np.random.default_rng(11)
+        starts = [(x, x + rng.uniform(0.6, 2 * np.pi - 0.6)) for x in rng.uniform(0, 2 * np.pi, n)]
+        tot = {False: [0.0, 0, 0], True: [0.0, 0, 0]}
+        grades = {False: [], True: []}
+        for a in starts:
+            for slip in (False, True):
+                o = dataclasses.replace(cfg.options, save_dt=-1.0, exponential_slip=slip)
+                ini = InitialState(ball_angles=a)
+                sim = simulate(cfg.system, cfg.spin, initial=ini, options=o)
+                tot[slip][0] += _best(lambda: simulate(cfg.system, cfg.spin, initial=ini,
+                                                       options=o), 3)
+                tot[slip][1] += int(sim.stats[S_STEPS])
+                tot[slip][2] += int(sim.stats[S_RHS])
+                grades[slip].append(sim.grade_G[1:3])
+        dG = np.abs(np.array(grades[True]) - np.array(grades[False])).max()
+        g = "G_ini nominal" if grade < 0 else f"G_ini {grade:g}"
+        print(f"mu_r {mu_r:<4g} {g:<13} {n:5d} | {tot[False][0]:6.2f} s {tot[True][0]:6.2f} s "
+              f"{tot[False][0] / tot[True][0]:5.2f} | {tot[False][1]:7d} {tot[True][1]:7d} | "
+              f"{tot[False][2] / tot[True][2]:8.2f}  | {dG:.4f}", flush=True)
+
 
 def main() -> None:
     cases = [(0.25, 30.0, 0), (1.0, -1.0, 1)]
@@ -120,6 +162,7 @@ def main() -> None:
                   f"  {tk / te:8.2f}", flush=True)
     print(f"all windows: kernel {tot_k * 1e3:.1f} ms, ETDRK4-B {tot_e * 1e3:.1f} ms "
           f"(ratio {tot_k / tot_e:.2f})")
+    whole_runs()
 
 
 if __name__ == "__main__":

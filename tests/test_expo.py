@@ -134,3 +134,86 @@ def test_etd_converges_at_fourth_order_on_a_slipping_window_the_kernel_steps_fin
         errs.append(np.abs(y[7:9] - ref[7:9]).max())
     assert errs[0] / errs[1] >= 6.0 and errs[1] / errs[2] >= 6.0
     assert errs[0] < np.abs(y1[7:9] - ref[7:9]).max()
+
+
+# -- the slip jumps in the kernel (options.exponential_slip) ----------------------------------
+def _grades(cfg, starts, slip, max_step=0.0):
+    import dataclasses
+
+    from autobalance.core.layout import S_RHS, S_STEPS
+    from autobalance.models import InitialState
+    from autobalance.simulate import simulate
+    o = dataclasses.replace(cfg.options, save_dt=-1.0, exponential_slip=slip, max_step=max_step)
+    out = []
+    for a in starts:
+        s = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=a), options=o)
+        out.append((s.grade_G[1], s.grade_G[2], s.stats[S_STEPS], s.stats[S_RHS]))
+    return np.array(out)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mu_r, grade", [(1.0, 20.0), (0.25, 30.0)])
+def test_slip_jumps_keep_the_grades_within_issue_17s_bound_and_save_steps(mu_r, grade):
+    """12 starts of 004's 90 s profile, STD and TSR grades (18 s, 90 s) with and without the
+    slip jumps. Issue 17 asks every G within 0.02 mm/s of the previous kernel; benchmarks/
+    slip_etd_bench.py measured at most 0.0052 mm/s over 105 starts of four cases (stop 35), and
+    halving DOPRI5's largest step moves G by as much (0.0062 mm/s at mu_r 0.5, G20, 40 starts).
+    The jumps leave 2.9-6.1 times fewer DOPRI5 steps and 2.3-5.1 times fewer right-hand-side
+    evaluations there; here at least half the steps must go."""
+    cfg, _ = _rig(mu_r, grade, 0)
+    rng = np.random.default_rng(11)
+    starts = [(x, x + rng.uniform(0.6, 2 * np.pi - 0.6)) for x in rng.uniform(0, 2 * np.pi, 12)]
+    off, on = _grades(cfg, starts, False), _grades(cfg, starts, True)
+    assert np.abs(on[:, :2] - off[:, :2]).max() <= 0.02
+    assert on[:, 2].sum() < 0.5 * off[:, 2].sum()
+    assert on[:, 3].sum() < off[:, 3].sum()
+
+
+@pytest.mark.slow
+def test_slip_jumps_pause_at_a_knot_and_continue_bit_for_bit():
+    """With the jumps on, a run paused at the end of the run-up (18 s) and continued equals the
+    run that did not pause, to the last bit: the jump's step and retry time are carried."""
+    from autobalance.core.integrate import integrate, integrate_span
+    from autobalance.core.layout import N_S, P_ETD, S_STATUS, RunStatus, carry_size
+    cfg, r = _rig(0.25, 30.0, 4)
+    P = r.P.copy()
+    P[P_ETD] = 1.0
+    out_t = np.linspace(0.0, r.t_end, 19)
+    whole_y, whole_s = np.zeros((out_t.size, r.y0.size)), np.zeros(N_S)
+    args = (P, r.B, 2, r.prof_t, r.prof_w, r.unb_t, r.unb_u)
+    yw = integrate(*args, r.y0, r.t_end, cfg.options.rtol, r.atol, r.h_max, 10 ** 8, out_t,
+                   whole_y, whole_s)
+    y, carry = r.y0.copy(), np.zeros(carry_size(2))
+    cont_y, cont_s = np.zeros_like(whole_y), np.zeros(N_S)
+    integrate_span(*args, y, r.t_end, cfg.options.rtol, r.atol, r.h_max, 10 ** 8, out_t, cont_y,
+                   cont_s, 18.0, carry)
+    assert cont_s[S_STATUS] == RunStatus.RUNNING
+    integrate_span(*args, y, r.t_end, cfg.options.rtol, r.atol, r.h_max, 10 ** 8, out_t, cont_y,
+                   cont_s, np.inf, carry)
+    assert np.array_equal(y, yw) and np.array_equal(cont_y, whole_y)
+    assert np.array_equal(cont_s, whole_s)
+
+
+def test_slip_jumps_only_where_the_ramp_jumps_apply():
+    """The option is off by default and on only under the conditions of the stuck ramps'
+    jumps (pack.fast_paths): not under gravity, nor with the creep law."""
+    import dataclasses
+
+    import autobalance as ab
+    from autobalance.core.layout import P_ETD
+    from autobalance.simulate.pack import pack_params
+    cfg, _ = _rig(1.0, 20.0, 0)
+    s, spin, o = cfg.system, cfg.spin, cfg.options
+    assert pack_params(s, spin, o)[0][P_ETD] == 0.0
+    on = dataclasses.replace(o, exponential_slip=True)
+    assert pack_params(s, spin, on)[0][P_ETD] == 1.0
+    grav = dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0))
+    assert pack_params(grav, spin, on)[0][P_ETD] == 0.0
+    creep = dataclasses.replace(on, friction_law="creep")
+    assert pack_params(s, spin, creep)[0][P_ETD] == 0.0
+
+
+def test_slip_jump_option_is_checked():
+    from autobalance.config import ConfigError, load_config
+    with pytest.raises(ConfigError, match="options.exponential_slip"):
+        load_config("vub_jeffcott_004", ["options.exponential_slip=2"])

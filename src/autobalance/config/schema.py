@@ -100,7 +100,8 @@ SECTIONS: dict[str, dict[str, F]] = {
         SimOptions, friction_law=F("text", choices=FRICTION_LAWS), v_sat=F("speed"),
         normal_force=F("text", choices=NORMAL_FORCES), rtol=F("ratio"), atol_scale=F("ratio"),
         max_step=F("time"), save_dt=F("time"), max_steps=F("int"), exact_holds=F("bool"),
-        exact_ramps=F("bool"), dense_events=F("bool")),
+        exact_ramps=F("bool"), dense_events=F("bool"),
+        exponential_slip=F("bool")),
 }
 
 # nominal is required in a file: without it a std/tsr profile would silently run at 004's

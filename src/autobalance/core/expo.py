@@ -1,8 +1,9 @@
 """Exponential integration of slipping phases (issue 17, first step; docs/numerics.md, "An
 exponential integrator for the slipping phases").
 
-Not yet used by ``integrate``: these kernels take constant steps over an event-free window of one
-run, for measuring what the method would save (``benchmarks/slip_etd_bench.py``).
+Used by ``integrate`` as the slip jump (``slip_window``, ``options.exponential_slip``, off by
+default); ``etd_window`` takes constant steps over an event-free window of a run, for
+``benchmarks/slip_etd_bench.py``.
 
 The stiffness of 004's rig in the rotor frame lives in the coupled rotor-ball dynamics (rotor
 modes at omega_n +- Omega, up to ~1640 1/s). DOPRI5 then steps at its stability limit (~2 ms)
@@ -31,7 +32,8 @@ import numpy as np
 from numba import njit
 
 from .jit import kernel
-from .rhs import profile_eval, profile_segment, rhs
+from .layout import B_KC, P_DELTA
+from .rhs import neighbour_gap, profile_eval, profile_segment, rhs
 
 #: Highest phi function computed (ETDRK4-B needs phi_0 .. phi_3) [-].
 K_PHI = 3
@@ -154,6 +156,15 @@ def _matvec_add(M, x, out, m, scale, accumulate):
 
 
 @kernel
+def _to_state(z, y, n):
+    """The rotor's and the balls' coordinates and rates of z into the kernel's state y."""
+    nq = n // 2
+    for i in range(nq - 1):
+        y[i] = z[i]
+        y[nq + i] = z[nq - 1 + i]
+
+
+@kernel
 def _F(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, out, yw, fw, lam, Mm,
        fv, A, bb, idx, trig):
     """F(z) of the method's state z (``etd_window``): the right-hand side of the run with its
@@ -161,9 +172,7 @@ def _F(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, out, yw, f
     nq = n // 2
     m = n - 1
     t = z[m - 1]
-    for i in range(nq - 1):
-        yw[i] = z[i]
-        yw[nq + i] = z[nq - 1 + i]
+    _to_state(z, yw, n)
     yw[nq - 1] = z[m]          # psi and psi' ride along; the prescribed spin uses the profile
     yw[n - 1] = z[m + 1]
     seg = profile_segment(t, prof_t)
@@ -280,6 +289,195 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
         z[r] = U[r]
 
 
+#: Longest window of one slip jump [s] (integrate.py): the Jacobian is refreshed every
+#: REFRESH steps inside it.
+SLIP_WINDOW = 0.5
+#: Steps between refreshes of L [-] (on whole runs 20 was as accurate as 10 and a little
+#: faster; the window benchmark's etd_window takes its own).
+REFRESH = 20
+
+
+@kernel
+def _pack(y, t, z, n):
+    """z = (u, v, alpha_i, their rates, t, psi, psi') from the kernel's state y at t."""
+    nq = n // 2
+    m = n - 1
+    for i in range(nq - 1):
+        z[i] = y[i]
+        z[nq - 1 + i] = y[nq + i]
+    z[m - 1] = t
+    z[m] = y[nq - 1]
+    z[m + 1] = y[n - 1]
+
+
+@kernel
+def _unpack(z, y, n, prof_t, prof_w, t0, psi0):
+    """y from z at its time t1 = z[n - 2]; the prescribed spin from the profile: psi' its speed
+    at t1 and psi by the trapezoid rule from (t0, psi0), exact within a linear segment."""
+    nq = n // 2
+    m = n - 1
+    t1 = z[m - 1]
+    _to_state(z, y, n)
+    w0, _ = profile_eval(t0, profile_segment(t0, prof_t), prof_t, prof_w)
+    w1, _ = profile_eval(t1, profile_segment(t1, prof_t), prof_t, prof_w)
+    y[nq - 1] = psi0 + 0.5 * (w0 + w1) * (t1 - t0)
+    y[n - 1] = w1
+
+
+@kernel
+def _scaled_phi(L, h, sc, m, hL, Ph, Pf, work):
+    """phi_k(h L / 2) and phi_k(h L) through the balanced matrix D^-1 h L D, D = diag(sc) (the
+    components' typical magnitudes): its norm is near the spectral radius, while h L's mixes
+    metres and radians (1e7 against 1e3 1/s on 004's rig), and phi(D^-1 A D) = D^-1 phi(A) D."""
+    for i in range(m):
+        for j in range(m):
+            hL[i, j] = h * L[i, j] * sc[j] / sc[i]
+    phi_functions(hL, m, Ph, Pf, work)
+    for k in range(K_PHI + 1):
+        for i in range(m):
+            for j in range(m):
+                f = sc[i] / sc[j]
+                Ph[k, i, j] *= f
+                Pf[k, i, j] *= f
+
+
+@kernel
+def _etd_run(z, t1, K, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc,
+             ew3, ew1, lam, Mm, fv, A, bb, idx, trig, check, mon, stick_tol):
+    """z from its time to t1 [s] in K equal ETDRK4-B steps, L refreshed every ``refresh``
+    steps. With ``check``, after each step every slipping ball must still slide its way
+    (sgn alpha_dot > 0), every stuck ball be within its static limit (1 + stick_tol [-]) and,
+    under the compliant contact model, every pair of neighbours keep its contact state
+    (mon[3 + i]);
+    else False is returned at once, with that step's end in mon[2] [s]. And
+    mon[:2] = (max |w| [m], its time [s]) is updated at the step ends. Returns (ok,
+    right-hand-side evaluations)."""
+    m = n - 1
+    nq = n // 2
+    h = (t1 - z[m - 1]) / K
+    L, hL, Ph, Pf, work = ew3[0], ew3[1], ew3[2:6], ew3[6:10], ew3[10:16]
+    G, U, fz, f0, zt, yw, fw = ew1[0:5], ew1[5], ew1[6], ew1[7], ew1[8], ew1[12], ew1[13]
+    ne = 0
+    for k in range(K):
+        if k % refresh == 0:
+            jacobian(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L, f0,
+                     fz, zt, yw, fw, lam, Mm, fv, A, bb, idx, trig)
+            ne += m + 1
+            _scaled_phi(L, h, sc, m, hL, Ph, Pf, work)
+        etd_step(z, h, n, L, Ph, Pf, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                 G, U, fz, yw, fw, lam, Mm, fv, A, bb, idx, trig)
+        ne += 5
+        if k == K - 1:
+            z[m - 1] = t1                      # the window's end exactly, not by summed steps
+        if check:
+            held = False
+            if B[0, B_KC] > 0.0 and N > 1:
+                # the compliant contacts must keep their state (mon[3 + i], from the window's
+                # start): the contact force is smooth while it does, and the integrator counts
+                # and steps each contact that starts or ends
+                for i in range(N):
+                    _, gap = neighbour_gap(z, i, N, P[P_DELTA])
+                    if (gap < 0.0) != (mon[3 + i] == 1.0):
+                        mon[2] = z[m - 1]
+                        return False, ne
+            for i in range(N):
+                if stuck[i] == 0 and sgn[i] * z[nq + 1 + i] <= 0.0:
+                    mon[2] = z[m - 1]
+                    return False, ne
+                held = held or stuck[i] == 1
+            if held:            # a stuck ball's margin mu_s N R (1 + stick_tol) - |lambda|
+                _F(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+                   lam, Mm, fv, A, bb, idx, trig)
+                ne += 1
+                for i in range(N):
+                    if stuck[i] == 1 and lam[N + i] * (1.0 + stick_tol) - abs(lam[i]) <= 0.0:
+                        mon[2] = z[m - 1]
+                        return False, ne
+            a = math.sqrt(z[0] * z[0] + z[1] * z[1])
+            if a > mon[0]:
+                mon[0] = a
+                mon[1] = z[m - 1]
+    return True, ne
+
+
+@kernel
+def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
+                B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
+                unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
+                spin: np.ndarray, atol: np.ndarray, rtol: float, ew3: np.ndarray,
+                ew1: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray,
+                A: np.ndarray, bb: np.ndarray, idx: np.ndarray, trig: np.ndarray,
+                stick_tol: float) -> tuple[bool, int, float, float, float, float]:
+    """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
+    (integrate.py, ``options.exponential_slip``; docs/numerics.md).
+
+    The window is run with K and with 2K equal steps (K from the last window's step h_etd
+    [s]); Richardson's estimate (z_2K - z_K) / 15 in the kernel's error norm must be <= 1,
+    else K doubles (three times at most). Every step end of both runs is checked: a slipping
+    ball that stops or reverses there, or a stuck one beyond its static limit (1 + stick_tol
+    [-]), ends the jump, unaccepted, so that DOPRI5 locates its event. On acceptance y holds
+    the 2K-step solution at t1.
+
+    Returns
+    -------
+    (ok, right-hand-side evaluations, next h_etd [s], max |w| [m] and its time [s] at the
+    accepted run's step ends, and the time [s] before which no jump should be tried again: the
+    step end where a ball stopped, or t1 if the error estimate failed)
+    """
+    n = y.shape[0]
+    m = n - 1
+    nq = n // 2
+    T = t1 - t
+    K = max(2, int(math.ceil(T / max(h_etd, 1e-9))))
+    zs, zc, zf = ew1[11], ew1[9], ew1[10]
+    sc = ew1[14]
+    mon = ew1[15]
+    _pack(y, t, zs, n)
+    for i in range(N):
+        _, gap = neighbour_gap(zs, i, N, P[P_DELTA])
+        mon[3 + i] = 1.0 if gap < 0.0 else 0.0
+    for i in range(nq - 1):
+        sc[i] = atol[i] * 1e6
+        sc[nq - 1 + i] = atol[nq + i] * 1e6
+    sc[m - 1] = max(1.0, abs(t1))
+    ne = 0
+    for j in range(m + 2):
+        zc[j] = zs[j]
+    mon[0] = 0.0
+    ok, e = _etd_run(zc, t1, K, REFRESH, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                     spin, sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, True, mon, stick_tol)
+    ne += e
+    for attempt in range(3):
+        if not ok:
+            return False, ne, h_etd, 0.0, 0.0, mon[2]
+        for j in range(m + 2):
+            zf[j] = zs[j]
+        mon[0] = 0.0
+        mon[1] = t
+        ok, e = _etd_run(zf, t1, 2 * K, REFRESH, n, P, B, N, prof_t, prof_w, unb_t, unb_u,
+                         stuck, sgn, spin, sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, True,
+                         mon, stick_tol)
+        ne += e
+        if not ok:
+            return False, ne, h_etd, 0.0, 0.0, mon[2]
+        en = 0.0
+        for i in range(nq - 1):
+            for off_z, off_y in ((i, i), (nq - 1 + i, nq + i)):
+                sc_i = atol[off_y] + rtol * max(abs(zs[off_z]), abs(zf[off_z]))
+                q = (zf[off_z] - zc[off_z]) / 15.0 / sc_i
+                en += q * q
+        en = math.sqrt(en / (n - 2))
+        if en <= 1.0:
+            _unpack(zf, y, n, prof_t, prof_w, t, y[nq - 1])
+            # the next window's coarse step: this one's (T / K), scaled as the error allows
+            h_new = T / K * min(4.0, max(0.5, 0.9 * max(en, 1e-10) ** -0.2))
+            return True, ne, h_new, mon[0], mon[1], t1
+        K *= 2
+        for j in range(m + 2):
+            zc[j] = zf[j]
+    return False, ne, T / (2 * K), 0.0, 0.0, t1
+
+
 @njit(cache=True)
 def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
                unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
@@ -299,12 +497,7 @@ def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w:
     nq = n // 2
     m = n - 1
     z = np.empty(m + 2)
-    for i in range(nq - 1):
-        z[i] = y[i]
-        z[nq - 1 + i] = y[nq + i]
-    z[m - 1] = t0
-    z[m] = y[nq - 1]
-    z[m + 1] = y[n - 1]
+    _pack(y, t0, z, n)
     sc = np.empty(m)
     for i in range(nq - 1):
         sc[i] = scale[i]
@@ -335,20 +528,9 @@ def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w:
         if k % refresh == 0:
             jacobian(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L, f0,
                      fz, zt, yw, fw, lam, Mm, fv, A, bb, idx, trig)
-            for i in range(m):
-                for j in range(m):
-                    hL[i, j] = h * L[i, j]
-            phi_functions(hL, m, Ph, Pf, work)
+            _scaled_phi(L, h, sc, m, hL, Ph, Pf, work)
         etd_step(z, h, n, L, Ph, Pf, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
                  G, U, fz, yw, fw, lam, Mm, fv, A, bb, idx, trig)
     out = np.empty(n)
-    for i in range(nq - 1):
-        out[i] = z[i]
-        out[nq + i] = z[nq - 1 + i]
-    seg0 = profile_segment(t0, prof_t)
-    seg1 = profile_segment(t1, prof_t)
-    w0, _ = profile_eval(t0, seg0, prof_t, prof_w)
-    w1, _ = profile_eval(t1, seg1, prof_t, prof_w)
-    out[nq - 1] = y[nq - 1] + 0.5 * (w0 + w1) * (t1 - t0)
-    out[n - 1] = w1
+    _unpack(z, out, n, prof_t, prof_w, t0, y[nq - 1])
     return out

@@ -37,9 +37,8 @@ from numba import njit
 
 from .jit import kernel
 
-from .integrate import _integrate
+from .integrate import _integrate, ball_work
 from .layout import P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS, RunStatus
-from .ramp import RAMP_TAYLOR, RAMP_TERMS
 from .rhs import profile_eval, profile_segment
 from .shallow_water import _emit, films_dt, films_moment, films_spin, films_step, gravity_offset
 
@@ -111,19 +110,6 @@ def _spin_speed(t: float, y: np.ndarray, motor: bool, prof_t: np.ndarray,
     return W
 
 
-@njit(cache=True)
-def _ball_work(N: int):
-    """The ball kernel's work arrays for N balls (as integrate_span allocates them)."""
-    nq = N + 3
-    n = 2 * nq
-    return (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-            np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)), np.zeros(nq),
-            np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
-            np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
-            np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
-            np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)))
-
-
 @njit(cache=True, nogil=True)
 def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                      prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, y: np.ndarray,
@@ -156,7 +142,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     fw = np.zeros((9, n_c))              # the films' work arrays
     hn, qn, fh, fq, fqr, hl, hr, b, a = fw[0], fw[1], fw[2], fw[3], fw[4], fw[5], fw[6], fw[7], fw[8]
     K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx, stuck, sgn, gs, ge, spin, \
-        in_contact, viol, trig, ser, qr = _ball_work(N)
+        in_contact, viol, trig, ser, qr, ew3, ew1 = ball_work(N)
 
     Mt = P[P_MT]
     motor = P[P_SPIN] == 1.0
@@ -208,8 +194,8 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         t_pause = t1 if t1 < t_end else np.inf
         _integrate(P, B, N, pt[:m], pw[:m], unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
                    out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb,
-                   idx, stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, t_pause,
-                   carry)
+                   idx, stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, ew3, ew1,
+                   t_pause, carry)
         # 3. the films' update, taken up by the chamber
         steps += 1
         if not _accept(h, q, hn, qn):

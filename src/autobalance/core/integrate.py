@@ -32,8 +32,10 @@ from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS
                      S_YMAX, P_DELTA, P_HOLDS, P_SYM)
 from .hold import (ball_unbalance, hold_coeffs, hold_finish, hold_margin_ok, hold_roots,
                    hold_state)
-from .layout import P_BETA, P_DENSE, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
-from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_KOUT, C_NEV, C_NEXT, C_NHOLD,
+from .layout import P_BETA, P_DENSE, P_ETD, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
+from .expo import SLIP_WINDOW, slip_window
+from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C_NETD, C_NEV,
+                     C_NEXT, C_NHOLD,
                      C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1, C_STALL, C_T, C_WHERE,
                      N_C, RunStatus)
 from .ramp import RAMP_TAYLOR, RAMP_TERMS, hold_breakaway, ramp_jump
@@ -308,7 +310,7 @@ def _next_h(en, en_old, h_acc, h, h_max):
 @kernel
 def _carry_out(carry, where, N, n, t, h, en, en_old, h_acc, nsteps, nrej, nev, stall, next_try,
                nhold, nramp, nrhs, kout, ev_kind, ev_i, spin, stuck, sgn, in_contact, gs, lam,
-               f0):
+               f0, next_etd, h_etd):
     """Store the loop's state of a run paused on arriving at a knot (layout.C_*)."""
     carry[C_WHERE] = where
     carry[C_T] = t
@@ -329,6 +331,8 @@ def _carry_out(carry, where, N, n, t, h, en, en_old, h_acc, nsteps, nrej, nev, s
     carry[C_SPIN1] = spin[1]
     carry[C_EVK] = ev_kind
     carry[C_EVI] = ev_i
+    carry[C_NETD] = next_etd
+    carry[C_HETD] = h_etd
     k = N_C
     for i in range(N):
         carry[k + i] = stuck[i]
@@ -364,7 +368,8 @@ def _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0):
     return (carry[C_T], carry[C_H], carry[C_EN], carry[C_ENOLD], carry[C_HACC],
             int(carry[C_NSTEPS]), int(carry[C_NREJ]), int(carry[C_NEV]), int(carry[C_STALL]),
             int(carry[C_NEXT]), int(carry[C_NHOLD]), int(carry[C_NRAMP]), int(carry[C_NRHS]),
-            int(carry[C_KOUT]), int(carry[C_EVK]), int(carry[C_EVI]))
+            int(carry[C_KOUT]), int(carry[C_EVK]), int(carry[C_EVI]), carry[C_NETD],
+            carry[C_HETD])
 
 
 @njit(cache=True)
@@ -413,22 +418,34 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     coupling steps of core/hybrid.py; not bit for bit the run without the pause). t_pause = inf:
     the whole run.
     """
+    (K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx, stuck, sgn, gs, ge, spin,
+     in_contact, viol, trig, ser, qr, ew3, ew1) = ball_work(N)
+    _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
+               out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
+               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, ew3, ew1, t_pause,
+               carry)
+
+
+@njit(cache=True)
+def ball_work(N: int) -> tuple:
+    """The work arrays of _integrate for N balls (integrate_span and core/hybrid.py), in the
+    order of its arguments from K to ew1 [-]."""
     nq = N + 3
     n = 2 * nq
-    _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
-               out_t, out_y, stats, y, np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n),
-               np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)),
-               np.zeros(nq), np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
-               np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
-               np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
-               np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
-               t_pause, carry)
+    return (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+            np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)), np.zeros(nq),
+            np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
+            np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
+            np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
+            np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
+            np.zeros((16, n - 1, n - 1)), np.zeros((16, n + 1)))
 
 
 @kernel
 def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
                out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
-               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, t_pause, carry):
+               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, ew3, ew1, t_pause,
+               carry):
     """The integration loop of integrate(), on preallocated work arrays (no allocation: the
     kernel runs without the numba runtime, core/jit.py). y holds the initial state on entry and
     the final state on return; gs / ge: stick margins mu_s N R - |lambda| at the start / end of
@@ -446,6 +463,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     can_hold = P[P_HOLDS] == 1.0
     can_ramp = P[P_RAMPS] == 1.0
     dense = P[P_DENSE] == 1.0
+    # symmetric rotor, exact law, prescribed spin, no contact model or liquid (pack.py)
+    can_etd = P[P_ETD] == 1.0 and exact and not creep
     where = int(carry[C_WHERE])
     status = 0
     en = 0.0
@@ -488,10 +507,13 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         next_try = 0
         nhold = 0
         nramp = 0
+        next_etd = 0.0
+        h_etd = 0.05
     else:
         # ---- continue a paused run: the arrival at the knot, with this profile's next segment
         t, h, en, en_old, h_acc, nsteps, nrej, nev, stall, next_try, nhold, nramp, nrhs, kout, \
-            ev_kind, ev_i = _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0)
+            ev_kind, ev_i, next_etd, h_etd = _carry_in(carry, N, n, spin, stuck, sgn, in_contact,
+                                                       gs, lam, f0)
         seg = profile_segment(t, prof_t)
         if where == 3:                # the hold's end, with its breakaway if any (ev_i)
             nev += _hold_arrival(ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
@@ -625,6 +647,43 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         nrhs += 2 * N + 3
                         continue
                 next_try = nsteps + 20
+        # ---- a ball slipping: a slip jump by ETDRK4-B (core/expo.py), to the next knot,
+        # output or pause, at most SLIP_WINDOW ahead; DOPRI5 on where it ends unaccepted
+        if can_etd and t >= next_etd and spin[0] == 0.0:
+            t_w = min(t_end, t + SLIP_WINDOW, t_pause)
+            if seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_w:
+                t_w = prof_t[seg + 1]
+            if kout < nout and t < out_t[kout] < t_w:
+                t_w = out_t[kout]
+            slipping = False
+            for i in range(N):
+                if stuck[i] == 0:
+                    slipping = True
+            if slipping and t_w - t > 20.0 * h:
+                ok_e, ne, h_etd, a_e, ta_e, next_etd = slip_window(
+                    t, t_w, y, h_etd, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+                    atol, rtol, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, STICK_TOL)
+                nrhs += ne
+                if ok_e:
+                    t = t_w
+                    if a_e > stats[S_AMAX]:
+                        stats[S_AMAX] = a_e
+                        stats[S_TAMAX] = ta_e
+                        stats[S_XMAX] = a_e
+                        stats[S_YMAX] = a_e
+                    while kout < nout and out_t[kout] <= t:
+                        for j in range(n):
+                            out_y[kout, j] = y[j]
+                        kout += 1
+                    if t >= t_pause:
+                        paused = 1
+                        ev_kind = -1
+                        break
+                    seg = profile_segment(t, prof_t)
+                    nrhs += _modes(-1, -1, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                                   stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
+                                   stats, exact)
+                    continue
         # hard stops at profile knots (a motor-driven spin: at the pause, core/hybrid.py)
         t_stop = t_end
         if spin[0] == 0.0 and seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_stop:
@@ -847,7 +906,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     if paused > 0:
         _carry_out(carry, paused, N, n, t, h, en, en_old, h_acc, nsteps, nrej, nev, stall,
                    next_try, nhold, nramp, nrhs, kout, ev_kind, ev_i, spin, stuck, sgn,
-                   in_contact, gs, lam, f0)
+                   in_contact, gs, lam, f0, next_etd, h_etd)
         stats[S_STATUS] = _RUNNING
         stats[S_STEPS] = nsteps
         stats[S_TFINAL] = t

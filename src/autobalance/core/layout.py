@@ -54,7 +54,8 @@ P_LQDX = 38       #   a coupling step; all 0 without a liquid
 P_LQDY = 39
 P_LQI = 40        #   with a motor-driven spin: the films' second moment about the chamber
 P_LQT = 41        #   centre [kg*m^2] and their torque on the spin [N*m], held likewise
-N_P = 42
+P_ETD = 42        # 1: phases where every ball slips may be jumped by ETDRK4-B (core/expo.py)
+N_P = 43
 # P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
 # autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 
@@ -108,7 +109,9 @@ C_SPIN0 = 15      # spin mode (0 prescribed, 1 motor, 2 motor at its hold speed)
 C_SPIN1 = 16      # the hold speed of mode 2 [rad/s]
 C_EVK = 17        # the event of the step that arrived at the knot (-1 none)
 C_EVI = 18        # its ball; at a hold's end (C_WHERE = 3) the ball that breaks away there (< 0 none)
-N_C = 19
+C_NETD = 19       # time before which no slip jump is tried [s] (core/expo.py)
+C_HETD = 20       # the slip jump's step [s]
+N_C = 21
 # then per ball: stuck (N), slip sign (N), in contact (N), stick margin (N); the constraint
 # forces lam (3N + 1); the derivative f0 at the pause (2 nq)
 

@@ -223,6 +223,11 @@ class SimOptions:
         Take the state at a located stick-slip event from DOPRI5's continuous extension of the
         accepted step (order 4, no re-stepping; docs/numerics.md). False redoes the step to the
         event (the kernel before, bit for bit).
+    exponential_slip : bool
+        Experimental (issue 17): where every ball slips, jump ahead by the exponential
+        integrator ETDRK4-B with Richardson's error estimate (core/expo.py; docs/numerics.md),
+        under the conditions of ``exact_ramps``. Off by default until its statistics are
+        checked on whole sweeps.
     """
 
     friction_law: str = "stick"
@@ -236,6 +241,7 @@ class SimOptions:
     exact_holds: bool = True
     exact_ramps: bool = True
     dense_events: bool = True
+    exponential_slip: bool = False
 
     def __post_init__(self):
         if self.friction_law not in FRICTION_LAWS:
@@ -253,4 +259,7 @@ class SimOptions:
             raise ParameterError("options.exact_ramps", self.exact_ramps, "must be true or false")
         if not isinstance(self.dense_events, bool):
             raise ParameterError("options.dense_events", self.dense_events, "must be true or false")
+        if not isinstance(self.exponential_slip, bool):
+            raise ParameterError("options.exponential_slip", self.exponential_slip,
+                                 "must be true or false")
         count("options.max_steps", self.max_steps, 1)  # inf/NaN: one line, not OverflowError

@@ -9,7 +9,7 @@ from ..core.layout import n_q, psi_index, speed_index
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..physics.response import steady_orbit_start
 from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
-                     P_BETA, P_DENSE, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
+                     P_BETA, P_DENSE, P_ETD, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
                      P_FLAW, P_G, P_GDIR, P_GDRY, P_HOLDS, P_ISO, P_SYM, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
                      P_R, P_RAMPS, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
 
@@ -157,6 +157,8 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     P[P_HOLDS], P[P_RAMPS], P[P_ISO], P[P_SYM] = (1.0 if f else 0.0
                                                   for f in fast_paths(system, spin, options))
     P[P_DENSE] = 1.0 if options.dense_events else 0.0
+    # slip jumps (core/expo.py): under the conditions of the stuck ramps' jumps
+    P[P_ETD] = 1.0 if options.exponential_slip and P[P_RAMPS] == 1.0 else 0.0
     n = b.n_balls
     B = np.zeros((n, N_B))
     if n:
