@@ -463,7 +463,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     can_hold = P[P_HOLDS] == 1.0
     can_ramp = P[P_RAMPS] == 1.0
     dense = P[P_DENSE] == 1.0
-    # symmetric rotor, exact law, prescribed spin, no contact model or liquid (pack.py)
+    # slip jumps: the stuck ramps' conditions (pack.py), the exact law without creep
     can_etd = P[P_ETD] == 1.0 and exact and not creep
     where = int(carry[C_WHERE])
     status = 0
