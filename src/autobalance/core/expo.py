@@ -34,6 +34,7 @@ from numba import njit
 from .jit import kernel
 from .layout import B_KC, P_DELTA
 from .rhs import neighbour_gap, profile_eval, profile_segment, rhs
+from .work import ball_work
 
 #: Highest phi function computed (ETDRK4-B needs phi_0 .. phi_3) [-].
 K_PHI = 3
@@ -311,6 +312,17 @@ def _pack(y, t, z, n):
 
 
 @kernel
+def _scales(v, factor, t1, sc, n):
+    """The typical magnitude of each of the method's m = n - 1 components: factor times the
+    state's v [layout.py units] for the coordinates and rates, max(1, |t1|) [s] for the time."""
+    nq = n // 2
+    for i in range(nq - 1):
+        sc[i] = v[i] * factor
+        sc[nq - 1 + i] = v[nq + i] * factor
+    sc[n - 2] = max(1.0, abs(t1))
+
+
+@kernel
 def _unpack(z, y, n, prof_t, prof_w, t0, psi0):
     """y from z at its time t1 = z[n - 2]; the prescribed spin from the profile: psi' its speed
     at t1 and psi by the trapezoid rule from (t0, psi0), exact within a linear segment."""
@@ -436,10 +448,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
     for i in range(N):
         _, gap = neighbour_gap(zs, i, N, P[P_DELTA])
         mon[3 + i] = 1.0 if gap < 0.0 else 0.0
-    for i in range(nq - 1):
-        sc[i] = atol[i] * 1e6
-        sc[nq - 1 + i] = atol[nq + i] * 1e6
-    sc[m - 1] = max(1.0, abs(t1))
+    _scales(atol, 1e6, t1, sc, n)
     ne = 0
     for j in range(m + 2):
         zc[j] = zs[j]
@@ -494,43 +503,13 @@ def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w:
     linear speed ramp). ``scale``: the typical magnitude of each state component (n,).
     """
     n = y.shape[0]
-    nq = n // 2
-    m = n - 1
-    z = np.empty(m + 2)
+    (_, _, _, _, _, _, _, lam, Mm, fv, A, bb, idx, _, _, _, _, spin, _, _, trig, _, _, ew3,
+     ew1) = ball_work(N)
+    z, sc = ew1[11], ew1[14]
     _pack(y, t0, z, n)
-    sc = np.empty(m)
-    for i in range(nq - 1):
-        sc[i] = scale[i]
-        sc[nq - 1 + i] = scale[nq + i]
-    sc[m - 1] = max(1.0, abs(t1))
-    h = (t1 - t0) / nsteps
-    L = np.zeros((m, m))
-    hL = np.zeros((m, m))
-    Ph = np.zeros((K_PHI + 1, m, m))
-    Pf = np.zeros((K_PHI + 1, m, m))
-    work = np.zeros((6, m, m))
-    G = np.zeros((5, m))
-    U = np.zeros(m + 2)
-    fz = np.zeros(m)
-    f0 = np.zeros(m)
-    zt = np.zeros(m + 2)
-    yw = np.zeros(n)
-    fw = np.zeros(n)
-    lam = np.zeros(3 * N + 1)
-    Mm = np.zeros((nq, nq))
-    fv = np.zeros(nq)
-    A = np.zeros((nq, nq))
-    bb = np.zeros(nq)
-    idx = np.zeros(nq, dtype=np.int64)
-    trig = np.full(3 * N, np.nan)
-    spin = np.zeros(2)
-    for k in range(nsteps):
-        if k % refresh == 0:
-            jacobian(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L, f0,
-                     fz, zt, yw, fw, lam, Mm, fv, A, bb, idx, trig)
-            _scaled_phi(L, h, sc, m, hL, Ph, Pf, work)
-        etd_step(z, h, n, L, Ph, Pf, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                 G, U, fz, yw, fw, lam, Mm, fv, A, bb, idx, trig)
+    _scales(scale, 1.0, t1, sc, n)
+    _etd_run(z, t1, nsteps, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+             sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, False, ew1[15], 0.0)
     out = np.empty(n)
-    _unpack(z, out, n, prof_t, prof_w, t0, y[nq - 1])
+    _unpack(z, out, n, prof_t, prof_w, t0, y[n // 2 - 1])
     return out

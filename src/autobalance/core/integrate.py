@@ -38,8 +38,9 @@ from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C
                      C_NEXT, C_NHOLD,
                      C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1, C_STALL, C_T, C_WHERE,
                      N_C, RunStatus)
-from .ramp import RAMP_TAYLOR, RAMP_TERMS, hold_breakaway, ramp_jump
+from .ramp import hold_breakaway, ramp_jump
 from .rhs import neighbour_gap, profile_segment, rhs
+from .work import ball_work
 
 #: relative tolerance of the static friction limit: a stuck ball breaks away when the friction it
 #: needs exceeds mu_s N R (1 + STICK_TOL); the same bound is used by the event function and by
@@ -424,21 +425,6 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
                stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, ew3, ew1, t_pause,
                carry)
-
-
-@njit(cache=True)
-def ball_work(N: int) -> tuple:
-    """The work arrays of _integrate for N balls (integrate_span and core/hybrid.py), in the
-    order of its arguments from K to ew1 [-]."""
-    nq = N + 3
-    n = 2 * nq
-    return (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-            np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)), np.zeros(nq),
-            np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
-            np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
-            np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
-            np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
-            np.zeros((16, n - 1, n - 1)), np.zeros((16, n + 1)))
 
 
 @kernel

@@ -1,0 +1,23 @@
+"""The work arrays of the ball kernel's integration loop (core/integrate._integrate): one home
+for integrate_span, core/hybrid.py and the slip jumps' measuring driver (core/expo.etd_window)."""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .ramp import RAMP_TAYLOR, RAMP_TERMS
+
+
+@njit(cache=True)
+def ball_work(N: int) -> tuple:
+    """The work arrays of _integrate for N balls, in the order of its arguments from K to ew1
+    (ew3, ew1: the slip jumps' matrices and vectors, core/expo.py) [-]."""
+    nq = N + 3
+    n = 2 * nq
+    return (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+            np.zeros(n), np.zeros(3 * N + 1), np.zeros((nq, nq)), np.zeros(nq),
+            np.zeros((nq, nq)), np.zeros(nq), np.zeros(nq, dtype=np.int64),
+            np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
+            np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
+            np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
+            np.zeros((16, n - 1, n - 1)), np.zeros((16, n + 1)))
