@@ -14,7 +14,12 @@ verdicts unchanged: the stick-slip runs' sensitivity (a start position moving fr
 Two of them moved back (nominal STD 6.8 -> 6.7, mu_r 0.5 STD 84.4 -> 84.5) when the state at a
 located stick-slip event came from DOPRI5's continuous extension instead of a redone step
 (issue 17, ``options.dense_events``; every G of the 1275-run Monte Carlo within 0.0102 mm/s),
-verdicts unchanged."""
+verdicts unchanged. Six rows moved by one in their last digit when DOPRI5's step was capped
+while balls touch (issue 17, docs/numerics.md "Resting contacts": without the cap the
+integrator ran the contact at its stability edge and the balls chattered spuriously): 000's
+table 1-2 extremes 4.31 -> 4.3, 3.91 -> 3.92 and 11.4 -> 11.39 mm and fig. 11's ratio 124.7 ->
+124.8 (rollers that touch), 004's mu_r 0.5 TSR efficiency 85.6 -> 85.7 and the profile
+comparison's -1.11 -> -1.12; verdicts unchanged."""
 import json
 import math
 from pathlib import Path

@@ -32,7 +32,7 @@ from .layout import (B_KC, B_MUS, N_S, P_FLAW, P_SPIN, P_WHOLD, S_AMAX, S_EVENTS
                      S_YMAX, P_DELTA, P_HOLDS, P_SYM)
 from .hold import (ball_unbalance, hold_coeffs, hold_finish, hold_margin_ok, hold_roots,
                    hold_state)
-from .layout import P_BETA, P_DENSE, P_ETD, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
+from .layout import P_BETA, P_DENSE, P_ETD, P_HC, P_R, P_RAMPS, P_RHO, S_HOLDS, S_RAMPS
 from .expo import SLIP_WINDOW, slip_window
 from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C_NETD, C_NEV,
                      C_NEXT, C_NHOLD,
@@ -670,6 +670,13 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                    stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
                                    stats, exact)
                     continue
+        # two balls in compliant contact: DOPRI5 resolves the contact's oscillation (docs/
+        # numerics.md, "Resting contacts"); at its stability limit it chatters spuriously
+        if h > P[P_HC] > 0.0:
+            for i in range(N):
+                if in_contact[i] == 1:
+                    h = P[P_HC]
+                    break
         # hard stops at profile knots (a motor-driven spin: at the pause, core/hybrid.py)
         t_stop = t_end
         if spin[0] == 0.0 and seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_stop:
