@@ -158,14 +158,15 @@ def test_slip_jumps_keep_the_grades_within_issue_17s_bound_and_save_steps(mu_r, 
     slip jumps. Issue 17 asks every G within 0.02 mm/s of the previous kernel; benchmarks/
     slip_etd_bench.py measured at most 0.0052 mm/s over 105 starts of four cases (stop 35), and
     halving DOPRI5's largest step moves G by as much (0.0062 mm/s at mu_r 0.5, G20, 40 starts).
-    The jumps leave 2.9-6.1 times fewer DOPRI5 steps and 2.3-5.1 times fewer right-hand-side
-    evaluations there; here at least half the steps must go."""
+    Since they keep out of resting contacts (stop 36: riding them biased the grades), these
+    12 starts take 1.5-1.8 times fewer DOPRI5 steps with the jumps than without; here at least
+    a fifth of the steps must go."""
     cfg, _ = _rig(mu_r, grade, 0)
     rng = np.random.default_rng(11)
     starts = [(x, x + rng.uniform(0.6, 2 * np.pi - 0.6)) for x in rng.uniform(0, 2 * np.pi, 12)]
     off, on = _grades(cfg, starts, False), _grades(cfg, starts, True)
     assert np.abs(on[:, :2] - off[:, :2]).max() <= 0.02
-    assert on[:, 2].sum() < 0.5 * off[:, 2].sum()
+    assert on[:, 2].sum() < 0.8 * off[:, 2].sum()
     assert on[:, 3].sum() < off[:, 3].sum()
 
 

@@ -224,10 +224,10 @@ class SimOptions:
         accepted step (order 4, no re-stepping; docs/numerics.md). False redoes the step to the
         event (the kernel before, bit for bit).
     exponential_slip : bool
-        Experimental (issue 17): where every ball slips, jump ahead by the exponential
-        integrator ETDRK4-B with Richardson's error estimate (core/expo.py; docs/numerics.md),
-        under the conditions of ``exact_ramps``. Off by default until its statistics are
-        checked on whole sweeps.
+        Experimental (issue 17): where a ball slips and no two balls touch, jump ahead by the
+        exponential integrator ETDRK4-B with Richardson's error estimate (core/expo.py;
+        docs/numerics.md), under the conditions of ``exact_ramps``. Off by default: 1.1-1.3x
+        faster on 004's sweeps, with the grades within 0.0016 mm/s of converged runs.
     """
 
     friction_law: str = "stick"
