@@ -11,7 +11,7 @@ slipping or one of them stuck), side by side in one process:
   best of 7; ETDRK4-B's window, best of 7.
 
 Then whole runs of 004's profile with and without the slip jumps in the kernel
-(``options.exponential_slip``, off by default), side by side: ``whole_runs``.
+(``options.exponential_slip``, on by default), side by side: ``whole_runs``.
 
 Part of ``make bench`` (about 4 minutes; docs/numerics.md).
 """

@@ -1,12 +1,12 @@
 """Sweep benchmark (make bench): the 004 start-position Monte Carlo, 1275 runs of 90 s TSR.
 
 Prints wall time and runs/s on this machine with the default executor (local processes, all
-cores), side by side in one run: today's kernel, the previous kernel (``dense_events = false``:
-the step redone to every located stick-slip event, bit for bit the kernel before the continuous
-extension), the one before it (also ``exact_ramps = false``: stuck speed ramps stepped, bit for
-bit the kernel before core/ramp.py) and today's at half the
-effective step (max_step = half the mean step of the default runs); the 5/50/95 % of G after
-STD (20 %) and after TSR (100 %) for each; and a profile of where the time goes (planning, the
+cores), side by side in one run: today's kernel (the slip jumps of core/expo.py on), the previous
+kernel (``exponential_slip = false``: every phase stepped by DOPRI5, bit for bit the default
+before stop 37), the one before it (also ``dense_events = false``: the step redone to every
+located stick-slip event) and today's with its steps capped at 0.75 ms (half DOPRI5's mean
+step; the exponential jumps' 10-50 ms steps are cut far more); the 5/50/95 % of G after STD
+(20 %) and after TSR (100 %) for each; and a profile of where the time goes (planning, the
 kernel, process start-up and writing, and the kernel's time by kind of run), from timed phases.
 """
 from __future__ import annotations
@@ -104,11 +104,12 @@ def main() -> dict:
         spec_from_dict(SPEC, "bench")).tasks[0]))   # compile here: the workers load the cache
     try:
         s1, w1, e1, ds1 = run(None, "default", work)
-        s0, w0, e0, ds0 = run(SimOptions(dense_events=False), "previous", work)
+        s0, w0, e0, ds0 = run(SimOptions(exponential_slip=False), "previous", work)
         dG0 = np.abs(ds1["grade_G"].values - ds0["grade_G"].values)
-        s3, w3, e3, ds3 = run(SimOptions(dense_events=False, exact_ramps=False), "older", work)
-        # the integrated phases run at ~1.5 ms steps (stability-bound, docs/numerics.md):
-        # capping the step at 0.75 ms halves it everywhere the integrator steps
+        s3, w3, e3, ds3 = run(SimOptions(exponential_slip=False, dense_events=False), "older",
+                              work)
+        # DOPRI5's phases run at ~1.5 ms steps (stability-bound, docs/numerics.md): capping the
+        # step at 0.75 ms halves them, and cuts the slip jumps' steps (10-50 ms) far more
         h = 0.75e-3
         s2, w2, e2, ds2 = run(SimOptions(max_step=h), "half", work)
         dG = np.abs(ds1["grade_G"].values - ds2["grade_G"].values)
@@ -121,23 +122,24 @@ def main() -> dict:
     kernel_share = prof["task_s_per_run"] * n / cores / w1
     lines = [
         f"004 start-position Monte Carlo: {n} runs x 90 s TSR, {cores} cores, local processes",
-        f"  default step : {w1:6.1f} s wall, {n / w1:6.1f} runs/s, {e1['mean_steps']:.0f} steps "
-        f"and {e1['mean_events']:.0f} stick-slip events per run, {s1['failed_runs']} failed",
-        f"  previous kernel (steps redone to the events): {w0:6.1f} s wall, {n / w0:6.1f} runs/s, "
-        f"{e0['mean_steps']:.0f} steps and {e0['mean_events']:.0f} events per run: today's is "
-        f"{w0 / w1:.2f}x faster",
-        f"  the kernel before (also stuck ramps stepped): {w3:6.1f} s wall, {n / w3:6.1f} runs/s, "
-        f"{e3['mean_steps']:.0f} steps per run: today's is {w3 / w1:.2f}x faster",
-        f"  half step    : {w2:6.1f} s wall, {n / w2:6.1f} runs/s (max_step = {h * 1e3:.3f} ms, "
+        f"  default      : {w1:6.1f} s wall, {n / w1:6.1f} runs/s, {e1['mean_steps']:.0f} DOPRI5 "
+        f"steps and {e1['mean_events']:.0f} stick-slip events per run, {s1['failed_runs']} failed",
+        f"  previous kernel (no slip jumps: DOPRI5 steps every phase): {w0:6.1f} s wall, "
+        f"{n / w0:6.1f} runs/s, {e0['mean_steps']:.0f} steps and {e0['mean_events']:.0f} events "
+        f"per run: today's is {w0 / w1:.2f}x faster",
+        f"  the kernel before (also steps redone to the events): {w3:6.1f} s wall, "
+        f"{n / w3:6.1f} runs/s, {e3['mean_steps']:.0f} steps per run: today's is "
+        f"{w3 / w1:.2f}x faster",
+        f"  steps <= {h * 1e3:.2f} ms: {w2:6.1f} s wall, {n / w2:6.1f} runs/s (max_step = {h * 1e3:.3f} ms, "
         f"{e2['mean_steps']:.0f} steps per run), {s2['failed_runs']} failed",
         "  G [mm/s]         p5      p50      p95   share <= G16",
     ]
-    for lab, s in (("default", s1), ("previous", s0), ("older", s3), ("half step", s2)):
+    for lab, s in (("default", s1), ("previous", s0), ("older", s3), ("<= 0.75 ms", s2)):
         for c in s["checkpoints"]:
             tag = "STD (20 %)" if c["time_s"] < 89 else "TSR (100 %)"
             lines.append(f"  {lab:9s} {tag:11s} {c['grade_G_p5_mm_s']:6.2f} {c['grade_G_p50_mm_s']:8.2f} "
                          f"{c['grade_G_p95_mm_s']:8.2f}   {100 * c['share_below_limit']:5.1f} %")
-    lines.append(f"  per run, default vs half step: max |dG| = {np.nanmax(dG):.3g} mm/s; runs with |dG| "
+    lines.append(f"  per run, default vs steps <= {h * 1e3:.2f} ms: max |dG| = {np.nanmax(dG):.3g} mm/s; runs with |dG| "
                  f"> 0.1 mm/s at 100 %: {int((dG[..., -1] > 0.1).sum())} of {n}")
     lines.append(f"  per run, today's vs previous kernel: max |dG| = {np.nanmax(dG0):.3g} mm/s, median "
                  f"{np.nanmedian(dG0):.1e}; runs with |dG| > 0.02 mm/s: {int((dG0 > 0.02).any(-1).sum())}")

@@ -196,8 +196,9 @@ def test_slip_jumps_pause_at_a_knot_and_continue_bit_for_bit():
 
 
 def test_slip_jumps_only_where_the_ramp_jumps_apply():
-    """The option is off by default and on only under the conditions of the stuck ramps'
-    jumps (pack.fast_paths): not under gravity, nor with the creep law."""
+    """The option is on by default (stop 37), off on request, and active only under the
+    conditions of the stuck ramps' jumps (pack.fast_paths): not under gravity, nor with the
+    creep law."""
     import dataclasses
 
     import autobalance as ab
@@ -205,7 +206,9 @@ def test_slip_jumps_only_where_the_ramp_jumps_apply():
     from autobalance.simulate.pack import pack_params
     cfg, _ = _rig(1.0, 20.0, 0)
     s, spin, o = cfg.system, cfg.spin, cfg.options
-    assert pack_params(s, spin, o)[0][P_ETD] == 0.0
+    assert o.exponential_slip is True and pack_params(s, spin, o)[0][P_ETD] == 1.0
+    off = dataclasses.replace(o, exponential_slip=False)
+    assert pack_params(s, spin, off)[0][P_ETD] == 0.0
     on = dataclasses.replace(o, exponential_slip=True)
     assert pack_params(s, spin, on)[0][P_ETD] == 1.0
     grav = dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0))

@@ -85,7 +85,8 @@ def _pair(system, prof, initial):
     amplitude)."""
     out = []
     for ramps, tol in ((True, 1e-10), (False, 1e-10), (False, 1e-11)):
-        o = ab.SimOptions(save_dt=0.05, rtol=tol, atol_scale=tol, exact_ramps=ramps)
+        o = ab.SimOptions(save_dt=0.05, rtol=tol, atol_scale=tol, exact_ramps=ramps,
+                          exponential_slip=False)
         out.append(simulate(system, prof, initial=initial, options=o))
     o = ab.SimOptions(save_dt=2e-5, rtol=1e-10, atol_scale=1e-10, exact_ramps=False)
     dense = simulate(system, prof, initial=initial, options=o)
@@ -220,7 +221,8 @@ def test_hold_until_breakaway_equals_integrated_hold():
     assert se["exact_holds"] == 1 and si["exact_holds"] == 0
     assert se["events"] == si["events"] == 1
     _assert_same(exact, integ, fine, amax)
-    o = [ab.SimOptions(save_dt=1e-4, rtol=1e-10, atol_scale=1e-10, exact_ramps=r) for r in (True, False)]
+    o = [ab.SimOptions(save_dt=1e-4, rtol=1e-10, atol_scale=1e-10, exact_ramps=r,
+                       exponential_slip=False) for r in (True, False)]
     starts = [x.t[np.abs(x.alpha_dot).max(axis=1) > 0][0]
               for x in (simulate(vub_004(), prof, initial=ini, options=oo) for oo in o)]
     assert starts[0] == starts[1]
@@ -236,7 +238,7 @@ def test_plateau_ratchet_with_closed_form_holds():
     runs = {}
     for key, ramps, tol in (("jump", True, 1e-6), ("step", False, 1e-6), ("fine", False, 1e-9)):
         o = dataclasses.replace(cfg.options, save_dt=0.5, exact_ramps=ramps, rtol=tol,
-                                atol_scale=tol)
+                                atol_scale=tol, exponential_slip=False)
         runs[key] = simulate(cfg.system, cfg.spin, initial=ini, options=o)
     assert runs["jump"].summary()["solver"]["exact_holds"] > 500
     assert runs["step"].summary()["solver"]["events"] > 1000

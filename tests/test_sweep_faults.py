@@ -6,6 +6,7 @@ Every test runs the real thing: subprocesses of the real entry point, real signa
 """
 from __future__ import annotations
 
+import dataclasses
 import os
 import signal
 import subprocess
@@ -161,7 +162,10 @@ def test_options_grid_each_run_uses_its_cells_options(tmp_path):
     for i, rtol in enumerate([1e-6, 1e-9]):
         cfg = load_config("vub_jeffcott_004", SHORT + [f"options.rtol={rtol}"])
         for s in (0, n_s - 1):
-            sim = ab.simulate(cfg.system, cfg.spin, options=cfg.options,
+            # checkpoints only, as the sweep stores: a stored history would cut the slip
+            # jumps' windows at its samples (docs/numerics.md)
+            sim = ab.simulate(cfg.system, cfg.spin,
+                              options=dataclasses.replace(cfg.options, save_dt=-1.0),
                               initial=ab.InitialState(ball_angles=tuple(plan.start_angles[s])))
             cell = ds.isel(options__rtol=i, sample=s)
             assert int(cell["steps"]) == sim.summary()["solver"]["steps"], (rtol, s)
@@ -180,7 +184,8 @@ def test_an_options_override_is_part_of_the_store_identity(tmp_path):
     ds = sweep(spec_from_dict(d), store, executor="serial", progress=False, options=loose)
     cfg = load_config("vub_jeffcott_004", SHORT)
     a0 = tuple(make_plan(spec_from_dict(d)).start_angles[0])
-    sim = ab.simulate(cfg.system, cfg.spin, options=loose, initial=ab.InitialState(ball_angles=a0))
+    sim = ab.simulate(cfg.system, cfg.spin, options=dataclasses.replace(loose, save_dt=-1.0),
+                      initial=ab.InitialState(ball_angles=a0))
     assert int(ds["steps"].isel(sample=0)) == sim.summary()["solver"]["steps"]
     first = sorted((store / "tasks").glob("r*.npz"))[0]
     first.unlink()
@@ -196,7 +201,7 @@ def test_an_options_override_is_part_of_the_store_identity(tmp_path):
 # -- 5. failed runs have no outcome ------------------------------------------------------------
 def test_failed_runs_are_nan_with_status(tmp_path):
     d = {"sweep": {"name": "fail", "base": "vub_jeffcott_004", "set": SHORT},
-         "grid": {"options.max_steps": [2000, 20_000_000]},
+         "grid": {"options.max_steps": [200, 20_000_000]},
          "monte_carlo": {"kind": "start_grid", "n": 2}}
     ds = sweep(spec_from_dict(d), tmp_path / "s", executor="serial", progress=False)
     failed = ds.isel(options__max_steps=0)
@@ -204,7 +209,7 @@ def test_failed_runs_are_nan_with_status(tmp_path):
     for v in ("grade_G", "residual_unbalance", "ball_angle", "max_amplitude"):
         assert np.isnan(failed[v].values).all(), v
     assert np.isfinite(failed["initial_grade_G"].values).all()
-    assert ((failed["steps"] > 0) & (failed["steps"] <= 2000)).all()
+    assert ((failed["steps"] > 0) & (failed["steps"] <= 200)).all()
     ok = ds.isel(options__max_steps=1)
     assert (ok["status"] == 0).all() and np.isfinite(ok["grade_G"].values).all()
     from autobalance.sweep import summary_dict

@@ -1,7 +1,7 @@
 """Exponential integration of slipping phases (issue 17, first step; docs/numerics.md, "An
 exponential integrator for the slipping phases").
 
-Used by ``integrate`` as the slip jump (``slip_window``, ``options.exponential_slip``, off by
+Used by ``integrate`` as the slip jump (``slip_window``, ``options.exponential_slip``, on by
 default); ``etd_window`` takes constant steps over an event-free window of a run, for
 ``benchmarks/slip_etd_bench.py``.
 
@@ -31,7 +31,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .jit import kernel
+from .jit import inline_kernel, kernel
 from .layout import B_KC, P_DELTA
 from .rhs import neighbour_gap, profile_eval, profile_segment, rhs
 from .work import ball_work
@@ -121,32 +121,48 @@ def phi_functions(A: np.ndarray, m: int, half: np.ndarray, full: np.ndarray,
             for j in range(m):
                 P[k, i, j] = T[i, j] + (1.0 / math.gamma(k + 1) if i == j else 0.0)
     # s doublings; the input of the last one is phi_k(A / 2)
-    Q = work[2:6]
     for level in range(s):
         if level == s - 1:
             for k in range(K_PHI + 1):
                 for i in range(m):
                     for j in range(m):
                         half[k, i, j] = P[k, i, j]
-        for k in range(K_PHI, -1, -1):
-            _matmul(P[0], P[k], Q[k], m)
-            for jj in range(1, k + 1):
-                c = 1.0 / math.gamma(k - jj + 1)
-                for i in range(m):
-                    for j in range(m):
-                        Q[k, i, j] += c * P[jj, i, j]
-            f = 2.0 ** -k
-            for i in range(m):
-                for j in range(m):
-                    Q[k, i, j] *= f
-        for k in range(K_PHI + 1):
-            for i in range(m):
-                for j in range(m):
-                    P[k, i, j] = Q[k, i, j]
+        phi_double(P, m, work[2:6])
     return s
 
 
 @kernel
+def phi_double(P: np.ndarray, m: int, Q: np.ndarray) -> None:
+    """phi_k(2A) from phi_k(A), k = 0..3, in place: phi_k(2A) = 2^-k [phi_0(A) phi_k(A) +
+    sum_{j=1..k} phi_j(A) / (k - j)!] (Skaflestad & Wright 2009, eq. 2.4).
+
+    Parameters
+    ----------
+    P : ndarray (4, >= m, >= m)
+        phi_0..3 of A on entry, of 2A on return [-].
+    m : int
+        Size of the matrices.
+    Q : ndarray (4, >= m, >= m)
+        Work space.
+    """
+    for k in range(K_PHI, -1, -1):
+        _matmul(P[0], P[k], Q[k], m)
+        for jj in range(1, k + 1):
+            c = 1.0 / math.gamma(k - jj + 1)
+            for i in range(m):
+                for j in range(m):
+                    Q[k, i, j] += c * P[jj, i, j]
+        f = 2.0 ** -k
+        for i in range(m):
+            for j in range(m):
+                Q[k, i, j] *= f
+    for k in range(K_PHI + 1):
+        for i in range(m):
+            for j in range(m):
+                P[k, i, j] = Q[k, i, j]
+
+
+@inline_kernel
 def _matvec_add(M, x, out, m, scale, accumulate):
     """out[:m] (+)= scale * M[:m, :m] @ x[:m]."""
     for i in range(m):
@@ -231,10 +247,13 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
              unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
              spin: np.ndarray, G: np.ndarray, U: np.ndarray, fz: np.ndarray, yw: np.ndarray,
              fw: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray,
-             bb: np.ndarray, idx: np.ndarray, trig: np.ndarray) -> None:
+             bb: np.ndarray, idx: np.ndarray, trig: np.ndarray, V: np.ndarray, W: np.ndarray,
+             X: np.ndarray) -> None:
     """One ETDRK4-B step of size h [s] on the method's state z in place (module docstring;
     layout: ``etd_window``). Ph, Pf: phi_0..3 of h L / 2 and h L (phi_functions of h L); G
-    (5, n - 1), U (n + 1,), fz (n - 1,), yw, fw (n,) work arrays."""
+    (5, n - 1), U (n + 1,), fz, V, W, X (n - 1,), yw, fw (n,) work arrays. The terms the stages
+    share are formed once (V = U2 starts U3 and U5, W starts U4 and z_new) and each phi meets
+    one combination of the G's: 17 products with a matrix per step."""
     m = n - 1
     U[m] = z[m]                 # psi and psi' of the stages: not used by the rotor frame's rhs
     U[m + 1] = z[m + 1]
@@ -243,49 +262,52 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     _stage(0, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U2 = e^{hL/2} z + h/2 phi1(hL/2) G1
-    _matvec_add(Ph[0], z, U, m, 1.0, False)
-    _matvec_add(Ph[1], G[0], U, m, 0.5 * h, True)
+    _matvec_add(Ph[0], z, V, m, 1.0, False)
+    _matvec_add(Ph[1], G[0], V, m, 0.5 * h, True)
+    for r in range(m):
+        U[r] = V[r]
     _stage(1, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
-    # U3 = e^{hL/2} z + h [(phi1/2 - phi2)(hL/2) G1 + phi2(hL/2) G2]
-    _matvec_add(Ph[0], z, U, m, 1.0, False)
-    _matvec_add(Ph[1], G[0], U, m, 0.5 * h, True)
-    _matvec_add(Ph[2], G[0], U, m, -h, True)
-    _matvec_add(Ph[2], G[1], U, m, h, True)
+    # U3 = e^{hL/2} z + h [(phi1/2 - phi2)(hL/2) G1 + phi2(hL/2) G2] = U2 + h phi2(hL/2) (G2 - G1)
+    for r in range(m):
+        U[r] = V[r]
+        X[r] = G[1, r] - G[0, r]
+    _matvec_add(Ph[2], X, U, m, h, True)
     _stage(2, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U4 = e^{hL} z + h [(phi1 - 2 phi2)(hL) G1 + phi2(hL) (G2 + G3)]
-    _matvec_add(Pf[0], z, U, m, 1.0, False)
-    _matvec_add(Pf[1], G[0], U, m, h, True)
-    _matvec_add(Pf[2], G[0], U, m, -2.0 * h, True)
-    _matvec_add(Pf[2], G[1], U, m, h, True)
-    _matvec_add(Pf[2], G[2], U, m, h, True)
+    #    = W + h phi2(hL) (G2 + G3 - 2 G1),  W = e^{hL} z + h phi1(hL) G1
+    _matvec_add(Pf[0], z, W, m, 1.0, False)
+    _matvec_add(Pf[1], G[0], W, m, h, True)
+    for r in range(m):
+        U[r] = W[r]
+        X[r] = G[1, r] + G[2, r] - 2.0 * G[0, r]
+    _matvec_add(Pf[2], X, U, m, h, True)
     _stage(3, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U5 = e^{hL/2} z + h [a51 G1 + a52 (G2 + G3) + a54 G4] with
     # a52 = phi2(hL/2)/2 - phi3(hL) + phi2(hL)/4 - phi3(hL/2)/2, a54 = phi2(hL/2)/4 - a52,
-    # a51 = phi1(hL/2)/2 - 2 a52 - a54 = phi1(hL/2)/2 - a52 - phi2(hL/2)/4
-    _matvec_add(Ph[0], z, U, m, 1.0, False)
-    _matvec_add(Ph[1], G[0], U, m, 0.5 * h, True)
-    _matvec_add(Ph[2], G[0], U, m, -0.25 * h, True)
-    _matvec_add(Ph[2], G[3], U, m, 0.25 * h, True)
+    # a51 = phi1(hL/2)/2 - 2 a52 - a54 = phi1(hL/2)/2 - a52 - phi2(hL/2)/4; with
+    # d = G2 + G3 - G1 - G4: U5 = U2 + h [phi2(hL/2) ((G4 - G1)/4 + d/2) + phi2(hL) d/4
+    # - phi3(hL) d - phi3(hL/2) d/2]
     for r in range(m):
-        fz[r] = G[1, r] + G[2, r] - G[0, r] - G[3, r]     # a52 multiplies (G2 + G3 - G1 - G4)
-    _matvec_add(Ph[2], fz, U, m, 0.5 * h, True)
-    _matvec_add(Pf[3], fz, U, m, -h, True)
+        U[r] = V[r]
+        fz[r] = G[1, r] + G[2, r] - G[0, r] - G[3, r]
+        X[r] = 0.25 * (G[3, r] - G[0, r]) + 0.5 * fz[r]
+    _matvec_add(Ph[2], X, U, m, h, True)
     _matvec_add(Pf[2], fz, U, m, 0.25 * h, True)
+    _matvec_add(Pf[3], fz, U, m, -h, True)
     _matvec_add(Ph[3], fz, U, m, -0.5 * h, True)
     _stage(4, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # z_new = e^{hL} z + h [(phi1 - 3 phi2 + 4 phi3) G1 + (4 phi3 - phi2) G4 + (4 phi2 - 8 phi3) G5]
-    _matvec_add(Pf[0], z, U, m, 1.0, False)
-    _matvec_add(Pf[1], G[0], U, m, h, True)
+    #       = W + h phi2(hL) (4 G5 - 3 G1 - G4) + h phi3(hL) (4 G1 + 4 G4 - 8 G5)
     for r in range(m):
+        U[r] = W[r]
         fz[r] = -3.0 * G[0, r] - G[3, r] + 4.0 * G[4, r]
+        X[r] = 4.0 * G[0, r] + 4.0 * G[3, r] - 8.0 * G[4, r]
     _matvec_add(Pf[2], fz, U, m, h, True)
-    for r in range(m):
-        fz[r] = 4.0 * G[0, r] + 4.0 * G[3, r] - 8.0 * G[4, r]
-    _matvec_add(Pf[3], fz, U, m, h, True)
+    _matvec_add(Pf[3], X, U, m, h, True)
     for r in range(m):
         z[r] = U[r]
 
@@ -296,11 +318,6 @@ SLIP_WINDOW = 0.5
 #: Steps between refreshes of L [-] (on whole runs 20 was as accurate as 10 and a little
 #: faster; the window benchmark's etd_window takes its own).
 REFRESH = 20
-#: A jump is not tried while two balls touch; the next try is this much later [s]. Jumps that
-#: rode a resting contact gave 004's grades 0.01-0.09 mm/s off the converged ones in 103 of
-#: 1092 runs at mu_r 0.25 (docs/numerics.md); kept out of contacts, they agree
-#: to 0.0016 mm/s.
-CONTACT_RETRY = 0.005
 
 
 @kernel
@@ -342,57 +359,81 @@ def _unpack(z, y, n, prof_t, prof_w, t0, psi0):
 
 
 @kernel
-def _scaled_phi(L, h, sc, m, hL, Ph, Pf, work):
+def _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ch, Cf):
     """phi_k(h L / 2) and phi_k(h L) through the balanced matrix D^-1 h L D, D = diag(sc) (the
     components' typical magnitudes): its norm is near the spectral radius, while h L's mixes
-    metres and radians (1e7 against 1e3 1/s on 004's rig), and phi(D^-1 A D) = D^-1 phi(A) D."""
+    metres and radians (1e7 against 1e3 1/s on 004's rig), and phi(D^-1 A D) = D^-1 phi(A) D.
+    With Ch, Cf (4, m, m) also those of the step 2h: Ch = phi_k(h L), Cf = phi_k(2 h L) by one
+    more doubling, the operations phi_functions(2 h L) makes (bit for bit) when it doubles at
+    least twice; otherwise (||2 h L|| <= 1 on the balanced scale) by it. Ch.shape[0] == 0: none.
+    """
     for i in range(m):
         for j in range(m):
             hL[i, j] = h * L[i, j] * sc[j] / sc[i]
-    phi_functions(hL, m, Ph, Pf, work)
+    s = phi_functions(hL, m, Ph, Pf, work)
+    coarse = Ch.shape[0] > 0
+    if coarse:
+        if s >= 2:
+            for k in range(K_PHI + 1):
+                for i in range(m):
+                    for j in range(m):
+                        Ch[k, i, j] = Pf[k, i, j]
+                        Cf[k, i, j] = Pf[k, i, j]
+            phi_double(Cf, m, work[2:6])
+        else:
+            for i in range(m):
+                for j in range(m):
+                    hL[i, j] = (2.0 * h) * L[i, j] * sc[j] / sc[i]
+            phi_functions(hL, m, Ch, Cf, work)
     for k in range(K_PHI + 1):
         for i in range(m):
             for j in range(m):
                 f = sc[i] / sc[j]
                 Ph[k, i, j] *= f
                 Pf[k, i, j] *= f
+                if coarse:
+                    Ch[k, i, j] *= f
+                    Cf[k, i, j] *= f
 
 
 @kernel
 def _etd_run(z, t1, K, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc,
-             ew3, ew1, lam, Mm, fv, A, bb, idx, trig, check, mon, stick_tol):
+             ew3, ew1, lam, Mm, fv, A, bb, idx, trig, check, mon, stick_tol, Ph, Pf, given):
     """z from its time to t1 [s] in K equal ETDRK4-B steps, L refreshed every ``refresh``
-    steps. With ``check``, after each step every slipping ball must still slide its way
+    steps into ew3[0] and Ph, Pf (phi_k of h L / 2 and h L); with ``given`` the first L and
+    phi are already there. With ``check``, after each step every slipping ball must still slide its way
     (sgn alpha_dot > 0), every stuck ball be within its static limit (1 + stick_tol [-]) and,
-    under the compliant contact model, no two neighbours touch;
+    under the compliant contact model, every pair of neighbours keep its contact state
+    (mon[3 + i]);
     else False is returned at once, with that step's end in mon[2] [s]. And
     mon[:2] = (max |w| [m], its time [s]) is updated at the step ends. Returns (ok,
     right-hand-side evaluations)."""
     m = n - 1
     nq = n // 2
     h = (t1 - z[m - 1]) / K
-    L, hL, Ph, Pf, work = ew3[0], ew3[1], ew3[2:6], ew3[6:10], ew3[10:16]
+    L, hL, work = ew3[0], ew3[1], ew3[10:16]
     G, U, fz, f0, zt, yw, fw = ew1[0:5], ew1[5], ew1[6], ew1[7], ew1[8], ew1[12], ew1[13]
     ne = 0
     for k in range(K):
-        if k % refresh == 0:
+        if k % refresh == 0 and not (given and k == 0):
             jacobian(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L, f0,
                      fz, zt, yw, fw, lam, Mm, fv, A, bb, idx, trig)
             ne += m + 1
-            _scaled_phi(L, h, sc, m, hL, Ph, Pf, work)
+            _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ph[:0], Pf[:0])
         etd_step(z, h, n, L, Ph, Pf, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                 G, U, fz, yw, fw, lam, Mm, fv, A, bb, idx, trig)
+                 G, U, fz, yw, fw, lam, Mm, fv, A, bb, idx, trig, ew1[16], ew1[17], ew1[18])
         ne += 5
         if k == K - 1:
             z[m - 1] = t1                      # the window's end exactly, not by summed steps
         if check:
             held = False
             if B[0, B_KC] > 0.0 and N > 1:
-                # no contact may start (none is open at the window's start: slip_window):
-                # the integrator counts and steps each contact
+                # the compliant contacts must keep their state (mon[3 + i], from the window's
+                # start): the contact force is smooth while it does, and the integrator counts
+                # and steps each contact that starts or ends
                 for i in range(N):
                     _, gap = neighbour_gap(z, i, N, P[P_DELTA])
-                    if gap < 0.0:
+                    if (gap < 0.0) != (mon[3 + i] == 1.0):
                         mon[2] = z[m - 1]
                         return False, ne
             for i in range(N):
@@ -422,55 +463,69 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
                 spin: np.ndarray, atol: np.ndarray, rtol: float, ew3: np.ndarray,
                 ew1: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray,
                 A: np.ndarray, bb: np.ndarray, idx: np.ndarray, trig: np.ndarray,
-                stick_tol: float) -> tuple[bool, int, float, float, float, float]:
+                stick_tol: float, h_max: float) -> tuple[bool, int, float, float, float, float]:
     """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
     (integrate.py, ``options.exponential_slip``; docs/numerics.md).
 
     The window is run with K and with 2K equal steps (K from the last window's step h_etd
-    [s]); Richardson's estimate (z_2K - z_K) / 15 in the kernel's error norm must be <= 1,
+    [s], the steps no longer than the run's largest step h_max [s]); Richardson's estimate (z_2K - z_K) / 15 in the kernel's error norm must be <= 1,
     else K doubles (three times at most). Every step end of both runs is checked: a slipping
     ball that stops or reverses there, or a stuck one beyond its static limit (1 + stick_tol
     [-]), ends the jump, unaccepted, so that DOPRI5 locates its event. On acceptance y holds
-    the 2K-step solution at t1. While two balls touch no jump is tried (CONTACT_RETRY).
+    the 2K-step solution at t1.
 
     Returns
     -------
     (ok, right-hand-side evaluations, next h_etd [s], max |w| [m] and its time [s] at the
     accepted run's step ends, and the time [s] before which no jump should be tried again: the
-    step end where a ball stopped or a contact started, t + CONTACT_RETRY if two balls touch
-    at t, or t1 if the error estimate failed)
+    step end where a ball stopped, or t1 if the error estimate failed)
     """
     n = y.shape[0]
     m = n - 1
     nq = n // 2
     T = t1 - t
-    K = max(2, int(math.ceil(T / max(h_etd, 1e-9))))
+    K = max(2, int(math.ceil(T / max(min(h_etd, h_max), 1e-9))))
     zs, zc, zf = ew1[11], ew1[9], ew1[10]
     sc = ew1[14]
     mon = ew1[15]
     _pack(y, t, zs, n)
     for i in range(N):
         _, gap = neighbour_gap(zs, i, N, P[P_DELTA])
-        if gap < 0.0 and B[0, B_KC] > 0.0:
-            return False, 0, h_etd, 0.0, 0.0, t + CONTACT_RETRY
+        mon[3 + i] = 1.0 if gap < 0.0 else 0.0
     _scales(atol, 1e6, t1, sc, n)
-    ne = 0
+    # both runs start from zs: one Jacobian L0 serves them, and the fine run's phi functions
+    # give the coarse run's by one more doubling (_scaled_phi)
+    L, L0, hL, work = ew3[0], ew3[16], ew3[1], ew3[10:16]
+    Ph, Pf, Fh, Ff = ew3[2:6], ew3[6:10], ew3[17:21], ew3[21:25]
+    jacobian(zs, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L0, ew1[7],
+             ew1[6], ew1[8], ew1[12], ew1[13], lam, Mm, fv, A, bb, idx, trig)
+    ne = m + 1
+    _scaled_phi(L0, T / (2 * K), sc, m, hL, Fh, Ff, work, Ph, Pf)
     for j in range(m + 2):
         zc[j] = zs[j]
+    for i in range(m):
+        for j in range(m):
+            L[i, j] = L0[i, j]
     mon[0] = 0.0
     ok, e = _etd_run(zc, t1, K, REFRESH, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                     spin, sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, True, mon, stick_tol)
+                     spin, sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, True, mon, stick_tol,
+                     Ph, Pf, True)
     ne += e
     for attempt in range(3):
         if not ok:
             return False, ne, h_etd, 0.0, 0.0, mon[2]
         for j in range(m + 2):
             zf[j] = zs[j]
+        if attempt > 0:             # the fine step halved: its phi functions from L0
+            _scaled_phi(L0, T / (2 * K), sc, m, hL, Fh, Ff, work, Ph[:0], Pf[:0])
+        for i in range(m):
+            for j in range(m):
+                L[i, j] = L0[i, j]
         mon[0] = 0.0
         mon[1] = t
         ok, e = _etd_run(zf, t1, 2 * K, REFRESH, n, P, B, N, prof_t, prof_w, unb_t, unb_u,
                          stuck, sgn, spin, sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, True,
-                         mon, stick_tol)
+                         mon, stick_tol, Fh, Ff, True)
         ne += e
         if not ok:
             return False, ne, h_etd, 0.0, 0.0, mon[2]
@@ -514,7 +569,8 @@ def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w:
     _pack(y, t0, z, n)
     _scales(scale, 1.0, t1, sc, n)
     _etd_run(z, t1, nsteps, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-             sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, False, ew1[15], 0.0)
+             sc, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, False, ew1[15], 0.0, ew3[2:6],
+             ew3[6:10], False)
     out = np.empty(n)
     _unpack(z, out, n, prof_t, prof_w, t0, y[n // 2 - 1])
     return out

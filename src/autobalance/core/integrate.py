@@ -648,7 +648,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             if slipping and t_w - t > 20.0 * h:
                 ok_e, ne, h_etd, a_e, ta_e, next_etd = slip_window(
                     t, t_w, y, h_etd, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                    atol, rtol, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, STICK_TOL)
+                    atol, rtol, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, STICK_TOL, h_max)
                 nrhs += ne
                 if ok_e:
                     t = t_w

@@ -20,4 +20,4 @@ def ball_work(N: int) -> tuple:
             np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N), np.zeros(N), np.zeros(2),
             np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64), np.full(3 * N, np.nan),
             np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
-            np.zeros((16, n - 1, n - 1)), np.zeros((16, n + 1)))
+            np.zeros((25, n - 1, n - 1)), np.zeros((19, n + 1)))
