@@ -77,9 +77,11 @@ def _rig(mu_r, grade, seed):
 
 def _run_to(cfg, r, te, rtol=None, atol_factor=1.0):
     from autobalance.core.integrate import integrate
-    from autobalance.core.layout import S_EVENTS, S_STEPS
+    from autobalance.core.layout import P_ETD, S_EVENTS, S_STEPS
     st = r.stats.copy()
-    y = integrate(r.P, r.B, 2, r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0, te,
+    P = r.P.copy()
+    P[P_ETD] = 0.0                            # the kernel's own stepping: DOPRI5 throughout
+    y = integrate(P, r.B, 2, r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0, te,
                   rtol or cfg.options.rtol, r.atol * atol_factor, r.h_max, 10 ** 9,
                   np.array([te]), np.zeros((1, r.y0.shape[0])), st)
     return y, int(st[S_STEPS]), int(st[S_EVENTS])
@@ -158,16 +160,17 @@ def test_slip_jumps_keep_the_grades_within_issue_17s_bound_and_save_steps(mu_r, 
     slip jumps. Issue 17 asks every G within 0.02 mm/s of the previous kernel; benchmarks/
     slip_etd_bench.py measured at most 0.0052 mm/s over 105 starts of four cases (stop 35), and
     halving DOPRI5's largest step moves G by as much (0.0062 mm/s at mu_r 0.5, G20, 40 starts).
-    Since they keep out of resting contacts (stop 36: riding them biased the grades), these
-    12 starts take 1.5-1.8 times fewer DOPRI5 steps with the jumps than without; here at least
-    a fifth of the steps must go."""
+    Through resting contacts and with a failed window retried up to the step that failed
+    (stop 37), these 12 starts take 14-31 times fewer DOPRI5 steps and 3.7-5.4 times fewer
+    right-hand-side evaluations with the jumps than without (measured); here at least four
+    fifths of the steps and half of the evaluations must go."""
     cfg, _ = _rig(mu_r, grade, 0)
     rng = np.random.default_rng(11)
     starts = [(x, x + rng.uniform(0.6, 2 * np.pi - 0.6)) for x in rng.uniform(0, 2 * np.pi, 12)]
     off, on = _grades(cfg, starts, False), _grades(cfg, starts, True)
     assert np.abs(on[:, :2] - off[:, :2]).max() <= 0.02
-    assert on[:, 2].sum() < 0.8 * off[:, 2].sum()
-    assert on[:, 3].sum() < off[:, 3].sum()
+    assert on[:, 2].sum() < 0.2 * off[:, 2].sum()
+    assert on[:, 3].sum() < 0.5 * off[:, 3].sum()
 
 
 @pytest.mark.slow

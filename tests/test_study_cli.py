@@ -87,7 +87,7 @@ def test_start_positions_grid_reports_each_cell_as_its_own_run(tmp_path):
     g = xr.load_dataset(tmp_path / "g.nc")["grade_G"]            # (rotor__unbalance, sample, cp)
     for k, c in enumerate(d["cells"]):
         one = run_json("start-positions", CENTRIFUGE, "--random", 5, "--seed", 2, "--executor",
-                       "serial", "--set", f"rotor.unbalance={2e-5 if k == 0 else 6e-5!r}")
+                       "serial", "--set", f"rotor.unbalance={'2 g*cm' if k == 0 else '60 g*mm'}")
         for a, b in zip(c["checkpoints"], one["checkpoints"]):
             assert a["p95_grade_G_mm_s"] == pytest.approx(b["p95_grade_G_mm_s"], rel=1e-12)
             assert a["share_below_grade"] == b["share_below_grade"]

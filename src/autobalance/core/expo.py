@@ -405,7 +405,8 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck,
     (sgn alpha_dot > 0), every stuck ball be within its static limit (1 + stick_tol [-]) and,
     under the compliant contact model, every pair of neighbours keep its contact state
     (mon[3 + i]);
-    else False is returned at once, with that step's end in mon[2] [s]. And
+    else False is returned at once, with that step's end in mon[2] [s] and its start (the
+    last step end that passed) in mon[3 + N]. And
     mon[:2] = (max |w| [m], its time [s]) is updated at the step ends. Returns (ok,
     right-hand-side evaluations)."""
     m = n - 1
@@ -415,6 +416,7 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck,
     G, U, fz, f0, zt, yw, fw = ew1[0:5], ew1[5], ew1[6], ew1[7], ew1[8], ew1[12], ew1[13]
     ne = 0
     for k in range(K):
+        mon[3 + N] = z[m - 1]                  # the step's start: the last end that passed
         if k % refresh == 0 and not (given and k == 0):
             jacobian(z, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, sc, L, f0,
                      fz, zt, yw, fw, lam, Mm, fv, A, bb, idx, trig)
@@ -457,34 +459,15 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck,
 
 
 @kernel
-def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
-                B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
-                unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
-                spin: np.ndarray, atol: np.ndarray, rtol: float, ew3: np.ndarray,
-                ew1: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray,
-                A: np.ndarray, bb: np.ndarray, idx: np.ndarray, trig: np.ndarray,
-                stick_tol: float, h_max: float) -> tuple[bool, int, float, float, float, float]:
-    """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
-    (integrate.py, ``options.exponential_slip``; docs/numerics.md).
-
-    The window is run with K and with 2K equal steps (K from the last window's step h_etd
-    [s], the steps no longer than the run's largest step h_max [s]); Richardson's estimate (z_2K - z_K) / 15 in the kernel's error norm must be <= 1,
-    else K doubles (three times at most). Every step end of both runs is checked: a slipping
-    ball that stops or reverses there, or a stuck one beyond its static limit (1 + stick_tol
-    [-]), ends the jump, unaccepted, so that DOPRI5 locates its event. On acceptance y holds
-    the 2K-step solution at t1.
-
-    Returns
-    -------
-    (ok, right-hand-side evaluations, next h_etd [s], max |w| [m] and its time [s] at the
-    accepted run's step ends, and the time [s] before which no jump should be tried again: the
-    step end where a ball stopped, or t1 if the error estimate failed)
-    """
+def _window(t, t1, K, h_etd, y, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, atol,
+            rtol, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, stick_tol):
+    """One try of a slip jump from t to t1 [s] with K coarse steps (``slip_window``). Returns
+    (1 accepted, 0 a check failed, -1 the error estimate failed; right-hand-side evaluations;
+    next h_etd [s]; max |w| [m] and its time [s]; the failing step's end [s] or t1)."""
     n = y.shape[0]
     m = n - 1
     nq = n // 2
     T = t1 - t
-    K = max(2, int(math.ceil(T / max(min(h_etd, h_max), 1e-9))))
     zs, zc, zf = ew1[11], ew1[9], ew1[10]
     sc = ew1[14]
     mon = ew1[15]
@@ -513,7 +496,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
     ne += e
     for attempt in range(3):
         if not ok:
-            return False, ne, h_etd, 0.0, 0.0, mon[2]
+            return 0, ne, h_etd, 0.0, 0.0, mon[2]
         for j in range(m + 2):
             zf[j] = zs[j]
         if attempt > 0:             # the fine step halved: its phi functions from L0
@@ -528,7 +511,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
                          mon, stick_tol, Fh, Ff, True)
         ne += e
         if not ok:
-            return False, ne, h_etd, 0.0, 0.0, mon[2]
+            return 0, ne, h_etd, 0.0, 0.0, mon[2]
         en = 0.0
         for i in range(nq - 1):
             for off_z, off_y in ((i, i), (nq - 1 + i, nq + i)):
@@ -540,11 +523,61 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
             _unpack(zf, y, n, prof_t, prof_w, t, y[nq - 1])
             # the next window's coarse step: this one's (T / K), scaled as the error allows
             h_new = T / K * min(4.0, max(0.5, 0.9 * max(en, 1e-10) ** -0.2))
-            return True, ne, h_new, mon[0], mon[1], t1
+            return 1, ne, h_new, mon[0], mon[1], t1
         K *= 2
         for j in range(m + 2):
             zc[j] = zf[j]
-    return False, ne, T / (2 * K), 0.0, 0.0, t1
+    return -1, ne, T / (2 * K), 0.0, 0.0, t1
+
+
+
+
+@kernel
+def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
+                B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
+                unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
+                spin: np.ndarray, atol: np.ndarray, rtol: float, ew3: np.ndarray,
+                ew1: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray,
+                A: np.ndarray, bb: np.ndarray, idx: np.ndarray, trig: np.ndarray,
+                stick_tol: float,
+                h_max: float) -> tuple[bool, int, float, float, float, float, float]:
+    """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
+    (integrate.py, ``options.exponential_slip``; docs/numerics.md).
+
+    The window is run with K and with 2K equal steps (K from the last window's step h_etd
+    [s], the steps no longer than the run's largest step h_max [s]); Richardson's estimate
+    (z_2K - z_K) / 15 in the kernel's error norm must be <= 1, else K doubles (three times at
+    most). Every step end of both runs is checked: a slipping ball that stops or reverses
+    there, or a stuck one beyond its static limit (1 + stick_tol [-]), ends the try. The
+    window is then tried once more up to the start of the step that failed, if that is a
+    coarse step or more past t, so that DOPRI5 steps only the rest of the way to the event it
+    locates. On acceptance y holds the 2K-step solution at the window's end.
+
+    Returns
+    -------
+    (ok, right-hand-side evaluations, next h_etd [s], max |w| [m] and its time [s] at the
+    accepted run's step ends, the time [s] before which no jump should be tried again (the
+    step end where a ball stopped, or t1), and the time reached [s] (t1, the shorter window's
+    end, or t if none was accepted))
+    """
+    h = max(min(h_etd, h_max), 1e-9)
+    K = max(2, int(math.ceil((t1 - t) / h)))
+    st, ne, h_new, a, ta, t_next = _window(t, t1, K, h_etd, y, P, B, N, prof_t, prof_w, unb_t,
+                                           unb_u, stuck, sgn, spin, atol, rtol, ew3, ew1, lam,
+                                           Mm, fv, A, bb, idx, trig, stick_tol)
+    if st == 1:
+        return True, ne, h_new, a, ta, t1, t1
+    t_good = ew1[15][3 + N]
+    h = (t1 - t) / K
+    if st == 0 and t_good - t >= h * (1.0 - 1e-9):
+        st2, ne2, h2, a, ta, _ = _window(t, t_good, max(2, int(round((t_good - t) / h))),
+                                         h_etd, y, P, B, N, prof_t, prof_w, unb_t, unb_u,
+                                         stuck, sgn, spin, atol, rtol, ew3, ew1, lam, Mm, fv,
+                                         A, bb, idx, trig, stick_tol)
+        ne += ne2
+        if st2 == 1:
+            return True, ne, h_etd, a, ta, t_next, t_good
+    return False, ne, h_new, 0.0, 0.0, t_next, t
 
 
 @njit(cache=True)

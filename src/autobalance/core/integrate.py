@@ -409,8 +409,8 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     share the start of their history (the same machine, start and profile up to a knot).
 
     ``carry`` (layout.carry_size(N)) with carry[C_WHERE] = 0 starts from y at t = 0. The run
-    stops at its first arrival at or after ``t_pause`` [s] (the end of a closed-form jump, or a
-    step that ends on a profile knot), before it reads the profile there, with stats[S_STATUS]
+    stops at its first arrival at or after ``t_pause`` [s] (the end of a closed-form jump or of
+    a slip jump, or a step that ends on a profile knot), before it reads the profile there, with stats[S_STATUS]
     = RUNNING, its state in y, out_y filled up to that time and everything else the loop
     carries in ``carry``. Called again with that y, carry, out_y and stats, and a profile equal
     up to that time, it continues bit for bit as the run without the pause. With t_pause a
@@ -636,7 +636,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         # ---- a ball slipping: a slip jump by ETDRK4-B (core/expo.py), to the next knot,
         # output or pause, at most SLIP_WINDOW ahead; DOPRI5 on where it ends unaccepted
         if can_etd and t >= next_etd and spin[0] == 0.0:
-            t_w = min(t_end, t + SLIP_WINDOW, t_pause)
+            t_w = min(t_end, t + SLIP_WINDOW)      # not t_pause: the run pauses at the end
             if seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_w:
                 t_w = prof_t[seg + 1]
             if kout < nout and t < out_t[kout] < t_w:
@@ -646,12 +646,12 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 if stuck[i] == 0:
                     slipping = True
             if slipping and t_w - t > 20.0 * h:
-                ok_e, ne, h_etd, a_e, ta_e, next_etd = slip_window(
+                ok_e, ne, h_etd, a_e, ta_e, next_etd, t_reach = slip_window(
                     t, t_w, y, h_etd, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
                     atol, rtol, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, STICK_TOL, h_max)
                 nrhs += ne
                 if ok_e:
-                    t = t_w
+                    t = t_reach
                     if a_e > stats[S_AMAX]:
                         stats[S_AMAX] = a_e
                         stats[S_TAMAX] = ta_e
