@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from autobalance.core.expo import etd_window, phi_functions
+from autobalance.core.expo import etd_window
+from autobalance.core.phi import phi_functions
 
 
 def _phis_scipy(A, k=3):
