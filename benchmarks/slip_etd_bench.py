@@ -41,11 +41,14 @@ def _setup(mu_r: float, grade: float, k: int):
 
 def _run_to(cfg, r, te, rtol=None, atol_factor=1.0):
     from autobalance.core.integrate import integrate
+    from autobalance.core.layout import P_ETD
     n = r.y0.shape[0]
     out_t = np.array([te])
     out_y = np.zeros((1, n))
     st = r.stats.copy()
-    y = integrate(r.P, r.B, r.B.shape[0], r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0, te,
+    P = r.P.copy()
+    P[P_ETD] = 0.0               # the kernel's own stepping: DOPRI5 throughout (no slip jumps)
+    y = integrate(P, r.B, r.B.shape[0], r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0, te,
                   rtol or cfg.options.rtol, r.atol * atol_factor, r.h_max, 10 ** 9, out_t,
                   out_y, st)
     return y, st
