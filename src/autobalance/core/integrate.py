@@ -410,9 +410,9 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
 
     ``carry`` (layout.carry_size(N)) with carry[C_WHERE] = 0 starts from y at t = 0. The run
     stops at its first arrival at or after ``t_pause`` [s] (the end of a closed-form jump or of
-    a slip jump, or a step that ends on a profile knot), before it reads the profile there, with stats[S_STATUS]
-    = RUNNING, its state in y, out_y filled up to that time and everything else the loop
-    carries in ``carry``. Called again with that y, carry, out_y and stats, and a profile equal
+    a slip jump, or a step that ends on a profile knot), before it reads the profile there,
+    with stats[S_STATUS] = RUNNING, its state in y, out_y filled up to that time and everything
+    else the loop carries in ``carry``. Called again with that y, carry, out_y and stats, and a profile equal
     up to that time, it continues bit for bit as the run without the pause. With t_pause a
     knot, the stop is on the knot and the later segments may differ (branching). With a
     motor-driven spin (no knots) the step is clipped to t_pause and the run stops there (the
@@ -633,8 +633,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         nrhs += 2 * N + 3
                         continue
                 next_try = nsteps + 20
-        # ---- a ball slipping: a slip jump by ETDRK4-B (core/expo.py), to the next knot,
-        # output or pause, at most SLIP_WINDOW ahead; DOPRI5 on where it ends unaccepted
+        # ---- a ball slipping: a slip jump by ETDRK4-B (core/expo.py), to the next knot or
+        # output, at most SLIP_WINDOW ahead (a pause waits for its end); DOPRI5 on from where
+        # it ends (a failed window is retried up to the step that failed: slip_window)
         if can_etd and t >= next_etd and spin[0] == 0.0:
             t_w = min(t_end, t + SLIP_WINDOW)      # not t_pause: the run pauses at the end
             if seg < prof_t.shape[0] - 1 and prof_t[seg + 1] < t_w:
