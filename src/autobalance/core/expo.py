@@ -274,8 +274,8 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck,
              ew3, ew1, lam, Mm, fv, A, bb, idx, trig, check, mon, stick_tol, Ph, Pf, given):
     """z from its time to t1 [s] in K equal ETDRK4-B steps, L refreshed every ``refresh``
     steps into ew3[0] and Ph, Pf (phi_k of h L / 2 and h L); with ``given`` the first L and
-    phi are already there. With ``check``, after each step every slipping ball must still slide its way
-    (sgn alpha_dot > 0), every stuck ball be within its static limit (1 + stick_tol [-]) and,
+    phi are already there. With ``check``, after each step every slipping ball must still slide
+    its way (sgn alpha_dot > 0), every stuck ball be within its static limit (1 + stick_tol [-]) and,
     under the compliant contact model, every pair of neighbours keep its contact state
     (mon[3 + i]);
     else False is returned at once, with that step's end in mon[2] [s] and its start (the
@@ -443,7 +443,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
     t_good = ew1[15][3 + N]
     h = (t1 - t) / K
     if st == 0 and t_good - t >= h * (1.0 - 1e-9):
-        st2, ne2, h2, a, ta, _ = _window(t, t_good, max(2, int(round((t_good - t) / h))),
+        st2, ne2, _, a, ta, _ = _window(t, t_good, max(2, int(round((t_good - t) / h))),
                                          h_etd, y, P, B, N, prof_t, prof_w, unb_t, unb_u,
                                          stuck, sgn, spin, atol, rtol, ew3, ew1, lam, Mm, fv,
                                          A, bb, idx, trig, stick_tol)

@@ -54,7 +54,7 @@ P_LQDX = 38       #   a coupling step; all 0 without a liquid
 P_LQDY = 39
 P_LQI = 40        #   with a motor-driven spin: the films' second moment about the chamber
 P_LQT = 41        #   centre [kg*m^2] and their torque on the spin [N*m], held likewise
-P_ETD = 42        # 1: phases where every ball slips may be jumped by ETDRK4-B (core/expo.py)
+P_ETD = 42        # 1: phases where a ball slips may be jumped by ETDRK4-B (core/expo.py)
 P_HC = 43         # largest DOPRI5 step while two balls touch [s] (0: none): pack.contact_step / w_c
 N_P = 44
 # P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
