@@ -672,10 +672,11 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                    stats, exact)
                     continue
         # two balls in compliant contact: DOPRI5 resolves the contact's oscillation (docs/
-        # numerics.md, "Resting contacts"); at its stability limit it chatters spuriously
+        # numerics.md, "Resting contacts"); at its stability limit it chatters spuriously. A
+        # pair whose balls are both stuck has no such mode (their angles are held): no cap
         if h > P[P_HC] > 0.0:
             for i in range(N):
-                if in_contact[i] == 1:
+                if in_contact[i] == 1 and (stuck[i] == 0 or stuck[(i + 1) % N] == 0):
                     h = P[P_HC]
                     break
         # hard stops at profile knots (a motor-driven spin: at the pause, core/hybrid.py)
