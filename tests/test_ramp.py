@@ -79,6 +79,39 @@ def test_series_solves_the_ramp_equation(W0, a):
     assert abs(zT - wT) < 1e-8 * abs(wT)
 
 
+@pytest.mark.parametrize("f0, a", [(167.0, -42.0), (30.0, 58.0), (100.0, 42.0), (94.2, 58.0)])
+def test_a_shorter_series_is_the_longer_ones_prefix(f0, a):
+    """ser[:J + 1, :2 J + 3] gives the terms g_0..g_J (the coefficients it holds) bit for bit,
+    their sum and the residual of the truncation at J; _terms keeps the fewest terms whose
+    residual passes (R3) RAMP_TERMS_MARGIN inside, all of them when none does: 5 of 11 at
+    30 and 167 Hz on 004's rig, all near its 94.2 Hz resonance."""
+    from autobalance.core.ramp import RAMP_TERMS_MARGIN, _err_ok, _terms
+
+    P = _P()
+    mt, c = P[P_MT], P[P_CX]
+    s1, s2, _ = hold_roots(P, 0.0)
+    L0 = (1 / -s1.real + 1 / -s2.real) / (mt * abs(s1 - s2))      # as ramp_jump's (R3) bound
+    L1 = (abs(s1) / -s1.real + abs(s2) / -s2.real) / (mt * abs(s1 - s2))
+    atol = np.array([3.2e-11] * 5 + [3.4e-8] * 5)    # 004's: positions [m], rates [m/s]
+    W0 = 2 * np.pi * f0
+    ut = 3e-4 * np.exp(0.3j)
+    full = _ser()
+    w, wd, _ = ramp_series(P, ut, W0, a, full)
+    nj = _terms(full, P, W0, w, wd, L0, L1, atol, 1e-6, 5)
+    passing = []
+    for J in range(RAMP_TERMS + 1):
+        part = _ser()[:J + 1, :2 * J + 3]
+        wJ, wdJ, rJ = ramp_series(P, ut, W0, a, part)
+        for j in range(J + 1):       # row j holds the coefficients m < 2 J + 3 - 2 j
+            assert np.array_equal(part[j, :2 * (J - j) + 3], full[j, :2 * (J - j) + 3])
+        assert wJ == sum(full[j, 0] for j in range(J + 1))
+        assert rJ == 2.0 * mt * full[J, 2] + complex(c, 2.0 * mt * W0) * full[J, 1]
+        if J >= 1:
+            passing.append(_err_ok(rJ / RAMP_TERMS_MARGIN, w, wd, L0, L1, W0, atol, 1e-6, 5))
+    assert nj == (passing.index(True) + 2 if any(passing) else RAMP_TERMS + 1)
+    assert nj == {167.0: 5, 30.0: 5, 100.0: 11, 94.2: 11}[f0]
+
+
 def _pair(system, prof, initial):
     """The run with ramp jumps, the same run stepped at rtol 1e-10 and at 1e-11 (its own
     error), and the stepped run's |w| sampled every 20 us (the reference of the maximal

@@ -24,7 +24,9 @@ multiple scales for a slowly varying linear oscillator; Bender & Orszag, *Advanc
 Methods for Scientists and Engineers*, 1978, ch. 10-11). D, B and F are polynomials of degree
 <= 2 in tau, so each g_j is computed as a truncated Taylor series at the evaluation time by
 series division (`ramp_series`). The truncated sum solves (R1) up to the residual
-r = M_t g_J'' + B g_J' (computable).
+r = M_t g_J'' + B g_J' (computable). A ramp keeps the fewest terms whose residual passes (R3)
+with RAMP_TERMS_MARGIN to spare at its start (`_terms`), all RAMP_TERMS + 1 for a chunk that
+then fails.
 
 Transient (R3). In the inertial frame the error e = z - z_p of any solution obeys the
 *constant-coefficient* equation M_t e'' + c e' + k e = -r e^{i psi}: the homogeneous part is
@@ -77,6 +79,9 @@ RAMP_TERMS = 10
 RAMP_TAYLOR = 2 * RAMP_TERMS + 3
 #: the residual's error bound (R3) must stay below this fraction of the local error tolerance
 RAMP_ERR_FRACTION = 1e-3
+#: a ramp keeps the fewest terms g_0..g_J whose residual at its start is within this fraction
+#: of the bound (R3) asks (:func:`_terms`); a chunk that fails (R3) with them takes all
+RAMP_TERMS_MARGIN = 1e-3
 #: first and largest chunk of the stick test (R4) [s]
 RAMP_CHUNK0 = 0.02
 RAMP_CHUNK_MAX = 0.5
@@ -88,12 +93,16 @@ def ramp_series(P: np.ndarray, ut: complex, W: float, a: float,
     """Particular solution (R2) at speed W [rad/s] and ramp rate a [rad/s^2].
 
     Returns w_p [m], w_p' [m/s] and the residual r [N] of the truncated series; ``ser`` is the
-    complex work array (RAMP_TERMS + 1, RAMP_TAYLOR) of the Taylor coefficients of each g_j.
+    complex work array of the Taylor coefficients of each g_j: its shape (J + 1, 2 J + 3) sets
+    the terms g_0..g_J kept (at most (RAMP_TERMS + 1, RAMP_TAYLOR); a leading block of the work
+    array, :func:`_terms`). Each coefficient depends only on those before it, so a shorter
+    series' terms are bit for bit the longer one's.
     """
     mt = P[P_MT]
     k = P[P_KX]
     c = P[P_CX]
     d0 = complex(k - mt * W * W, c * W + mt * a)
+    inv = 1.0 / d0
     d1 = complex(-2.0 * mt * W * a, c * a)
     d2 = -mt * a * a
     b0 = complex(c, 2.0 * mt * W)
@@ -113,7 +122,7 @@ def ramp_series(P: np.ndarray, ut: complex, W: float, a: float,
             acc -= d1 * ser[0, m - 1]
         if m >= 2:
             acc -= d2 * ser[0, m - 2]
-        ser[0, m] = acc / d0
+        ser[0, m] = acc * inv
     for j in range(1, nj):
         for m in range(nk - 2 * j):
             hm = b0 * (m + 1) * ser[j - 1, m + 1] + mt * (m + 2) * (m + 1) * ser[j - 1, m + 2]
@@ -124,7 +133,7 @@ def ramp_series(P: np.ndarray, ut: complex, W: float, a: float,
                 acc -= d1 * ser[j, m - 1]
             if m >= 2:
                 acc -= d2 * ser[j, m - 2]
-            ser[j, m] = acc / d0
+            ser[j, m] = acc * inv
     w = 0j
     wd = 0j
     for j in range(nj):
@@ -180,6 +189,25 @@ def _err_ok(r: complex, wp: complex, wpd: complex, L0: float, L1: float, W: floa
     okp = L0 * ar <= RAMP_ERR_FRACTION * (atol[0] + rtol * abs(wp))
     okv = (L1 + W * L0) * ar <= RAMP_ERR_FRACTION * (atol[nq] + rtol * abs(wpd))
     return okp and okv
+
+
+@kernel
+def _terms(ser: np.ndarray, P: np.ndarray, W: float, wp: complex, wpd: complex, L0: float,
+           L1: float, atol: np.ndarray, rtol: float, nq: int) -> int:
+    """The number J + 1 of terms to keep, ``ser[:J + 1, :2 J + 3]`` (``ser``: all RAMP_TERMS + 1
+    terms computed at speed W [rad/s]): the fewest terms g_0..g_J whose residual
+    r_J = M_t g_J'' + B g_J' passes (R3) with RAMP_TERMS_MARGIN to spare. Away from resonance
+    the terms fall by 1e-3-1e-4 each (J = 3-5 of 10), and the series' cost goes with the
+    square of the terms kept."""
+    mt = P[P_MT]
+    b0 = complex(P[P_CX], 2.0 * mt * W)
+    nj = ser.shape[0]
+    for J in range(1, ser.shape[0]):
+        r = 2.0 * mt * ser[J, 2] + b0 * ser[J, 1]
+        if _err_ok(r / RAMP_TERMS_MARGIN, wp, wpd, L0, L1, W, atol, rtol, nq):
+            nj = J + 1
+            break
+    return nj
 
 
 @kernel
@@ -307,6 +335,10 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     nrhs = 0
     if not _err_ok(r, wp, wpd, L0, L1, W0, atol, rtol, nq):
         return t, kout, nrhs
+    nj = _terms(ser, P, W0, wp, wpd, L0, L1, atol, rtol, nq)
+    sj = ser[:nj, :2 * nj + 1]
+    if sj.shape[0] < ser.shape[0]:      # the transient is fitted to the series that is used
+        wp, wpd, r = ramp_series(P, ut, W0, a, sj)
     rot0 = cmath.exp(complex(0.0, psi0))
     dw = complex(y[0], y[1]) - wp
     dwd = complex(y[nq], y[nq + 1]) - wpd
@@ -330,17 +362,20 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
             dt = span - tau
         tm = tau + 0.5 * dt
         tb = tau + dt
-        wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+        wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B,
                  N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
                  fv, A, bb, idx, trig, q, 1)
-        wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+        wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B,
                  N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
                  fv, A, bb, idx, trig, q, 2)
         nrhs += 2
         ok = (_err_ok(rm, wpm, wpdm, L0, L1, W0 + a * tm, atol, rtol, nq)
               and _err_ok(rb, wpb, wpdb, L0, L1, W0 + a * tb, atol, rtol, nq))
+        if not ok and sj.shape[0] < ser.shape[0]:
+            sj = ser[:ser.shape[0], :ser.shape[1]]     # every term from here on, same chunk
+            continue
         tr = p1 * math.exp(-sg1 * tau) + p2 * math.exp(-sg2 * tau)
         ratio = 0.0
         for i in range(N):
@@ -356,9 +391,9 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
                 continue
             break
         aa = _chunk_peak(t, tau, dt, aa, abs(wm), abs(wb), psi0, W0, a, P, ut, s1, s2, c1, c2,
-                         ser, stats)
+                         sj, stats)
         kout = _outputs(t, t + tb, kout, out_t, out_y, y, N, psi0, W0, a, P, ut, s1, s2, c1, c2,
-                        ser)
+                        sj)
         tau = tb
         for i in range(N):
             q[0, i] = q[2, i]
@@ -368,8 +403,8 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
             dt = max(0.5 * dt, dmin)
     if tau <= 0.0:
         return t, kout, nrhs
-    _ramp_peak(t, tau, psi0, W0, a, P, ut, s1, s2, c1, c2, ser, stats)
-    w, wd, _, _, _ = _state(tau, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+    _ramp_peak(t, tau, psi0, W0, a, P, ut, s1, s2, c1, c2, sj, stats)
+    w, wd, _, _, _ = _state(tau, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
     y[0] = w.real
     y[1] = w.imag
     y[nq] = wd.real
