@@ -28,21 +28,12 @@ import math
 import numpy as np
 from numba import njit
 
-from .jit import inline_kernel, kernel
+from .dense import matvec_add as _matvec_add
+from .jit import kernel
 from .layout import B_KC, P_DELTA
 from .phi import K_PHI, phi_double, phi_functions
 from .rhs import neighbour_gap, profile_eval, profile_segment, rhs
 from .work import ball_work
-
-
-@inline_kernel
-def _matvec_add(M, x, out, m, scale, accumulate):
-    """out[:m] (+)= scale * M[:m, :m] @ x[:m]."""
-    for i in range(m):
-        s = 0.0
-        for j in range(m):
-            s += M[i, j] * x[j]
-        out[i] = (out[i] if accumulate else 0.0) + scale * s
 
 
 @kernel
@@ -108,10 +99,8 @@ def _stage(i, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spi
     _F(U, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw, lam, Mm, fv, A,
        bb, idx, trig)
     for r in range(m):
-        s = 0.0
-        for c in range(m):
-            s += L[r, c] * U[c]
-        G[i, r] = fz[r] - s
+        G[i, r] = fz[r]
+    _matvec_add(L, U, G[i], m, -1.0, True)      # fz - L U, each row's sum as before
 
 
 @kernel
@@ -258,10 +247,10 @@ def _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ch, Cf):
                 for j in range(m):
                     hL[i, j] = (2.0 * h) * L[i, j] * sc[j] / sc[i]
             phi_functions(hL, m, Ch, Cf, work)
-    for k in range(K_PHI + 1):
-        for i in range(m):
-            for j in range(m):
-                f = sc[i] / sc[j]
+    for i in range(m):
+        for j in range(m):
+            f = sc[i] / sc[j]               # once per entry, for the four phi_k
+            for k in range(K_PHI + 1):
                 Ph[k, i, j] *= f
                 Pf[k, i, j] *= f
                 if coarse:

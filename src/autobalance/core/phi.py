@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from .dense import matmul as _matmul
 from .jit import kernel
 
 #: Highest phi function computed (ETDRK4-B needs phi_0 .. phi_3) [-].
@@ -18,18 +19,6 @@ K_PHI = 3
 #: Degree of the Taylor polynomial of phi_3 at the scaled argument (||B||_1 <= 1/2: the first
 #: omitted term is below 0.5^13 / 16! = 5.8e-18) [-].
 TAYLOR_DEGREE = 12
-
-
-@kernel
-def _matmul(A, B, C, m):
-    """C[:m, :m] = A[:m, :m] @ B[:m, :m] (row-wise saxpy: the inner loop runs along rows)."""
-    for i in range(m):
-        for j in range(m):
-            C[i, j] = 0.0
-        for k in range(m):
-            a = A[i, k]
-            for j in range(m):
-                C[i, j] += a * B[k, j]
 
 
 @kernel
