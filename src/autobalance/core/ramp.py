@@ -67,7 +67,7 @@ from typing import TYPE_CHECKING
 
 from .hold import (ball_unbalance, hold_coeffs, hold_roots, hold_state, peak_samples,
                    record_amplitude, vertex)
-from .jit import kernel
+from .jit import inline_kernel, kernel
 from .layout import B_M, P_BETA, P_CX, P_KX, P_MT, P_R, P_RHO, S_AMAX
 from .rhs import profile_eval, rhs
 
@@ -85,6 +85,14 @@ RAMP_TERMS_MARGIN = 1e-3
 #: first and largest chunk of the stick test (R4) [s]
 RAMP_CHUNK0 = 0.02
 RAMP_CHUNK_MAX = 0.5
+
+
+@inline_kernel
+def _residual(ser: np.ndarray, J: int, mt: float, b0: complex) -> complex:
+    """Residual r_J = M_t g_J'' + B g_J' [N] of the series truncated after g_J (R2), at the
+    evaluation time (tau = 0 of the Taylor coefficients ``ser``); mt = M_t [kg], b0 = B(0) =
+    c + 2 i W M_t [kg/s]."""
+    return 2.0 * mt * ser[J, 2] + b0 * ser[J, 1]
 
 
 @kernel
@@ -139,8 +147,7 @@ def ramp_series(P: np.ndarray, ut: complex, W: float, a: float,
     for j in range(nj):
         w += ser[j, 0]
         wd += ser[j, 1]
-    last = nj - 1
-    r = 2.0 * mt * ser[last, 2] + b0 * ser[last, 1]
+    r = _residual(ser, nj - 1, mt, b0)
     return w, wd, r
 
 
@@ -203,7 +210,7 @@ def _terms(ser: np.ndarray, P: np.ndarray, W: float, wp: complex, wpd: complex, 
     b0 = complex(P[P_CX], 2.0 * mt * W)
     nj = ser.shape[0]
     for J in range(1, ser.shape[0]):
-        r = 2.0 * mt * ser[J, 2] + b0 * ser[J, 1]
+        r = _residual(ser, J, mt, b0)
         if _err_ok(r / RAMP_TERMS_MARGIN, wp, wpd, L0, L1, W, atol, rtol, nq):
             nj = J + 1
             break
