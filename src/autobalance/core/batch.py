@@ -1,20 +1,48 @@
-"""Many runs of :func:`autobalance.core.integrate.integrate` in one compiled call, in parallel
-threads (numba ``prange``); runs that branch from a shared history (``integrate_branches``)."""
+"""Many runs of :func:`autobalance.core.integrate.integrate_span`, on ``numba.get_num_threads()``
+Python threads (the kernel releases the GIL); runs that branch from a shared history
+(``integrate_branches``).
+
+Why threads and not a numba ``prange`` loop: numba compiles every jitted caller into its own
+machine code with its whole call tree linked in and optimised again (numba/core/codegen.py,
+``CPUCodeLibrary.finalize``), and a ``parallel=True`` function twice (its gufunc and itself). The
+two ``prange`` drivers added ~23 s each to the kernels' ~95 s first compilation, for a loop
+that a thread pool runs as fast: one call per run costs ~20 us against ~5 ms per run
+(docs/numerics.md, "Compilation cache").
+"""
 from __future__ import annotations
 
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+
+import numba
 import numpy as np
-from numba import njit, prange
 
-from .integrate import integrate, integrate_span
-from .layout import N_C, S_STATUS, RunStatus
+from .integrate import integrate_span
+from .layout import S_STATUS, RunStatus, carry_size
 
-__all__ = ["integrate_batch", "integrate_branches"]
+__all__ = ["integrate_batch", "integrate_branches", "each_run"]
 
 #: stats[S_STATUS] of a run paused at the branch knot
 RUNNING = float(RunStatus.RUNNING)
 
 
-@njit(cache=True, parallel=True)
+def each_run(n: int, run: Callable[[int], None]) -> None:
+    """Call ``run(r)`` for r = 0 .. n-1 on ``numba.get_num_threads()`` threads, one run at a
+    time per thread (dynamic scheduling: runs differ in length). An exception (Ctrl-C
+    included) cancels the runs not yet started, waits for the ones running, and propagates."""
+    k = min(numba.get_num_threads(), n)
+    if k <= 1:
+        for r in range(n):
+            run(r)
+        return
+    ex = ThreadPoolExecutor(k, thread_name_prefix="autobalance-run")
+    try:
+        for _ in ex.map(run, range(n)):
+            pass
+    finally:
+        ex.shutdown(wait=True, cancel_futures=True)
+
+
 def integrate_batch(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                     prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray,
                     unb_n: np.ndarray, y0: np.ndarray, t_end: float, rtol: float,
@@ -22,15 +50,19 @@ def integrate_batch(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                     out_y: np.ndarray, stats: np.ndarray) -> None:
     """Many runs in one call, in parallel threads: P (n, N_P), B (n, N, N_B), y0 (n, 2nq),
     atol (n, 2nq), out_y (n, len(out_t), 2nq), stats (n, N_S); the speed profile is shared;
-    unbalance tables per run: unb_t, unb_u (n, K), of which run r uses the first unb_n[r]."""
-    nrun = P.shape[0]
-    for r in prange(nrun):
+    unbalance tables per run: unb_t, unb_u (n, K), of which run r uses the first unb_n[r].
+    Units as :func:`autobalance.core.integrate.integrate`."""
+    C = carry_size(N)
+
+    def run(r: int) -> None:
         k = unb_n[r]
-        integrate(P[r], B[r], N, prof_t, prof_w, unb_t[r, :k], unb_u[r, :k], y0[r], t_end,
-                  rtol, atol[r], h_max, max_steps, out_t, out_y[r], stats[r])
+        integrate_span(P[r], B[r], N, prof_t, prof_w, unb_t[r, :k], unb_u[r, :k], y0[r].copy(),
+                       t_end, rtol, atol[r], h_max, max_steps, out_t, out_y[r], stats[r],
+                       np.inf, np.zeros(C))
+
+    each_run(P.shape[0], run)
 
 
-@njit(cache=True, parallel=True)
 def integrate_branches(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                        prof_w: np.ndarray, prof_n: np.ndarray, unb_t: np.ndarray,
                        unb_u: np.ndarray, unb_n: np.ndarray, y0: np.ndarray, t_end: np.ndarray,
@@ -46,30 +78,30 @@ def integrate_branches(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     fails before the knot fails in every branch, as it would alone."""
     S = P.shape[0]
     F = prof_n.shape[0]
-    n = y0.shape[1]
-    C = N_C + 9 * N + 7
-    ys = np.empty((F * S, n))
+    C = carry_size(N)
+    ys = np.empty((F * S, y0.shape[1]))
+    ys[:S] = y0
     carry = np.zeros((F * S, C))
     k0 = prof_n[0]
-    for s in prange(S):
-        ys[s] = y0[s]
+
+    def prefix(s: int) -> None:
         k = unb_n[s]
         integrate_span(P[s], B[s], N, prof_t[0, :k0], prof_w[0, :k0], unb_t[s, :k],
                        unb_u[s, :k], ys[s], t_end[0], rtol, atol[s], h_max, max_steps, out_t,
                        out_y[s], stats[s], t_pause, carry[s])
-    for r in prange(S, F * S):
-        s = r % S
-        ys[r] = ys[s]
-        carry[r] = carry[s]
-        out_y[r] = out_y[s]
-        stats[r] = stats[s]
-    for r in prange(F * S):
-        f = r // S
-        s = r % S
+
+    each_run(S, prefix)
+    for arr in (ys, carry, out_y, stats):
+        arr[S:] = np.tile(arr[:S], (F - 1,) + (1,) * (arr.ndim - 1))
+
+    def branch(r: int) -> None:
+        f, s = divmod(r, S)
         if stats[r, S_STATUS] != RUNNING:
-            continue                          # failed before the knot: in every branch
+            return                            # failed before the knot: in every branch
         k = unb_n[s]
         kf = prof_n[f]
         integrate_span(P[s], B[s], N, prof_t[f, :kf], prof_w[f, :kf], unb_t[s, :k],
                        unb_u[s, :k], ys[r], t_end[f], rtol, atol[s], h_max, max_steps, out_t,
                        out_y[r], stats[r], np.inf, carry[r])
+
+    each_run(F * S, branch)

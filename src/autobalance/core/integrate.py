@@ -23,7 +23,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from .jit import inline_kernel, kernel
 
@@ -37,7 +36,7 @@ from .expo import SLIP_WINDOW, slip_window
 from .layout import (C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C_NETD, C_NEV,
                      C_NEXT, C_NHOLD,
                      C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1, C_STALL, C_T, C_WHERE,
-                     N_C, RunStatus)
+                     N_C, RunStatus, carry_size)
 from .ramp import hold_breakaway, ramp_jump
 from .rhs import neighbour_gap, profile_segment, rhs
 from .work import ball_work
@@ -373,7 +372,6 @@ def _carry_in(carry, N, n, spin, stuck, sgn, in_contact, gs, lam, f0):
             carry[C_HETD])
 
 
-@njit(cache=True)
 def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: np.ndarray,
               unb_t: np.ndarray, unb_u: np.ndarray, y0: np.ndarray, t_end: float, rtol: float,
               atol: np.ndarray, h_max: float, max_steps: int, out_t: np.ndarray,
@@ -395,11 +393,10 @@ def integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w: 
     """
     y = y0.copy()
     integrate_span(P, B, N, prof_t, prof_w, unb_t, unb_u, y, t_end, rtol, atol, h_max,
-                   max_steps, out_t, out_y, stats, np.inf, np.zeros(N_C + 9 * N + 7))
+                   max_steps, out_t, out_y, stats, np.inf, np.zeros(carry_size(N)))
     return y
 
 
-@njit(cache=True)
 def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                    prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, y: np.ndarray,
                    t_end: float, rtol: float, atol: np.ndarray, h_max: float, max_steps: int,
@@ -419,12 +416,8 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     coupling steps of core/hybrid.py; not bit for bit the run without the pause). t_pause = inf:
     the whole run.
     """
-    (K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx, stuck, sgn, gs, ge, spin,
-     in_contact, viol, trig, ser, qr, ew3, ew1) = ball_work(N)
     _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
-               out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
-               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, ew3, ew1, t_pause,
-               carry)
+               out_t, out_y, stats, y, *ball_work(N), t_pause, carry)
 
 
 @kernel

@@ -1,8 +1,8 @@
 """Compilation flags of the numba kernels.
 
 ``kernel`` compiles with the numba runtime (NRT) off. None of these functions allocates: every
-array is a borrowed argument that the caller keeps alive (the allocating entry points,
-integrate.integrate and batch.integrate_batch, keep the NRT). With the NRT on, numba reference-counts
+array is a borrowed argument that the caller keeps alive (work.ball_work, which allocates them,
+keeps the NRT). With the NRT on, numba reference-counts
 each array argument on entry and exit of a call (an atomic increment and decrement per array)
 unless its reference-count pruning pass removes the pair. In rhs (18 arrays, ~8 calls per step)
 it did not, and that cost ~130 of its ~300 ns per call. Switching the NRT off changes no result.
@@ -57,9 +57,10 @@ except ImportError:                                   # pragma: no cover - other
 
 
 def kernel(fn: Callable[..., Any]) -> Any:
-    """njit(cache=True) without the NRT (no allocation inside; see the module docstring). A
-    numba without the option compiles with the NRT: slower, same results."""
-    return njit(cache=True, **_NO_NRT)(fn)
+    """njit(cache=True, nogil=True) without the NRT (no allocation inside; see the module
+    docstring). A numba without the option compiles with the NRT: slower, same results. The GIL
+    is released on a call from Python (core/batch.py runs runs on Python threads)."""
+    return njit(cache=True, nogil=True, **_NO_NRT)(fn)
 
 
 def inline_kernel(fn: Callable[..., Any]) -> Any:

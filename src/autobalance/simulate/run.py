@@ -184,7 +184,7 @@ def simulate_batch(systems: list[System], spin: SpeedProfile | MotorDrive,
     """Run many parameter / initial-condition sets of the same ball count in one compiled call.
 
     All runs share the spin profile; everything else (parameters, unbalance schedule, initial
-    state) is per run. They run in parallel threads (numba prange). Only the states at ``out_times`` [s] (default: the
+    state) is per run. They run in parallel threads (core/batch.py). Only the states at ``out_times`` [s] (default: the
     profile's checkpoints; any order, the result keeps it) and the run statistics are kept. A failed run is a status in the
     result, never an exception; a batch that cannot fit the step budget or the run-time limit
     (:func:`autobalance.limits.check_run`) is refused before it starts (ResourceError).
