@@ -92,15 +92,16 @@ def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int,
 
 
 @kernel
-def _stage(i, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+def _stage(U, n, L, Gi, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig):
-    """G[i] = F(U) - L U (fz: work)."""
+    """Gi = F(U) - L U, Gi a row of the stages' G (fz: work). The row, not G and its index: an
+    index passed as a constant would compile a copy per stage (core/jit.py)."""
     m = n - 1
     _F(U, n, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw, lam, Mm, fv, A,
        bb, idx, trig)
     for r in range(m):
-        G[i, r] = fz[r]
-    _matvec_add(L, U, G[i], m, -1.0, True)      # fz - L U, each row's sum as before
+        Gi[r] = fz[r]
+    _matvec_add(L, U, Gi, m, -1.0, True)      # fz - L U, each row's sum as before
 
 
 @kernel
@@ -121,21 +122,21 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     U[m + 1] = z[m + 1]
     for r in range(m):
         U[r] = z[r]
-    _stage(0, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+    _stage(U, n, L, G[0], P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U2 = e^{hL/2} z + h/2 phi1(hL/2) G1
     _matvec_add(Ph[0], z, V, m, 1.0, False)
     _matvec_add(Ph[1], G[0], V, m, 0.5 * h, True)
     for r in range(m):
         U[r] = V[r]
-    _stage(1, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+    _stage(U, n, L, G[1], P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U3 = e^{hL/2} z + h [(phi1/2 - phi2)(hL/2) G1 + phi2(hL/2) G2] = U2 + h phi2(hL/2) (G2 - G1)
     for r in range(m):
         U[r] = V[r]
         X[r] = G[1, r] - G[0, r]
     _matvec_add(Ph[2], X, U, m, h, True)
-    _stage(2, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+    _stage(U, n, L, G[2], P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U4 = e^{hL} z + h [(phi1 - 2 phi2)(hL) G1 + phi2(hL) (G2 + G3)]
     #    = W + h phi2(hL) (G2 + G3 - 2 G1),  W = e^{hL} z + h phi1(hL) G1
@@ -145,7 +146,7 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
         U[r] = W[r]
         X[r] = G[1, r] + G[2, r] - 2.0 * G[0, r]
     _matvec_add(Pf[2], X, U, m, h, True)
-    _stage(3, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+    _stage(U, n, L, G[3], P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # U5 = e^{hL/2} z + h [a51 G1 + a52 (G2 + G3) + a54 G4] with
     # a52 = phi2(hL/2)/2 - phi3(hL) + phi2(hL)/4 - phi3(hL/2)/2, a54 = phi2(hL/2)/4 - a52,
@@ -160,7 +161,7 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     _matvec_add(Pf[2], fz, U, m, 0.25 * h, True)
     _matvec_add(Pf[3], fz, U, m, -h, True)
     _matvec_add(Ph[3], fz, U, m, -0.5 * h, True)
-    _stage(4, U, n, L, G, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
+    _stage(U, n, L, G[4], P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, fz, yw, fw,
            lam, Mm, fv, A, bb, idx, trig)
     # z_new = e^{hL} z + h [(phi1 - 3 phi2 + 4 phi3) G1 + (4 phi3 - phi2) G4 + (4 phi2 - 8 phi3) G5]
     #       = W + h phi2(hL) (4 G5 - 3 G1 - G4) + h phi3(hL) (4 G1 + 4 G4 - 8 G5)

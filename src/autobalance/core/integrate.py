@@ -51,6 +51,10 @@ STICK_TOL = 1e-9
 #: chunk's midpoint (docs/numerics.md, "The tanh law's slow manifold")
 CREEP_CHUNK = 1e-5
 
+#: event kinds of _event_g / _locate / _modes, and "no event"; numpy integers, not Python ones:
+#: a Python constant passed to a kernel compiles a copy of it per value (core/jit.py)
+SLIP_STOP, BREAKAWAY, NO_EVENT = np.int64(0), np.int64(1), np.int64(-1)
+
 #: stats[S_STATUS] of a run paused by integrate_span
 _RUNNING = float(RunStatus.RUNNING)
 
@@ -448,8 +452,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     status = 0
     en = 0.0
     h_acc = 0.0
-    ev_kind = -1
-    ev_i = -1
+    ev_kind = NO_EVENT
+    ev_i = NO_EVENT
     if where == 0:
         spin[0] = P[P_SPIN]
         for j in range(N_S):
@@ -535,12 +539,12 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         next_try = nsteps + 20
                     if t >= t_pause:
                         paused = 1
-                        ev_kind = -1
+                        ev_kind = NO_EVENT
                         break
                     seg = profile_segment(t, prof_t)
-                    nrhs += _modes(-1, -1, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                   stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
-                                   stats, exact)
+                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, prof_t, prof_w,
+                                   unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx,
+                                   trig, gs, stats, exact)
                     continue
                 next_try = nsteps + 20
             if flat and all_stuck and t_seg - t > 20.0 * h:
@@ -590,12 +594,12 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     nhold += 1
                     if t >= t_pause:
                         paused = 2
-                        ev_kind = -1
+                        ev_kind = NO_EVENT
                         break
                     seg = profile_segment(t, prof_t)
-                    nrhs += _modes(-1, -1, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                   stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
-                                   stats, exact)
+                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, prof_t, prof_w,
+                                   unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx,
+                                   trig, gs, stats, exact)
                     continue
                 if can_ramp:
                     # ---- the hold until its first breakaway, without stepping (ramp.py R5) ----
@@ -616,7 +620,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             next_try = nsteps + 20
                         if t >= t_pause:
                             paused = 3
-                            ev_kind = -1
+                            ev_kind = NO_EVENT
                             ev_i = ib
                             break
                         seg = profile_segment(t, prof_t)
@@ -657,12 +661,12 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         kout += 1
                     if t >= t_pause:
                         paused = 1
-                        ev_kind = -1
+                        ev_kind = NO_EVENT
                         break
                     seg = profile_segment(t, prof_t)
-                    nrhs += _modes(-1, -1, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                   stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs,
-                                   stats, exact)
+                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, prof_t, prof_w,
+                                   unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx,
+                                   trig, gs, stats, exact)
                     continue
         # two balls in compliant contact: DOPRI5 resolves the contact's oscillation (docs/
         # numerics.md, "Resting contacts"); at its stability limit it chatters spuriously. A
@@ -713,8 +717,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         # ---- accepted trial step: events ------------------------------------------------
         for i in range(N):
             ge[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
-        ev_kind = -1
-        ev_i = -1
+        ev_kind = NO_EVENT
+        ev_i = NO_EVENT
         th_ev = 2.0
         shrink = False
         if exact:
@@ -730,8 +734,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             # freshly released ball (alpha_dot = 0): bracket a positive value
                             thp = 0.5
                             for _ in range(30):
-                                gp = _event_g(0, i, thp, t, h, y, f0, y1, f1, ytmp, P, B, N,
-                                              seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+                                gp = _event_g(SLIP_STOP, i, thp, t, h, y, f0, y1, f1, ytmp, P, B,
+                                              N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
                                               spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
                                 if gp > 0.0:
                                     a_ = thp
@@ -744,9 +748,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         if ga <= 0.0:
                             th = 0.0
                         else:
-                            th, ne = _locate(0, i, ga, gb, a_, t, h, y, f0, y1, f1, ytmp, P, B,
-                                             N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                             spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
+                            th, ne = _locate(SLIP_STOP, i, ga, gb, a_, t, h, y, f0, y1, f1, ytmp,
+                                             P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
+                                             sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
                         if th < th_ev:
                             th_ev = th
                             ev_kind = 0
@@ -771,9 +775,10 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         if ga <= 0.0 or gb >= 0.0:
                             th = 0.0 if ga <= 0.0 else 1.0
                         else:
-                            th, ne = _locate(1, i, ga, gb, 0.0, t, h, y, f0, y1, f1, ytmp, P,
-                                             B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
-                                             sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
+                            th, ne = _locate(BREAKAWAY, i, ga, gb, 0.0, t, h, y, f0, y1, f1,
+                                             ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
+                                             stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx,
+                                             trig)
                             nrhs += ne
                         if th < th_ev:
                             th_ev = th
@@ -786,7 +791,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             if th < th_ev:
                 th_ev = th
                 ev_kind = 2
-                ev_i = -1
+                ev_i = NO_EVENT
         h_acc = h
         if ev_kind >= 0:
             nev += 1

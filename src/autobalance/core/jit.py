@@ -9,6 +9,11 @@ it did not, and that cost ~130 of its ~300 ns per call. Switching the NRT off ch
 ``_nrt`` is a private numba option (numba issue #2350 uses it the same way); a kernel that tried
 to allocate would fail to compile (typing error), not misbehave.
 
+An integer constant passed to a kernel (``f(0, ...)``) is typed as that literal value, and
+numba compiles the callee once per value: a copy of its whole call tree each (``_stage`` of
+the slip jumps was five). Call sites pass ``np.int64(...)``, a module-level numpy integer, or
+the array row instead of an index (docs/numerics.md, "Compilation cache").
+
 ``inline_kernel`` also inlines the function into its compiled callers (numba IR inlining),
 for small helpers called per vector component: a call between numba functions passes every
 array as its exploded struct (7-9 words each).

@@ -63,16 +63,14 @@ from __future__ import annotations
 
 import cmath
 import math
-from typing import TYPE_CHECKING
+
+import numpy as np
 
 from .hold import (ball_unbalance, hold_coeffs, hold_roots, hold_state, peak_samples,
                    record_amplitude, vertex)
 from .jit import inline_kernel, kernel
 from .layout import B_M, P_BETA, P_CX, P_KX, P_MT, P_R, P_RHO, S_AMAX
 from .rhs import profile_eval, rhs
-
-if TYPE_CHECKING:
-    import numpy as np
 
 #: correction terms g_1..g_J of the series (R2); the work array holds (J + 1, 2 J + 3) complex
 RAMP_TERMS = 10
@@ -170,8 +168,8 @@ def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.nd
              prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray,
              sgn: np.ndarray, spin: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
              lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray, bb: np.ndarray,
-             idx: np.ndarray, trig: np.ndarray, q: np.ndarray, col: int) -> None:
-    """q[col, i] = mu_s N_i R (1 - 1e-9) - |lambda_i,p| [N*m] on the particular state (R4)."""
+             idx: np.ndarray, trig: np.ndarray, qc: np.ndarray) -> None:
+    """qc[i] = mu_s N_i R (1 - 1e-9) - |lambda_i,p| [N*m] on the particular state (R4)."""
     nq = N + 3
     n = 2 * nq
     for j in range(n):
@@ -185,7 +183,7 @@ def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.nd
     rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm,
         fv, A, bb, idx, trig)
     for i in range(N):
-        q[col, i] = lam[N + i] * (1.0 - 1e-9) - abs(lam[i])
+        qc[i] = lam[N + i] * (1.0 - 1e-9) - abs(lam[i])
 
 
 @kernel
@@ -262,7 +260,7 @@ def _ramp_peak(t: float, tau_end: float, psi0: float, W0: float, a: float, P: np
     if cmag == 0.0:
         return
     life = min(tau_end, 16.0 / min(-s1.real, -s2.real))
-    up = _peak_abs(0.0, life, 64, psi0, W0, a, P, ut, s1, s2, 0j, 0j, ser)[0]
+    up = _peak_abs(0.0, life, np.int64(64), psi0, W0, a, P, ut, s1, s2, 0j, 0j, ser)[0]
     if up * 1.001 + cmag <= stats[S_AMAX]:
         return
     f_max = max(abs(s1.imag - W0), max(abs(s2.imag - W0), abs(s1.imag - s2.imag))) + abs(a) * life
@@ -281,7 +279,7 @@ def _chunk_peak(t: float, tau: float, dt: float, aa: float, am: float, ab: float
     record_amplitude(am, t + tau + 0.5 * dt, stats)
     record_amplitude(ab, t + tau + dt, stats)
     if vertex(aa, am, ab) != 0.0:
-        ap, tp = _peak_abs(tau, dt, 2, psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
+        ap, tp = _peak_abs(tau, dt, np.int64(2), psi0, W0, a, P, ut, s1, s2, c1, c2, ser)
         record_amplitude(ap, t + tp, stats)
     return ab
 
@@ -353,7 +351,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     p1 = abs(s1 * s1 * c1)
     p2 = abs(s2 * s2 * c2)
     _margins(t, W0, psi0, wp, wpd, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-             spin, ytmp, ftmp, lam, Mm, fv, A, bb, idx, trig, q, 0)
+             spin, ytmp, ftmp, lam, Mm, fv, A, bb, idx, trig, q[0])
     nrhs += 1
     for i in range(N):
         if q[0, i] - B[i, B_M] * P[P_R] * (p1 + p2) <= 0.0:
@@ -372,11 +370,11 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
         wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B,
                  N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
-                 fv, A, bb, idx, trig, q, 1)
+                 fv, A, bb, idx, trig, q[1])
         wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B,
                  N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
-                 fv, A, bb, idx, trig, q, 2)
+                 fv, A, bb, idx, trig, q[2])
         nrhs += 2
         ok = (_err_ok(rm, wpm, wpdm, L0, L1, W0 + a * tm, atol, rtol, nq)
               and _err_ok(rb, wpb, wpdb, L0, L1, W0 + a * tb, atol, rtol, nq))
@@ -512,7 +510,7 @@ def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex
         if done or tau >= tau_max:
             return tau_max, -1, 5
         tb = min(tau + dtau, tau_max)
-        gb, _ = _hold_margin(tb, s1, s2, c1, c2, N, q, stick_tol, -1)
+        gb, _ = _hold_margin(tb, s1, s2, c1, c2, N, q, stick_tol, np.int64(-1))
         if gb < 0.0:
             # earliest crossing among the balls below their limit at tb (Illinois)
             best = tb
