@@ -64,7 +64,7 @@ except ImportError:                                   # pragma: no cover - other
 def kernel(fn: Callable[..., Any]) -> Any:
     """njit(cache=True, nogil=True) without the NRT (no allocation inside; see the module
     docstring). A numba without the option compiles with the NRT: slower, same results. The GIL
-    is released on a call from Python (core/batch.py runs runs on Python threads)."""
+    is released on a call from Python (core/batch.py calls the loop from Python threads)."""
     return njit(cache=True, nogil=True, **_NO_NRT)(fn)
 
 
