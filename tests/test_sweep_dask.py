@@ -290,3 +290,29 @@ def test_dask_branch_tasks_equal_serial_unbranched(cluster, tmp_path):
     assert m1 - m0 == len(make_plan(spec).tasks) == 8
     ref = sweep(spec, tmp_path / "serial", executor="serial", progress=False, branch=False)
     assert_bit_identical(ds, ref)
+
+
+def test_a_task_on_a_two_thread_worker_runs_on_one_numba_thread():
+    """numba's thread count is per thread: the worker set-up reaches one of a worker's task
+    threads, so every task sets its own (sweep/task.one_thread_on_dask), or the batches of
+    two task threads would each take both cores (core/batch.py)."""
+    import numba
+
+    from autobalance.sweep.task import one_thread_on_dask
+
+    def count_in_task():
+        one_thread_on_dask()
+        return numba.get_num_threads()
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("one core: nothing to oversubscribe")
+
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, host="127.0.0.1",
+                      dashboard_address=None) as c, Client(c) as client:
+        client.wait_for_workers(1, timeout=120)
+        untouched = client.submit(numba.get_num_threads, pure=False).result()
+        assert untouched == numba.config.NUMBA_NUM_THREADS
+        assert client.submit(count_in_task, pure=False).result() == 1
+    k = numba.get_num_threads()
+    one_thread_on_dask()                       # outside a worker: the caller's count stays
+    assert numba.get_num_threads() == k

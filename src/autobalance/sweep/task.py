@@ -2,6 +2,8 @@
 ``run_task``, the one pure function every executor runs (``execute.py``)."""
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from ..core.layout import RunStatus
@@ -46,6 +48,24 @@ def _pad_balls(a: np.ndarray, slots: int) -> np.ndarray:
     return out
 
 
+def one_thread_on_dask() -> None:
+    """On a Dask worker, one numba thread in this task's thread. ``numba.set_num_threads`` is
+    thread-local, so the workers' set-up (``execute._init_worker``, run once through
+    ``client.run``) reaches one thread only, and a worker with several task threads would run
+    every batch on all cores again (core/batch.py). Nothing elsewhere: the local process pool
+    sets its one thread at start, and a serial sweep keeps the caller's count."""
+    dd = sys.modules.get("distributed")          # a Dask worker has imported it
+    if dd is None:
+        return
+    try:
+        dd.get_worker()
+    except ValueError:                             # not inside a Dask task
+        return
+    import numba
+
+    numba.set_num_threads(1)
+
+
 def run_task(payload: dict) -> dict | list:
     """Run one task (in any process): numpy arrays per run, see store.VARIABLES. The runs of a
     task share their ball count N; ``ball_angle`` has ``payload["ball_slots"]`` (>= N) balls,
@@ -53,6 +73,7 @@ def run_task(payload: dict) -> dict | list:
     one such dict per cell."""
     from ..simulate import simulate_batch, simulate_branches
 
+    one_thread_on_dask()
     spin = payload["spin"]
     cps = np.asarray(spin.checkpoints, float)
     hist = np.asarray(payload["history_times"], float)
