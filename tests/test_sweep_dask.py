@@ -308,7 +308,7 @@ def test_a_task_on_a_two_thread_worker_runs_on_one_numba_thread():
         pytest.skip("one core: nothing to oversubscribe")
 
     with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, host="127.0.0.1",
-                      dashboard_address=None) as c, Client(c) as client:
+                      dashboard_address=":0") as c, Client(c) as client:
         client.wait_for_workers(1, timeout=120)
         untouched = client.submit(numba.get_num_threads, pure=False).result()
         assert untouched == numba.config.NUMBA_NUM_THREADS
