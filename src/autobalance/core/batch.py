@@ -1,4 +1,4 @@
-"""Many runs of :func:`autobalance.core.integrate.integrate_span`, on ``numba.get_num_threads()``
+"""Many runs of :func:`autobalance.core.integrate.integrate`, on ``numba.get_num_threads()``
 Python threads (the kernel releases the GIL); runs that branch from a shared history
 (``integrate_branches``).
 
@@ -18,7 +18,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numba
 import numpy as np
 
-from .integrate import integrate_span
+from .integrate import integrate, integrate_span
 from .layout import S_STATUS, RunStatus, carry_size
 
 __all__ = ["integrate_batch", "integrate_branches", "each_run"]
@@ -53,13 +53,10 @@ def integrate_batch(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     atol (n, 2nq), out_y (n, len(out_t), 2nq), stats (n, N_S); the speed profile is shared;
     unbalance tables per run: unb_t, unb_u (n, K), of which run r uses the first unb_n[r].
     Units as :func:`autobalance.core.integrate.integrate`."""
-    C = carry_size(N)
-
     def run(r: int) -> None:
         k = unb_n[r]
-        integrate_span(P[r], B[r], N, prof_t, prof_w, unb_t[r, :k], unb_u[r, :k], y0[r].copy(),
-                       t_end, rtol, atol[r], h_max, max_steps, out_t, out_y[r], stats[r],
-                       np.inf, np.zeros(C))
+        integrate(P[r], B[r], N, prof_t, prof_w, unb_t[r, :k], unb_u[r, :k], y0[r], t_end,
+                  rtol, atol[r], h_max, max_steps, out_t, out_y[r], stats[r])
 
     each_run(P.shape[0], run)
 
