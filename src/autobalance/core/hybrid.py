@@ -41,7 +41,8 @@ from .integrate import _integrate
 from .layout import P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS, RunStatus
 from .rhs import profile_eval, profile_segment
 from .work import ball_work
-from .shallow_water import _emit, films_dt, films_moment, films_spin, films_step, gravity_offset
+from .shallow_water import (_emit, accept_state, films_dt, films_moment, films_spin, films_step,
+                            gravity_offset)
 
 _RUNNING = float(RunStatus.RUNNING)
 
@@ -74,18 +75,6 @@ def with_knot(prof_t: np.ndarray, prof_w: np.ndarray, t1: float, pt: np.ndarray,
         pw[m] = prof_w[n - 1]
         m += 1
     return m
-
-
-@kernel
-def _accept(h: np.ndarray, q: np.ndarray, hn: np.ndarray, qn: np.ndarray) -> bool:
-    """Copy the films' new state hn, qn into h, q; False if any of it is not finite."""
-    ok = True
-    for i in range(h.shape[0]):
-        h[i] = hn[i]
-        q[i] = qn[i]
-        if not (math.isfinite(h[i]) and math.isfinite(q[i])):
-            ok = False
-    return ok
 
 
 @kernel
@@ -199,7 +188,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
                    t_pause, carry)
         # 3. the films' update, taken up by the chamber
         steps += 1
-        if not _accept(h, q, hn, qn):
+        if not accept_state(h, q, hn, qn):
             return -1
         U1, Ud1 = films_moment(h, q, theta, starts, Rs, Hs, rhos)
         # Z and Z' kept: over the step Z moved by the kernel's M_t w' and the held U' (so U'

@@ -94,6 +94,19 @@ def friction_rate(h: float, v: float, nu: float, R: float) -> float:
 
 
 @kernel
+def accept_state(h: np.ndarray, q: np.ndarray, hn: np.ndarray, qn: np.ndarray) -> bool:
+    """Copy a step's new state hn, qn [m, m^2/s] into h, q; False if any of it is not finite
+    (the films', the horizontal spin-up's)."""
+    ok = True
+    for i in range(h.shape[0]):
+        h[i] = hn[i]
+        q[i] = qn[i]
+        if not (math.isfinite(h[i]) and math.isfinite(q[i])):
+            ok = False
+    return ok
+
+
+@kernel
 def sw_step(h: np.ndarray, q: np.ndarray, b: np.ndarray, a: np.ndarray, g: float, dx: float,
             dt: float, nu: float, R: float, wall: np.ndarray, hn: np.ndarray, qn: np.ndarray,
             fh: np.ndarray, fq: np.ndarray, fqr: np.ndarray, hl: np.ndarray,
@@ -251,12 +264,7 @@ def sw_integrate(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, nu: 
                            table_interp(t, tt, tvy), table_interp(t, tt, tax), table_interp(t, tt, tay), a)
         sw_step(h, q, b, a, g, dx, dt, nu, R, wall, hn, qn, fh, fq, fqr, hl, hr)
         psi += w * dt + 0.5 * wd * dt * dt
-        ok = True
-        for i in range(n):
-            h[i] = hn[i]
-            q[i] = qn[i]
-            if not (math.isfinite(h[i]) and math.isfinite(q[i])):
-                ok = False
+        ok = accept_state(h, q, hn, qn)
         steps += 1
         if not ok:
             return -1
@@ -407,7 +415,6 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
     before the first). h, q, and the returned (Z, Y, w'') are the final state; out_h, out_q
     (len(out_t), total cells) the films at out_t and out_w the deflection. Returns (steps, Z, Y,
     w''); steps = -1 on a non-finite state."""
-    n = h.shape[0]
     t = 0.0
     Z = Z0
     Y = Y0
@@ -453,12 +460,7 @@ def sw_coupled(h: np.ndarray, q: np.ndarray, theta: np.ndarray, starts: np.ndarr
             Z = Z + hs * (Y + hs / 6.0 * (k1 + k2 + k3))
             Y = Y + hs / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
         psi += W * dt + 0.5 * Wd * dt * dt
-        ok = math.isfinite(Z.real) and math.isfinite(Z.imag)
-        for i in range(n):
-            h[i] = hn[i]
-            q[i] = qn[i]
-            if not (math.isfinite(h[i]) and math.isfinite(q[i])):
-                ok = False
+        ok = accept_state(h, q, hn, qn) and math.isfinite(Z.real) and math.isfinite(Z.imag)
         steps += 1
         if not ok:
             return -1, Z, Y, wdd
