@@ -429,24 +429,27 @@ def simulate(source: Annotated[str, typer.Argument(
 
 @app.command()
 def spinup(source: Annotated[str, typer.Argument(
-               metavar="PRESET|CONFIG", help="A machine with a [liquid] section (vertical "
-               "axis); its profile from rest.")] = "leblanc_003",
+               metavar="PRESET|CONFIG", help="A machine with a [liquid] section; its profile "
+               "from rest.")] = "leblanc_003",
            sets: SetOpt = None,
-           cells: Annotated[int, typer.Option(
-               "--cells", help="Cells of equal bottom area per chamber.")] = 100,
+           cells: Annotated[Optional[int], typer.Option(
+               "--cells", help="Cells per chamber (vertical: 100 of equal bottom area; "
+               "horizontal: 256 around the wall).")] = None,
            plot: PlotOpt = None, as_json: JsonOpt = False):
     """The liquid's spin-up from rest through 003's modes 1-3 until it reaches the lid (mode 4,
     the entrainment), from the axisymmetric shallow-water model (docs/liquid.md sec. 3h),
-    beside 003 eq 4 and eq 6's quasi-static speeds.\f
+    beside 003 eq 4 and eq 6's quasi-static speeds. On a horizontal axis the liquid in time
+    around the wall from a puddle at rest, or from a ring if the profile starts turning, until
+    it closes into a ring, breaks, or leaves the model (docs/liquid.md sec. 3n).\f
 
     Parameters
     ----------
     source : str
-        Preset or config with a ``[liquid]`` section on a vertical axis.
+        Preset or config with a ``[liquid]`` section.
     sets : list of str
         ``--set`` overrides (e.g. ``profile.ramp_time=60 s``, ``liquid.volume=300 ml``).
-    cells : int
-        Cells per chamber [-].
+    cells : int or None
+        Cells per chamber [-] (None: 100 on a vertical axis, 256 on a horizontal one).
     plot : str or None
         Figure file (liquid speed vs chamber speed; depth at the lid).
     as_json : bool
@@ -459,6 +462,10 @@ def spinup(source: Annotated[str, typer.Argument(
 
     _check_plot(plot)
     cfg = load_machine(source, sets, balls="liquid")
+    if cfg.system.liquid.axis == "horizontal":
+        from .liquid_rimming import horizontal_spinup_command
+        return horizontal_spinup_command(cfg, cells or 256, plot, as_json)
+    cells = cells or 100
     runs = spinup_of(cfg.system, cfg.spin, n_cells=cells)
     chambers = []
     for r, c in zip(runs, cfg.system.liquid.chambers):

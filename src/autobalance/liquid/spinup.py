@@ -24,8 +24,8 @@ if TYPE_CHECKING:
 
     import numpy.typing as npt
 
-__all__ = ["PoolSpin", "SpinUp", "chamber_spinup", "rigid_pool", "spinup_of", "spinup_run",
-           "within_spinup"]
+__all__ = ["PoolSpin", "SpinUp", "chamber_spinup", "output_times", "rigid_pool",
+           "speed_table", "spinup_of", "spinup_run", "up_to_stop", "within_spinup"]
 
 #: Mode 1 (full priority of gravity) lasts while the surface at the inner wall (the axis) has
 #: sunk by less than this fraction of the rest level (as :func:`.free_surface.gravity_mode_speed`,
@@ -207,11 +207,7 @@ def spinup_run(radius: float, height: float, volume: float,
         raise ParameterError("n_cells", n_cells, f"must be an integer in [8, {MAX_CELLS}] (the "
                              "run's time grows as its square: 800 cells take about a minute)")
     n = int(n_cells)
-    tt = np.asarray(speed[0], float)
-    tw = np.asarray(speed[1], float)
-    if tt.ndim != 1 or tt.size < 2 or tw.shape != tt.shape or np.any(np.diff(tt) <= 0) \
-            or np.any(tw < 0) or not np.all(np.isfinite(tw)):
-        raise ParameterError("speed", "table", "needs increasing times and speeds >= 0 [rad/s]")
+    tt, tw = speed_table(speed)
     rf, rc, _ = _cells(R, ri, n)
     h0 = V / area
     if initial is None:
@@ -224,20 +220,73 @@ def spinup_run(radius: float, height: float, volume: float,
                 or not all(np.all(np.isfinite(x)) for x in (h, q, s)):
             raise ParameterError("initial", "arrays", f"needs h >= 0, q and s, {n} finite "
                                  "values each")
-    out_t = np.linspace(0.0, T, 401) if not save_dt else np.arange(0.0, T + 0.5 * save_dt,
-                                                                   positive("save_dt", save_dt))
+    out_t = output_times(T, save_dt)
     out = [np.full((out_t.size, n), np.nan) for _ in range(3)]
     work = [np.zeros(n) for _ in range(3)] + [np.zeros(n + 1) for _ in range(5)]
     steps, t_stop = spinup_integrate(h, q, s, rf, gg, nu, H, T, tt, tw, out_t, *out, *work)
     if steps < 0:
         raise FloatingPointError("spinup_run: the state became non-finite")
-    keep = out_t <= t_stop + 1e-12 * max(1.0, t_stop)
-    t = np.append(out_t[keep], t_stop) if out_t[keep][-1] < t_stop else out_t[keep]
-    rows = [np.vstack([o[keep], x[None, :]]) if t.size > keep.sum() else o[keep]
-            for o, x in zip(out, (h, q, s))]
+    t, rows = up_to_stop(out_t, t_stop, out, (h, q, s))
     lid = float(t_stop) if t_stop < T else None
     return SpinUp(t, rc, rf, rows[0], rows[1], rows[2], np.interp(t, tt, tw), lid, h0,
                   int(steps))
+
+
+def speed_table(speed: tuple[npt.ArrayLike, npt.ArrayLike]) -> tuple[np.ndarray, np.ndarray]:
+    """A spin-up model's speed table, checked: (times [s], speeds [rad/s]) as float arrays;
+    one line naming ``speed`` unless the times increase and the speeds are finite and >= 0.
+
+    Parameters
+    ----------
+    speed : (array, array)
+        Times [s] from 0 and speeds [rad/s], linear between the points.
+    """
+    tt = np.asarray(speed[0], float)
+    tw = np.asarray(speed[1], float)
+    if tt.ndim != 1 or tt.size < 2 or tw.shape != tt.shape or np.any(np.diff(tt) <= 0) \
+            or np.any(tw < 0) or not np.all(np.isfinite(tw)):
+        raise ParameterError("speed", "table", "needs increasing times and speeds >= 0 [rad/s]")
+    return tt, tw
+
+
+def output_times(t_end: float, save_dt: float | None) -> np.ndarray:
+    """A spin-up model's output times [s]: 401 from 0 to ``t_end``, or every ``save_dt`` [s].
+
+    Parameters
+    ----------
+    t_end : float
+        The run's latest stop [s].
+    save_dt : float or None
+        Output spacing [s], > 0 (None: 401 outputs).
+    """
+    if not save_dt:
+        return np.linspace(0.0, t_end, 401)
+    return np.arange(0.0, t_end + 0.5 * save_dt, positive("save_dt", save_dt))
+
+
+def up_to_stop(out_t: np.ndarray, t_stop: float, rows: Sequence[np.ndarray],
+               finals: Sequence) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The outputs of a run that stopped at ``t_stop`` [s]: the output times up to it and each
+    row (first axis over ``out_t``), with the final state ``finals`` appended at ``t_stop``
+    when the stop falls between two outputs.
+
+    Parameters
+    ----------
+    out_t : ndarray
+        Output times [s].
+    t_stop : float
+        The stop [s].
+    rows : sequence of ndarray
+        The kernel's outputs, one row per output time [any units].
+    finals : sequence
+        The state at the stop, one value or array per row [the rows' units].
+    """
+    keep = out_t <= t_stop + 1e-12 * max(1.0, t_stop)
+    t = out_t[keep]
+    if t[-1] < t_stop:
+        return np.append(t, t_stop), [np.concatenate([o[keep], np.asarray(x, float)[None]])
+                                      for o, x in zip(rows, finals)]
+    return t, [o[keep] for o in rows]
 
 
 def spinup_of(system: System, spin: SpeedProfile | MotorDrive, *, n_cells: int = DEFAULT_CELLS,
