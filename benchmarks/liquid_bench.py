@@ -14,6 +14,10 @@ G. The same fills x 12 constant speeds 40-84 1/s (above every fill's omega_0) wi
 H. Four runs of two 80 g balls beside the liquid (0 -> 150 1/s in 20 s, held to 30 s), one
    after another and on two threads (the hybrid kernel releases the GIL; the tolerances'
    simulation check runs them so), side by side, with the results compared bit for bit.
+I. The liquid on a horizontal axis (preset leblanc_washer: R = 0.26 m, 1 l of water, 256 cells;
+   liquid/rimming.py): the preset's run-up from a puddle at rest until it leaves the model, and
+   a run-down 300 -> 1 rpm in 20 s from a ring until it breaks; beside them the wall film's run
+   of the same machine (simulate_liquid, from its start at 185 rpm to 1000 rpm).
 Results are written to out/liquid_bench.json.
 """
 from __future__ import annotations
@@ -111,6 +115,28 @@ def main() -> dict:
     lines.append(f"H. 4 runs of balls beside the liquid (30 s each): one after another "
                  f"{t_ser:.2f} s, on 2 threads {t_thr:.2f} s ({t_ser / t_thr:.2f}x); "
                  f"identical: {same}")
+
+    from autobalance.liquid.rimming import horizontal_spinup
+
+    wash = load_config("leblanc_washer")
+    down = load_config("leblanc_washer", ["profile.start_speed=300 rpm",
+                                          "profile.end_speed=1 rpm", "profile.ramp_time=20 s",
+                                          "profile.duration=20 s"])
+    horizontal_spinup(wash.system, wash.spin, n_cells=64)                    # compile
+    simulate_liquid(wash.system, wash.spin, n_cells=64)
+    t_up, (up,) = timed(lambda: horizontal_spinup(wash.system, wash.spin), repeat=2)
+    t_dn, (dn,) = timed(lambda: horizontal_spinup(down.system, down.spin), repeat=2)
+    t_fw, _ = timed(lambda: simulate_liquid(wash.system, wash.spin), repeat=2)
+    rpm = 30 / np.pi
+    res["I_horizontal"] = {"run_up_s": t_up, "run_up_status": up.status,
+                           "run_up_stop_rpm": up.stop_speed * rpm, "run_down_s": t_dn,
+                           "run_down_status": dn.status, "run_down_stop_rpm": dn.stop_speed * rpm,
+                           "film_run_s": t_fw}
+    lines.append(f"I. washer ring on a horizontal axis, 256 cells: run-up from the puddle "
+                 f"{t_up:.2f} s ({up.status} at {up.stop_speed * rpm:.1f} rpm), run-down from "
+                 f"the ring {t_dn:.2f} s ({dn.status} at {dn.stop_speed * rpm:.1f} rpm); the "
+                 f"film's run 185 -> 1000 rpm {t_fw:.2f} s (ratios {t_up / t_fw:.2f}, "
+                 f"{t_dn / t_fw:.2f})")
     return report(lines, res, "liquid_bench.json")
 
 
