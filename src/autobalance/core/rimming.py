@@ -1,6 +1,6 @@
 """Shallow-water equations of the liquid on the outer wall of a chamber turning about a
-*horizontal* axis, from a puddle at rest until it closes into a ring held all round: the
-liquid's spin-up on a horizontal axis (issue 15; model: docs/liquid.md sec. 3n).
+*horizontal* axis, from a puddle at rest (until it closes into a ring) or from a ring (until it
+breaks), at any speed (issue 15; model: docs/liquid.md sec. 3n).
 
 Unknowns per cell of the periodic wall coordinate x = R theta (chamber frame, turning at
 Omega(t), spin angle psi): the layer's thickness h [m] and discharge q = h v [m^2/s], v relative
@@ -14,9 +14,9 @@ rest in the inertial frame feels none of it; the "apparent topography" of rotati
 water, Bouchut, Le Sommer & Zeitlin 2004, J. Fluid Mech. 514, 35, as core/spinup.py) plus
 gravity g at the inertial angle gamma, normal to the wall. Along the wall the liquid feels
 gravity's tangential part -d/dx of the wall's potential P = -g R cos(theta + psi - gamma), the
-Euler term -Omega' R and the wall friction. In equilibrium the surface is an equipotential,
-P + G h = const (linearised in h): at Omega = 0 the horizontal chord of a puddle, in rigid
-rotation the circle offset by g / Omega^2 (liquid/quasistatic.py). Where G <= 0 nothing holds
+Euler term -Omega' R and the wall friction. The momentum balance takes the potential of the
+surface, -h d/dx (P + G h) (linearised in h), so that at rest the surface is an equipotential:
+at Omega = 0 the horizontal chord of a puddle. Where G <= 0 nothing holds
 the liquid on the wall: a real liquid falls off; the model keeps it there pressure-less (G is
 floored at :data:`G_FLOOR`) and reports the largest share of the liquid in such cells.
 
@@ -26,12 +26,13 @@ axial width H (a puddle deeper than the chamber is wide is spun up mostly by its
 
 Scheme: finite volumes, HLL flux on the hydrostatic reconstruction of Audusse et al. (2004,
 SIAM J. Sci. Comput. 25, 2050) written in the potential: at each interface the "bottom" is
-max(P_i, P_j), each side's depth (P + G h - max(P_i, P_j)) / G_f with G_f = max(G_i, G_j) (the
-same on both sides, so a puddle at rest stays at rest to round-off; G_f >= G_i keeps the
-reconstructed depth <= h_i, so positivity holds under the CFL step); second order by the
-MUSCL reconstruction of the surface potential and the velocity (minmod; first order next to a
-dry cell) with Audusse et al.'s centred cell term, and Heun's two stages (SSP-RK2); friction
-implicit in each stage. No partitions (a partitioned ring carries its liquid in its
+max(P_i, P_j), each side's depth (P + G h - max(P_i, P_j)) / G_f with G_f = min(G_i, G_j) (the
+same on both sides, so a puddle at rest stays at rest to round-off), clipped to the side's own
+depth (positivity under the CFL step). With the larger G as G_f a lump of liquid slower than
+the wall choked against a neighbouring film's much larger G and piled up. Second order by the
+MUSCL reconstruction of the depth, the surface potential and the velocity (minmod; first order
+next to a dry cell) with Audusse et al.'s centred cell term, and Heun's two stages (SSP-RK2) at
+half the Courant number; friction implicit in each stage. No partitions (a partitioned ring carries its liquid in its
 compartments).
 """
 from __future__ import annotations
