@@ -101,8 +101,9 @@ def closing_ring(radius: float, height: float, volume: float) -> float:
     """The model's quasi-static ring at its closing: a = Omega^2 R / g where the thin layer in
     rigid rotation, h = R (1 + c) / (a + c) (c = cos of the angle from the bottom; P + G h =
     const with zero thickness at the top), holds the volume: mean h / R = 1 - sqrt((a - 1) /
-    (a + 1)) = V / (2 pi R^2 H) (our closed form; the thin-layer counterpart of
-    :func:`.quasistatic.horizontal_ring_speed`, to O(h/R)) [-].
+    (a + 1)) = V / (2 pi R^2 H) (our closed form; to O(h/R) the exact geometry's g / Omega^2 =
+    R - r_s, r_s = sqrt(R^2 - V / (pi H)), where the offset surface circle of rigid rotation
+    (:mod:`.quasistatic`) touches the wall; 205 rpm for the washer's ring) [-].
 
     Parameters
     ----------
