@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING
 
 from .jit import kernel
 from .rhs import profile_eval, profile_segment
-from .shallow_water import CFL, DRY_FRACTION, accept_state, friction_rate, hll_flux
+from .shallow_water import CFL, DRY_FRACTION, _emit, accept_state, friction_rate, hll_flux
 
 if TYPE_CHECKING:
     import numpy as np
@@ -53,6 +53,13 @@ G_FLOOR = 1e-9
 
 
 @kernel
+def g_floor(g: float, w: float, R: float) -> float:
+    """The floor of G [m/s^2]: :data:`G_FLOOR` of g + w^2 R (g [m/s^2], w [rad/s], R [m]), kept
+    above 0 (module docstring)."""
+    return G_FLOOR * (g + w * w * R) + 1e-300
+
+
+@kernel
 def rim_fields(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, g: float,
                gdir: float, psi: float, w: float, G: np.ndarray, P: np.ndarray) -> float:
     """Per cell the normal acceleration G [m/s^2] (floored) and the wall's potential P [m^2/s^2]
@@ -60,7 +67,7 @@ def rim_fields(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, g: flo
     theta [rad] the cells' angles, R [m], g [m/s^2] at the inertial angle gdir [rad]. Returns
     the share of the liquid in cells where nothing holds it (G <= 0) [-]."""
     dry = DRY_FRACTION * R
-    floor = G_FLOOR * (g + w * w * R) + 1e-300
+    floor = g_floor(g, w, R)
     tot = 0.0
     loose = 0.0
     for i in range(h.shape[0]):
@@ -100,7 +107,7 @@ def rim_faces(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, g: floa
     n = h.shape[0]
     dry = DRY_FRACTION * R
     half = math.pi / n
-    floor = G_FLOOR * (g + w * w * R) + 1e-300
+    floor = g_floor(g, w, R)
     for i in range(n):
         k = i - 1 if i > 0 else n - 1
         j = i + 1 if i + 1 < n else 0
@@ -200,7 +207,7 @@ def _ring_state(h: np.ndarray, theta: np.ndarray, G: np.ndarray, R: float, ring:
     cy = 0.0
     tot = 0.0
     for i in range(h.shape[0]):
-        if h[i] < ring or G[i] <= floor + 1e-300:
+        if h[i] < ring or G[i] <= floor:
             return -1
         cx += h[i] * math.cos(theta[i])
         cy += h[i] * math.sin(theta[i])
@@ -245,14 +252,12 @@ def rim_integrate(h: np.ndarray, q: np.ndarray, theta: np.ndarray, R: float, H: 
         loose = rim_fields(h, q, theta, R, g, gdir, psi, w, G, P)
         if loose > worst:
             worst = loose
-        while k < nout and out_t[k] <= t + 1e-12 * max(1.0, t):
-            for i in range(n):
-                out_h[k, i] = h[i]
-                out_q[k, i] = q[i]
-            out_psi[k] = psi
-            out_loose[k] = loose
-            k += 1
-        state = _ring_state(h, theta, G, R, ring, centroid, G_FLOOR * (g + w * w * R))
+        k1 = _emit(out_t, out_h, out_q, k, t + 1e-12 * max(1.0, t), h, q)
+        for r in range(k, k1):
+            out_psi[r] = psi
+            out_loose[r] = loose
+        k = k1
+        state = _ring_state(h, theta, G, R, ring, centroid, g_floor(g, w, R))
         if stop == STOP_CLOSED and state == 1 and loose == 0.0:
             return STOP_CLOSED, steps, t, worst, psi, loose
         if stop == STOP_BROKEN and (state < 0 or loose > 0.0):
