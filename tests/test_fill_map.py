@@ -80,7 +80,7 @@ def test_refusals_are_one_line():
 def test_cli_end_to_end(tmp_path):
     nc, png = tmp_path / "fm.nc", tmp_path / "fm.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "study", "fill-map", "leblanc_003",
-                        "--fills", "50:200 ml:4", "--speeds", "30:90 1/s:13", "--json",
+                        "--fills", "50:200 ml:4", "--speeds", "30:90 rad/s:13", "--json",
                         "--linear", "--out", str(nc), "--plot", str(png)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr

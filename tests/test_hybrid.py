@@ -37,7 +37,7 @@ def test_massless_liquid_is_the_ball_run():
     with a knot every millisecond of the same profile moves by 1.5e-3, 5.7e-3 rad and 0.16
     mm/s, and rtol 1e-6 -> 1e-7 by 1.1e-3, 2.6e-3 rad and 0.12 mm/s."""
     cfg = machine("balancer.rolling_resistance=0.002", "liquid.density=0.001 kg/m^3",
-                  "profile.end_speed=60 1/s", "profile.ramp_time=6 s", "profile.duration=8 s")
+                  "profile.end_speed=60 rad/s", "profile.ramp_time=6 s", "profile.duration=8 s")
     a = simulate(cfg.system, cfg.spin)
     b = simulate(dataclasses.replace(cfg.system, liquid=None), cfg.spin)
     assert a.liquid is not None and a.liquid.steps > 1000 and b.liquid is None
@@ -55,7 +55,7 @@ def test_locked_balls_are_the_film_rotor():
     film to the rotor through different rotor integrators (RK4 sub-steps / DOPRI5 at rtol);
     measured (stop 30) 2.4e-4 in |w| and 6.6e-3 of |U| after 8 s (|w| within 0.8 % of the
     quasi-static closed form)."""
-    prof = ("profile.kind=constant", "profile.speed=40 1/s", "profile.duration=8 s")
+    prof = ("profile.kind=constant", "profile.speed=40 rad/s", "profile.duration=8 s")
     cfg = machine("balancer.rolling_resistance=1", "balancer.stiction=1",
                   "balancer.contact=none", *prof)
     a = 2 * np.pi / 3
@@ -82,7 +82,7 @@ def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
     from autobalance.liquid.simulate import revolution_average
 
     m, R, a = 0.2, 0.27, 2 * np.pi / 3
-    prof = ("profile.kind=constant", "profile.speed=25 1/s", "profile.duration=30 s")
+    prof = ("profile.kind=constant", "profile.speed=25 rad/s", "profile.duration=30 s")
     cfg = load_config("leblanc_washer", [
         "balancer.n_balls=2", f"balancer.ball_mass={m} kg", f"balancer.race_radius={R} m",
         "balancer.ball_radius=10 mm", "balancer.rolling_resistance=1", "balancer.stiction=1",
@@ -103,7 +103,7 @@ def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
 @pytest.mark.parametrize("sets, spin, field", [
     (("liquid.axis=horizontal",), None, "gravity.g"),          # no in-plane gravity given
     (("gravity.g=9.81 m/s^2",), None, "gravity.g"),            # in the plane of a vertical axis
-    (("profile.end_speed=10 1/s",), None, "profile"),
+    (("profile.end_speed=10 rad/s",), None, "profile"),
     ((), MotorDrive("constant", 10.0, 10.0, 5.0), "profile.final_speed"),  # ends as a pool
 ])
 def test_refusals(sets, spin, field):
@@ -127,7 +127,7 @@ def test_cli_end_to_end(tmp_path):
     figure with the liquid's moment as a grade."""
     nc = tmp_path / "r.nc"
     r = subprocess.run([sys.executable, "-m", "autobalance", "simulate", "leblanc_003",
-                        *(f"--set={s}" for s in BALLS), "--set=profile.end_speed=40 1/s",
+                        *(f"--set={s}" for s in BALLS), "--set=profile.end_speed=40 rad/s",
                         "--set=profile.ramp_time=8 s", "--set=profile.duration=8 s",
                         "--json", "--out", str(nc), "--plot", str(tmp_path / "r.png")],
                        capture_output=True, text=True, timeout=600)
@@ -136,7 +136,7 @@ def test_cli_end_to_end(tmp_path):
     assert d["status"] == "ok" and d["n_balls"] == 2 and d["liquid"]["film_steps"] > 0
     assert (tmp_path / "r.png").stat().st_size > 50_000     # the ball figure, the liquid's G
     from autobalance.liquid.spinup import spinup_of
-    cfg = machine("profile.end_speed=40 1/s", "profile.ramp_time=8 s", "profile.duration=8 s")
+    cfg = machine("profile.end_speed=40 rad/s", "profile.ramp_time=8 s", "profile.duration=8 s")
     assert d["liquid"]["film_start_s"] == spinup_of(cfg.system, cfg.spin)[0].lid_time
     assert d["liquid"]["film_start_speed_rad_s"] > 22.66           # later than 003 eq 6
     with xr.open_dataset(nc) as ds:
@@ -150,7 +150,7 @@ def test_cli_end_to_end(tmp_path):
         assert float(ds.residual_unbalance[-1]) == pytest.approx(res, rel=1e-9)
 
 
-SHORT = ("profile.end_speed=40 1/s", "profile.ramp_time=6 s", "profile.duration=6 s")
+SHORT = ("profile.end_speed=40 rad/s", "profile.ramp_time=6 s", "profile.duration=6 s")
 
 
 @pytest.mark.slow
@@ -242,7 +242,7 @@ def test_outside_the_wall_film_is_refused_or_reported():
     line before any work; a film that reaches its annulus' inner wall ends the run
     outside_model, naming the chamber (these ran silently with exit 0 before)."""
     thick = machine("liquid.chamber_radius=0.1 m", "liquid.inner_radius=0 m", "liquid.volume=1 l",
-                    "profile.start_speed=60 1/s", "profile.end_speed=100 1/s")
+                    "profile.start_speed=60 rad/s", "profile.end_speed=100 rad/s")
     with pytest.raises(ParameterError) as e:
         simulate(thick.system, thick.spin)
     assert str(e.value).startswith("volume") and "wall film" in str(e.value)
@@ -257,9 +257,9 @@ def test_outside_the_wall_film_is_refused_or_reported():
     assert "chamber R = 0.2 m" in sim.message and "0.197" in sim.message
 
 
-TSR = ("profile.kind=tsr", "profile.nominal=100 1/s", "profile.duration=20 s",
+TSR = ("profile.kind=tsr", "profile.nominal=100 rad/s", "profile.duration=20 s",
        "profile.runup_fraction=0.4", "profile.down_time=2 s", "profile.plateau_time=3 s",
-       "profile.up_time=2 s", "profile.plateau=60 1/s")
+       "profile.up_time=2 s", "profile.plateau=60 rad/s")
 
 
 def _own_grades(cfg, n):
@@ -347,7 +347,7 @@ def test_design_takes_balls_beside_a_liquid(tmp_path):
     from autobalance.studies.tolerances import compute_tolerances
     from autobalance.sweep.execute import open_sweep
 
-    std = ("profile.kind=std", "profile.nominal=100 1/s", "profile.runup_time=4 s",
+    std = ("profile.kind=std", "profile.nominal=100 rad/s", "profile.runup_time=4 s",
            "profile.duration=8 s", "profile.runup_fraction=0.6")
     cfg = load_config("leblanc_003", [*BALLS, *std])
     ds = compute_design(cfg, space=DesignSpace(n_balls=(2,), capacity_ratios=(1.4,),
@@ -385,7 +385,7 @@ def test_run_up_with_massless_locked_balls_is_the_liquid_alone_run_up():
     Tolerance 0.5 %: the two integrate the rotor differently (DOPRI5 on w / RK4 on Z)."""
     from autobalance.config import load_config
 
-    prof = ("profile.end_speed=80 1/s", "profile.ramp_time=16 s", "profile.duration=16 s")
+    prof = ("profile.end_speed=80 rad/s", "profile.ramp_time=16 s", "profile.duration=16 s")
     alone = load_config("leblanc_003", list(prof))
     liq = simulate_liquid(alone.system, alone.spin)
     cfg = load_config("leblanc_003", ["balancer.n_balls=2", "balancer.ball_mass=1e-6 kg",
@@ -414,7 +414,7 @@ def test_runs_beside_a_liquid_on_threads_are_the_serial_runs():
     cfg = load_config("leblanc_003", [
         "balancer.n_balls=2", "balancer.ball_mass=0.08 kg", "balancer.race_radius=0.25 m",
         "balancer.ball_radius=10 mm", "balancer.damping=20 N*mm*s/rad",
-        "profile.end_speed=100 1/s", "profile.ramp_time=8 s", "profile.duration=10 s"])
+        "profile.end_speed=100 rad/s", "profile.ramp_time=8 s", "profile.duration=10 s"])
     inits = [InitialState(ball_angles=(a, a + 2.0)) for a in (0.3, 2.2)]
 
     def one(i):

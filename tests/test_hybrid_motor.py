@@ -24,7 +24,7 @@ LOCKED = ("balancer.n_balls=2", "balancer.ball_mass=0.08 kg", "balancer.race_rad
           "balancer.ball_radius=10 mm", "balancer.rolling_resistance=1", "balancer.stiction=1",
           "balancer.contact=none", "rotor.unbalance=0 kg*m", "rotor.polar_inertia=0.01 kg*m^2")
 MOTOR = ("profile.kind=motor", "profile.law=constant", "profile.torque=0.5 N*m",
-         "profile.final_speed=200 1/s", "profile.initial_speed=40 1/s", "profile.duration=1 s")
+         "profile.final_speed=200 rad/s", "profile.initial_speed=40 rad/s", "profile.duration=1 s")
 OPPOSITE = InitialState(ball_angles=(0.0, np.pi))
 
 
@@ -58,8 +58,8 @@ def test_a_massless_liquid_is_the_motor_run():
     the pauses clip its steps). Measured: speed within 4.4e-9, amplitude within 1.0e-5 of its
     peak; the ball run itself moves by 4.9e-6 of the peak from rtol 1e-6 to 1e-7."""
     sets = ("liquid.density=1e-3 kg/m^3", "rotor.unbalance=0.03 kg*m",
-            "rotor.polar_inertia=0.5 kg*m^2", "profile.torque=5 N*m", "profile.initial_speed=30 1/s",
-            "profile.final_speed=100 1/s", "profile.duration=6 s")
+            "rotor.polar_inertia=0.5 kg*m^2", "profile.torque=5 N*m", "profile.initial_speed=30 rad/s",
+            "profile.final_speed=100 rad/s", "profile.duration=6 s")
     cfg = load_config("leblanc_003", [*LOCKED, *MOTOR, *sets])
     ini = InitialState(ball_angles=(2 * np.pi / 3, -2 * np.pi / 3))
     a = simulate(cfg.system, cfg.spin, initial=ini, options=cfg.options)
@@ -171,7 +171,7 @@ def _whirl_books(n_cells):
     (M_t, D, J) and liquid (first moment U, I_c, H_rel), from first principles (the kernel's
     own spin row is not used). Isotropic springs exert no torque about the axis."""
     sets = ("profile.kind=motor", "profile.law=constant", "profile.torque=5 N*m",
-            "profile.final_speed=100 1/s", "profile.initial_speed=30 1/s", "profile.duration=6 s",
+            "profile.final_speed=100 rad/s", "profile.initial_speed=30 rad/s", "profile.duration=6 s",
             "rotor.polar_inertia=0.5 kg*m^2", "suspension.cx=0 N*s/m", "suspension.cy=0 N*s/m")
     cfg = load_config("leblanc_003", list(sets))
     s = cfg.system
@@ -230,7 +230,7 @@ def test_balls_beside_a_horizontal_ring_under_a_motor_from_rest():
     from autobalance.simulate.hybrid import POOL_STEP, RIGID_NOTE
 
     J, T = 1.0, 20.0
-    sets = [*LOCKED, *MOTOR, "profile.initial_speed=0 1/s", "profile.duration=1.5 s",
+    sets = [*LOCKED, *MOTOR, "profile.initial_speed=0 rad/s", "profile.duration=1.5 s",
             f"profile.torque={T} N*m", "balancer.race_radius=0.27 m", "balancer.ball_mass=1 g",
             f"rotor.polar_inertia={J} kg*m^2"]
     cfg = load_config("leblanc_washer", sets)
@@ -247,7 +247,7 @@ def test_balls_beside_a_horizontal_ring_under_a_motor_from_rest():
 
 def test_refusals_of_a_motor_beside_a_liquid():
     """One line: a drive ending below the film's start speed."""
-    cfg = load_config("leblanc_003", [*LOCKED, *MOTOR, "profile.final_speed=10 1/s"])
+    cfg = load_config("leblanc_003", [*LOCKED, *MOTOR, "profile.final_speed=10 rad/s"])
     with pytest.raises(ParameterError) as e:
         simulate(cfg.system, cfg.spin)
     assert e.value.field == "profile.final_speed"

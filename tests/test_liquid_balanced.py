@@ -213,7 +213,7 @@ def test_liquid_stability_cli_takes_balls(tmp_path):
     png = tmp_path / "s.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
                         "leblanc_003", *[f"--set={x}" for x in BALLS], "--omega",
-                        "60:120 1/s:7", "--json", "--plot", str(png)],
+                        "60:120 rad/s:7", "--json", "--plot", str(png)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)

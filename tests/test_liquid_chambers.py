@@ -279,7 +279,7 @@ def test_cli_three_chambers_end_to_end(tmp_path):
     assert [c["chamber_radius_m"] for c in d["chambers"]] == list(RADII)
     assert d["status"] == "ok" and nc.stat().st_size > 0
     r = cli("study", "fill-map", "leblanc_003_three", "--fills", "225, 450 ml",
-            "--speeds", "40:100 1/s:7", "--json")
+            "--speeds", "40:100 rad/s:7", "--json")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert [f["fill_m3"] for f in d["fills"]] == pytest.approx([225e-6, 450e-6])
@@ -310,7 +310,7 @@ def test_liquid_simulate_of_three_chambers_is_the_fill_map_and_the_film_run(tmp_
     cfg = three(*SHORT)
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "simulate",
                         "leblanc_003_three", *(f"--set={s}" for s in SHORT), "--omega",
-                        "5:100 1/s:20", "--run-up", "--fill-sweep", "--json",
+                        "5:100 rad/s:20", "--run-up", "--fill-sweep", "--json",
                         "--plot", str(tmp_path / "r.png")], capture_output=True, text=True,
                        timeout=600)
     assert r.returncode == 0, r.stderr

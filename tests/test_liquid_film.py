@@ -265,7 +265,7 @@ def test_film_at_rest_on_a_centred_wall_is_uniform(volume):
     if volume == 112.5e-6:
         c = load_config("leblanc_003", ["liquid.volume=112.5 ml", "rotor.unbalance=0",
                                         "profile.duration=4 s", "profile.ramp_time=4 s",
-                                        "profile.end_speed=40 1/s"])
+                                        "profile.end_speed=40 rad/s"])
         assert simulate_liquid(c.system, c.spin).status == "ok"
 
 

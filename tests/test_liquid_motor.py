@@ -22,7 +22,7 @@ from autobalance.simulate.hybrid import POOL_STEP, RIGID_NOTE, simulate_liquid_m
 
 #: 003's chamber (150 ml of water) on a rotor of 0.5 kg m^2 under 5 N*m up to 100 1/s.
 MOTOR = ("profile.kind=motor", "profile.law=constant", "profile.torque=5 N*m",
-         "profile.final_speed=100 1/s", "profile.initial_speed=30 1/s", "profile.duration=12 s",
+         "profile.final_speed=100 rad/s", "profile.initial_speed=30 rad/s", "profile.duration=12 s",
          "rotor.polar_inertia=0.5 kg*m^2")
 
 
@@ -71,7 +71,7 @@ def test_a_motor_from_rest_spins_the_pool_up_and_pays_for_it():
     run after it is the film run of its speed history (measured: film start 3.507 against
     3.506 s, peak 4.960 against 4.962 mm, G 88.632 against 88.632)."""
     T = 0.05
-    cfg = machine("profile.initial_speed=0 1/s", "rotor.unbalance=0 kg*m",
+    cfg = machine("profile.initial_speed=0 rad/s", "rotor.unbalance=0 kg*m",
                   f"profile.torque={T} N*m", "rotor.polar_inertia=1e-3 kg*m^2",
                   "profile.duration=4 s")
     s = cfg.system
@@ -90,7 +90,7 @@ def test_a_motor_from_rest_spins_the_pool_up_and_pays_for_it():
     fs = film_start(s, prof)
     assert fs.rule == "spin-up" and abs(fs.time - a.film_start) < 2 * POOL_STEP
     # (3) with an unbalance on the 0.5 kg m^2 rotor under 5 N*m
-    cfg = machine("profile.initial_speed=0 1/s")
+    cfg = machine("profile.initial_speed=0 rad/s")
     a = simulate_liquid_motor(cfg.system, cfg.spin)
     b = simulate_liquid(cfg.system, its_speed_history(a, 12.0))
     assert abs(b.film_start - a.film_start) < 2 * POOL_STEP
@@ -102,7 +102,7 @@ def test_a_motor_from_rest_spins_the_pool_up_and_pays_for_it():
 def test_a_motor_that_stops_before_the_lid_leaves_a_pool():
     """A drive too weak to reach the lid in its time: the liquid stays a pool (no film, U = 0),
     the run is the rotor with the pool's mass, and it says where the film started: nowhere."""
-    cfg = machine("profile.initial_speed=0 1/s", "profile.duration=0.3 s")
+    cfg = machine("profile.initial_speed=0 rad/s", "profile.duration=0.3 s")
     a = simulate_liquid_motor(cfg.system, cfg.spin)
     assert a.status == "ok" and math.isnan(a.film_start) and a.steps == 0
     assert a.message.startswith("no film")
@@ -145,8 +145,8 @@ def test_refusals_of_a_motor_with_a_liquid():
     starts below it in a chamber more than half full on a vertical axis (outside the spin-up
     model); a prescribed profile here."""
     for preset, sets, field in (
-            ("leblanc_003", ("profile.final_speed=10 1/s",), "profile.final_speed"),
-            ("leblanc_003", ("profile.initial_speed=0 1/s", "liquid.volume=2 l"),
+            ("leblanc_003", ("profile.final_speed=10 rad/s",), "profile.final_speed"),
+            ("leblanc_003", ("profile.initial_speed=0 rad/s", "liquid.volume=2 l"),
              "profile.initial_speed")):
         cfg = load_config(preset, [*MOTOR, *sets])
         with pytest.raises(ParameterError) as e:
@@ -198,7 +198,7 @@ def test_runup_study_and_sweep_of_a_liquid_alone_under_a_motor(tmp_path):
     from autobalance.studies.runup import compute_runup
     from autobalance.sweep import spec_from_dict, sweep
 
-    sets = [*MOTOR, "profile.initial_speed=0 1/s", "profile.duration=6 s"]
+    sets = [*MOTOR, "profile.initial_speed=0 rad/s", "profile.duration=6 s"]
     cfg = load_config("leblanc_003", sets)
     a = simulate_liquid_motor(cfg.system, cfg.spin)
     before = a.t < a.film_start

@@ -167,7 +167,7 @@ def test_steady_whirl_matches_the_quasi_static_liquid():
     (("liquid.axis=horizontal",), "gravity.g"),                 # no in-plane gravity given
     (("suspension.ky=50 N/mm",), "suspension.ky"),
     (("gravity.g=9.81 m/s^2",), "gravity.g"),
-    (("profile.end_speed=10 1/s",), "profile"),             # never reaches omega_0 (~15 1/s)
+    (("profile.end_speed=10 rad/s",), "profile"),           # never reaches omega_0 (~15 1/s)
 ])
 def test_film_model_refusals(sets, field):
     cfg = bench(*sets)
@@ -345,7 +345,7 @@ def test_store_identity_sees_the_liquid():
     assert ident("100 ml") == ident("100 ml") != ident("101 ml")
 
 
-SHORT_RUN = ("profile.duration=8 s", "profile.ramp_time=8 s", "profile.end_speed=80 1/s")
+SHORT_RUN = ("profile.duration=8 s", "profile.ramp_time=8 s", "profile.end_speed=80 rad/s")
 
 
 @pytest.mark.slow

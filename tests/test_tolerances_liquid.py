@@ -24,7 +24,7 @@ from autobalance.physics.worst_case import (SyncLiquid, attained_residual, rest_
 BALLS = ("balancer.n_balls=2", "balancer.ball_mass=0.08 kg", "balancer.race_radius=0.25 m",
          "balancer.ball_radius=10 mm", "balancer.damping=20 N*mm*s/rad",
          "balancer.rolling_resistance=0.002")
-RUN = ("profile.end_speed=150 1/s", "profile.duration=60 s")
+RUN = ("profile.end_speed=150 rad/s", "profile.duration=60 s")
 
 
 def machine(*sets):

@@ -6,7 +6,11 @@ The limits are settings (environment variables), documented in docs/sweeps.md:
 ``AUTOBALANCE_MAX_MEMORY``   largest single allocation of results, e.g. ``"8 GiB"``
                              (default: half of this machine's memory);
 ``AUTOBALANCE_MAX_HOURS``    largest estimated run time of one command [h] (default 48);
-``AUTOBALANCE_MAX_BALLS``    most balls in one balancer (default 64).
+``AUTOBALANCE_MAX_BALLS``    most balls in one balancer (default 64);
+``AUTOBALANCE_MAX_FILE_SIZE``  largest config or sweep file read, e.g. ``"4 MiB"`` (default
+                             1 MiB);
+``AUTOBALANCE_MAX_NESTING``  deepest nesting of arrays and tables in a config file, a sweep
+                             file or a ``--set`` value (default 32 levels).
 
 Steps of one run. DOPRI5's stability region reaches about 3.3 along the imaginary axis and
 the rotor-frame eigenvalues reach Omega + omega_n, so a run integrated step by step takes
@@ -207,6 +211,25 @@ def check_run(system: Any, spin: Any, options: Any, field: str = "profile.durati
     return est
 
 
+#: Default of ``AUTOBALANCE_MAX_FILE_SIZE`` [B]: configs and sweep files are a few KiB.
+DEFAULT_MAX_FILE_BYTES = 2**20
+#: Default of ``AUTOBALANCE_MAX_NESTING`` [-]: a config nests three levels (table, section,
+#: per-ball list), a sweep file four.
+DEFAULT_MAX_NESTING = 32
+
+
+def max_file_bytes() -> int:
+    """The largest config or sweep file read [B] (``AUTOBALANCE_MAX_FILE_SIZE``, default 1 MiB)."""
+    env = os.environ.get("AUTOBALANCE_MAX_FILE_SIZE")
+    return parse_bytes(env, "AUTOBALANCE_MAX_FILE_SIZE") if env else DEFAULT_MAX_FILE_BYTES
+
+
+def max_nesting() -> int:
+    """The deepest nesting of arrays and tables read from a file or a ``--set`` value [-]
+    (``AUTOBALANCE_MAX_NESTING``, default 32)."""
+    return int(_env_number("AUTOBALANCE_MAX_NESTING", DEFAULT_MAX_NESTING))
+
+
 __all__ = ["DEFAULT_MAX_STEPS", "ResourceError", "check_memory", "check_run", "check_runtime",
-           "fmt_bytes", "fmt_seconds", "max_balls", "max_hours", "max_memory", "parse_bytes",
-           "step_cost", "steps_estimate", "steps_lower_bound"]
+           "fmt_bytes", "fmt_seconds", "max_balls", "max_file_bytes", "max_hours", "max_memory",
+           "max_nesting", "parse_bytes", "step_cost", "steps_estimate", "steps_lower_bound"]

@@ -11,9 +11,11 @@ gives only as bare numbers (SI) or not at all is shown in SI.
 then any other key of that kind in the schema. ``choice`` (the CLI's ``--units``) is ``"si"``
 or a comma list ``"speed=rpm,unbalance=g*mm"`` that replaces the units of the kinds it names.
 
-Rotational speeds follow the configuration's convention (:mod:`.units`): a speed in ``Hz`` is
-cycles per second, so ``2 pi`` rad/s show as 1 Hz (pint alone would show 1 rad/s as 1 Hz);
-``rpm`` is revolutions per minute; ``rad/s`` and ``1/s`` are the same.
+Rotational speeds follow the configuration's convention (:func:`.units.speed_si`, the same
+function for reading and showing): a unit carrying an angle (``rad/s``, ``deg/s``, ``rpm``,
+``rev/min``) is an angle per time; a pure inverse time (``Hz``, ``1/s``, ``min^-1``, ``1/min``)
+counts revolutions, so ``2 pi`` rad/s show as 1 Hz or 1 1/s and 1000 rpm as 1000 1/min (pint
+alone would show 1 rad/s as 1 Hz).
 """
 from __future__ import annotations
 
@@ -24,7 +26,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from .schema import PROFILE_KINDS, SECTIONS
-from .units import KINDS, TWO_PI, ConfigError, registry
+from .units import (KINDS, NUMBER, ConfigError, check_unit_expression, registry, speed_si,
+                    split_value)
 
 if TYPE_CHECKING:
     from .load import Config
@@ -50,30 +53,28 @@ WRITTEN_KEYS: dict[str, tuple[str, ...]] = {
     "volume": ("liquid.volume",),
 }
 
-_NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
-
-
-def _is_hertz(unit: str) -> bool:
-    """Whether a speed unit counts cycles (Hz, kHz, ...): shown as rad/s / 2 pi."""
-    return "hertz" in str(registry().parse_units(unit))
-
-
 @functools.lru_cache(maxsize=256)
 def _factor(unit: str, kind: str) -> float:
-    """Display value per SI value of ``kind`` in ``unit`` (pint parses slowly: cached)."""
-    if kind == "speed" and _is_hertz(unit):
-        return float(registry().Quantity(1.0 / TWO_PI, "Hz").to(unit).magnitude)
+    """Display value per SI value of ``kind`` in ``unit`` (pint parses slowly: cached); a
+    speed by :func:`.units.speed_si`, as the configuration reads it."""
+    if kind == "speed":
+        return 1.0 / speed_si(registry().Quantity(1.0, unit))
     return float(registry().Quantity(1.0, DISPLAY_KINDS[kind]).to(unit).magnitude)
 
 
 def _check_unit(text: Any, kind: str) -> str | None:
-    """``text`` as a unit of ``kind`` (converts from its SI unit), or None if it is not one."""
+    """``text`` as a unit of ``kind`` (converts from its SI unit), or None if it is not one
+    (or not a unit expression of :func:`.units.check_unit_expression`)."""
     if not isinstance(text, str) or not text.strip():
         return None
     text = text.strip()
+    if check_unit_expression(text) is not None:
+        return None
     try:
         unit = registry().parse_units(text)
         registry().Quantity(1.0, DISPLAY_KINDS[kind]).to(unit)
+        if kind == "speed":
+            speed_si(registry().Quantity(1.0, unit))
     except Exception:   # pint raises several types (UndefinedUnitError, DimensionalityError...)
         return None
     return text if str(unit) != "dimensionless" else None
@@ -107,10 +108,11 @@ def written_unit(value: Any, kind: str) -> str | None:
         return None
     if not isinstance(value, str):
         return None
-    m = _NUMBER.match(value)
-    if m is None:
+    parts = split_value(value.strip())
+    if parts is None or not parts[1]:
         return None
-    return _check_unit(value[m.end():], kind)
+    unit = parts[1]
+    return _check_unit("1" + unit if unit.startswith("/") else unit, kind)   # 1000/min
 
 
 def _keys_of_kind(kind: str) -> list[str]:
@@ -302,7 +304,6 @@ def display_units(cfg: Config | dict | None, choice: str | None = None) -> Displ
 
 #: A refusal's one-line message: ``<section>.<key> = <value>: <what is allowed>``.
 _REFUSAL = re.compile(r"^([a-z_]+\.[a-z_]+) = ([^:]+): (.*)$", re.S)
-_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
 
 @functools.lru_cache(maxsize=1)
@@ -359,6 +360,6 @@ def as_written(message: str, raw: dict | None) -> str:
     if not same:
         return message
     si, f = DISPLAY_KINDS[kind], _factor(unit, kind)
-    also = re.sub(rf"({_NUM}) {re.escape(si)}(?![\w*/^])",
+    also = re.sub(rf"({NUMBER}) {re.escape(si)}(?![\w*/^])",
                   lambda x: f"{x.group(0)} ({float(x.group(1)) * f:.4g} {unit})", allowed)
     return f"{path} = {written.strip()} ({v:.6g} {si}): {also}"

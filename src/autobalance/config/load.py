@@ -1,7 +1,6 @@
 """Reading configurations: TOML files and presets -> :class:`Config` of model dataclasses."""
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -11,6 +10,7 @@ from ..models import (BallBalancer, Gravity, InitialState, LiquidDevice, MotorDr
                       ParameterError, Rotor, SimOptions, SpeedProfile, Suspension, System)
 from .overrides import apply_overrides
 from .presets import _preset_dir, preset_path
+from .reader import parse_toml, read_text
 from .schema import (_MODELS, _PROFILE_MODELS, PROFILE_KINDS, REQUIRED_SECTIONS, SECTIONS,
                      TOP_LEVEL, _build, _section)
 from ..models.profile import PROFILE_KINDS as PROFILE_KINDS_REGISTRY
@@ -222,21 +222,17 @@ def source_comments(text: str) -> dict[str, str]:
 
 
 def _read(source: str | Path) -> tuple[dict, str, dict]:
-    """(raw dict, source label, source comments) of a preset name or a .toml path."""
+    """(raw dict, source label, source comments) of a preset name or a .toml path, read by
+    :func:`autobalance.config.reader.read_text` (one-line ConfigError for what is not a small
+    regular UTF-8 TOML file)."""
     src = str(source)
     is_path = isinstance(source, Path) or src.endswith(".toml") or "/" in src or "\\" in src
-    if not is_path and not (_preset_dir() / f"{src}.toml").is_file() and Path(src).is_file():
-        is_path = True  # an existing file without .toml suffix
+    if not is_path and not (_preset_dir() / f"{src}.toml").is_file() and Path(src).exists():
+        is_path = True  # an existing file without .toml suffix (or a FIFO, refused below)
     path = Path(src) if is_path else preset_path(src)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        reason = e.strerror if isinstance(e, OSError) and e.strerror else str(e)
-        raise ConfigError(f"cannot read config file {src!r}: {reason}") from None
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise ConfigError(f"{src}: invalid TOML: {e}") from None
+    # the one reader of input files (reader.py): regular files only, size, UTF-8, nesting
+    text = read_text(path if not is_path else src, "config file")
+    raw = parse_toml(text, src)
     return raw, (src if is_path else path.stem), source_comments(text)
 
 

@@ -6,6 +6,8 @@ import tomllib
 from collections.abc import Iterable
 from typing import Any
 
+from ..limits import max_nesting
+from .reader import bracket_depth, check_nesting
 from .schema import PROFILE_KINDS, SECTIONS, TOP_LEVEL
 from .units import ConfigError
 
@@ -49,16 +51,30 @@ def split_path(path: str, prefix: str = "") -> tuple[str, str]:
     return section, key
 
 
-def _parse_value(text: str) -> Any:
-    """An override value: a TOML scalar/array, else a bare string such as ``100 Hz``."""
+def _parse_value(text: str, where: str = "--set") -> Any:
+    """An override value: a TOML scalar/array, else a bare string such as ``100 Hz``; arrays
+    nested deeper than :func:`autobalance.limits.max_nesting` are refused (``where`` names the
+    override in the message)."""
     text = text.strip()
+    shown = text if len(text) <= 40 else text[:37] + "..."
     try:
-        return tomllib.loads(f"v = {text}")["v"]
+        value = tomllib.loads(f"v = {text}")["v"]
     except tomllib.TOMLDecodeError:
         pass
+    except RecursionError:                  # thousands of nested arrays or inline tables
+        raise ConfigError(f"{where}={shown}: arrays nested too deeply to parse; at most "
+                          f"{max_nesting()} levels are allowed (set AUTOBALANCE_MAX_NESTING to "
+                          "raise it)") from None
+    else:
+        check_nesting(value, f"{where}={shown}")
+        return value
+    if bracket_depth(text) > max_nesting():
+        raise ConfigError(f"{where}={shown}: arrays nested more than {max_nesting()} levels "
+                          "deep; at most that many are allowed (set AUTOBALANCE_MAX_NESTING to "
+                          "raise it)")
     if text.startswith("[") and text.endswith("]"):
         items = [t.strip() for t in text[1:-1].split(",") if t.strip()]
-        return [_parse_value(t) for t in items]
+        return [_parse_value(t, where) for t in items]
     if len(text) >= 2 and text[0] == text[-1] and text[0] in "\"'":
         return text[1:-1]
     return text
@@ -92,7 +108,7 @@ def parse_override(item: str | tuple) -> tuple[str, Any]:
         raise ConfigError(f"--set {item!r}: expected path=value, e.g. suspension.kx='20 N/mm'")
     path, text = (s.strip() for s in item.split("=", 1))
     split_path(path, "--set ")
-    return path, _parse_value(text)
+    return path, _parse_value(text, f"--set {path}")
 
 
 def apply_overrides(raw: dict, overrides: Iterable[str | tuple[str, Any]] = ()) -> dict:

@@ -572,7 +572,7 @@ def physical_run_up(rotor: VerticalRotor, bal: LiquidBalancer, omega_end: float,
     R, h, V, ri = bal.chamber.radius, bal.chamber.height, bal.volume, bal.chamber.inner_radius
     w0 = entrainment_speed(V, R, h, g, inner_radius=ri)
     if not w0 < omega_end:
-        raise ParameterError("omega_end", omega_end, f"must exceed the entrainment speed {w0:.4g} 1/s")
+        raise ParameterError("omega_end", omega_end, f"must exceed the entrainment speed {w0:.4g} rad/s")
     T = duration * (omega_end - w0) / omega_end
     table = (np.array([0.0, T]), np.array([w0, omega_end]))
     dt = T / (n_out - 1)

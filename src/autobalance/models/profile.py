@@ -18,6 +18,20 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 TWO_PI = 2.0 * math.pi
+#: Longest run a profile may describe [s] (about 32 years): the knots of its ramps, seconds
+#: apart, stay distinct in double precision within it; a long run is refused before it is
+#: integrated anyway (:func:`autobalance.limits.check_run`).
+MAX_DURATION = 1e9
+
+
+def _duration(field: str, value) -> float:
+    """A run's duration [s]: > 0 and at most :data:`MAX_DURATION` (ParameterError naming
+    ``field``)."""
+    v = positive(field, value)
+    if v > MAX_DURATION:
+        raise ParameterError(field, value, f"must be at most {MAX_DURATION:g} s (about 32 "
+                             "years)")
+    return v
 
 
 @dataclass(frozen=True)
@@ -118,7 +132,7 @@ class SpeedProfile:
             Two knots (0, ``duration``) at ``speed``, named "constant".
         """
         positive("profile.speed", speed)
-        positive("profile.duration", duration)
+        _duration("profile.duration", duration)
         if start_speed is not None and start_speed != speed:
             raise ParameterError("profile.start_speed", start_speed,
                                  f"a constant profile starts at its speed {speed!r} rad/s; "
@@ -148,7 +162,7 @@ class SpeedProfile:
         nonneg("profile.start_speed", start_speed)
         positive("profile.end_speed", end_speed)
         positive("profile.ramp_time", ramp_time)
-        positive("profile.duration", duration)
+        _duration("profile.duration", duration)
         if duration < ramp_time:
             raise ParameterError("profile.duration", duration, f"must be >= ramp_time = {ramp_time}")
         if duration == ramp_time:
@@ -187,7 +201,7 @@ class SpeedProfile:
             Named "std", with checkpoints (``runup_fraction * duration``, ``duration``) [s].
         """
         positive("profile.nominal", nominal)
-        positive("profile.duration", duration)
+        _duration("profile.duration", duration)
         in_range("profile.runup_fraction", runup_fraction, 1e-6, 1.0)
         t_read = runup_fraction * duration
         t_ru = t_read if runup_time is None else in_range("profile.runup_time", runup_time, 1e-9, t_read)
@@ -302,7 +316,7 @@ class MotorDrive:
             raise ParameterError("drive.law", self.law, f"must be one of {list(self.LAWS)}")
         positive("drive.torque", self.torque)
         positive("drive.final_speed", self.final_speed)
-        positive("drive.duration", self.duration)
+        _duration("drive.duration", self.duration)
         in_range("drive.hold_fraction", self.hold_fraction, 0.01, 1.0)
         nonneg("drive.initial_speed", self.initial_speed)
 

@@ -66,7 +66,7 @@ def surface_figure(profiles: dict, title: str = "") -> Figure:
             ln, = ax.plot(x, z, color=col, lw=1.8)
             if ax is axes[0]:
                 mode = profiles["mode"][i]
-                labels.append((ln, f"ω = {w:.3g} 1/s: mode {mode} ({MODE_NAMES[mode]}), "
+                labels.append((ln, f"ω = {w:.3g} rad/s: mode {mode} ({MODE_NAMES[mode]}), "
                                    f"regime {profiles['regime'][i]}"))
         ax.plot([r0 * 1e3, radius * 1e3, radius * 1e3, r0 * 1e3],
                 [0, 0, height * 1e3, height * 1e3], "k-", lw=2)
@@ -120,7 +120,7 @@ def response_figure(steady: dict, omega0: float, omega_r: float, run: RunUp | No
     ax2.semilogy(w, eff, "C0-")
     ax2.axhline(1.0, color="k", lw=0.8)
     ax2.set_ylabel("efficiency A_dry/A_wet [-]")
-    ax2.set_xlabel("rotor speed ω [1/s]")
+    ax2.set_xlabel("rotor speed ω [rad/s]")
     ax2.grid(alpha=0.3, which="both")
     return fig
 
@@ -264,7 +264,7 @@ def mode_speeds_figure(volumes: npt.ArrayLike, g_values: Sequence[float], omega_
         Figure title.
     """
     v = np.asarray(volumes) / ML
-    panels = [{"x": v, "xlabel": "liquid volume V [ml]", "ylabel": "speed [1/s]", "title": t,
+    panels = [{"x": v, "xlabel": "liquid volume V [ml]", "ylabel": "speed [rad/s]", "title": t,
                "curves": [(f"g = {g:g} m/s²", y[i], "-") for i, g in enumerate(g_values)],
                "points": [("003 printed", list(np.asarray(pv) / ML), list(pw))]}
               for t, y, (pv, pw) in (("bottom touch ω_b (003 eq 4)", omega_b, printed_b),
@@ -400,7 +400,7 @@ def friction_angle_figure(omegas: npt.ArrayLike, names: Sequence[str], beta: npt
         Panel and figure titles.
     """
     bd = np.degrees(beta)
-    return curves_figure([{"x": omegas, "xlabel": "rotor speed ω [1/s]",
+    return curves_figure([{"x": omegas, "xlabel": "rotor speed ω [rad/s]",
                            "ylabel": "friction angle β [deg]", "logy": True, "title": title,
                            "curves": [(n, bd[i], "") for i, n in enumerate(names)]}],
                          suptitle, size=(7.5, 4.6))
@@ -427,7 +427,7 @@ def speed_series_figure(omegas: npt.ArrayLike, curves: list[tuple[str, npt.Array
         Clip the values to this range before drawing (e.g. an infinite efficiency).
     """
     cs = [(lab, y if floor is None else np.clip(y, *floor), st) for lab, y, st in curves]
-    return curves_figure([{"x": omegas, "xlabel": "rotor speed ω [1/s]", "ylabel": ylabel,
+    return curves_figure([{"x": omegas, "xlabel": "rotor speed ω [rad/s]", "ylabel": ylabel,
                            "logy": True, "title": title, "vlines": [(omega_r, "ω_r")],
                            "curves": cs}], suptitle, size=(7.5, 4.6))
 

@@ -50,7 +50,7 @@ def rimming_figure(runs: Sequence, labels: Sequence[str], film_start: float,
         b.plot(r.t, np.maximum(r.loose, floor), color=line.get_color(), ls=":",
                label="share held by nothing")
     a.axhline(film_start, color="0.3", ls=":", lw=1.0)
-    a.set(xlabel="time [s]", ylabel="speed [1/s]",
+    a.set(xlabel="time [s]", ylabel="speed [rad/s]",
           title="chamber (grey) and liquid (dotted: the film model's start)")
     b.set(xlabel="time [s]", ylabel="over the mean thickness [-]", yscale="log",
           title="the layer")
