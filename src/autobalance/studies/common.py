@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import math
 import tempfile
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -21,8 +22,7 @@ if TYPE_CHECKING:
     from ..models import MotorDrive, SpeedProfile
 
 __all__ = ["capacity_grades", "case_sets", "checkpoint_labels", "default_starts", "load",
-           "run_start_grid",
-           "starts_for_runs", "store_path"]
+           "run_start_grid", "starts_for_runs", "store_path", "sweep_root"]
 
 
 def load(base: str | Path | Config, sets: Sequence[str] = (),
@@ -217,14 +217,50 @@ def run_start_grid(base: str | Path | Config, name: str, sets: Iterable[str],
                            "grid": grid, **mc,
                            **({"outputs": {"history_dt": float(history_dt)}} if history_dt else {})},
                           base=base if python_base else None)
-    if store is None:
-        with tempfile.TemporaryDirectory() as d:
-            ds = sweep(spec, Path(d) / name, executor=executor, workers=workers,
-                       scheduler=scheduler, progress=progress).load()
-    else:
-        ds = sweep(spec, Path(store), executor=executor, workers=workers, scheduler=scheduler,
-                   resume=True, progress=progress, keyed=True).load()
+    with sweep_root(store) as root:
+        ds = sweep(spec, root / name if store is None else root, executor=executor,
+                   workers=workers, scheduler=scheduler, resume=store is not None,
+                   progress=progress, keyed=store is not None).load()
     return ds if "sample" in ds.dims else ds.expand_dims("sample")
+
+
+@contextmanager
+def sweep_root(store: str | Path | None) -> Iterator[Path]:
+    """Context manager: the directory a study's sweeps go in, ``store`` itself (durable: run
+    them with ``resume=True, keyed=True`` so that a rerun resumes its own) or, for None, a
+    temporary directory removed at the end; a Ctrl-C or SIGTERM inside it then says that
+    nothing was kept (a temporary store offers no resume).
+
+    Parameters
+    ----------
+    store : str or Path or None
+        The study's store directory, or None.
+
+    Yields
+    ------
+    Path
+
+    Raises
+    ------
+    autobalance.sweep.SweepInterrupted
+        Interrupted with a temporary store: ``resumable`` False, "interrupted; nothing kept
+        (pass --store DIR to make it resumable)".
+    """
+    if store is not None:
+        yield Path(store)
+        return
+    import signal
+
+    from ..sweep import SweepInterrupted
+
+    with tempfile.TemporaryDirectory() as d:
+        try:
+            yield Path(d)
+        except KeyboardInterrupt as e:      # the temporary store goes with the directory
+            sig = getattr(e, "signal", signal.SIGINT)
+            what = "terminated (SIGTERM)" if sig == signal.SIGTERM else "interrupted"
+            raise SweepInterrupted(f"{what}; nothing kept (pass --store DIR to make it "
+                                   "resumable)", sig, resumable=False) from None
 
 
 def checkpoint_labels(spin: SpeedProfile | MotorDrive) -> list:

@@ -315,12 +315,10 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
         (the run's status is ok: the film did not reach an annulus' inner wall);
         ``mean_amplitude`` [m] over the last quarter.
     """
-    import tempfile
-    from pathlib import Path
-
     import xarray as xr
 
     from ..sweep import spec_from_dict, sweep
+    from .common import sweep_root
 
     from ..config import load_config
 
@@ -341,18 +339,17 @@ def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
     else:
         base_file = None
     parts = []
-    with tempfile.TemporaryDirectory() as tmp:
-        root = Path(store) if store else Path(tmp) / "map"
+    with sweep_root(store) as root:
         for sub, sets, grid in runs:
             spec = {"sweep": {"name": "stability-map", "batch_size": 4, "set": sets},
                     "grid": {**grid, "profile.speed": [float(w) for w in speeds]},
                     "outputs": {"history_dt": T / 200.0}}
             if base_file is not None:
                 spec["sweep"]["base"] = base_file
-            where = root / sub if sub else root
+            where = root / sub if sub else root / "map" if store is None else root
             part = sweep(spec_from_dict(spec, "stability map", base=base), where,
                          executor=executor, workers=workers, progress=progress,
-                         resume=store is not None and where.exists())
+                         resume=store is not None, keyed=store is not None)
             parts.append(part.load())
         ds = parts[0] if not several else xr.concat(parts, dim="liquid__volume")
     late_of = lambda name: ds[name].isel(sample=0).where(ds["history_time"] >= 0.75 * T,  # noqa: E731

@@ -19,10 +19,12 @@ from typing import TYPE_CHECKING, TextIO
 
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .plan import Plan, make_plan
+from .scheduler import connect, parse_address
 from .task import run_task, task_payload
 from .spec import SweepError, SweepSpec, as_spec, load_spec
-from .store import (StoreLock, assemble, check_identity, check_store_path, covered_runs,
-                    identity, init_store, scan_tasks, write_result, write_task)
+from .store import (StoreLock, _read_meta, assemble, check_identity, check_store_path,
+                    covered_runs, identity, init_store, read_result, scan_tasks, write_result,
+                    write_task)
 
 if TYPE_CHECKING:
     from ..config import Config
@@ -77,13 +79,16 @@ class SweepAborted(RuntimeError):
 
 class SweepInterrupted(KeyboardInterrupt):
     """Ctrl-C (SIGINT) or SIGTERM: the workers were stopped, the finished tasks are kept.
-    ``signal`` is the signal number; the CLI exits with 128 + signal. A KeyboardInterrupt, so
-    that no ``except Exception`` on the way up (a report that records failed targets and goes
-    on) swallows it."""
+    ``signal`` is the signal number; the CLI exits with 128 + signal. ``resumable`` is False
+    when the store was temporary (a study without ``--store``): nothing was kept, and the
+    message says so instead of offering a resume. A KeyboardInterrupt, so that no ``except
+    Exception`` on the way up (a report that records failed targets and goes on) swallows
+    it."""
 
-    def __init__(self, message: str, sig: int = signal.SIGINT):
+    def __init__(self, message: str, sig: int = signal.SIGINT, resumable: bool = True):
         super().__init__(" ".join(str(message).split()))
         self.signal = sig
+        self.resumable = resumable
 
 
 def _die_with_parent() -> None:
@@ -200,19 +205,6 @@ def _run_local(payloads, on_result, workers: int, kept):
     ex.shutdown(wait=True)
 
 
-def _dask_client(address: str):
-    """Connect to the scheduler (before anything is created on disk)."""
-    from distributed import Client
-
-    try:
-        client = Client(address, set_as_default=False, timeout="10s")
-    except Exception as e:   # OSError, TimeoutError, ValueError (bad address), ...
-        msg = " ".join(str(e).split())[:160] or type(e).__name__
-        raise SweepError(f"--scheduler {address!r}: no Dask scheduler answers ({msg}); "
-                         "nothing was created") from None
-    return client
-
-
 class _WriteFailed(Exception):
     """Wraps an error of on_result so it is not mistaken for a lost scheduler."""
 
@@ -299,12 +291,16 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
         "serial", "local" (processes on this machine, the default) or "dask" (the default when
         ``scheduler`` or DASK_SCHEDULER_ADDRESS is given).
     workers : int
-        Local processes (default: all cores).
+        Local processes (default: all cores); only with the local executor (serial: 1).
     scheduler : str
-        Dask scheduler address, e.g. "tcp://127.0.0.1:8786".
+        Dask scheduler address, e.g. "tcp://127.0.0.1:8786": a malformed one is refused at
+        once, an unreachable one within seconds (:func:`autobalance.sweep.scheduler.connect`).
     resume : bool
         Continue an interrupted sweep: finished runs are kept, the others are run (whatever
-        batch size made them); unreadable task files are moved aside and rerun.
+        batch size made them); task files that fail their checks (unreadable, from another
+        store, edited) are moved aside and rerun, and a result.zarr that does not match its
+        digest is assembled again. A store that does not exist is refused (with ``keyed``, a
+        new identity's store is started).
     options : SimOptions
         Override the numerical options of the base config (with a System base: its options).
     assemble_result : bool
@@ -336,16 +332,12 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
         # end this child quietly, the parent reports it in one line
         raise SystemExit(3)
     spec = as_spec(spec, base, spin, initial, options if isinstance(base, System) else None)
-    scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
-    executor = executor or ("dask" if scheduler else "local")
-    if executor not in EXECUTORS:
-        raise SweepError(f"executor = {executor!r}: must be one of {list(EXECUTORS)}")
-    if executor == "dask" and not scheduler:
-        raise SweepError("executor = 'dask' needs --scheduler ADDRESS (or DASK_SCHEDULER_ADDRESS)")
-    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
-        raise SweepError(f"workers = {workers!r}: must be an integer >= 1")
+    executor, scheduler, where = check_executor(executor, workers, scheduler)
     store = Path(store)
     check_store_path(store)
+    if resume and not keyed and not (store / "sweep.json").is_file():
+        raise SweepError(f"--resume: there is no sweep store at --store {str(store)!r} to "
+                         "continue (no sweep.json); leave out --resume to start it")
     plan = make_plan(spec)
     if options is not None:
         # the override is part of every cell, hence of the store's identity: a resume with
@@ -357,7 +349,7 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
     lock = StoreLock(store)
     client = None
     try:
-        client = _dask_client(scheduler) if executor == "dask" else None
+        client = connect(scheduler, where) if executor == "dask" else None
         with _signals_raise():
             return _sweep_locked(plan, store, lock, executor, workers, client, resume,
                                  progress, assemble_result, branch)
@@ -368,6 +360,52 @@ def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
                 client.close(timeout=5)
             except Exception:
                 pass
+
+
+def check_executor(executor: str | None, workers: int | None = None,
+                   scheduler: str | None = None) -> tuple[str, str | None, str]:
+    """(executor, scheduler address, where the address came from) of :func:`sweep`'s
+    arguments, checked before anything is built (the command line checks its options with
+    it before loading the machine): a known executor, a well-formed address for dask
+    (:func:`scheduler.parse_address`), and workers only where they apply (local processes; a
+    serial sweep has one, a Dask cluster its own).
+
+    Parameters
+    ----------
+    executor : str or None
+        "serial", "local", "dask" or None (dask with a scheduler address, else local).
+    workers : int or None
+        Local worker processes as given (None: not given).
+    scheduler : str or None
+        The Dask scheduler address (None: ``DASK_SCHEDULER_ADDRESS`` if set).
+
+    Raises
+    ------
+    SweepError
+        An unknown executor, dask without an address, a malformed address, workers that are
+        not an integer >= 1 or given where they do not apply (one line).
+    """
+    where = "--scheduler" if scheduler else "DASK_SCHEDULER_ADDRESS"
+    scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
+    given = f"--executor {executor}" if executor else f"{where} {scheduler!r}"
+    executor = executor or ("dask" if scheduler else "local")
+    if executor not in EXECUTORS:
+        raise SweepError(f"--executor = {executor!r}: must be one of {', '.join(EXECUTORS)}")
+    if executor == "dask" and not scheduler:
+        raise SweepError("--executor = 'dask': needs --scheduler ADDRESS (or "
+                         "DASK_SCHEDULER_ADDRESS)")
+    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
+        raise SweepError(f"workers = {workers!r}: must be an integer >= 1")
+    if workers is not None and executor == "serial" and workers > 1:
+        raise SweepError(f"--executor serial with --workers {workers}: conflicting; a serial "
+                         "sweep runs in this process, one run after another (leave out "
+                         "--workers, or use --executor local)")
+    if workers is not None and executor == "dask":
+        raise SweepError(f"--workers {workers} with {given}: conflicting; a Dask sweep runs on "
+                         "the cluster's own workers (leave out --workers)")
+    if executor == "dask":
+        parse_address(scheduler, where)
+    return executor, scheduler, where
 
 
 class _signals_raise:
@@ -389,13 +427,14 @@ class _signals_raise:
 def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress,
                   assemble_result, branch=True):
     init_store(store, plan, resume, lock)
+    ident = identity(plan)
     warn = (lambda msg: print(f"warning: {msg}", file=sys.stderr, flush=True))
 
     def on_corrupt(path, reason):
-        warn(f"task file {str(path)!r} was unreadable ({reason}): moved aside, its runs are "
+        warn(f"task file {str(path)!r} was rejected ({reason}): moved aside, its runs are "
              "computed again")
 
-    scan = scan_tasks(store, plan, on_corrupt=on_corrupt)
+    scan = scan_tasks(store, plan, ident, on_corrupt=on_corrupt)
     covered = covered_runs(scan, plan.n_runs)
     todo_tasks = plan.tasks_for(~covered, branch)
     done_runs = int(covered.sum())
@@ -411,7 +450,7 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
 
     def on_result(res):
         for r in res if isinstance(res, list) else [res]:     # a branch task: one per cell
-            write_task(store, r)
+            write_task(store, r, ident)
             finished[0] += len(r["status"])
             bar.update(len(r["status"]))
 
@@ -434,13 +473,10 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
         raise SweepInterrupted(f"{what}: {kept()}; continue with --resume", sig) from None
     result = Path(store) / "result.zarr"
     if not todo_tasks and result.exists() and assemble_result:
-        import xarray as xr
-
         try:
-            return xr.open_zarr(result).load()
-        except Exception as e:   # an unreadable assembly: rebuilt from the task files below
-            warn(f"{str(result)!r} was unreadable ({type(e).__name__}): assembled again from "
-                 "the task files")
+            return read_result(store)         # checked against its digest in sweep.json
+        except SweepError as e:   # edited, damaged or unrecorded: rebuilt from the task files
+            warn(f"{str(e).split('; ')[0]}: assembled again from the verified task files")
     ds = assemble(plan, store)
     if assemble_result:
         write_result(ds, store)
@@ -448,20 +484,31 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
 
 
 def open_sweep(store: str | Path, spec: SweepSpec | str | Path | None = None):
-    """The dataset of a (possibly unfinished) store: result.zarr if complete, else assembled
-    from the task files (unfinished runs NaN, attrs['n_missing_runs'] > 0)."""
-    import json
+    """The dataset of a (possibly unfinished) store.
 
-    import xarray as xr
+    Parameters
+    ----------
+    store : str or Path
+        The store directory.
+    spec : SweepSpec or path, optional
+        Its description. Without it, the finished store's result.zarr, checked against the
+        digest recorded in sweep.json (:func:`autobalance.sweep.store.read_result`). With it,
+        assembled from the task files, each one verified (unfinished runs NaN,
+        ``attrs['n_missing_runs']`` > 0); a store of another identity is refused.
 
+    Raises
+    ------
+    SweepError
+        Not a store, not assembled yet (without ``spec``), a result.zarr or a task file that
+        does not match its digest, a store of another format or identity (one line).
+    """
     store = Path(store)
-    res = store / "result.zarr"
-    if res.exists() and spec is None:
-        return xr.open_zarr(res).load()
     if spec is None:
-        meta = json.loads((store / "sweep.json").read_text())
-        raise SweepError(f"store {str(store)!r} is not assembled yet; pass the description "
-                         f"{meta.get('name')!r} to open_sweep or run it with --resume")
+        if not (store / "result.zarr").exists():
+            name = _read_meta(store).get("name")
+            raise SweepError(f"store {str(store)!r} is not assembled yet; pass the description "
+                             f"{name!r} to open_sweep or run it with --resume")
+        return read_result(store)
     if not isinstance(spec, SweepSpec):
         spec = load_spec(spec)
     plan: Plan = make_plan(spec)

@@ -31,7 +31,7 @@ from ..config import SECTIONS, ConfigError, _read, apply_overrides, from_dict, r
 from ..config.overrides import parse_override
 from ..config.schema import check_value
 from ..models import BallBalancer
-from .spec import SweepError, SweepSpec
+from .spec import CELL_BYTES, SweepError, SweepSpec
 
 
 @dataclass
@@ -286,14 +286,14 @@ def n_start_grid(n: int, n_balls: int, identical: bool) -> int:
 #: Bytes per run of a sweep in memory (outputs, start angles, payload; measured order of
 #: magnitude, conservative), before the per-checkpoint and per-ball terms.
 _RUN_BYTES = 600
-#: Bytes per grid cell (its validated Config and models; conservative).
-_CELL_BYTES = 20e3
+_CELL_BYTES = CELL_BYTES
 
 
 def _guard_size(spec: SweepSpec, n_cells: int, n_samples: int, n_balls: int, n_cp: int,
                 n_hist: int, cell0) -> None:
     """Refuse a sweep whose dataset or run time exceeds the limits (autobalance.limits),
-    before the samples are built."""
+    before the samples are built. Counts are Python ints of any size (a start grid of many
+    balls); the estimates are capped below float overflow."""
     from ..limits import check_memory, check_runtime, step_cost, steps_estimate
 
     if spec.mc_kind == "start_grid":
@@ -304,12 +304,37 @@ def _guard_size(spec: SweepSpec, n_cells: int, n_samples: int, n_balls: int, n_c
         field, value = "grid", f"{n_cells} cells"
     if n_samples > 1 and n_cells > n_samples:
         field, value = "grid", f"{n_cells} cells x {n_samples} samples"
-    n_runs = n_cells * n_samples
-    per_run = _RUN_BYTES + 8 * (n_cp * (2 + n_balls) + 3 * n_hist + 2 * n_balls)
-    check_memory(field, value, float(n_runs) * per_run + _CELL_BYTES * n_cells, "sweep")
+    runs = float(min(n_cells * n_samples, 10**300))
+    per_run = _RUN_BYTES + 8 * (n_cp * (2 + n_balls) + 2 * n_balls)
+    hist = 8.0 * 3 * n_hist
+    where = ("outputs.history_dt", f"{spec.history_dt:g} s") if hist > per_run else (field, value)
+    check_memory(*where, runs * (per_run + hist) + _CELL_BYTES * n_cells, "sweep")
     steps = steps_estimate(cell0.system, cell0.spin, cell0.options)
     workers = os.cpu_count() or 1
-    check_runtime(field, value, n_runs * steps * step_cost(n_balls) / workers, "sweep")
+    check_runtime(field, value, runs * steps * step_cost(n_balls) / workers, "sweep")
+
+
+def _n_history(spec: SweepSpec, spin) -> int:
+    """Decimated history times of a run [-] (0 without ``outputs.history_dt``)."""
+    if spec.history_dt <= 0:
+        return 0
+    return int(min(spin.duration / spec.history_dt, 1e18)) + 1
+
+
+def _guard_early(spec: SweepSpec, n_cells: int, cell0) -> None:
+    """:func:`_guard_size` from the first grid cell, before the other cells are built: the
+    ball count is the largest of a ``balancer.n_balls`` axis, the balls are those of the
+    first cell."""
+    n_axis = next((a for a in spec.grid if a.path == "balancer.n_balls"), None)
+    N = cell0.system.balancer.n_balls
+    if n_axis is not None:
+        N = max([N] + [int(v) for v in n_axis.values if isinstance(v, int)])
+    if spec.mc_kind == "start_grid":
+        n_samples = n_start_grid(spec.mc_n, N, identical_balls(cell0.system.balancer))
+    else:
+        n_samples = spec.mc_samples if spec.mc_kind == "random" else 1
+    _guard_size(spec, n_cells, n_samples, N, len(cell0.spin.checkpoints),
+                _n_history(spec, cell0.spin), cell0)
 
 
 def _culprit(spec: SweepSpec, message: str, where: str) -> str:
@@ -357,7 +382,7 @@ def _base_builder(spec: SweepSpec):
     they are dropped (they may be for another ball count)."""
     if spec.base_config is None:
         try:
-            raw, label, _ = _read(spec.base)
+            raw, label, _ = _read(spec.base_source)
         except ConfigError as e:
             raise SweepError(f"sweep.base: {e}") from None
         try:
@@ -498,6 +523,8 @@ def make_plan(spec: SweepSpec) -> Plan:
             culprit = (f"grid point {where}" if n_axis is not None and field in _FOLLOW
                        else _culprit(spec, str(e), where))
             raise SweepError(f"{culprit}: {e}") from None
+        if len(cells) == 1:
+            _guard_early(spec, n_cells, cells[0])     # before the other cells are built
     if cells[0].system.liquid is not None and not cells[0].system.balancer.n_balls \
             and spec.mc_kind != "none":
         raise SweepError(f"monte_carlo.kind = {spec.mc_kind!r}: a liquid balancer has no ball "
@@ -517,7 +544,7 @@ def make_plan(spec: SweepSpec) -> Plan:
     N = max(first)
     n_samples = (n_start_grid(spec.mc_n, N, identical[N]) if spec.mc_kind == "start_grid"
                  else spec.mc_samples if spec.mc_kind == "random" else 1)
-    n_hist = int(cells[0].spin.duration / spec.history_dt) + 1 if spec.history_dt > 0 else 0
+    n_hist = _n_history(spec, cells[0].spin)
     _guard_size(spec, len(cells), n_samples, N, len(cells[0].spin.checkpoints), n_hist, cells[0])
     angles = {n: _sample_angles(spec, c, identical[n]) for n, c in first.items()}
     # groups of consecutive runs with the same spin, options and N; tasks at most batch_size

@@ -29,10 +29,11 @@ with ``d`` naming no ``sweep.base``.
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
-import tomllib
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -41,6 +42,7 @@ import numpy as np
 
 from ..config import (PROFILE_KINDS, SECTIONS, Config, ConfigError, from_models,
                       parse_quantity)
+from ..config.reader import load_toml
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 
 MC_KINDS = ("start_grid", "random", "none")
@@ -100,7 +102,9 @@ class SweepSpec:
 
     ``base`` names a preset or a config file; for a base built in Python (``base_config``, see
     :func:`spec_from_dict`) it is a label, ``"<python: NAME>"``. The store's identity digests
-    every cell's resolved models, so the label is not what tells two bases apart.
+    every cell's resolved models, so the label is not what tells two bases apart. A sweep file's
+    base config (:func:`load_spec`) is ``base`` relative to the sweep file's directory, and
+    ``base_file`` is the file read; only ``base`` is in :meth:`canonical`.
     """
 
     name: str
@@ -116,6 +120,12 @@ class SweepSpec:
     description: str = ""
     extra: dict = field(default_factory=dict)
     base_config: Config | None = None   # a base built in Python (then ``base`` is its label)
+    base_file: str = ""              # the base config file read (load_spec), else ``base``
+
+    @property
+    def base_source(self) -> str:
+        """The preset name or config file to read the base from."""
+        return self.base_file or self.base
 
     def canonical(self) -> str:
         """Deterministic JSON of everything that determines the results."""
@@ -167,6 +177,7 @@ def grid_axis(path: str, spec: Any) -> GridAxis:
         num = spec["num"]
         if isinstance(num, bool) or not isinstance(num, int) or num < 1:
             raise SweepError(f"grid.{path}.num = {num!r}: must be an integer >= 1")
+        check_grid_size([(f'grid."{path}".num', num, num)])    # before np.linspace allocates
         lo = _quantity(spec["start"], kind, f"grid.{path}.start")
         hi = _quantity(spec["stop"], kind, f"grid.{path}.stop")
         si = tuple(float(v) for v in np.linspace(lo, hi, num))
@@ -186,6 +197,49 @@ def grid_axis(path: str, spec: Any) -> GridAxis:
     if len(set(map(str, spec))) != len(spec):
         raise SweepError(f"grid.{path} = {spec!r}: values must be distinct")
     return GridAxis(path, tuple(spec), tuple(si), kind)
+
+
+#: Bytes per grid cell (its validated Config and models; conservative) [B].
+CELL_BYTES = 20e3
+
+
+def check_grid_size(axes: list) -> None:
+    """Refuse a grid whose cells would not fit the memory limit
+    (:func:`autobalance.limits.check_memory`, :data:`CELL_BYTES` per cell), from the axes'
+    lengths alone: nothing of the grid is built yet.
+
+    Parameters
+    ----------
+    axes : list
+        (field as written, value as written, number of values) of each axis, e.g.
+        ``('grid."rotor.unbalance".num', 1000000000, 1000000000)``.
+
+    Raises
+    ------
+    ResourceError
+        One line naming the axis that alone exceeds the limit, or ``grid`` with the product.
+    """
+    from ..limits import check_memory, max_memory
+
+    n_cells = math.prod(n for _, _, n in axes)
+    if not axes or n_cells * CELL_BYTES <= max_memory():
+        return
+    field, value, n = max(axes, key=lambda a: a[2])
+    if n * CELL_BYTES > max_memory() or len(axes) == 1:
+        check_memory(field, value, n * CELL_BYTES, "sweep's grid")
+    check_memory("grid", " x ".join(str(a[2]) for a in axes) + f" = {n_cells} cells",
+                 min(n_cells, 10**300) * CELL_BYTES, "sweep's grid")
+
+
+def _grid_sizes(grid_d: dict) -> list:
+    """(field, value, length) of the grid axes whose length is known before they are built."""
+    out = []
+    for path, v in grid_d.items():
+        if isinstance(v, dict) and isinstance(v.get("num"), int) and not isinstance(v["num"], bool):
+            out.append((f'grid."{path}".num', v["num"], max(v["num"], 1)))
+        elif isinstance(v, list):
+            out.append((f'grid."{path}"', f"[{len(v)} values]", max(len(v), 1)))
+    return out
 
 
 def spec_from_dict(d: dict, label: str = "<dict>", *, base: Config | None = None) -> SweepSpec:
@@ -241,6 +295,7 @@ def spec_from_dict(d: dict, label: str = "<dict>", *, base: Config | None = None
     grid_d = d.get("grid", {})
     if not isinstance(grid_d, dict):
         raise SweepError(f"grid = {grid_d!r}: expected a table of path = values")
+    check_grid_size(_grid_sizes(grid_d))
     grid = tuple(grid_axis(p, v) for p, v in grid_d.items())
     mc = d.get("monte_carlo", {"kind": "none"})
     if not isinstance(mc, dict):
@@ -291,25 +346,39 @@ def load_spec(path: str | Path, *, base: Config | None = None) -> SweepSpec:
     Returns
     -------
     SweepSpec
-        Named after the file unless ``sweep.name`` is given.
+        Named after the file unless ``sweep.name`` is given. A base config file is its
+        ``base`` as written (normalised) and its ``base_file`` as read.
 
     Raises
     ------
     SweepError
-        Unreadable file, invalid TOML or a bad field (one line).
+        Unreadable, not a regular file, larger than the input limit, not UTF-8, invalid or
+        too deeply nested TOML (:mod:`autobalance.config.reader`), or a bad field (one line).
+    ResourceError
+        A grid too large for the memory limit (:func:`check_grid_size`).
     """
     p = Path(path)
     try:
-        d = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as e:
-        raise SweepError(f"cannot read sweep file {str(path)!r}: {e.strerror or e}") from None
-    except tomllib.TOMLDecodeError as e:
-        raise SweepError(f"{path}: invalid TOML: {e}") from None
-    base_path = d.get("sweep", {}).get("base") if isinstance(d.get("sweep"), dict) else None
-    if isinstance(base_path, str) and base_path.endswith(".toml") \
-            and not Path(base_path).is_absolute():
-        d["sweep"]["base"] = str((p.parent / base_path).resolve())
-    return spec_from_dict(d, str(p), base=base)
+        d, _ = load_toml(p, "sweep file")      # the config files' reader (config/reader.py)
+    except SweepError:
+        raise
+    except ConfigError as e:
+        raise SweepError(str(e)) from None
+    spec = spec_from_dict(d, str(p), base=base)
+    written = spec.base
+    if spec.base_config is None and _is_path(written):
+        # read from the sweep file's directory, identified by the path as written (relative to
+        # that directory, normalised): the sweep file moved together with its base config is
+        # the same sweep, and an absolute path names the same file wherever the sweep file is
+        file = Path(written) if Path(written).is_absolute() else (p.parent / written).resolve()
+        spec = dataclasses.replace(spec, base=Path(os.path.normpath(written)).as_posix(),
+                                   base_file=str(file))
+    return spec
+
+
+def _is_path(base: str) -> bool:
+    """Whether ``sweep.base`` names a config file rather than a preset (as config._read)."""
+    return base.endswith(".toml") or "/" in base or "\\" in base
 
 
 def as_spec(spec: SweepSpec | dict | str | Path, base: Config | System | None = None,
@@ -363,5 +432,5 @@ def as_spec(spec: SweepSpec | dict | str | Path, base: Config | System | None = 
     return load_spec(spec, base=base)
 
 
-__all__ = ["GridAxis", "MC_KINDS", "SweepError", "SweepSpec", "as_spec", "field_kind",
-           "grid_axis", "load_spec", "spec_from_dict"]
+__all__ = ["CELL_BYTES", "GridAxis", "MC_KINDS", "SweepError", "SweepSpec", "as_spec",
+           "check_grid_size", "field_kind", "grid_axis", "load_spec", "spec_from_dict"]

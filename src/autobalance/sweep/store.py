@@ -2,11 +2,13 @@
 
 Layout of a store directory::
 
-    STORE/sweep.json                  description, identity digest and package version
+    STORE/sweep.json                  description, identity, store format, package version and
+                                      the content digest of result.zarr (replaced atomically)
     STORE/lock                        held (flock) by the one process working on the store
-    STORE/tasks/r000000040-000000048.npz   results of runs 40..47, written to a temporary
-                                      name and renamed (os.replace is atomic: a killed sweep
-                                      leaves whole files only)
+    STORE/tasks/r000000040-000000048.npz   results of runs 40..47 with the store's identity and
+                                      their content digest (taskfile.py), written to a
+                                      temporary name and renamed (os.replace is atomic: a
+                                      killed sweep leaves whole files only)
     STORE/result.zarr                 the assembled dataset (written when every run is done)
 
 Task files are keyed by the runs they hold, not by their position in a task list, so a store
@@ -16,10 +18,17 @@ size runs exactly the runs that are missing.
 A store is tied to its *identity*: a digest of the description and of every resolved value
 that determines its results (each grid cell's system, profile, initial state and options, as
 built from the base config's contents, the start angles, the package version and the digest of
-the code that computes the runs, :func:`code_digest`). Opening it with anything else raises
-StoreMismatch, never overwrites. One process at a time works on a
-store (an exclusive ``flock`` on STORE/lock, released by the kernel when the process dies, so a
-stale lock after ``kill -9`` is never an obstacle).
+the code that computes the runs, :func:`code_digest`). A base config file enters the
+description by its path relative to the sweep file (``spec.load_spec``), so a sweep file moved
+together with its base is the same sweep, while an edited base is another (its values are in
+the identity). Opening a store with anything else raises StoreMismatch, never overwrites. One
+process at a time works on a store (an exclusive ``flock`` on STORE/lock, released by the
+kernel when the process dies, so a stale lock after ``kill -9`` is never an obstacle).
+
+Every read is verified: each task file against its content digest and the store's identity
+(taskfile.py), result.zarr against the digest of its files recorded in sweep.json
+(:func:`result_digest`). A resume reassembles a result that does not match from the task files;
+:func:`read_result` refuses it in one line.
 """
 from __future__ import annotations
 
@@ -29,27 +38,32 @@ import functools
 import hashlib
 import json
 import os
-import re
 import shutil
 import socket
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .. import __version__
-from ..core.layout import RunStatus
 from ..config import UNIT_LABEL
 from .plan import Plan
 from .spec import SweepError
+from .taskfile import (FILL, VARIABLES, _task_files, covered_runs, expected, history_times,
+                       load_tasks, scan_tasks, task_path, write_task)
 
 if TYPE_CHECKING:
     import xarray as xr
 
-STATUS_NAMES = ", ".join(f"{int(s)} {s.label}" for s in RunStatus
-                         if s <= RunStatus.NON_FINITE or s is RunStatus.OUTSIDE_MODEL)
-_TASK_RE = re.compile(r"r(\d{9})-(\d{9})\.npz")
+__all__ = ["FILL", "STORE_FORMAT", "VARIABLES", "StoreBusy", "StoreLock", "StoreMismatch",
+           "assemble", "check_identity", "check_store_path", "code_digest", "covered_runs",
+           "history_times", "identity", "init_store", "read_result", "result_digest",
+           "scan_tasks", "task_path", "write_result", "write_task"]
+
+#: The layout of the files of a store: 2 = task files with the store's identity and a content
+#: digest, result.zarr with its digest in sweep.json. A store of another format is refused.
+STORE_FORMAT = 2
 
 
 class StoreMismatch(SweepError):
@@ -60,13 +74,8 @@ class StoreBusy(SweepError):
     """Another process holds the store's lock."""
 
 
-def task_path(store: Path, first: int, count: int) -> Path:
-    """File of the runs first .. first + count - 1."""
-    return Path(store) / "tasks" / f"r{first:09d}-{first + count:09d}.npz"
-
-
 #: The subpackages whose code computes a run's stored results: a change to any of them is a
-#: new store (the version alone stays 0.1.0 between commits, so a `git pull` that changed the
+#: new store (the version alone stays the same between commits, so a `git pull` that changed the
 #: simulator would have resumed the old results). The CLI, figures, reports and the studies'
 #: read-outs of the stored runs are not in it.
 RESULT_CODE = ("config", "core", "liquid", "models", "physics", "simulate", "sweep")
@@ -121,7 +130,44 @@ def _meta(plan: Plan) -> dict:
     spec = plan.spec
     return {"digest": spec.digest(), "identity": identity(plan), "spec": json.loads(spec.canonical()),
             "name": spec.name, "n_runs": plan.n_runs, "autobalance_version": __version__,
-            "code_digest": code_digest()}
+            "code_digest": code_digest(), "store_format": STORE_FORMAT}
+
+
+def _write_meta(store: Path, meta: dict) -> None:
+    """Replace sweep.json atomically (temporary file, fsync, rename)."""
+    mpath = Path(store) / "sweep.json"
+    tmp = mpath.with_suffix(".tmp")
+    with open(tmp, "w") as f:
+        f.write(json.dumps(meta, indent=1, sort_keys=True))
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, mpath)
+
+
+def _read_meta(store: Path) -> dict:
+    """sweep.json of a store (StoreMismatch, one line, if missing or unreadable)."""
+    mpath = Path(store) / "sweep.json"
+    if not mpath.exists():
+        raise StoreMismatch(f"store {str(store)!r}: no sweep.json; not a sweep store")
+    try:
+        meta = json.loads(mpath.read_text())
+    except (OSError, ValueError):
+        raise StoreMismatch(f"--store {str(store)!r}: unreadable sweep.json; refusing to use "
+                            "it") from None
+    if not isinstance(meta, dict):
+        raise StoreMismatch(f"--store {str(store)!r}: unreadable sweep.json; refusing to use it")
+    return meta
+
+
+def _check_format(store: Path, old: dict) -> None:
+    """Refuse a store of another :data:`STORE_FORMAT` (one line)."""
+    fmt = old.get("store_format", 1 if "identity" in old else 0)
+    if fmt == STORE_FORMAT:
+        return
+    what = ("an earlier store format (task files without content digests or store identity)"
+            if not isinstance(fmt, int) or fmt < STORE_FORMAT else f"a later store format ({fmt})")
+    raise StoreMismatch(f"--store {str(store)!r} was made by {what}; refusing to mix results "
+                        "(start a new store)")
 
 
 def check_store_path(store: Path) -> None:
@@ -239,9 +285,7 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
         _probe_writable(store)
         lock.stamp()
         if not mpath.exists():
-            tmp = mpath.with_suffix(".tmp")
-            tmp.write_text(json.dumps(meta, indent=1, sort_keys=True))
-            os.replace(tmp, mpath)
+            _write_meta(store, meta)
     except BaseException:
         lock.release()
         raise
@@ -249,160 +293,37 @@ def init_store(store: Path, plan: Plan, resume: bool, lock: StoreLock) -> None:
 
 def check_identity(store: Path, plan: Plan) -> None:
     """Refuse (StoreMismatch, one line) a store whose sweep.json is missing, unreadable, or
-    records another package version, description, code or identity than ``plan``'s."""
-    mpath = Path(store) / "sweep.json"
-    if not mpath.exists():
-        raise SweepError(f"store {str(store)!r}: no sweep.json; not a sweep store")
-    try:
-        old = json.loads(mpath.read_text())
-    except (OSError, ValueError):
-        raise StoreMismatch(f"--store {str(store)!r}: unreadable sweep.json; refusing to use "
-                            "it") from None
+    records another package version, store format, description, code or identity than
+    ``plan``'s.
+
+    Parameters
+    ----------
+    store : Path
+        The store directory.
+    plan : Plan
+        The sweep's plan.
+    """
+    old = _read_meta(store)
     meta = _meta(plan)
     if old.get("autobalance_version") != __version__:
         raise StoreMismatch(f"--store {str(store)!r} was made by autobalance "
                             f"{old.get('autobalance_version')}, this is {__version__}; refusing "
                             "to mix results (start a new store)")
+    _check_format(store, old)
     if old.get("digest") != meta["digest"]:
         raise StoreMismatch(f"--store {str(store)!r} was made by a different sweep description "
                             f"(digest {old.get('digest')} != {meta['digest']}); refusing to "
                             "overwrite it (start a new store)")
-    if old.get("code_digest") != meta["code_digest"] and "identity" in old:
+    if old.get("code_digest") != meta["code_digest"]:
         raise StoreMismatch(f"--store {str(store)!r} was made by other code of autobalance "
                             f"{__version__} (code digest {old.get('code_digest')} != "
                             f"{meta['code_digest']}: the simulator changed since); refusing to mix "
                             "results (start a new store)")
-    if "identity" not in old:
-        raise StoreMismatch(f"--store {str(store)!r} was made by an earlier store format (task "
-                            "files by index, no identity); refusing to mix results (start a new "
-                            "store)")
     if old.get("identity") != meta["identity"]:
         raise StoreMismatch(f"--store {str(store)!r} was made from different parameter values "
                             f"with the same description (the base config {meta['spec']['base']!r} "
                             f"or a preset changed; identity {old.get('identity')} != "
                             f"{meta['identity']}); refusing to mix machines (start a new store)")
-
-
-def _task_files(store: Path) -> list:
-    d = Path(store) / "tasks"
-    return sorted(p for p in d.glob("r*.npz")) if d.is_dir() else []
-
-
-def _check_task(path: Path, first: int, count: int, names, shapes: dict) -> None:
-    """Raise ValueError if the file is not a complete task file of these runs."""
-    with np.load(path) as z:
-        if int(z["first"]) != first or int(z["count"]) != count:
-            raise ValueError("its runs do not match its name")
-        for name in names:
-            a = z[name]
-            if a.shape != (count,) + shapes[name]:
-                raise ValueError(f"{name} has shape {a.shape}")
-
-
-def scan_tasks(store: Path, plan: Plan, *,
-               on_corrupt: Callable[[Path, str], object] | None = None) -> list:
-    """The finished task files as (first, count, path), checked against the plan.
-
-    A file whose name is not a range of this plan's runs, or overlaps another, is *corrupt*.
-    With ``on_corrupt`` (resume, where the scan decides what to run) every file is also read and
-    checked; a corrupt one is renamed to ``NAME.corrupt`` (kept for inspection, never deleted)
-    and ``on_corrupt(path, reason)`` is called, so that its runs are computed again. Without it
-    a SweepError names the file, and the contents are checked when :func:`assemble` reads
-    them (each file is read once)."""
-    names, shapes = _expected(plan)
-    out = []
-    covered = np.zeros(plan.n_runs, bool)
-    for p in _task_files(store):
-        m = _TASK_RE.fullmatch(p.name)
-        reason = None
-        if not m:
-            reason = "unexpected file name"
-        else:
-            first, stop = int(m.group(1)), int(m.group(2))
-            count = stop - first
-            if not (0 <= first < stop <= plan.n_runs):
-                reason = f"runs {first}..{stop - 1} are outside this sweep's {plan.n_runs} runs"
-            elif covered[first:stop].any():
-                reason = "its runs overlap another task file"
-            elif on_corrupt is not None:
-                try:
-                    _check_task(p, first, count, names, shapes)
-                except Exception as e:   # BadZipFile, EOFError, KeyError, ValueError, OSError
-                    reason = f"{type(e).__name__}: {' '.join(str(e).split())[:120]}"
-        if reason is not None:
-            if on_corrupt is None:
-                raise SweepError(f"task file {str(p)!r} is corrupt ({reason}); rerun the sweep "
-                                 "with --resume to move it aside and recompute its runs")
-            bad = p.with_name(p.name + ".corrupt")
-            os.replace(p, bad)
-            on_corrupt(bad, reason)
-            continue
-        covered[first:stop] = True
-        out.append((first, count, p))
-    return out
-
-
-def covered_runs(scan: list, n_runs: int) -> np.ndarray:
-    """Mask of the runs [-] that finished task files cover.
-
-    Parameters
-    ----------
-    scan : list
-        (first, count, path) of each finished task (:func:`scan_tasks`).
-    n_runs : int
-        Runs of the sweep.
-    """
-    mask = np.zeros(n_runs, bool)
-    for first, count, _ in scan:
-        mask[first:first + count] = True
-    return mask
-
-
-def write_task(store: Path, result: dict) -> None:
-    """Atomically write one task's arrays (temporary file, fsync, rename)."""
-    path = task_path(store, int(result["first"]), int(result["count"]))
-    tmp = path.with_name(path.name + ".tmp")
-    try:
-        with open(tmp, "wb") as f:
-            np.savez(f, **{k: np.asarray(v) for k, v in result.items()})
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except OSError as e:
-        raise SweepError(f"--store {str(store)!r}: cannot write task file {path.name} "
-                         f"({e.strerror or e}); the finished tasks are kept") from None
-
-
-VARIABLES = {
-    # name: (dims after the run dims, units, long name)
-    "grade_G": (("checkpoint",), "mm/s", "ISO 1940-1 balance grade at the checkpoint"),
-    "residual_unbalance": (("checkpoint",), "kg*m", "residual unbalance at the checkpoint"),
-    "ball_angle": (("checkpoint", "ball"), "rad", "ball angle from the unbalance, in (-pi, pi]; NaN for a ball the cell does not have"),
-    "initial_grade_G": ((), "mm/s", "grade of the rotor with the balls at their start positions"),
-    "max_amplitude": ((), "m", "largest whirl amplitude during the run"),
-    "status": ((), "1", f"solver status ({STATUS_NAMES})"),
-    "steps": ((), "1", "integration steps"),
-    "events": ((), "1", "stick-slip events"),
-    "grade_G_history": (("history_time",), "mm/s", "grade over time (decimated)"),
-    "amplitude_history": (("history_time",), "m", "whirl amplitude over time (decimated)"),
-    "speed_history": (("history_time",), "rad/s", "spin speed over time (decimated)"),
-}
-FILL = {"status": -1, "steps": -1, "events": -1}
-
-
-def history_times(plan: Plan) -> np.ndarray:
-    """The decimated history times [s] of the sweep (empty without [outputs] history_dt)."""
-    dt = plan.spec.history_dt
-    return (np.arange(0.0, plan.cells[0].spin.duration + 1e-12, dt) if dt > 0 else np.zeros(0))
-
-
-def _expected(plan: Plan) -> tuple[list, dict]:
-    """Names of the per-run variables of a task file and their shapes after the run axis."""
-    sizes = {"checkpoint": plan.checkpoints.size, "ball": plan.n_balls,
-             "history_time": history_times(plan).size}
-    names = [n for n, (dims, _, _) in VARIABLES.items()
-             if not ("history_time" in dims and not sizes["history_time"])]
-    return names, {n: tuple(sizes[d] for d in VARIABLES[n][0]) for n in names}
 
 
 def _start_angle_coord(plan: Plan) -> tuple:
@@ -421,7 +342,24 @@ def _start_angle_coord(plan: Plan) -> tuple:
 
 def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | None = None):
     """The sweep as one xarray.Dataset (dims: grid axes..., sample[, checkpoint, ball,
-    history_time]); runs of unfinished tasks are NaN (status -1) if allow_partial."""
+    history_time]) from its task files, each one verified (:func:`taskfile.read_task`).
+
+    Parameters
+    ----------
+    plan : Plan
+        The sweep's plan.
+    store : Path
+        The store directory.
+    allow_partial : bool
+        Runs of unfinished tasks are NaN (status -1); False refuses them.
+    scan : list, optional
+        The task files (:func:`scan_tasks`); scanned here if not given.
+
+    Raises
+    ------
+    SweepError
+        A corrupt task file, or unfinished runs without ``allow_partial`` (one line).
+    """
     import xarray as xr
 
     spec = plan.spec
@@ -429,7 +367,7 @@ def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | N
     n_runs = plan.n_runs
     cps = plan.checkpoints
     hist_t = history_times(plan)
-    names, shapes = _expected(plan)
+    names, shapes = expected(plan)
     data = {}
     for name in names:
         fill = FILL.get(name, np.nan)
@@ -437,14 +375,7 @@ def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | N
                              dtype=np.int64 if name in FILL else float)
     if scan is None:
         scan = scan_tasks(store, plan)
-    for first, count, p in scan:
-        try:
-            with np.load(p) as z:
-                for name in data:
-                    data[name][first:first + count] = z[name]
-        except Exception as e:   # BadZipFile, EOFError, KeyError, a shape that does not fit
-            raise SweepError(f"task file {str(p)!r} is corrupt ({type(e).__name__}); rerun the "
-                             "sweep with --resume to recompute its runs") from None
+    load_tasks(scan, plan, identity(plan), data)       # each file verified (taskfile.py)
     missing = int(n_runs - covered_runs(scan, n_runs).sum())
     if missing and not allow_partial:
         raise SweepError(f"store {str(store)!r}: {missing} of {n_runs} runs not finished")
@@ -477,9 +408,38 @@ def assemble(plan: Plan, store: Path, allow_partial: bool = True, scan: list | N
     return ds
 
 
+def result_digest(path: Path) -> str:
+    """SHA-256 (hex) of an assembled result: every file below ``path`` (a Zarr directory), by
+    its relative path, length and bytes.
+
+    Parameters
+    ----------
+    path : Path
+        The result.zarr directory.
+    """
+    h = hashlib.sha256()
+    root = Path(path)
+    for p in sorted(root.rglob("*")):
+        if p.is_file():
+            data = p.read_bytes()
+            h.update(f"{p.relative_to(root).as_posix()}\0{len(data)}\0".encode())
+            h.update(data)
+    return h.hexdigest()
+
+
 def write_result(ds: xr.Dataset, store: Path) -> Path:
-    """Write the assembled dataset as Zarr, replacing an older assembly: written to a
-    temporary directory first, then swapped in (the old one is removed only after the swap)."""
+    """Write the assembled dataset as Zarr, replacing an older assembly, and record its digest
+    in sweep.json: written to a temporary directory first, its digest taken, then swapped in
+    (the old one is removed only after the swap) and sweep.json replaced atomically. A kill in
+    between leaves a result that does not match the digest: the next resume reassembles it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The assembled sweep (:func:`assemble`).
+    store : Path
+        The store directory (its lock held).
+    """
     path = Path(store) / "result.zarr"
     tmp = Path(store) / "result.zarr.tmp"
     old = Path(store) / "result.zarr.old"
@@ -488,12 +448,59 @@ def write_result(ds: xr.Dataset, store: Path) -> Path:
             shutil.rmtree(p)
     try:
         ds.to_zarr(tmp, mode="w", consolidated=True, zarr_format=2)
+        digest = result_digest(tmp)
         if path.exists():
             os.replace(path, old)
         os.replace(tmp, path)
+        meta = _read_meta(store)
+        meta["result_digest"] = digest
+        _write_meta(store, meta)
     except OSError as e:
         raise SweepError(f"--store {str(store)!r}: cannot write result.zarr ({e.strerror or e}); "
                          "the task files are kept: rerun with --resume") from None
     if old.exists():
         shutil.rmtree(old, ignore_errors=True)
     return path
+
+
+def read_result(store: Path):
+    """The assembled result of a finished store, verified against the digest in sweep.json.
+
+    Parameters
+    ----------
+    store : Path
+        The store directory.
+
+    Returns
+    -------
+    xarray.Dataset
+        Loaded into memory.
+
+    Raises
+    ------
+    StoreMismatch
+        A store of an earlier format (one line).
+    SweepError
+        No result.zarr, or one that does not match its recorded digest (edited, damaged, or
+        written by a process killed before it recorded the digest) or cannot be read (one
+        line; ``--resume`` assembles it again from the task files).
+    """
+    import xarray as xr
+
+    store = Path(store)
+    meta = _read_meta(store)
+    _check_format(store, meta)
+    path = store / "result.zarr"
+    if not path.is_dir():
+        raise SweepError(f"store {str(store)!r} is not assembled yet (no result.zarr); run it "
+                         "with --resume")
+    recorded = meta.get("result_digest")
+    if recorded is None or result_digest(path) != recorded:
+        raise SweepError(f"{str(path)!r} does not match the digest recorded in sweep.json "
+                         "(edited or damaged); rerun the sweep with --resume to assemble it "
+                         "again from the task files")
+    try:
+        return xr.open_zarr(path).load()
+    except Exception as e:   # the files are those written, so the environment (memory, I/O)
+        raise SweepError(f"{str(path)!r} is unreadable ({type(e).__name__}); rerun the sweep "
+                         "with --resume to assemble it again from the task files") from None
