@@ -13,7 +13,8 @@ of lower layers:
 
     0  core                        numba kernels on plain floats/arrays (no models, no units)
     1  limits, validation,         resource settings and guards; the reproduction contract;
-       jsonable                    JSON-safe conversion (none imports the package)
+       jsonable, atomic            JSON-safe conversion; atomic output files (none imports
+                                   the package)
     2  models                      frozen SI dataclasses
     3  config                      units, schema, presets, overrides (needs only models)
     4  physics, liquid             closed forms; the liquid balancer package
@@ -44,7 +45,7 @@ ROOT = "autobalance"
 
 LAYERS = [
     ("core",),
-    ("limits", "validation", "jsonable"),
+    ("limits", "validation", "jsonable", "atomic"),
     ("models",),
     ("config",),
     ("physics", "liquid"),

@@ -237,16 +237,25 @@ class LiquidSimulation:
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def to_netcdf(self, path: str | Path) -> None:
-        """Write :meth:`to_xarray` to a NetCDF file.
+        """Write :meth:`to_xarray` to a NetCDF file, atomically
+        (:func:`autobalance.atomic.atomic_output`: a failed write leaves the previous file).
 
         Parameters
         ----------
         path : str or Path
-            The file [-].
+            The file [-] (replaced whole).
+
+        Raises
+        ------
+        autobalance.atomic.OutputError
+            The file could not be written (one line; the previous file unchanged).
         """
+        from ..atomic import atomic_output
+
         ds = self.to_xarray()
-        ds.to_netcdf(path, engine="netcdf4",
-                     encoding={name: {"zlib": True, "complevel": 4} for name in ds.data_vars})
+        with atomic_output(path) as tmp:
+            ds.to_netcdf(tmp, engine="netcdf4",
+                         encoding={name: {"zlib": True, "complevel": 4} for name in ds.data_vars})
 
 
 def film_rotor(system: System) -> VerticalRotor:

@@ -1,5 +1,7 @@
 """Run reproduction targets and write the report: ``report.json``, ``report.html``,
-``VALIDATION.md``, figures (PNG + SVG) under ``figures/`` and data (NetCDF) under ``data/``.
+``VALIDATION.md``, figures (PNG + SVG) under ``figures/`` and data (NetCDF) under ``data/``; each
+file is written atomically (:mod:`autobalance.atomic`: a run killed while writing leaves the
+previous file, never a part of one).
 
 A target that raises is recorded with status ``error`` and its message; the others still run
 and the report is still written. A published number a target claims but does not report is
@@ -16,6 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Callable, Optional
 
+from ..atomic import atomic_output, save_figure, write_atomic
 from ..jsonable import netcdf_safe
 from ..validation.target import Context, Target, claims, status
 from .summary import counts as _counts  # noqa: F401  (re-exported for the CLI)
@@ -34,7 +37,8 @@ def _save_data(data, out: Path, tid: str) -> list:
     for name, ds in items:
         rel = Path("data") / f"{tid}{'-' + name if name else ''}.nc"
         (out / rel).parent.mkdir(parents=True, exist_ok=True)
-        netcdf_safe(ds).to_netcdf(out / rel)
+        with atomic_output(out / rel) as tmp:
+            netcdf_safe(ds).to_netcdf(tmp)
         paths.append(rel.as_posix())
     return paths
 
@@ -44,8 +48,8 @@ def _save_figures(figures: dict, out: Path, tid: str) -> list:
     for name, fig in figures.items():
         stem = Path("figures") / f"{tid}-{name}"
         (out / stem).parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out / stem.with_suffix(".png"), dpi=100)
-        fig.savefig(out / stem.with_suffix(".svg"))
+        save_figure(fig, out / stem.with_suffix(".png"), dpi=100)
+        save_figure(fig, out / stem.with_suffix(".svg"))
         paths.append(stem.with_suffix(".png").as_posix())
     return paths
 
@@ -104,8 +108,29 @@ def run_targets(targets: Sequence[Target], ctx: Context,
             "summary": summarize(recs), "targets": recs}
 
 
-def write_report(report: dict, out: Path) -> dict:
-    """Write report.json, report.html and VALIDATION.md into ``out``; returns their paths."""
+def write_report(report: dict, out: Path, option: Optional[str] = None) -> dict:
+    """Write report.json, report.html and VALIDATION.md into ``out``, each atomically (a failed
+    write leaves the previous file: :mod:`autobalance.atomic`); returns their paths.
+
+    Parameters
+    ----------
+    report : dict
+        The report (:func:`run_targets`).
+    out : Path
+        The report directory (created).
+    option : str, optional
+        The option that named ``out`` (``"--out"``), for the one-line error.
+
+    Returns
+    -------
+    dict
+        ``{"json": path, "html": path, "markdown": path}``.
+
+    Raises
+    ------
+    autobalance.atomic.OutputError
+        A file could not be written (one line; the previous file unchanged).
+    """
     from ..jsonable import to_jsonable as _clean
     from .html import render_html
     from .markdown import render_markdown
@@ -114,7 +139,7 @@ def write_report(report: dict, out: Path) -> dict:
     out.mkdir(parents=True, exist_ok=True)
     paths = {"json": out / "report.json", "html": out / "report.html",
              "markdown": out / "VALIDATION.md"}
-    paths["json"].write_text(json.dumps(_clean(report), indent=1, allow_nan=False))
-    paths["html"].write_text(render_html(report), encoding="utf-8")
-    paths["markdown"].write_text(render_markdown(report), encoding="utf-8")
+    write_atomic(paths["json"], json.dumps(_clean(report), indent=1, allow_nan=False), option)
+    write_atomic(paths["html"], render_html(report), option)
+    write_atomic(paths["markdown"], render_markdown(report), option)
     return {k: str(v) for k, v in paths.items()}

@@ -119,6 +119,16 @@ class Simulation:
         """Number of balls N of the run's balancer."""
         return self.system.balancer.n_balls
 
+    @property
+    def resolves_revolutions(self) -> bool:
+        """Whether the stored history samples a revolution at the nominal speed at least twice
+        (median spacing <= T_rev / 2), which :meth:`settle` needs: not with ``options.save_dt
+        < 0`` (only the checkpoints) or a save_dt longer than half a revolution."""
+        if getattr(self.options, "save_dt", 0.0) < 0 or self.t.size < 3:
+            return False
+        t_rev = 2 * np.pi / max(self.spin.nominal_speed, 1e-300)
+        return bool(np.median(np.diff(self.t)) <= 0.5 * t_rev)
+
     def settle(self, threshold: float | None = None):
         """Per ball: settling time [s] and net revolutions relative to the rotor before it [-].
 
@@ -135,14 +145,18 @@ class Simulation:
 
         Returns
         -------
-        times : list of float
-            Per ball, the last time it was moving [s] (the first sample's if never).
-        revolutions : list of float
-            Per ball, (alpha at that time - alpha(0)) / 2 pi [-].
+        times : list of float or None
+            Per ball, the last time it was moving [s] (the first sample's if never); None for
+            every ball when the stored history does not resolve a revolution
+            (:attr:`resolves_revolutions`: ``options.save_dt < 0`` keeps only the checkpoints).
+        revolutions : list of float or None
+            Per ball, (alpha at that time - alpha(0)) / 2 pi [-]; None as ``times``.
         """
         w = self.spin.nominal_speed
         thr = threshold if threshold is not None else 1e-3 * w
         t_rev = 2 * np.pi / w
+        if not self.resolves_revolutions:
+            return [None] * self.n_balls, [None] * self.n_balls
         lag = np.searchsorted(self.t, self.t - t_rev)
         times, revs = [], []
         for i in range(self.n_balls):
@@ -228,16 +242,25 @@ class Simulation:
         return out
 
     def to_netcdf(self, path: str | Path) -> None:
-        """Write :meth:`to_xarray` to a NetCDF-4 file with zlib-compressed variables.
+        """Write :meth:`to_xarray` to a NetCDF-4 file with zlib-compressed variables, atomically
+        (:func:`autobalance.atomic.atomic_output`: a failed write leaves the previous file).
 
         Parameters
         ----------
         path : str or Path
-            The file to write (overwritten).
+            The file to write (replaced whole).
+
+        Raises
+        ------
+        autobalance.atomic.OutputError
+            The file could not be written (one line; the previous file unchanged).
         """
+        from ..atomic import atomic_output
+
         ds = self.to_xarray()
         enc = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
-        ds.to_netcdf(path, engine="netcdf4", encoding=enc)
+        with atomic_output(path) as tmp:
+            ds.to_netcdf(tmp, engine="netcdf4", encoding=enc)
 
     def to_xarray(self):
         """xarray.Dataset with dims (time, ball), units and long names; parameters in attrs."""

@@ -21,9 +21,30 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 
+#: Floats per output sample held while a run's history is in memory, beyond 3 per state
+#: component (the stored state, its unpacked copy in :class:`Simulation` and the NetCDF's):
+#: the series derived from it (fixed-frame whirl, amplitude, residual unbalance as a complex
+#: number, its modulus and angle, grade, their temporaries and their copies in the dataset).
+DERIVED_SERIES = 24
+
+
+def history_bytes(n_samples: float, n_state: int) -> float:
+    """Memory of a run's time history with everything derived from it [B].
+
+    Parameters
+    ----------
+    n_samples : float
+        Output samples [-].
+    n_state : int
+        State components per sample [-].
+    """
+    return float(n_samples) * 8.0 * (3 * max(n_state, 1) + DERIVED_SERIES)
+
+
 def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
-    """Output times [s]; refuses (ResourceError naming ``options.save_dt``) a grid whose stored
-    history, samples x ``n_state`` x 8 bytes, exceeds the memory limit, before allocating it."""
+    """Output times [s]; refuses (ResourceError naming ``options.save_dt``) a grid whose
+    history with what is derived from it (:func:`history_bytes`) exceeds the memory limit,
+    before allocating it."""
     t_end = spin.duration
     cps = np.asarray(spin.checkpoints, float)
     if options.save_dt < 0:
@@ -33,8 +54,8 @@ def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
         dt = 2 * np.pi / max(spin.nominal_speed, 1e-9) / 20.0
         dt = max(dt, t_end / 200_000)
     n_est = t_end / dt + 2.0 + cps.size   # float: t_end / dt may overflow an int
-    check_memory("options.save_dt", f"{dt:g} s", n_est * max(n_state, 1) * 8.0,
-                 f"stored time history ({n_est:.3g} samples)")
+    check_memory("options.save_dt", f"{dt:g} s", history_bytes(n_est, n_state),
+                 f"time history and what is derived from it ({n_est:.3g} samples)")
     n = int(np.floor(t_end / dt + 1e-9)) + 1
     grid = np.arange(n) * dt
     t = np.sort(np.concatenate([grid[grid < t_end], cps, [t_end]]))

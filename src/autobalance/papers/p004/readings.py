@@ -178,7 +178,13 @@ def main(argv: Sequence[str] | None = None) -> None:
     a = ap.parse_args(argv)
     ds = compute_readings(a.n, store_dir=a.store, executor=a.executor)
     if a.netcdf:
-        ds.to_netcdf(a.netcdf)
+        from ...atomic import OutputError, atomic_output
+
+        try:
+            with atomic_output(a.netcdf, "--netcdf") as tmp:
+                ds.to_netcdf(tmp)
+        except OutputError as exc:
+            ap.exit(2, f"error: {exc}\n")
     print(readings_markdown(ds))
     for r in reading_rows(ds):
         if r["changes_stated"]:
