@@ -42,6 +42,18 @@ def rng():
     return np.random.default_rng(12345)
 
 
+def run_main(capsys, args) -> tuple:
+    """The real entry point ``autobalance.cli.main`` in this process: (exit code, stdout,
+    stderr) of the command ``args``."""
+    from autobalance.cli import main
+
+    capsys.readouterr()
+    with pytest.raises(SystemExit) as e:
+        main([str(a) for a in args])
+    out = capsys.readouterr()
+    return e.value.code, out.out, out.err
+
+
 # Sweep descriptions shared by tests/test_sweep*.py.
 # 2 grid values x start_grid n = 4 (10 samples for 2 identical balls) = 20 runs, 7 tasks of <= 3,
 # on a 12 s run-up / plateau / run-down profile (~1 s for the whole sweep).

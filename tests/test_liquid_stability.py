@@ -105,7 +105,7 @@ def test_refusals_are_one_line(kw, field):
 def test_cli_end_to_end(tmp_path):
     png = tmp_path / "s.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
-                        "leblanc_003", "--omega", "40:100 1/s:13", "--json", "--plot", str(png)],
+                        "leblanc_003", "--omega", "40:100 rad/s:13", "--json", "--plot", str(png)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
@@ -117,12 +117,12 @@ def test_cli_end_to_end(tmp_path):
                         "leblanc_003", "--omega", "400:900 rpm:6"],
                        capture_output=True, text=True, timeout=600)
     assert t.returncode == 0, t.stderr
-    assert "rpm - " in t.stdout and "1/s" not in t.stdout
+    assert "rpm - " in t.stdout and "rad/s" not in t.stdout
     bad = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
                           "leblanc_003", "--cells", "4"], capture_output=True, text=True,
                          timeout=600)
     lines = bad.stderr.strip().splitlines()
-    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: n_cells")
+    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: --cells")
 
 
 def test_unstable_ranges_start_at_the_first_film_or_grid_speed():

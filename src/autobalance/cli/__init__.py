@@ -20,11 +20,12 @@ import typer
 
 from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
 from . import liquid_check, study_design, study_liquid, study_maps, study_runup  # noqa: F401  (register their commands)
-from .common import USER_ERRORS, error_text, forget_written, one_line, print_error
+from .common import ERRORS_PRINTED, USER_ERRORS, error_text, forget_written, one_line, print_error
 
 __all__ = ["app", "main"]
 
 app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False,
+                  rich_markup_mode=None,     # help as written: no rich markup or :emoji: codes
                   pretty_exceptions_enable=False,
                   help="Simulate and design passive automatic balancers: presets, show, simulate, "
                        "response, sweep, study, design, analyze, liquid, reproduce, demo.")
@@ -68,6 +69,7 @@ def main(argv: Optional[list[str]] = None) -> None:
     from typer._click.exceptions import NoArgsIsHelpError, UsageError
 
     forget_written()
+    printed = ERRORS_PRINTED[0]
     try:
         rv = app(args=argv, prog_name="autobalance", standalone_mode=False)
     except NoArgsIsHelpError:           # the help was printed
@@ -82,4 +84,7 @@ def main(argv: Optional[list[str]] = None) -> None:
     except KeyboardInterrupt as exc:    # a SweepInterrupted says what was kept
         print_error(one_line(exc) if str(exc) else "interrupted")
         sys.exit(128 + int(getattr(exc, "signal", 2)))
-    sys.exit(rv if isinstance(rv, int) else 0)
+    code = rv if isinstance(rv, int) else 0
+    if code == 130 and ERRORS_PRINTED[0] == printed:   # typer's own exit for a Ctrl-C
+        print_error("interrupted")
+    sys.exit(code)

@@ -19,22 +19,26 @@ from typing import Annotated, Optional
 import typer
 
 from ..config import ConfigError, parse_quantity
-from .common import (JsonOpt, PlotOpt, SetOpt, SourceArg, check_plot, echo_fields, fail, guard,
-                     load_machine, print_json)
+from .common import (JsonOpt, PlotOpt, SetOpt, SourceArg, check_distinct, check_plot, echo_fields,
+                     fail, guard, load_machine, print_json)
 from .response import AnglesOpt, SpeedOpt, analyze_response, ball_angles, speed_at
 
 app = typer.Typer(name="analyze", no_args_is_help=True, add_completion=False,
+                  rich_markup_mode=None,     # help as written: no rich markup or :emoji: codes
                   pretty_exceptions_enable=False,
                   help="Seed-000 analysis: harmonic response, vibratory forces, equilibria and "
                        "stability, error bounds, tolerance design, kinetic-static model, studies.")
 app.command("response")(analyze_response)
 
 
-def _save(fig, path) -> Optional[str]:
-    """Save a figure to a path the command checked with :func:`check_plot` before computing."""
+def _save(fig, path, what: str = "--plot") -> Optional[str]:
+    """Save a figure, atomically (:func:`autobalance.atomic.save_figure`), to a path the command
+    checked with :func:`check_plot` before computing; ``what`` names the option in an error."""
+    from ..atomic import save_figure
+
     if path is None:
         return None
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, what, dpi=110)
     return str(path)
 
 
@@ -58,8 +62,10 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
         at ``angles``, with the rest band +-f/r (000 eq 8, 21; Fig. 6 generalised); 000 Fig. 7.
     """
     with guard():
-        check_plot(plot)
-        check_plot(damping_plot, what="--damping-plot")
+        config = {"the input config file": source}
+        check_plot(plot, inputs=config)
+        check_plot(damping_plot, what="--damping-plot", inputs=config)
+        check_distinct({"--plot": plot, "--damping-plot": damping_plot})
         cfg = load_machine(source, set_, balls="needed")
         from ..physics.vibratory import force_jacobian, vibratory_components
 
@@ -78,7 +84,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
                 out["plot"] = _save(plot_ball_forces(cfg.system, speeds, a), plot)
             if damping_plot is not None:
                 out["damping_plot"] = _save(plot_vibratory_force_damping(cfg.system, speeds),
-                                            damping_plot)
+                                            damping_plot, "--damping-plot")
     if json_:
         print_json(out)
         return
@@ -238,7 +244,7 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         PNG file: the worst-case residual of the machine's balancer against speed, by cause.
     """
     with guard():
-        check_plot(plot)
+        check_plot(plot, inputs={"the input config file": source})
         cfg = load_machine(source, set_, balls="needed")
         import numpy as np
 
@@ -371,7 +377,7 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
         PNG file: the differences against time.
     """
     with guard():
-        check_plot(plot)
+        check_plot(plot, inputs={"the input config file": source})
         cfg = load_machine(source, set_, balls="needed")
         from ..simulate.kinetic_static import compare_with_full
 

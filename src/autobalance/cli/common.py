@@ -15,7 +15,8 @@ printer and the checks made before any work.
 * Output: :func:`print_json` prints exactly one strict JSON object (SI units, NaN and inf as
   ``null``; :func:`autobalance.jsonable.to_jsonable`).
 * Checks before the work: :func:`check_output_file` / :func:`check_plot` (files written at the
-  end), :func:`check_grade`, :func:`check_workers`, :func:`check_executor`.
+  end, atomically: :mod:`autobalance.atomic`), :func:`check_distinct` (no output is an input or
+  another output), :func:`check_grade`, :func:`check_workers`, :func:`check_executor`.
 """
 from __future__ import annotations
 
@@ -36,10 +37,11 @@ from ..limits import ResourceError
 from ..models import ParameterError
 
 __all__ = ["DEFAULT_GRADE", "USER_ERRORS", "ExecutorOpt", "GradeOpt", "JsonOpt", "PlotOpt",
-           "ProfileOpt", "SchedulerOpt", "SetOpt", "SourceArg", "UnitsOpt", "WORKER_BYTES",
-           "WorkersOpt", "check_executor", "check_grade", "check_output_file", "check_plot",
-           "check_workers", "class_text", "echo_fields", "fail", "grade_text", "guard",
-           "load_machine", "one_line", "print_error", "print_json", "quiet_dask_logs"]
+           "ProfileOpt", "as_options", "SchedulerOpt", "SetOpt", "SourceArg", "UnitsOpt",
+           "WORKER_BYTES", "WorkersOpt", "check_distinct", "check_executor", "check_grade",
+           "check_output_file", "check_plot", "check_workers", "class_text", "echo_fields", "fail",
+           "grade_text", "guard", "load_machine", "one_line", "print_error", "print_json",
+           "quiet_dask_logs"]
 
 # -- the shared options -------------------------------------------------------------------------
 SourceArg = Annotated[str, typer.Argument(metavar="PRESET|CONFIG",
@@ -102,6 +104,11 @@ def one_line(exc: BaseException) -> str:
     return msg or type(exc).__name__
 
 
+#: How many ``error:`` lines this process printed (:func:`print_error`): the entry point adds
+#: one for an interruption that typer ended silently (exit code 130, no line).
+ERRORS_PRINTED = [0]
+
+
 def print_error(message: str) -> None:
     """Print ``error: <message>`` on stderr, on one line.
 
@@ -110,6 +117,7 @@ def print_error(message: str) -> None:
     message : str
         What went wrong; its white space (newlines included) is collapsed.
     """
+    ERRORS_PRINTED[0] += 1
     typer.echo(f"error: {' '.join(message.split())}", err=True)
 
 
@@ -150,6 +158,35 @@ def guard() -> Iterator[None]:
         fail(error_text(exc))
     finally:
         _WRITTEN.reset(token)
+
+
+@contextmanager
+def as_options(fields: dict[str, str]) -> Iterator[None]:
+    """Context manager: an input error that names a library field the user gave through an
+    option names that option instead (``monte_carlo.n = 100000: ...`` becomes ``--n = 100000:
+    ...``), so the one line speaks the command line the user typed.
+
+    Parameters
+    ----------
+    fields : dict of str to str
+        Library field (the start of the message) -> the option that set it, e.g.
+        ``{"monte_carlo.n": "--n"}``.
+
+    Raises
+    ------
+    ConfigError or ResourceError
+        The renamed error (the others pass unchanged).
+    """
+    try:
+        yield
+    except USER_ERRORS as exc:
+        msg = one_line(exc)
+        for field, option in fields.items():
+            if msg.startswith(field) and msg[len(field):len(field) + 1] in (" ", ":", "="):
+                new = f"{option}{msg[len(field):]}"
+                raise (ResourceError(new) if isinstance(exc, ResourceError)
+                       else ConfigError(new)) from None
+        raise
 
 
 def error_text(exc: BaseException) -> str:
@@ -230,8 +267,12 @@ def load_machine(source: str, sets: Optional[list[str]] = None, profile: Optiona
 
 # -- checks before the work ---------------------------------------------------------------------
 def check_output_file(path: str | Path | None, what: str, example: str = "out.nc",
-                      suffixes: tuple[str, ...] = ()) -> None:
+                      suffixes: tuple[str, ...] = (), inputs: Optional[dict] = None) -> None:
     """Refuse, before any work, an output file the command could not write at the end.
+
+    The file is written to a temporary file in its directory and renamed onto it
+    (:func:`autobalance.atomic.atomic_output`; a symbolic link's target is replaced), so that
+    directory must be writable even when the file exists.
 
     Parameters
     ----------
@@ -243,35 +284,50 @@ def check_output_file(path: str | Path | None, what: str, example: str = "out.nc
         A file name for the message, e.g. ``"run.nc"``.
     suffixes : tuple of str
         Allowed lower-case suffixes (``".png"``, ...); empty: any.
+    inputs : dict, optional
+        The command's input files, ``{"the input config file": path, ...}`` (the phrase for the
+        message -> a path, None or a name that is no file: skipped); the output must be none of
+        them (:func:`check_distinct`).
 
     Raises
     ------
     ConfigError
-        ``path`` is a directory, its directory is missing or not writable, the file exists and is
-        not writable, or its suffix is not one of ``suffixes`` (one line).
+        ``path`` is a directory, a device, a FIFO or another non-regular file, its directory is
+        missing or not writable, the file exists and is not writable, its suffix is not one of
+        ``suffixes``, or it is one of ``inputs`` (one line).
     """
     if path is None:
         return
+    from ..atomic import final_target, non_regular_kind
+
     path = Path(path)
     name = str(path)
     if path.is_dir():
         raise ConfigError(f"{what} {name!r}: is a directory; give a file name, e.g. "
                           f"{path / example}")
-    parent = path.parent
+    kind = non_regular_kind(path)
+    if kind is not None:
+        raise ConfigError(f"{what} {name!r}: is {kind}, not a regular file; give a file name, "
+                          f"e.g. {example}")
+    parent = final_target(path).parent
     if not parent.is_dir():
         raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} does not exist")
     if suffixes and path.suffix.lower() not in suffixes:
         raise ConfigError(f"{what} {name!r}: expected a file ending in {', '.join(suffixes)}")
     if path.exists() and not os.access(path, os.W_OK):
         raise ConfigError(f"{what} {name!r}: the file is not writable")
-    if not path.exists() and not os.access(parent, os.W_OK | os.X_OK):
-        raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} is not writable")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise ConfigError(f"{what} {name!r}: directory {str(parent)!r} is not writable"
+                          + (" (the file is written beside it, then renamed)"
+                             if path.exists() else ""))
+    check_distinct({what: path}, inputs)
 
 
 def check_plot(path: str | Path | None, suffixes: tuple = (".png",), what: str = "--plot",
-               example: str = "plot.png") -> None:
-    """Refuse, before any work, a figure file that could not be written (a directory, a missing
-    or read-only directory, a suffix not in ``suffixes``): :func:`check_output_file`.
+               example: str = "plot.png", inputs: Optional[dict] = None) -> None:
+    """Refuse, before any work, a figure file that could not be written (a directory, a device,
+    a missing or read-only directory, a suffix not in ``suffixes``, one of the ``inputs``):
+    :func:`check_output_file`.
 
     Parameters
     ----------
@@ -283,13 +339,50 @@ def check_plot(path: str | Path | None, suffixes: tuple = (".png",), what: str =
         The option for the message.
     example : str
         A file name for the message.
+    inputs : dict, optional
+        The command's input files (:func:`check_output_file`).
 
     Raises
     ------
     ConfigError
         One line naming ``what``.
     """
-    check_output_file(path, what, example, suffixes)
+    check_output_file(path, what, example, suffixes, inputs)
+
+
+def check_distinct(outputs: dict, inputs: Optional[dict] = None) -> None:
+    """Refuse, before any work, two outputs of one command that are the same file, or an output
+    that is one of its input files (symbolic and hard links seen through:
+    :func:`autobalance.atomic.same_file`).
+
+    Parameters
+    ----------
+    outputs : dict
+        Option -> output file (None: not given), e.g. ``{"--out": out, "--plot": plot}``.
+    inputs : dict, optional
+        What an input is, as the message says it -> its path, e.g. ``{"the input config
+        file": source}``; a value that is None or names no existing file (a preset name) is
+        skipped.
+
+    Raises
+    ------
+    ConfigError
+        ``--out 'm.toml' is the input config file; give another file name`` or ``--out and
+        --plot are the same file 'x.png'; give each its own file name`` (one line; two names
+        of one file are both shown).
+    """
+    from ..atomic import same_file
+
+    given = [(opt, Path(p)) for opt, p in outputs.items() if p is not None and str(p) != ""]
+    for i, (opt, p) in enumerate(given):
+        for other, q in given[:i]:
+            if same_file(p, q):
+                both = (f"{other} and {opt} are the same file {str(q)!r}" if str(p) == str(q)
+                        else f"{other} {str(q)!r} and {opt} {str(p)!r} are the same file")
+                raise ConfigError(f"{both}; give each its own file name")
+        for what, src in (inputs or {}).items():
+            if src is not None and Path(src).is_file() and same_file(p, src):
+                raise ConfigError(f"{opt} {str(p)!r} is {what}; give another file name")
 
 
 def check_grade(value: float, field: str = "--grade") -> float:
@@ -367,23 +460,29 @@ def grade_text(G: float) -> str:
     return f"G{G:g} (not an ISO 1940 class; meets class G{cls:g})"
 
 
-def check_executor(executor: Optional[str]) -> None:
-    """``--executor``: None (the default) or one of :data:`autobalance.sweep.EXECUTORS`.
+def check_executor(executor: Optional[str], workers: Optional[int] = None,
+                   scheduler: Optional[str] = None) -> None:
+    """``--executor``, ``--workers`` and ``--scheduler`` before any work, by the sweeps' own
+    check (:func:`autobalance.sweep.check_executor`): a known executor, ``--workers`` only
+    where there are local worker processes, a well-formed scheduler address.
 
     Parameters
     ----------
     executor : str or None
-        ``"serial"``, ``"local"`` or ``"dask"``.
+        ``"serial"``, ``"local"``, ``"dask"`` or None (not given).
+    workers : int or None
+        ``--workers`` as given (None: not given).
+    scheduler : str or None
+        ``--scheduler`` as given (None: ``DASK_SCHEDULER_ADDRESS`` if set).
 
     Raises
     ------
     ConfigError
-        Any other name (one line).
+        One line naming the options (a :class:`autobalance.sweep.SweepError`).
     """
-    from ..sweep import EXECUTORS
+    from ..sweep import check_executor as check
 
-    if executor is not None and executor not in EXECUTORS:
-        raise ConfigError(f"--executor = {executor!r}: must be {', '.join(EXECUTORS)}")
+    check(executor, workers, scheduler)
 
 
 #: Rough resident memory of one local worker process (Python, numpy, numba, xarray) [B].

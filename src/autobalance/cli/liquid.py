@@ -1,11 +1,12 @@
 """``autobalance liquid ...``: liquid (Leblanc) balancer commands (seeds 001, 003).
 
 Every command takes ``--json`` (one JSON object on stdout, SI, unit-suffixed keys). Values take
-units: ``--volume "100 ml"``, ``--radius "0.2 m"``, ``--omega "28 1/s"``, ``--delta "30 deg"``.
+units: ``--volume "100 ml"``, ``--radius "0.2 m"``, ``--omega "28 rad/s"``, ``--delta "30 deg"``.
 
 The liquid options: ``volume`` the liquid volume [m^3], ``radius`` and ``height`` the chamber's
-[m], ``omega`` the speed(s) [1/s], ``g`` the gravity [m/s^2] (each with units, or a bare number
-in SI; a list ``'a, b, c unit'`` or ``'start:stop unit:count'`` where several are allowed);
+[m], ``omega`` the speed(s) [rad/s], ``g`` the gravity [m/s^2] (each with units, or a bare number
+in SI; where several are allowed a range ``LO:HI:N`` or a list ``a, b, c unit``, the grammar of
+:mod:`autobalance.config.ranges`);
 ``as_json`` (``--json``) one JSON object instead of text.
 Input errors raise ConfigError / ParameterError / ResourceError with one-line messages; they
 leave this group's commands as exceptions (so the group can be driven as a library), and
@@ -22,12 +23,15 @@ import numpy as np
 import typer
 
 from ..config import ConfigError
+from ..config.ranges import VALUES_METAVAR, grammar_help, parse_values, written_unit
 from ..jsonable import to_jsonable
 from ..models import ParameterError
-from .common import JsonOpt, PlotOpt, SetOpt, UnitsOpt, check_plot, load_machine, print_json
-from .liquid_figures import plot_run
+from .common import (JsonOpt, PlotOpt, SetOpt, UnitsOpt, as_options, check_plot, load_machine,
+                     print_json)
+from .liquid_figures import plot_run, save_plot
 
 app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
+                  rich_markup_mode=None,     # help as written: no rich markup or :emoji: codes
                   pretty_exceptions_enable=False,
                   help="Liquid (Leblanc) balancers: free surface, modes, kinetostatics, dynamics.")
 
@@ -63,16 +67,10 @@ def _q(value: str, kind: str, field: str) -> float:
     return parse_quantity(value, kind, field)
 
 
-#: Memory of one value of a 'a:b:n' list [B]: its result row (a dict of floats) and JSON text.
+#: Memory of one value of a range or list [B]: its result row (a dict of floats) and JSON text.
 LIST_BYTES_PER_POINT = 2048
-
-
-def _list_unit(value: str) -> str:
-    """The unit written on a list of :func:`_list` ('a:b:n': on b; 'a, b, c': on the last
-    item), or '' (bare numbers)."""
-    v = value.strip()
-    items = [v.split(":")[1]] if v.count(":") == 2 else [x for x in v.split(",") if x.strip()]
-    return items[-1].strip().partition(" ")[2].strip() if items else ""
+#: Help of ``--omega`` where it takes several speeds.
+OMEGA_HELP = grammar_help("Speeds", "0:60 rad/s:13")
 
 
 def _increasing(ws: list[float], omega: str, allowed: str) -> None:
@@ -81,34 +79,17 @@ def _increasing(ws: list[float], omega: str, allowed: str) -> None:
         raise ConfigError(f"--omega = {omega!r}: {allowed}")
 
 
-def _list(value: str, kind: str, field: str) -> list[float]:
-    """'a:b:n' (linspace) or 'a,b,c' with units on each item or on the last; n >= 1 must fit
-    the memory limit (:func:`autobalance.limits.check_memory`), checked before allocating."""
-    v = value.strip()
-    if v.count(":") == 2:
-        a, b, n = v.split(":")
-        unit = _list_unit(v)
-        lo = _q(a if " " in a.strip() or not unit else f"{a} {unit}", kind, field)
-        try:
-            num = int(n)
-        except ValueError:
-            raise ConfigError(f"{field} = {value!r}: expected 'start:stop:count'") from None
-        if num < 1:
-            raise ConfigError(f"{field} = {value!r}: count must be >= 1")
-        from ..limits import check_memory
-
-        check_memory(field, value, float(num) * LIST_BYTES_PER_POINT, f"table of {num} values")
-        return list(np.linspace(lo, _q(b, kind, field), num))
-    items = [x.strip() for x in v.split(",") if x.strip()]
-    if not items:
-        raise ConfigError(f"{field} = {value!r}: expected a value or a list 'a, b, c'")
-    unit = _list_unit(v)
-    return [_q(x if " " in x or not unit else f"{x} {unit}", kind, field) for x in items]
+def _list(value: str, kind: str, option: str) -> list[float]:
+    """The values [SI unit of ``kind``] of a liquid option ``option`` (as typed, e.g.
+    ``"--omega"``): a range ``LO:HI:N`` with N >= 1 or a list ``a, b, c unit``
+    (:func:`autobalance.config.ranges.parse_values`), the table within the memory limit."""
+    return [float(v) for v in parse_values(value, kind, option, min_points=1,
+                                           bytes_per_point=LIST_BYTES_PER_POINT)]
 
 
-def _check_plot(plot: Optional[str]) -> None:
-    """Refuse a figure file that could not be written before computing (an empty name: none)."""
-    check_plot(plot or None, PLOT_SUFFIXES)
+def _check_plot(plot: Optional[str], source: Optional[str] = None) -> None:
+    """Refuse a figure file that cannot be written or is the config ``source`` ('': none)."""
+    check_plot(plot or None, PLOT_SUFFIXES, inputs={"the input config file": source})
 
 
 def _liquid(name: str):
@@ -126,8 +107,8 @@ def _liquid(name: str):
 
 @app.command()
 def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
-            omega: Annotated[str, typer.Option("--omega", help="Speed(s): '0, 0.89, 10, 28 1/s' "
-                                               "or '0:60 1/s:7'.")] = "0, 0.6, 0.89, 10, 28, 60 1/s",
+            omega: Annotated[str, typer.Option("--omega", metavar=VALUES_METAVAR,
+                                               help=OMEGA_HELP)] = "0, 0.6, 0.89, 10, 28, 60 rad/s",
             g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False, plot: PlotOpt = None):
     """Free surface z(r) = z_* + omega^2 r^2/(2g) clipped to the chamber (003 eq 2-5).\f
 
@@ -144,7 +125,7 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
     V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
                _q(height, "length", "height"))
     gg = _q(g, "acceleration", "g")
-    ws = _list(omega, "speed", "omega")
+    ws = _list(omega, "speed", "--omega")
     rows = []
     for w in ws:
         fs = free_surface(w, V, R, h, gg)
@@ -154,7 +135,7 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
     if plot:
         from ..liquid import surface_profiles
         from ..plotting.liquid import surface_figure
-        surface_figure(surface_profiles(ws, V, R, h, gg)).savefig(plot, dpi=120)
+        save_plot(surface_figure(surface_profiles(ws, V, R, h, gg)), plot)
     _out({"volume_m3": V, "radius_m": R, "height_m": h, "g_m_s2": gg, "surfaces": rows,
           "plot": plot} if as_json else
          {f"omega={r['omega_rad_s']:.4g}": f"mode {r['mode']} regime {r['regime']} "
@@ -163,8 +144,9 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
 
 
 @app.command()
-def speeds(volume: Annotated[str, typer.Option("--volume", "-V", help="Volume(s): "
-                                               "'100, 200, 300 ml'.")] = "100, 200, 300 ml",
+def speeds(volume: Annotated[str, typer.Option(
+               "--volume", "-V", metavar=VALUES_METAVAR,
+               help=grammar_help("Volumes", "100, 200, 300 ml"))] = "100, 200, 300 ml",
            radius: ROpt = "0.2 m", height: HOpt = "0.05 m", g: GOpt = "9.80665 m/s^2",
            gravity_fraction: Annotated[float, typer.Option(help="Mode-1 criterion f: centre "
                                                            "sunk by f*h0.")] = 0.25,
@@ -182,17 +164,18 @@ def speeds(volume: Annotated[str, typer.Option("--volume", "-V", help="Volume(s)
 
     R, h, gg = _q(radius, "length", "radius"), _q(height, "length", "height"), \
         _q(g, "acceleration", "g")
-    vols = _list(volume, "volume", "volume")
+    vols = _list(volume, "volume", "--volume")
     rows = [dict(volume_m3=V, **mode_speeds(V, R, h, gg, gravity_fraction)) for V in vols]
     _out({"radius_m": R, "height_m": h, "g_m_s2": gg, "speeds": rows} if as_json else
          {f"V={r['volume_m3'] * 1e6:.4g} ml": f"omega_1={r['omega_1_rad_s']:.4g} "
           f"omega_2={r['omega_2_rad_s']:.4g} bottom={r['bottom_touch_rad_s']:.4g} "
-          f"omega_0={r['omega_0_rad_s']:.4g} 1/s" for r in rows}, as_json)
+          f"omega_0={r['omega_0_rad_s']:.4g} rad/s" for r in rows}, as_json)
 
 
 @app.command()
 def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
-          omega: Annotated[str, typer.Option("--omega", help="Speeds.")] = "0:60 1/s:13",
+          omega: Annotated[str, typer.Option("--omega", metavar=VALUES_METAVAR,
+                                               help=OMEGA_HELP)] = "0:60 rad/s:13",
           g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False):
     """003 motion mode (1..4) at each speed.\f
 
@@ -206,18 +189,20 @@ def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.0
     V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
                _q(height, "length", "height"))
     gg = _q(g, "acceleration", "g")
-    ws = _list(omega, "speed", "omega")
+    ws = _list(omega, "speed", "--omega")
     m = [motion_mode(w, V, R, h, gg) for w in ws]
     _out({"volume_m3": V, "omega_rad_s": ws, "mode": m,
           "mode_name": [MODE_NAMES[i] for i in m], **mode_speeds(V, R, h, gg)}, as_json)
 
 
 @app.command()
-def kinetostatic(delta: Annotated[str, typer.Option(help="Rotor phase angle(s).")] = "10, 30, 60 deg",
+def kinetostatic(delta: Annotated[str, typer.Option(
+                     metavar=VALUES_METAVAR,
+                     help=grammar_help("Rotor phase angles", "10, 30, 60 deg"))] = "10, 30, 60 deg",
                  k: Annotated[float, typer.Option(help="k = D0/D.")] = 1.1,
                  liquid: Annotated[str, typer.Option(help="Liquid of liquids_001 for beta.")] = "water",
                  volume: VolOpt = "150 ml", radius: ROpt = "0.2 m",
-                 omega: Annotated[str, typer.Option(help="Speed for beta.")] = "30 1/s",
+                 omega: Annotated[str, typer.Option(help="Speed for beta.")] = "30 rad/s",
                  arc: Annotated[str, typer.Option(help="Liquid arc xi (001 eq 5).")] = "180 deg",
                  as_json: JsonOpt = False):
     """Liquid angle alpha0 (001 eq 3), e_c/e, lambda0 (001 eq 4), friction angle beta (eq 6).\f
@@ -238,7 +223,7 @@ def kinetostatic(delta: Annotated[str, typer.Option(help="Rotor phase angle(s)."
     from ..liquid import (alpha0, alpha0_residual, balancing_efficiency, eccentricity_ratio,
                           friction_angle, friction_tan_bound, residual_lambda0)
 
-    ds = np.array(_list(delta, "angle", "delta"))
+    ds = np.array(_list(delta, "angle", "--delta"))
     if k <= 0 or not math.isfinite(k):
         raise ParameterError("k", k, "k = D0/D must be > 0 and finite")
     L = _liquid(liquid)
@@ -305,7 +290,9 @@ def simulate(source: Annotated[str, typer.Argument(
                  help="One of 001's liquids (sets density and viscosity).")] = None,
              placement: Annotated[Optional[str], typer.Option(
                  help="drach | deflection (the lumped model's law)")] = None,
-             omega: Annotated[str, typer.Option(help="Steady speeds.")] = "5:100 1/s:96",
+             omega: Annotated[str, typer.Option(metavar=VALUES_METAVAR, help=grammar_help(
+                 "Steady speeds", "5:100 rad/s:96", tail="increasing and > 0 for --model "
+                 "physical"))] = "5:100 rad/s:96",
              run: Annotated[bool, typer.Option("--run-up/--no-run-up",
                                                help="Also integrate the run-up.")] = False,
              fill: Annotated[bool, typer.Option("--fill-sweep", help="Amplitude vs fill at "
@@ -338,7 +325,7 @@ def simulate(source: Annotated[str, typer.Argument(
         The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` lists the steady speeds.
     run : bool
         Also integrate a linear run-up from rest to the profile's nominal speed over its
-        duration (leblanc_003: 0 -> 100 1/s in 20 s).
+        duration (leblanc_003: 0 -> 100 rad/s in 20 s).
     fill : bool
         Amplitude vs fill at 0.6, 0.8, 1, 1.2 omega_n (003 Fig. 5), over the fill map's default
         fills (:func:`autobalance.studies.fill_map.default_fills`).
@@ -358,8 +345,8 @@ def simulate(source: Annotated[str, typer.Argument(
         raise ConfigError(f"--model = {model_kind!r}: must be 'physical' or 'lumped'")
     model = LiquidModel(**({"placement": placement} if placement else {}))
     cfg, rot, bal, chambers = _machine(source, sets, radius, liquid, volume, unbalance)
-    _check_plot(plot)
-    ws = _list(omega, "speed", "omega")
+    _check_plot(plot, source)
+    ws = _list(omega, "speed", "--omega")
     physical = model_kind == "physical"
     L = cfg.system.liquid
     if bal is None and not physical:
@@ -460,13 +447,15 @@ def spinup(source: Annotated[str, typer.Argument(
     from ..liquid.spinup import spinup_of
     from ..liquid.steady import start_speed
 
-    _check_plot(plot)
+    _check_plot(plot, source)
     cfg = load_machine(source, sets, balls="liquid")
-    if cfg.system.liquid.axis == "horizontal":
-        from .liquid_rimming import horizontal_spinup_command
-        return horizontal_spinup_command(cfg, cells or 256, plot, as_json)
-    cells = cells or 100
-    runs = spinup_of(cfg.system, cfg.spin, n_cells=cells)
+    with as_options({"n_cells": "--cells"}):
+        if cfg.system.liquid.axis == "horizontal":
+            from .liquid_rimming import horizontal_spinup_command
+            return horizontal_spinup_command(cfg, 256 if cells is None else cells, plot,
+                                             as_json)
+        cells = 100 if cells is None else cells
+        runs = spinup_of(cfg.system, cfg.spin, n_cells=cells)
     chambers = []
     for r, c in zip(runs, cfg.system.liquid.chambers):
         # the run stops where the liquid reaches the lid (at t = 0 for a pool that already
@@ -497,7 +486,7 @@ def spinup(source: Annotated[str, typer.Argument(
                                    for c in cfg.system.liquid.chambers],
                             [c["quasi_static"]["omega_0_rad_s"] for c in chambers],
                             f"{cfg.system.name}: the liquid's spin-up from rest")
-        fig.savefig(plot, dpi=120)
+        save_plot(fig, plot)
         out["plot"] = str(plot)
     if not as_json:
         from ..config.display import display_units
@@ -521,7 +510,8 @@ def stability(source: Annotated[str, typer.Argument(
                   metavar="PRESET|CONFIG", help="A machine with a [liquid] section (a vertical "
                   "or horizontal axis), alone or beside balls.")] = "leblanc_003",
               sets: SetOpt = None,
-              omega: Annotated[str, typer.Option(help="Speeds.")] = "10:120 1/s:45",
+              omega: Annotated[str, typer.Option(metavar=VALUES_METAVAR, help=grammar_help(
+                  "Speeds", "10:120 rad/s:45", tail="increasing"))] = "10:120 rad/s:45",
               cells: Annotated[int, typer.Option(
                   "--cells", help="Cells around each wall.")] = 64,
               plot: PlotOpt = None, as_json: JsonOpt = False):
@@ -550,17 +540,18 @@ def stability(source: Annotated[str, typer.Argument(
     from ..liquid.stability import machine_stability
     from ..studies.liquid_balanced import balanced_machine_stability
 
-    _check_plot(plot)
+    _check_plot(plot, source)
     cfg = load_machine(source, sets, balls="liquid")
-    ws = _list(omega, "speed", "omega")
+    ws = _list(omega, "speed", "--omega")
     balls = cfg.system.balancer.n_balls > 0
+    with as_options({"n_cells": "--cells"}):
+        res = (balanced_machine_stability(cfg.system, ws, cells) if balls
+               else machine_stability(cfg.system, ws, cells))
     if balls:               # the balanced state of the balls beside the liquid (sec. 3k)
-        res = balanced_machine_stability(cfg.system, ws, cells)
         model = ("the run of balls beside the liquid linearised about the balanced state "
                  "(autobalance.studies.liquid_balanced); below the film's start the balls' "
                  "linearised model with the liquid as a pool")
     else:
-        res = machine_stability(cfg.system, ws, cells)
         model = ("the film runs' step linearised about the centred state "
                  "(autobalance.liquid.stability)")
     if res.get("axis") == "horizontal":
@@ -569,13 +560,13 @@ def stability(source: Annotated[str, typer.Argument(
     if plot:
         from ..plotting.liquid import stability_figure
 
-        stability_figure(res, f"{cfg.system.name}: linear stability").savefig(plot, dpi=120)
+        save_plot(stability_figure(res, f"{cfg.system.name}: linear stability"), plot)
         out["plot"] = str(plot)
     if not as_json:
         from ..config.display import display_units
 
         # speeds in the unit --omega was written in (e.g. rpm), else as the config writes them
-        unit = _list_unit(omega)
+        unit = written_unit(omega)
         du = display_units(cfg, f"speed={unit}" if unit else None)
         sp = lambda x: du.fmt(x, "speed")       # noqa: E731
         rng = ", ".join(f"{sp(lo)} - {sp(hi)}" for lo, hi in res["unstable_ranges_rad_s"])

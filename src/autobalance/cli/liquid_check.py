@@ -8,8 +8,10 @@ from typing import Annotated, Optional
 import typer
 
 from ..config import ConfigError
+from ..config.ranges import VALUES_METAVAR, grammar_help
 from .common import JsonOpt, PlotOpt, SetOpt, UnitsOpt
 from .liquid import _check_plot, _increasing, _list, _machine, _out, _q, app
+from .liquid_figures import save_plot
 
 
 @app.command("kinetostatic-check")
@@ -19,7 +21,8 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
                        sets: SetOpt = None,
                        liquid: Annotated[Optional[str], typer.Option(
                            help="One of 001's liquids (sets density and viscosity).")] = None,
-                       omega: Annotated[str, typer.Option(help="Speeds.")] = "40:100 1/s:13",
+                       omega: Annotated[str, typer.Option(metavar=VALUES_METAVAR, help=grammar_help(
+                           "Speeds", "40:100 rad/s:13", tail="increasing"))] = "40:100 rad/s:13",
                        settle: Annotated[str, typer.Option(
                            help="Also run the coupled film this long at each speed ('0 s': "
                                 "the quasi-static liquid only).")] = "4 s",
@@ -37,7 +40,7 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
     liquid : str
         One of 001's liquids (density and viscosity); default the machine's.
     omega : str
-        Increasing speeds [1/s, or with units].
+        Increasing speeds [rad/s, or with units].
     settle : str
         Time of each coupled-film run [s, or with units]; 0: none.
     as_json : bool
@@ -57,8 +60,8 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
         raise ConfigError(f"liquid.chamber_radius = {list(L.chamber_radius)}: 001's laws take "
                           "one chamber")
     L.vertical("for 001's kinetostatic laws (a vertical rotor)")
-    _check_plot(plot)
-    ws = _list(omega, "speed", "omega")
+    _check_plot(plot, source)
+    ws = _list(omega, "speed", "--omega")
     _increasing(ws, omega, "must be increasing speeds > 0")
     t = _q(settle, "time", "settle")
     if not 0 <= t <= 60:
@@ -69,8 +72,8 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
            "kinematic_viscosity_m2_s": L.kinematic_viscosity, "arc_rad": bal.arc,
            "settle_s": t, **res}
     if plot:
-        kinetostatic_check_figure(res, f"{cfg.name}: 001's kinetostatics against the liquid "
-                                       "from physics").savefig(plot, dpi=120)
+        save_plot(kinetostatic_check_figure(res, f"{cfg.name}: 001's kinetostatics against the "
+                                            "liquid from physics"), plot)
         out["plot"] = plot
     if as_json:
         _out(out, True)

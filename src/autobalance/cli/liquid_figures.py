@@ -1,12 +1,32 @@
-"""The figures of ``autobalance liquid simulate`` (:mod:`autobalance.cli.liquid`)."""
+"""The figures of ``autobalance liquid simulate`` (:mod:`autobalance.cli.liquid`) and the one
+way the liquid commands save their ``--plot`` (:func:`save_plot`)."""
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ..atomic import save_figure
+
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from ..liquid import LiquidModel, RunUp
     from ..liquid.models import VerticalRotor
     from ..models import LiquidDevice
+
+
+def save_plot(fig: Figure, plot: str) -> None:
+    """Save a liquid command's figure to its ``--plot`` file (120 dpi), atomically: a failed
+    write leaves the previous file (:func:`autobalance.atomic.save_figure`, one line naming
+    ``--plot``).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    plot : str
+        The file (.png, .pdf, .svg).
+    """
+    save_figure(fig, plot, "--plot", dpi=120)
 
 
 def plot_run(plot: str, st: dict, w0: float, wn: float, ru: RunUp | None, sw: list | None,
@@ -52,10 +72,10 @@ def plot_run(plot: str, st: dict, w0: float, wn: float, ru: RunUp | None, sw: li
         # the fill sweep varies V: name the fixed quantities only
         fixed = (f"R = {R} m, {rho}, "
                  f"D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
-        fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} 1/s" for s in sw],
+        fig = fill_figure(sw, [f"ω = {s['omega_rad_s']:.3g} rad/s" for s in sw],
                           "Amplitude vs fill (003 Fig. 5)\n" + fixed)
     else:
         title = (f"R = {R} m, V = {device.total_volume * 1e6:.4g} ml "
                  f"({rho}), D = {rot.unbalance * 1e5:.4g} g·cm, {label or model.placement}")
         fig = response_figure(st, w0, wn, ru, title)
-    fig.savefig(plot, dpi=120)
+    save_plot(fig, plot)

@@ -82,11 +82,12 @@ def horizontal_spinup_command(cfg: Config, cells: int, plot: str | None,
            "cells": cells, "film_start_rad_s": w_f, "chambers": chambers}
     if plot:
         from ..plotting.rimming import rimming_figure
+        from .liquid_figures import save_plot
 
         fig = rimming_figure(runs, [f"R = {c.chamber_radius:g} m, {c.volume * 1e6:.4g} ml"
                                     for c in s.liquid.chambers], w_f,
                              f"{s.name}: the liquid on its horizontal axis")
-        fig.savefig(plot, dpi=120)
+        save_plot(fig, plot)
         out["plot"] = str(plot)
     if as_json:
         print_json(out)

@@ -8,6 +8,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from ..atomic import write_atomic
 from ..config import describe, list_presets, load_config
 from ..jsonable import to_jsonable
 from .common import JsonOpt, ProfileOpt, SetOpt, SourceArg, guard, load_machine, print_json
@@ -100,7 +101,8 @@ def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] =
     json_ : bool
         Print the summary of every run as one JSON object instead of a table.
 
-    Exits with code 1 if a run's status is not ``"ok"``.
+    Exits with code 1 if a run's status is not ``"ok"`` (that preset's .nc and .png are not
+    written). Each file is written atomically (:mod:`autobalance.atomic`).
     """
     results: dict[str, dict] = {}
     with guard():
@@ -112,7 +114,8 @@ def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] =
         for p in items:
             cfg = load_config(p["name"])
             sim, wall = run_config(cfg)
-            files = write_outputs(sim, out / f"{p['name']}.nc", out / f"{p['name']}.png")
+            files = write_outputs(sim, out / f"{p['name']}.nc", out / f"{p['name']}.png",
+                                  what=("--out", "--out"))
             summary = dict(sim.summary())
             summary.setdefault("status", sim.status)
             results[p["name"]] = {**summary, "wall_time_s": wall, "files": files}
@@ -120,8 +123,8 @@ def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] =
                 typer.echo(_row(p["name"], sim.status, wall, summary))
         ok = all(r.get("status") == "ok" for r in results.values())
         report = {"status": "ok" if ok else "failed", "out": str(out), "presets": results}
-        (out / "summary.json").write_text(json.dumps(to_jsonable(report), indent=1,
-                                                     allow_nan=False))
+        write_atomic(out / "summary.json", json.dumps(to_jsonable(report), indent=1,
+                                                      allow_nan=False), "--out")
     if json_:
         print_json(report)
     else:

@@ -33,8 +33,12 @@ TargetsArg = Annotated[Optional[list[str]], typer.Argument(
 
 
 def _check_out(out: Path) -> Path:
+    """``--out DIR``: a directory (made if missing) this process can write the report's files
+    into (each is written beside its final name, then renamed: :mod:`autobalance.atomic`)."""
     if out.exists() and not out.is_dir():
         raise ConfigError(f"--out = {str(out)!r}: exists and is not a directory")
+    if out.is_dir() and not os.access(out, os.W_OK | os.X_OK):
+        raise ConfigError(f"--out = {str(out)!r}: the directory is not writable")
     return out
 
 
@@ -65,20 +69,19 @@ def _context(quick: bool, out: Path, executor: str, workers: Optional[int],
     """The checked run options as a Context; a scheduler implies the dask executor."""
     from ..validation.target import Context
 
-    check_executor(executor)
-    check_workers(workers)      # >= 1, and their processes fit the memory limit
     if scheduler:
         executor = "dask"
-    if executor == "dask" and not (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):
-        raise ConfigError("--executor = 'dask': needs --scheduler ADDRESS (or "
-                          "DASK_SCHEDULER_ADDRESS)")
+    check_executor(executor, workers, scheduler)    # dask needs an address, ...
+    check_workers(workers)      # >= 1, and their processes fit the memory limit
     out = _check_out(out)
     return Context(quick=quick, out=out, executor=executor, workers=workers, scheduler=scheduler)
 
 
 def reproduce(targets: TargetsArg = None,
-              quick: Annotated[bool, typer.Option("--quick/--full", help="Coarse grids (minutes) "
-                                                  "or the papers' grids (hours, resumable).")] = True,
+              quick: Annotated[bool, typer.Option("--quick", help="Coarse grids (minutes; the "
+                                                  "default).")] = False,
+              full: Annotated[bool, typer.Option("--full", help="The papers' grids (hours, "
+                                                 "resumable).")] = False,
               out: Annotated[Path, typer.Option("--out", metavar="DIR",
                                                 help="Report directory.")] = Path("out"),
               as_json: JsonOpt = False, executor: ExecutorOpt = "local",
@@ -92,7 +95,9 @@ def reproduce(targets: TargetsArg = None,
     targets : list of str
         all (default), a paper, liquid, balls or target ids / aliases.
     quick : bool
-        Coarse grids (minutes) or the papers' grids (hours, resumable).
+        Coarse grids (minutes); the default unless ``full``.
+    full : bool
+        The papers' grids (hours, resumable); not with ``quick``.
     out : Path
         Report directory.
     as_json : bool
@@ -113,9 +118,12 @@ def reproduce(targets: TargetsArg = None,
         if list_:
             _echo_list(chosen)
             return
-        ctx = _context(quick, out, executor, workers, scheduler)
+        if quick and full:
+            raise ConfigError("--quick and --full: give one of them (--quick: coarse grids, the "
+                              "default; --full: the papers' grids)")
+        ctx = _context(not full, out, executor, workers, scheduler)
         report = run_targets(chosen, ctx, progress=_progress)   # on stderr
-        paths = write_report(report, ctx.out)
+        paths = write_report(report, ctx.out, "--out")
     if as_json:
         print_json({**report, "files": paths})
     else:

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Annotated, Optional
 import typer
 
 from ..config import ConfigError, parse_quantity
+from ..config.ranges import grammar_help, parse_list, parse_range
 from .common import (JsonOpt, ProfileOpt, SetOpt, SourceArg, echo_fields, guard, load_machine,
                      print_json)
 
@@ -29,11 +30,13 @@ if TYPE_CHECKING:
 SpeedOpt = Annotated[Optional[str], typer.Option(
     "--speed", help="Spin speed, e.g. '1000 rpm' (bare number: rad/s); default the preset's.")]
 AnglesOpt = Annotated[Optional[str], typer.Option(
-    "--angles", help="Ball angles, comma separated, e.g. '120 deg,-120 deg' (bare: rad).")]
+    "--angles", help="Ball angles: a list 'a, b, c unit' (the unit on the last applies to "
+                     "all), e.g. '120, -120 deg' (bare: rad).")]
 SpeedsOpt = Annotated[Optional[str], typer.Option(
     "--speeds", metavar="LO:HI:N",
-    help="Speed grid, e.g. '0:2000 rpm:200' (bare numbers in rad/s); "
-         "default 200 points from 0 to 2x the nominal speed.")]
+    help=grammar_help("Speed grid", "0:2000 rpm:200", lists=False,
+                      tail="0 <= LO < HI, N >= 2; default 200 points from 0 to 2x the "
+                           "nominal speed"))]
 
 #: Memory of one speed of ``response`` [B]: the numpy work arrays, five lists of Python floats
 #: and their JSON text (generous).
@@ -89,30 +92,18 @@ def speed_at(cfg: Config, spec: Optional[str]) -> float:
     return w
 
 
-def _count(text: str) -> int:
-    """A point count: ``"200"``, or an integral float such as ``"1e3"``; 0 if neither."""
-    try:
-        return int(text)
-    except ValueError:
-        pass
-    try:
-        v = float(text)
-    except ValueError:
-        return 0
-    return int(v) if math.isfinite(v) and v == int(v) else 0
-
-
 def speed_grid(spec: Optional[str], nominal: float):
-    """``--speeds LO:HI:N``: a grid of n speeds from lo to hi.
+    """``--speeds LO:HI:N``: a grid of N speeds from LO to HI (:func:`autobalance.config.ranges.
+    parse_range`: a unit written once applies to both ends, bare numbers in rad/s).
 
-    n is a positive integer (``1e3`` is read as 1000) whose table must fit the memory limit
+    N is an integer >= 2 (``1e3`` is read as 1000) whose table must fit the memory limit
     (:func:`autobalance.limits.check_memory`), checked before anything is allocated.
 
     Parameters
     ----------
     spec : str or None
-        ``"lo:hi:n"`` with speeds as for :func:`parse_speed` (an empty lo is 0); None gives 200
-        points from 0 to twice ``nominal``.
+        ``"LO:HI:N"``, e.g. ``"0:2000 rpm:200"``; None gives 200 points from 0 to twice
+        ``nominal``.
     nominal : float
         The nominal speed [rad/s].
 
@@ -124,28 +115,16 @@ def speed_grid(spec: Optional[str], nominal: float):
     Raises
     ------
     ConfigError
-        Malformed, or not 0 <= lo < hi with n >= 2 (one line).
+        Malformed, or not 0 <= LO < HI with N >= 2 (one line).
     ResourceError
         The table would not fit the memory limit.
     """
     import numpy as np
 
-    from ..limits import check_memory
-
     if spec is None:
         return np.linspace(0.0, 2.0 * nominal, 200)
-    parts = spec.split(":")
-    if len(parts) != 3:
-        raise ConfigError(f"--speeds = {spec!r}: expected 'lo:hi:n', e.g. '0:2000 rpm:200' "
-                          "(bare numbers in rad/s)")
-    lo = parse_speed(parts[0] or "0", "--speeds lo")
-    hi = parse_speed(parts[1], "--speeds hi")
-    n = _count(parts[2].strip())
-    if n < 2 or not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0 or hi <= lo:
-        raise ConfigError(f"--speeds = {spec!r}: need 0 <= lo < hi and an integer n >= 2")
-    check_memory("--speeds", spec, float(n) * RESPONSE_BYTES_PER_SPEED,
-                 f"response table of {n} speeds")
-    return np.linspace(lo, hi, n)
+    return parse_range(spec, "speed", "--speeds", min_points=2, low=0.0,
+                       bytes_per_point=RESPONSE_BYTES_PER_SPEED, what="response table")
 
 
 def ball_angles(cfg: Config, spec: Optional[str]) -> np.ndarray:
@@ -156,7 +135,8 @@ def ball_angles(cfg: Config, spec: Optional[str]) -> np.ndarray:
     cfg : autobalance.config.Config
         The machine.
     spec : str or None
-        Comma-separated angles with units (``"120 deg,-120 deg"``) or bare [rad].
+        A list ``"a, b, c unit"`` of angles (:func:`autobalance.config.ranges.parse_list`:
+        ``"120, -120 deg"``, ``"120 deg,-120 deg"``) or bare [rad].
 
     Returns
     -------
@@ -172,7 +152,7 @@ def ball_angles(cfg: Config, spec: Optional[str]) -> np.ndarray:
 
     if spec is None:
         return np.asarray(cfg.initial.angles_for(cfg.system.balancer), float)
-    vals = [parse_quantity(p.strip(), "angle", "--angles") for p in spec.split(",") if p.strip()]
+    vals = parse_list(spec, "angle", "--angles")
     n = cfg.system.balancer.n_balls
     if len(vals) != n:
         raise ConfigError(f"--angles = {spec!r}: needs {n} angles, one per ball")
@@ -188,7 +168,7 @@ def response(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     source, set_, profile, json_
         The shared options (:mod:`autobalance.cli.common`); the JSON object is the table (SI).
     speeds : str
-        Speed grid ``"lo:hi:n"`` [rad/s or with units] (:func:`speed_grid`).
+        Speed grid ``"LO:HI:N"`` [rad/s or with units] (:func:`speed_grid`).
     """
     with guard():
         cfg = load_machine(source, set_, profile, balls="rotor")

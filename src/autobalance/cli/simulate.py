@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING, Annotated, Any, Optional
 import typer
 
 from .common import (DEFAULT_GRADE, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg,
-                     UnitsOpt, check_grade, check_output_file, check_plot, class_text,
-                     grade_text, guard, load_machine, print_json)
+                     UnitsOpt, check_distinct, check_grade, check_output_file, check_plot,
+                     class_text, grade_text, guard, load_machine, print_json)
 
 if TYPE_CHECKING:
     from ..config import Config
@@ -163,8 +163,10 @@ def run_config(cfg: Config) -> tuple[Simulation | LiquidSimulation, float]:
 
 def write_outputs(sim: Simulation | LiquidSimulation, out: Optional[Path],
                   plot: str | Path | None, units: DisplayUnits | None = None,
-                  grade: float = DEFAULT_GRADE) -> dict:
-    """Write a run's NetCDF file (SI; ball angles unwrapped) and its figure.
+                  grade: float = DEFAULT_GRADE, what: tuple = ("--out", "--plot")) -> dict:
+    """Write a run's NetCDF file (SI; ball angles unwrapped) and its figure, each atomically
+    (:mod:`autobalance.atomic`); a run whose status is not ``"ok"`` writes neither (the
+    previous files stay as they were).
 
     Parameters
     ----------
@@ -178,15 +180,29 @@ def write_outputs(sim: Simulation | LiquidSimulation, out: Optional[Path],
         Units of the figure's speed axis (None: rpm).
     grade : float
         Target grade G [mm/s], drawn with its ISO 1940 class (:func:`grade_text`).
+    what : tuple of str
+        The options that named ``out`` and ``plot``, for an error message (``demo``: its
+        ``--out`` directory for both).
 
     Returns
     -------
     dict
-        ``{"netcdf": path, "plot": path}`` for the files written.
+        ``{"netcdf": path, "plot": path}`` for the files written (empty for a failed run).
+
+    Raises
+    ------
+    autobalance.atomic.OutputError
+        A file could not be written (one line naming its option from ``what``; the previous
+        file unchanged).
     """
+    from ..atomic import atomic_output, save_figure
+
     files = {}
+    if sim.status != "ok":
+        return files
     if out is not None:
-        sim.to_netcdf(out)
+        with atomic_output(out, what[0]) as tmp:
+            sim.to_netcdf(tmp)
         files["netcdf"] = str(out)
     if plot is not None:
         import matplotlib
@@ -205,7 +221,7 @@ def write_outputs(sim: Simulation | LiquidSimulation, out: Optional[Path],
         else:
             fig = plot_simulation(sim, grade_limit=grade, grade_label=grade_text(grade), **speed)
         fig = fig[0] if isinstance(fig, tuple) else fig
-        fig.savefig(plot, dpi=120)
+        save_figure(fig, plot, what[1], dpi=120)
         plt.close(fig)
         files["plot"] = str(plot)
     return files
@@ -230,7 +246,9 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
     plot : str
         Figure file (.png, .pdf, .svg, .jpg, .jpeg).
 
-    Exits with code 1 if the run's status is not ``"ok"``, 2 on an input error.
+    Exits with code 1 if the run's status is not ``"ok"`` (then ``out`` and ``plot`` are not
+    written), 2 on an input error (an output that is the config file or the other output, or
+    that cannot be written, included).
     """
     from ..config.display import display_units
 
@@ -238,8 +256,9 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
         grade = check_grade(grade)
         cfg = load_machine(source, set_, profile)
         shown_units = display_units(cfg, units)
-        check_output_file(out, "--out", "run.nc")
-        check_plot(plot, PLOT_SUFFIXES)
+        check_output_file(out, "--out", "run.nc", inputs={"the input config file": source})
+        check_plot(plot, PLOT_SUFFIXES, inputs={"the input config file": source})
+        check_distinct({"--out": out, "--plot": plot})
         sim, wall = run_config(cfg)
         files = write_outputs(sim, out, plot, shown_units, grade)
     result = dict(sim.summary())
@@ -264,6 +283,8 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
         for kind, path in files.items():
             typer.echo(f"wrote {kind}: {path}")
         if not ok:
-            typer.echo(f"simulation {sim.status}: {sim.message}", err=True)
+            kept = ", ".join(f"{o} {str(p)!r}" for o, p in (("--out", out), ("--plot", plot)) if p)
+            typer.echo(f"simulation {sim.status}: {sim.message}" + (
+                f"; {kept} not written (any previous file is unchanged)" if kept else ""), err=True)
     if not ok:
         raise typer.Exit(1)

@@ -23,12 +23,14 @@ from typing import Annotated, Iterator, Optional
 import typer
 
 from ..config import ConfigError
+from ..config.ranges import grammar_help
 from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt,
-                     SourceArg, UnitsOpt, WorkersOpt, check_executor, check_grade,
-                     check_output_file, check_plot, check_workers, fail, grade_text, guard,
-                     load_machine, print_json, quiet_dask_logs)
+                     SourceArg, UnitsOpt, WorkersOpt, as_options, check_distinct, check_executor,
+                     check_grade, check_output_file, check_plot, check_workers, fail, grade_text,
+                     guard, load_machine, print_json, quiet_dask_logs)
 
 app = typer.Typer(name="study", no_args_is_help=True, add_completion=False,
+                  rich_markup_mode=None,     # help as written: no rich markup or :emoji: codes
                   pretty_exceptions_enable=False,
                   help="Design studies of any machine: speed map, start positions, unbalance "
                        "range, TSR plateau, immobility, tolerances, sensitivity.")
@@ -54,23 +56,37 @@ PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
 def _counts(**values) -> None:
-    """Refuse a count option below 1 (``--n``, ``--steps``, ...); None (not given) passes."""
+    """Refuse a count option below 1 (``--n``, ``--steps``, ...); None (not given) passes; ``n``
+    and ``random`` (the two ways of choosing the start positions) given together are refused."""
     for name, v in values.items():
         if v is not None and v < 1:
             raise ConfigError(f"--{name.replace('_', '-')} = {v}: must be an integer >= 1")
+    if values.get("n") is not None and values.get("random") is not None:
+        raise ConfigError(f"--n = {values['n']} and --random = {values['random']}: give one of "
+                          "them (--n N: 004's equispaced grid of N positions per ball; --random "
+                          "K: K random starts)")
+
+
+#: The sweep fields the shared study options set (:func:`_study_errors` names the options).
+STUDY_FIELDS = {"monte_carlo.n": "--n", "monte_carlo.samples": "--random",
+                "monte_carlo.seed": "--seed"}
 
 
 @contextmanager
-def _study_errors() -> Iterator[None]:
-    """Sweep failures inside a study -> one line and the sweep command's exit codes."""
+def _study_errors(fields: dict | None = None) -> Iterator[None]:
+    """Sweep failures inside a study -> one line and the sweep command's exit codes; an error
+    about a field an option set names the option (``fields``: field -> option, default
+    :data:`STUDY_FIELDS`; :func:`autobalance.cli.common.as_options`)."""
     from ..sweep import SweepAborted, SweepError, SweepInterrupted
 
     try:
-        yield
+        with as_options(STUDY_FIELDS if fields is None else fields):
+            yield
     except SweepError as e:
         fail(str(e))
     except SweepInterrupted as e:
-        fail(f"{e} (rerun the same command with the same --store to continue)", 128 + int(e.signal))
+        fail(f"{e} (rerun the same command with the same --store to continue)"
+             if e.resumable else str(e), 128 + int(e.signal))
     except SweepAborted as e:
         fail(str(e), 1)
 
@@ -81,11 +97,13 @@ def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=Non
     the display units of the text and figures."""
     from ..config.display import display_units
 
-    check_plot(plot, PLOT_SUFFIXES)
-    check_output_file(out, "--out", "study.nc", (".nc",))
+    config = {"the input config file": source}
+    check_plot(plot, PLOT_SUFFIXES, inputs=config)
+    check_output_file(out, "--out", "study.nc", (".nc",), inputs=config)
+    check_distinct({"--out": out, "--plot": plot})
     G = check_grade(grade)
     check_workers(workers)
-    check_executor(executor)
+    check_executor(executor, workers, scheduler)
     if store is not None and store.exists() and not store.is_dir():
         raise ConfigError(f"--store {str(store)!r}: exists and is not a directory")
     if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
@@ -95,8 +113,10 @@ def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=Non
 
 
 def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
-    """Write the NetCDF (with provenance) and the figure; return their paths and the wall time."""
+    """Write the NetCDF (with provenance) and the figure, each atomically (a failed write leaves
+    the previous file: :mod:`autobalance.atomic`); return their paths and the wall time."""
     from .. import __version__
+    from ..atomic import atomic_output, save_figure
     from ..jsonable import netcdf_safe
 
     done = {"wall_time_s": time.perf_counter() - t0}
@@ -105,14 +125,15 @@ def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
         ds.attrs.update({"autobalance_version": __version__, "command": command,
                          "machine": cfg.name, "machine_source": str(cfg.source),
                          "created": time.strftime("%Y-%m-%dT%H:%M:%S%z")})
-        netcdf_safe(ds).to_netcdf(out)
+        with atomic_output(out, "--out") as tmp:
+            netcdf_safe(ds).to_netcdf(tmp)
         done["out"] = str(out)
     if plot is not None:
         import logging
 
         # matplotlib logs a fallback line per missing TeX font when a log axis is drawn
         logging.getLogger("matplotlib.font_manager").setLevel(logging.ERROR)
-        fig_fn().savefig(plot, dpi=110)
+        save_figure(fig_fn(), plot, "--plot", dpi=110)
         done["plot"] = str(plot)
     return done
 
@@ -142,9 +163,10 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                     seed: Annotated[int, typer.Option("--seed", help="Seed of --random.")] = 0,
                     grid: Annotated[Optional[list[str]], typer.Option(
                         "--grid", metavar="PATH=V1,V2|PATH=LO:HI:N",
-                        help="Repeat the Monte Carlo per cell of a grid, e.g. "
-                             "'rotor.unbalance=4 g*cm,8 g*cm' or "
-                             "'balancer.rolling_resistance=0.001:0.004:4' (repeatable).")] = None,
+                        help="Repeat the Monte Carlo per cell of a grid of config values "
+                             "PATH=VALUES (repeatable). " + grammar_help(
+                                 "VALUES", "rotor.unbalance=2:8 g*cm:4",
+                                 tail="or 'rotor.unbalance=4, 8 g*cm'; N >= 1"))] = None,
                     quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
                     plot: PlotOpt = None, scheduler: SchedulerOpt = None,
                     workers: WorkersOpt = None, executor: ExecutorOpt = None,
@@ -163,7 +185,8 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     seed : int
         Seed of the random starts.
     grid : list of str
-        Grid axes "path=v1,v2,..." or "path=lo:hi:n" (values with units; bare numbers SI).
+        Grid axes "PATH=V1,V2,..." or "PATH=LO:HI:N" (:mod:`autobalance.config.ranges`;
+        values with units, bare numbers SI).
     """
     from ..studies.start_positions import compute_start_positions, start_positions_summary
     from .sweep import _coord_text
@@ -181,7 +204,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                                      name="start-positions", grid=axes,
                                      store=_store(store, cfg, "start-positions", n, samples, seed,
                                                   quick, axes),
-                                     executor=executor or "local", workers=workers,
+                                     executor=executor, workers=workers,
                                      scheduler=scheduler, progress=not json_)
 
         def fig():
@@ -222,9 +245,13 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
 
 
 def _grid(specs) -> dict | None:
-    """``--grid`` options "path=v1,v2,..." or "path=lo:hi:n" -> {path: SI values} (the sweep
-    description's own axis parser: units, kinds and one-line errors)."""
-    from ..sweep.spec import SweepError, grid_axis
+    """``--grid`` options "PATH=V1,V2,..." or "PATH=LO:HI:N" -> {path: SI values}: the values
+    in the grammar of :mod:`autobalance.config.ranges` for the kind of PATH (a unit written
+    once applies to both ends or to every item, N >= 1), then the sweep description's own axis
+    parser (:func:`autobalance.sweep.spec.grid_axis`: kinds, distinct values, one-line errors)."""
+    from ..config.ranges import is_range, list_items, parse_range
+    from ..config.units import KINDS
+    from ..sweep.spec import SweepError, field_kind, grid_axis
 
     if not specs:
         return None
@@ -237,20 +264,20 @@ def _grid(specs) -> dict | None:
                               "'rotor.unbalance=4 g*cm,8 g*cm'")
         if path in out:
             raise ConfigError(f"--grid = {spec!r}: {path} is given twice")
-        parts = rhs.split(":")
-        if len(parts) not in (1, 3):
-            raise ConfigError(f"--grid = {spec!r}: a range is LO:HI:N, e.g. "
-                              "'balancer.rolling_resistance=0.001:0.004:4'")
-        if len(parts) == 3:
-            try:
-                num = int(parts[2])
-            except ValueError:
-                raise ConfigError(f"--grid = {spec!r}: N of LO:HI:N must be an integer >= 1") from None
-            axis = {"start": _value(parts[0]), "stop": _value(parts[1]), "num": num}
-        else:
-            axis = [_value(v) for v in rhs.split(",")]
         try:
-            axis = grid_axis(path, axis)
+            kind = field_kind(path)
+            if kind not in KINDS:                   # int, text, bool: the values as written
+                if is_range(rhs):
+                    raise ConfigError(f"--grid = {spec!r}: {path} takes a list V1,V2,..., "
+                                      "not a range")
+                axis = grid_axis(path, [_value(v) for v in rhs.split(",")])
+            elif is_range(rhs):
+                v = parse_range(rhs, kind, f"--grid {path}", min_points=1, increasing=False)
+                axis = grid_axis(path, {"start": float(v[0]), "stop": float(v[-1]),
+                                        "num": int(v.size)})
+            else:
+                axis = grid_axis(path, [_value(v) for v in list_items(rhs, kind,
+                                                                      f"--grid {path}")])
         except SweepError as e:
             raise ConfigError(f"--grid: {e}") from None
         out[path] = list(axis.si)
@@ -316,7 +343,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         nn = n or default_starts(s.balancer.n_balls, quick)
         ds = compute_unbalance(cfg, G=Gv, n=nn,
                                store_dir=_store(store, cfg, "unbalance-range", list(Gv)),
-                               executor=executor or "local",
+                               executor=executor,
                                workers=workers, scheduler=scheduler, prefix="study",
                                progress=not json_)
 
@@ -377,7 +404,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
         ds = compute_plateau(cfg, n=n, quick=quick, ratios=rr,
                              store_dir=_store(store, cfg, "plateau", rr, quick),
-                             executor=executor or "local", workers=workers, scheduler=scheduler,
+                             executor=executor, workers=workers, scheduler=scheduler,
                              prefix="study", progress=not json_)
 
         def fig():
@@ -511,11 +538,11 @@ def _ring_holds_text(share, speeds, du) -> str:
 
 
 def _factors(spec: str, name: str) -> tuple:
-    """Comma-separated positive factors, e.g. '0.5,1,2'."""
-    try:
-        vals = tuple(float(x) for x in spec.split(",") if x.strip())
-    except ValueError:
-        raise ConfigError(f"{name} = {spec!r}: expected comma-separated numbers, e.g. '0.5,1,2'") from None
-    if not vals or any(not (math.isfinite(v) and v > 0) for v in vals):
+    """A list of positive factors [-], e.g. '0.5,1,2' (:func:`autobalance.config.ranges.
+    parse_list` of dimensionless numbers), for the option ``name`` as typed."""
+    from ..config.ranges import parse_list
+
+    vals = tuple(float(v) for v in parse_list(spec, "ratio", name))
+    if any(v <= 0 for v in vals):
         raise ConfigError(f"{name} = {spec!r}: expected positive numbers, e.g. '0.5,1,2'")
     return vals

@@ -10,13 +10,37 @@ from typing import Annotated, Optional
 import typer
 
 from ..config import ConfigError
+from ..config.ranges import grammar_help, parse_interval, parse_list
 from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt,
                      SourceArg, UnitsOpt, WorkersOpt, grade_text, guard,
                      print_json)
-from .study import (OutOpt, QuickOpt, StoreOpt, _counts,
+from .study import (STUDY_FIELDS, OutOpt, QuickOpt, StoreOpt, _counts,
                     _factors, _finish, _prepare, _store, _study_errors, app)
 
-__all__ = ["design", "tolerances"]
+__all__ = ["design", "tolerances", "unbalance_interval"]
+
+
+def unbalance_interval(spec: Optional[str]) -> tuple[float, float] | None:
+    """``design --unbalance LO:HI``: the expected initial unbalances [kg*m]
+    (:func:`autobalance.config.ranges.parse_interval`: a unit written once applies to both
+    ends), 0 <= LO <= HI and HI > 0; None (not given): None, the machine's +-50 %.
+
+    Parameters
+    ----------
+    spec : str or None
+        The option's value, e.g. ``"3:9 g*cm"``.
+
+    Returns
+    -------
+    tuple of float or None
+        (LO, HI) [kg*m].
+    """
+    if spec is None:
+        return None
+    rng = parse_interval(spec, "unbalance", "--unbalance", low=0.0, strict=False)
+    if rng[1] <= 0:
+        raise ConfigError(f"--unbalance = {spec!r}: HI must be > 0")
+    return rng
 
 
 def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
@@ -25,16 +49,17 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                "--confidence", help="Share of start positions that must meet the grade at "
                                     "every unbalance of the range.")] = 0.95,
            unbalance: Annotated[Optional[str], typer.Option(
-               "--unbalance", metavar="LO:HI", help="Expected initial unbalance range, e.g. "
-                                                    "'3 g*cm:9 g*cm' (default 0.5-1.5 x the "
-                                                    "machine's).")] = None,
+               "--unbalance", metavar="LO:HI", help=grammar_help(
+                   "Expected initial unbalance range", "3:9 g*cm", lists=False, interval=True,
+                   tail="0 <= LO <= HI, HI > 0; default 0.5-1.5 x the machine's"))] = None,
            balls: Annotated[Optional[str], typer.Option(
                "--balls", help="Ball counts to try, e.g. '2,3'.")] = None,
            capacity: Annotated[Optional[str], typer.Option(
                "--capacity", help="Ball capacity N m R as multiples of the largest unbalance, "
                                   "e.g. '1.1,1.4,2'.")] = None,
            radii: Annotated[Optional[str], typer.Option(
-               "--radii", help="Race radii to try, e.g. '40 mm,50 mm' (default the "
+               "--radii", help="Race radii to try: a list 'a, b, c unit' (the unit on the "
+                               "last applies to all), e.g. '40, 50 mm' (default the "
                                "machine's).")] = None,
            profiles: Annotated[Optional[str], typer.Option(
                "--profiles", help="Speed profiles to try: given (the machine's own), std, "
@@ -65,11 +90,13 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     confidence : float
         Required share of start positions [-] in (0, 1).
     unbalance : str
-        "LO:HI" with units of an unbalance (bare numbers: kg*m).
+        "LO:HI" unbalances (:func:`autobalance.config.ranges.parse_interval`: a unit written
+        once applies to both ends; bare numbers kg*m).
     balls, capacity : str
         Comma-separated ball counts (integers >= 1) and capacity ratios (> 1).
     radii : str
-        Comma-separated race radii (lengths; bare numbers: m).
+        Race radii, a list "a, b, c unit" (:func:`autobalance.config.ranges.parse_list`;
+        bare numbers: m).
     profiles : str
         Comma-separated profile variants (given, std, slow, tsr); None: std, slow, tsr (quick
         std, tsr), or given where the machine's profile has no variants (a ramp, a motor).
@@ -80,24 +107,15 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     refine_plateau : bool
         The plateau study on the best TSR candidate.
     """
-    from ..config import parse_quantity
     from ..studies.design import DesignSpace, compute_design, design_summary
 
     t0 = time.perf_counter()
-    with guard(), _study_errors():
+    with guard(), _study_errors({**STUDY_FIELDS, "monte_carlo.samples": "--starts"}):
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units, balls="beside")
         if not (math.isfinite(confidence) and 0 < confidence < 1):
             raise ConfigError(f"--confidence = {confidence:g}: must be within (0, 1), e.g. 0.95")
-        rng = None
-        if unbalance is not None:
-            parts = unbalance.split(":")
-            if len(parts) != 2:
-                raise ConfigError(f"--unbalance = {unbalance!r}: expected LO:HI, e.g. "
-                                  "'3 g*cm:9 g*cm'")
-            rng = tuple(parse_quantity(p.strip(), "unbalance", "--unbalance") for p in parts)
-            if not (0 <= rng[0] <= rng[1] and rng[1] > 0):
-                raise ConfigError(f"--unbalance = {unbalance!r}: must be 0 <= LO <= HI, HI > 0")
+        rng = unbalance_interval(unbalance)
         space = DesignSpace.quick() if quick else DesignSpace()
         kw = {}
         if balls is not None:
@@ -112,9 +130,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                                   "capacity cannot balance the largest unbalance)")
             kw["capacity_ratios"] = cr
         if radii is not None:
-            kw["radii"] = tuple(parse_quantity(r.strip(), "length", "--radii")
-                                for r in radii.split(",") if r.strip())
-            if not kw["radii"] or min(kw["radii"]) <= 0:
+            kw["radii"] = tuple(float(r) for r in parse_list(radii, "length", "--radii"))
+            if min(kw["radii"]) <= 0:
                 raise ConfigError(f"--radii = {radii!r}: expected positive lengths")
         names, own = _profiles(profiles, cfg)
         if names:
@@ -129,7 +146,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                             quick=quick, refine_plateau=refine_plateau,
                             store_dir=_store(store, cfg, "design", rng, space, starts, seed,
                                              quick),
-                            executor=executor or "local", workers=workers, scheduler=scheduler,
+                            executor=executor, workers=workers, scheduler=scheduler,
                             progress=not json_)
 
         def fig():
@@ -214,6 +231,27 @@ def _profiles(spec: str | None, cfg) -> tuple[tuple, bool]:
     return names, False
 
 
+def _split(text: str) -> dict:
+    """``--split "cause=share,..."`` -> {cause: share [-]}, checked
+    (:func:`autobalance.physics.tolerance.check_split`)."""
+    from ..models import ParameterError
+    from ..physics.tolerance import check_split
+
+    example = "'eccentricity=0.5,rolling=0.35,friction=0.1,other=0.05'"
+    sp = {}
+    for item in text.split(","):
+        key, _, val = item.partition("=")
+        try:
+            sp[key.strip()] = float(val)
+        except ValueError:
+            raise ConfigError(f"--split = {text!r}: expected cause=share pairs, e.g. "
+                              f"{example}") from None
+    try:
+        return check_split(sp, "--split")
+    except ParameterError as e:
+        raise ConfigError(f"--split = {text!r}: {e.allowed}, e.g. {example}") from None
+
+
 @app.command("tolerances")
 def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                grade: GradeOpt = 16.0, units: UnitsOpt = None,
@@ -264,16 +302,7 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         w = None if speed is None else parse_quantity(speed, "speed", "--speed")
         if w is not None and not (math.isfinite(w) and w > 0):
             raise ConfigError(f"--speed = {speed!r}: must be a speed > 0, e.g. '800 rpm'")
-        sp = None
-        if split is not None:
-            sp = {}
-            for item in split.split(","):
-                key, _, val = item.partition("=")
-                try:
-                    sp[key.strip()] = float(val)
-                except ValueError:
-                    raise ConfigError(f"--split = {split!r}: expected cause=share pairs, e.g. "
-                                      "'eccentricity=0.5,rolling=0.35,friction=0.1,other=0.05'") from None
+        sp = None if split is None else _split(split)
         if check < 0:
             raise ConfigError(f"--check = {check}: must be an integer >= 0")
         if method not in ("bound", "000"):
@@ -298,6 +327,8 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
     if not res.get("feasible"):
         typer.echo(f"  not feasible: {res.get('reason')}")
     else:
+        for why in res.get("unreachable", []):
+            typer.echo(f"  unreachable: {why}")
         typer.echo(f"  allowed ({'all three at once' if method == 'bound' else 'each for its share'}"
                    "): ring eccentricity "
                    f"{du.fmt(res['max_eccentricity_m'], 'length')}, rolling resistance f/r "

@@ -7,6 +7,7 @@ from typing import Annotated, Optional
 
 import typer
 
+from ..config.ranges import VALUES_METAVAR, grammar_help
 from .common import (ExecutorOpt, JsonOpt, PlotOpt, ProfileOpt, SetOpt, SourceArg, UnitsOpt,
                      WorkersOpt, guard, print_json)
 from .study import OutOpt, QuickOpt, _finish, _prepare, app
@@ -18,11 +19,13 @@ __all__ = ["fill_map"]
 def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
              units: UnitsOpt = None,
              fills: Annotated[Optional[str], typer.Option(
-                 "--fills", help="Fills: 'a:b:n' or 'a, b, c' with units, e.g. '50:350 ml:7' "
-                                 "(default: 0.25-2.5 times the machine's, 10 fills).")] = None,
+                 "--fills", metavar=VALUES_METAVAR, help=grammar_help(
+                     "Fills", "50:350 ml:7", tail="default 0.25-2.5 times the machine's, 10 "
+                                                 "fills"))] = None,
              speeds: Annotated[Optional[str], typer.Option(
-                 "--speeds", help="Speeds: 'a:b:n' or 'a, b, c' with units, e.g. '20:100 1/s:81' "
-                                  "(default: 0.3-2 times the natural frequency).")] = None,
+                 "--speeds", metavar=VALUES_METAVAR, help=grammar_help(
+                     "Speeds", "200:1000 rpm:81", tail="default 0.3-2 times the natural "
+                                                      "frequency"))] = None,
              dynamic: Annotated[bool, typer.Option(
                  "--dynamic", help="Also run the wall film coupled with the rotor at constant "
                                    "speeds (up to 8, --quick 4, above every fill's entrainment "
@@ -46,9 +49,10 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     source, set_, profile, units, quick, out, plot, json_
         The options of every study (:mod:`autobalance.cli.study`).
     fills : str or None
-        Fill volumes [m^3 or with units].
+        Fill volumes [m^3 or with units]: a range or a list
+        (:func:`autobalance.config.ranges.parse_values`).
     speeds : str or None
-        Speeds [rad/s or with units].
+        Speeds [rad/s or with units]: a range or a list.
     dynamic : bool
         Add the stability map (:func:`autobalance.studies.fill_map.compute_stability_map`).
     linear : bool

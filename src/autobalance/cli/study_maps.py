@@ -11,13 +11,14 @@ from typing import Annotated, Optional
 import typer
 
 from ..config import ConfigError
+from ..config.ranges import grammar_help, parse_range
 from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt,
                      SourceArg, UnitsOpt, WorkersOpt, grade_text, guard,
                      print_json)
 from .study import (MAX_MAP_SPEEDS, OutOpt, QuickOpt, RandomOpt, StartsOpt, StoreOpt, _counts,
                     _factors, _finish, _prepare, _store, _study_errors, app)
 
-__all__ = ["sensitivity", "speed_map"]
+__all__ = ["map_speeds", "sensitivity", "speed_map"]
 
 
 @app.command("sensitivity")
@@ -75,7 +76,7 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
                                  quick=quick,
                                  store_dir=_store(store, cfg, "sensitivity", variants, n,
                                                   samples, seed, quick),
-                                 executor=executor or "local", workers=workers,
+                                 executor=executor, workers=workers,
                                  scheduler=scheduler, progress=not json_)
         res = {**sensitivity_summary(ds, z), "machine": cfg.name}
         res.update(_finish(ds, cfg, out, None, None, "study sensitivity", t0))
@@ -99,13 +100,36 @@ def _q_text(q: str, v: float, sign: bool = False) -> str:
     return f"{100 * v:+.1f} %" if sign else f"{100 * v:.1f} %"
 
 
+def map_speeds(spec: Optional[str]):
+    """``study speed-map --speeds LO:HI:N``: the speed grid [rad/s]
+    (:func:`autobalance.config.ranges.parse_range`), 0 < LO < HI (at rest the balls have no
+    equilibrium) and 2 <= N <= :data:`MAX_MAP_SPEEDS` (each speed costs 0.1-0.5 s,
+    docs/speed-map.md); None (not given): None, the study's default grid.
+
+    Parameters
+    ----------
+    spec : str or None
+        The option's value, e.g. ``"200:5000 rpm:120"``.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The speeds [rad/s].
+    """
+    if spec is None:
+        return None
+    return parse_range(spec, "speed", "--speeds", min_points=2, max_points=MAX_MAP_SPEEDS,
+                       low=0.0, above=True)
+
+
 @app.command("speed-map")
 def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
               grade: GradeOpt = 16.0, units: UnitsOpt = None,
               speeds: Annotated[Optional[str], typer.Option(
-                  "--speeds", metavar="LO:HI:N", help="Speed grid, e.g. '200 rpm:5000 rpm:120' "
-                                                       "(default 0.3 x the first natural "
-                                                       "frequency to 1.3 x nominal).")] = None,
+                  "--speeds", metavar="LO:HI:N", help=grammar_help(
+                      "Speed grid", "200:5000 rpm:120", lists=False,
+                      tail=f"0 < LO < HI, 2 <= N <= {MAX_MAP_SPEEDS}; default 0.3 x the first "
+                           "natural frequency to 1.3 x nominal"))] = None,
               damping: Annotated[Optional[str], typer.Option(
                   "--damping", help="Factors on the suspension damping for the second map, "
                                     "e.g. '0.5,1,2'.")] = None,
@@ -123,7 +147,8 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
     source, set_, profile, grade, units, quick, out, plot, json_
         The options of every study (:mod:`autobalance.cli.study`).
     speeds : str
-        "LO:HI:N" speeds (with units; bare numbers rad/s), N >= 2 points.
+        "LO:HI:N" speeds (:func:`autobalance.config.ranges.parse_range`; a unit written
+        once applies to both ends, bare numbers rad/s), 2 <= N <= MAX_MAP_SPEEDS points.
     damping : str
         Comma-separated positive factors [-] on cx, cy.
     ks_only : bool
@@ -135,16 +160,7 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
     with guard():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units,
                               balls="beside")
-        grid = None
-        if speeds is not None:
-            from .response import speed_grid
-
-            grid = speed_grid(speeds, cfg.spin.nominal_speed)
-            if grid.size > MAX_MAP_SPEEDS:      # each speed costs 0.1-0.5 s (docs/speed-map.md)
-                raise ConfigError(f"--speeds = {speeds!r}: at most {MAX_MAP_SPEEDS} speeds")
-            if grid[0] <= 0:
-                raise ConfigError(f"--speeds = {speeds!r}: LO must be > 0 (the balls have no "
-                                  "equilibrium on a rotor at rest)")
+        grid = map_speeds(speeds)
         facs = None if damping is None else _factors(damping, "--damping")
         ds = compute_speed_map(cfg, speeds=grid, damping_factors=facs, quick=quick,
                                full=not ks_only)

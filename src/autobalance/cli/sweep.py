@@ -15,8 +15,9 @@ from typing import Annotated, Iterator
 import typer
 
 from .common import (DEFAULT_GRADE, ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, SchedulerOpt,
-                     UnitsOpt, WorkersOpt, check_executor, check_grade, check_plot, check_workers,
-                     class_text, fail, grade_text, guard, print_json, quiet_dask_logs)
+                     UnitsOpt, WorkersOpt, check_distinct, check_executor, check_grade, check_plot,
+                     check_workers, class_text, fail, grade_text, guard, print_json,
+                     quiet_dask_logs)
 
 #: Figure formats of ``sweep --plot``.
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")
@@ -78,8 +79,10 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
             check_plot(plot, PLOT_SUFFIXES, example="summary.png")
             grade = check_grade(grade)
             check_workers(workers)      # >= 1, and their processes fit the memory limit
-            check_executor(executor)
+            check_executor(executor, workers, scheduler)   # --workers only where it applies
             sp = load_spec(spec)
+            check_distinct({"--plot": plot}, {"the sweep file": spec,
+                                              "the sweep's base config file": sp.base_source})
             shown = _display(sp, units)
             if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
                 quiet_dask_logs()
@@ -91,9 +94,10 @@ def sweep_cmd(spec: Annotated[Path, typer.Argument(metavar="SWEEP.toml",
         summary.update({"store": str(store), "result": str(Path(store) / "result.zarr"),
                         "wall_time_s": wall, "dims": {k: int(v) for k, v in ds.sizes.items()}})
         if plot is not None:
+            from ..atomic import save_figure
             from ..plotting import plot_sweep
 
-            plot_sweep(ds, grade).savefig(plot, dpi=110)
+            save_figure(plot_sweep(ds, grade), plot, "--plot", dpi=110)
             summary["plot"] = str(plot)
     if json_:
         print_json(summary)
@@ -134,7 +138,7 @@ def _display(sp, units):
         raw = sp.base_config.raw
     else:
         try:
-            raw = apply_overrides(_read(sp.base)[0], list(sp.overrides))
+            raw = apply_overrides(_read(sp.base_source)[0], list(sp.overrides))
         except ConfigError:
             pass
     return display_units(raw if isinstance(raw, dict) else None, units)

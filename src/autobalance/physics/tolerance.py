@@ -38,7 +38,8 @@ from .vibratory import gain_phase
 if TYPE_CHECKING:
     from ..models import System
 
-__all__ = ["DEFAULT_SPLIT", "TOLERANCE_CAUSES", "design_tolerances", "predict_residual",
+__all__ = ["DEFAULT_SPLIT", "SPLIT_CAUSES", "TOLERANCE_CAUSES", "TOLERANCE_FLOORS", "check_split",
+           "design_tolerances", "predict_residual", "unreachable_tolerances",
            "tolerances_000", "tolerances_for_grade", "worst_case_prediction"]
 
 #: The causes a tolerance is designed for, with the keyword of :func:`residual_bound` each sets.
@@ -49,15 +50,89 @@ TOLERANCE_CAUSES = {"eccentricity": "eccentricity", "rolling": "rolling_resistan
 DEFAULT_SPLIT = {"eccentricity": 0.50, "rolling": 0.35, "friction": 0.10, "other": 0.05}
 
 
-def _split(split) -> dict:
+#: The finest tolerance each designed cause can be built to: (floor, the key of the tolerance in
+#: the results, why). Below it a target grade is unreachable with any balancer of this kind.
+#: Eccentricity: a race cannot hold its balls' centres closer to the axis than the balls are
+#: round, and the finest precision balls are round to 0.08 um (ISO 3290-1:2014, grade G3,
+#: deviation from spherical form). Rolling resistance f/r: our choice of a floor two orders of
+#: magnitude below hardened steel balls rolling on steel (f/r about 1e-3), i.e. far below any
+#: ball and race pair; suspension friction has no floor (a viscous damper has none).
+TOLERANCE_FLOORS = {
+    "eccentricity": (0.08e-6, "max_eccentricity_m",
+                     "the form accuracy of the finest precision balls, 0.08 um (ISO 3290-1 "
+                     "grade G3)"),
+    "rolling": (1e-5, "max_rolling_resistance",
+                "1e-5, two orders of magnitude below hardened steel balls rolling on steel"),
+}
+
+
+def unreachable_tolerances(result: dict) -> list[str]:
+    """The allowed tolerances of a design below what any ball balancer can be built to
+    (:data:`TOLERANCE_FLOORS`), as sentences.
+
+    Parameters
+    ----------
+    result : dict
+        A result of :func:`tolerances_for_grade` or :func:`tolerances_000`: its
+        "max_eccentricity_m" [m] and "max_rolling_resistance" [-] and the "split" [-].
+
+    Returns
+    -------
+    list of str
+        One sentence per tolerance that has a share of the budget and lies below its floor;
+        empty when the target is reachable (or not feasible at all).
+    """
+    out = []
+    names = {"eccentricity": "ring eccentricity", "rolling": "rolling resistance f/r"}
+    for cause, (floor, key, why) in TOLERANCE_FLOORS.items():
+        value = result.get(key)
+        if value is None or not result.get("split", {}).get(cause, 0.0) > 0:
+            continue
+        if value < floor:
+            shown = f"{value * 1e6:.3g} um" if cause == "eccentricity" else f"{value:.3g}"
+            out.append(f"the {names[cause]} would have to be {shown}, below {why}")
+    return out
+
+
+#: The causes a split may name: the designed ones and "other", the reserve (000 eq 56).
+SPLIT_CAUSES = (*TOLERANCE_CAUSES, "other")
+
+
+def check_split(split: dict, field: str = "split") -> dict:
+    """A split of the residual unbalance between its causes (000 eq 56-57), checked.
+
+    Parameters
+    ----------
+    split : dict of str to float
+        Weight p_j [-] per cause of :data:`SPLIT_CAUSES`, each >= 0, summing to 1.
+    field : str
+        The option or argument for the message.
+
+    Returns
+    -------
+    dict
+        The weights [-], with 0 for a designed cause not named.
+
+    Raises
+    ------
+    ParameterError
+        Not a dict, a cause not in :data:`SPLIT_CAUSES`, a negative weight, weights that do
+        not sum to 1, or no weight on any designed cause (one line naming ``field``).
+    """
     if not isinstance(split, dict) or not split:
-        raise ParameterError("split", split, "must be a dict cause -> weight")
+        raise ParameterError(field, split, "must be a dict cause -> weight")
     out = {}
     for k, v in split.items():
-        out[k] = _nonneg(f"split.{k}", v)
+        if k not in SPLIT_CAUSES:
+            raise ParameterError(field, split, f"unknown cause {k!r}; allowed: "
+                                 f"{', '.join(SPLIT_CAUSES)}")
+        out[k] = _nonneg(f"{field}.{k}", v)
     if abs(sum(out.values()) - 1.0) > 1e-9:
-        raise ParameterError("split", split, "weights must sum to 1 (000 eq 56)")
-    for k in ("eccentricity", "rolling", "friction"):
+        raise ParameterError(field, split, "weights must sum to 1 (000 eq 56)")
+    if not any(out.get(k, 0.0) > 0 for k in TOLERANCE_CAUSES):
+        raise ParameterError(field, split, "gives no share to eccentricity, rolling or "
+                             "friction: every tolerance would be 0")
+    for k in TOLERANCE_CAUSES:
         out.setdefault(k, 0.0)
     return out
 
@@ -112,7 +187,7 @@ def design_tolerances(unbalance: float, mass: float, race_radius: float, speed: 
     q = _positive("residual_fraction", residual_fraction)
     if q > 1:
         raise ParameterError("residual_fraction", residual_fraction, "must be within (0, 1]")
-    p = _split(DEFAULT_SPLIT if split is None else split)
+    p = check_split(DEFAULT_SPLIT if split is None else split)
     g = _finite("friction_angle", friction_angle)
     cr = _positive("rolling_credit", rolling_credit)
     cf = _positive("friction_credit", friction_credit)
@@ -294,7 +369,7 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
     w = _positive("speed", speed)
     G = _check_grade(grade)
     Om = w if nominal_speed is None else _positive("nominal_speed", nominal_speed)
-    p = _split(DEFAULT_SPLIT if split is None else split)
+    p = check_split(DEFAULT_SPLIT if split is None else split)
     mt = system.total_mass
     u_g = float(unbalance_value(G, mt, Om))
     budgets = {k: v * u_g for k, v in p.items()}
@@ -403,7 +478,8 @@ def tolerances_000(system: System, speed: float, residual_fraction: float, *,
     u_t = residual_fraction * U
     return {"speed_rad_s": w, "nominal_speed_rad_s": Om,
             "target_grade_G_mm_s": float(grade_value(u_t, system.total_mass, Om)),
-            "target_unbalance_kg_m": u_t, "split": _split(DEFAULT_SPLIT if split is None else split),
+            "target_unbalance_kg_m": u_t,
+            "split": check_split(DEFAULT_SPLIT if split is None else split),
             "budget_kg_m": d["budgets_kg_m"], "feasible": True, "reason": None,
             "max_eccentricity_m": tol["eccentricity"], "max_rolling_resistance": tol["rolling"],
             "max_suspension_friction_N": tol["friction"], "joint_scale": None,

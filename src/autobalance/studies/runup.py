@@ -197,7 +197,8 @@ def compute_runup(base: str | Path | Config, *, laws: Sequence[str] | None = Non
             S = sim.summary()
             r = {"t_speed": _time_to_speed(spin, S), "max_amplitude": S["max_amplitude_m"],
                  "x_max": S["x_max_m"], "y_max": S["y_max_m"],
-                 "ball_revolutions": float(np.mean(np.abs(S["ball_revolutions"]))),
+                 "ball_revolutions": float(np.mean(np.abs(np.asarray(S["ball_revolutions"],
+                                                                    float)))),
                  "balancing_time": balancing_time(sim.t, sim.amplitude, ecc, fraction),
                  "final_grade": float(S["final"]["grade_G_mm_s"])}
             h = {"speed": np.interp(tg, sim.t, sim.speed, right=np.nan),

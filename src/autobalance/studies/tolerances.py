@@ -24,7 +24,8 @@ from ..models import InitialState, ParameterError
 from ..physics.iso1940 import grade_class, grade_value
 from ..physics.worst_case import attained_residual, residual_bound
 from ..physics.iso1940 import unbalance_value
-from ..physics.tolerance import tolerances_000, tolerances_for_grade, worst_case_prediction
+from ..physics.tolerance import (tolerances_000, tolerances_for_grade, unreachable_tolerances,
+                                 worst_case_prediction)
 from .common import load
 from .statistics import plateau_speed
 
@@ -124,7 +125,10 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         "target_unbalance_kg_m", "worst_residual_kg_m" (the bound for the machine's own
         tolerances), "worst_grade_G_mm_s", "expected_residual_kg_m", "attained_residual_kg_m",
         "meets_target", "capacity_kg_m", "collinear_residuals_kg_m" (where balls trapped
-        outside the balanced region end), "feasible", "reason", "warnings", ...
+        outside the balanced region end), "feasible", "reason", "reachable" (feasible and no
+        tolerance below what any balancer can be built to), "unreachable" (those, as
+        sentences: :func:`~autobalance.physics.tolerance.unreachable_tolerances`),
+        "warnings", ...
         (docs/tolerances.md).
     """
     t0 = time.perf_counter()
@@ -162,6 +166,7 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
     warnings = []
     if not d["feasible"]:
         warnings.append(d["reason"])
+    unreachable = unreachable_tolerances(d) if d["feasible"] else []
     if p["balancing"] and not p["separated"]:
         warnings.append(f"at {w:.4g} rad/s the balls can rest almost anywhere with the machine's "
                         "own tolerances (no dead-band gap): the worst case is the trivial bound "
@@ -182,6 +187,7 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         "target_grade_class_G_mm_s": float(grade_class(d["target_grade_G_mm_s"])),
         "target_unbalance_kg_m": u_g, "split": d["split"], "budget_kg_m": d["budget_kg_m"],
         "feasible": d["feasible"], "reason": d["reason"],
+        "reachable": d["feasible"] and not unreachable, "unreachable": unreachable,
         "max_eccentricity_m": d["max_eccentricity_m"],
         "max_rolling_resistance": d["max_rolling_resistance"],
         "max_suspension_friction_N": d["max_suspension_friction_N"],
