@@ -479,9 +479,12 @@ def check_executor(executor: Optional[str], workers: Optional[int] = None,
     ------
     ConfigError
         One line naming the options (a :class:`autobalance.sweep.SweepError`).
+    ResourceError
+        The worker processes would not fit the memory limit (:func:`check_workers`).
     """
     from ..sweep import check_executor as check
 
+    check_workers(workers)          # its own message, naming --workers
     check(executor, workers, scheduler)
 
 

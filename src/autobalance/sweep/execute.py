@@ -387,8 +387,9 @@ def check_executor(executor: str | None, workers: int | None = None,
     """
     where = "--scheduler" if scheduler else "DASK_SCHEDULER_ADDRESS"
     scheduler = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
-    given = f"--executor {executor}" if executor else f"{where} {scheduler!r}"
-    executor = executor or ("dask" if scheduler else "local")
+    given = f"--executor {executor}" if executor is not None else f"{where} {scheduler!r}"
+    if executor is None:
+        executor = "dask" if scheduler else "local"
     if executor not in EXECUTORS:
         raise SweepError(f"--executor = {executor!r}: must be one of {', '.join(EXECUTORS)}")
     if executor == "dask" and not scheduler:
