@@ -1,5 +1,5 @@
-"""Issue 14 item 1: equilibria of N balls with continuous families, their stability in the
-linearised full model with the family's neutral directions removed, and the speed map.
+"""Equilibria of N balls with continuous families, their stability in the linearised full
+model with the family's neutral directions removed, and the speed map.
 
 Tiers: closed forms (the family W = W*, its tangent, the aligned equilibria, 000 eq 12 at the
 natural frequency), properties (hypothesis), checks against nonlinear simulations started near
@@ -57,8 +57,8 @@ def _with(system, **balancer):
 # ============================ tier 1: closed forms ===========================================
 @pytest.mark.parametrize("rho", [0.1e-3, 0.0])
 def test_three_balls_give_one_family_of_dimension_one_with_the_right_tangent(top, rho):
-    """The 78/93 "equilibria" of the issue are one closed curve W(alpha) = W*: every sample is an
-    equilibrium with |W - W*| ~ 0, the tangent spans the null space of dW/dalpha (checked by
+    """The dozens of points a grid search returns are one closed curve W(alpha) = W*: every
+    sample is an equilibrium with |W - W*| ~ 0, the tangent spans the null space of dW/dalpha (checked by
     finite differences: W moves by O(eps^2) along it, O(eps) across), and find_equilibria
     returns the isolated points plus one representative."""
     s = _with(top, eccentricity=rho)
@@ -96,7 +96,7 @@ def test_balanced_unbalance_closed_forms(top):
 
 
 def test_aligned_equilibria_are_complete(top):
-    """Newton from a 12^3 grid (the pre-issue-14 search) finds nothing that is neither on the
+    """Newton from a 12^3 grid (find_equilibria's search) finds nothing that is neither on the
     family nor one of the closed-form aligned equilibria."""
     w = 30.0
     g = -math.pi + 2 * math.pi * (np.arange(12) + 0.5) / 12
@@ -197,7 +197,7 @@ def test_family_exists_exactly_when_the_capacity_suffices(r, u):
 
 # ============================ tier 3: full model and simulations =============================
 def test_family_neutral_multiplier_is_removed_by_both_routes(top):
-    """The issue's bug: the family's multiplier 1 (1 - 2.4e-11 in the report) was counted.
+    """The family's multiplier 1 (1 - 2.4e-11 by shooting) must not be counted.
     Both routes find exactly one multiplier within NEUTRAL_TOL of 1 along the tangent, remove
     it, and agree on the remaining ones."""
     w = 83.7758
@@ -214,7 +214,7 @@ def test_family_neutral_multiplier_is_removed_by_both_routes(top):
     me = np.sort(np.abs(fe["multipliers"]))
     mf = np.sort(np.abs(ff["multipliers"]))
     assert me == pytest.approx(mf, abs=1e-4)     # monodromy differences: integrator tol / step
-    assert not floquet_full(top, w, p.alpha)["stable"]      # without removal: the old verdict
+    assert not floquet_full(top, w, p.alpha)["stable"]      # counted, it decides by rounding
 
 
 @pytest.mark.parametrize("r,expect", [(0.8, False), (1.04, False), (1.3, True)])
@@ -248,8 +248,8 @@ def test_family_verdicts_agree_with_simulations(top, w, expect):
 
 def test_family_under_gravity_is_attracting_with_a_slow_drift(top):
     """Horizontal axis (gravity in the plane): the family is only nearly preserved. The Floquet
-    route removes its multiplier as a slow one (|mu - 1| ~ 1e-5, far below 1 % of the others'
-    gap) and calls it stable; a 60 s run stays balanced: gravity makes the balls wobble by about
+    route solves for the drifting orbit, removes the family's multiplier as a slow one (|mu - 1|
+    ~ 1e-5 to 2.5e-4, far nearer 1 than the others) and calls it stable; a 60 s run stays balanced: gravity makes the balls wobble by about
     g/(R w^2) = 5e-3 rad per revolution, which the averaged final angles feel, so |W - W*| stays
     below 1e-3 of the capacity instead of 1e-6."""
     s = dataclasses.replace(top, gravity=dataclasses.replace(top.gravity, g=9.81, direction=math.pi))

@@ -187,13 +187,25 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
                    "mass), a film from there: only the balanced state is judged, with the films "
                    + ("(Floquet about its periodic state under gravity, docs/liquid.md sec. 3m)"
                       if h else "(docs/liquid.md sec. 3k)"))
-    if res["no_verdict"]:
-        typer.echo(f"  no verdict at {res['no_verdict']} of {res['evaluations']} evaluations "
-                   "(no fixed point or orbit found there; counted as not stable)")
+    def spans(ranges) -> str:
+        return ", ".join(du.fmt(lo, "speed") if lo == hi else
+                         f"{du.fmt(lo, 'speed')} - {du.fmt(hi, 'speed')}" for lo, hi in ranges)
+
+    if res["no_verdict_ranges_rad_s"]:
+        typer.echo(f"  no verdict at grid speeds {spans(res['no_verdict_ranges_rad_s'])} (neither "
+                   "stable nor unstable: no converged orbit, or a family's multipliers not told "
+                   "apart from the others)")
+    typer.echo(f"  {res['evaluations']} evaluations (the balanced state judged at one speed and "
+               f"damping factor, grid points and bisection steps), {res['no_verdict']} without a "
+               f"verdict; {res['states_judged']} states judged, {res['states_no_verdict']} "
+               "without a verdict")
     c = res["counts"]
     typer.echo(f"  {c['speeds']} speeds: a balanced state at {c['balanced_exists']}, stable at "
-               f"{c['balanced_stable']}; at most {c['max_isolated']} isolated equilibria and "
-               f"{c['max_families']} families at one speed")
+               f"{c['balanced_stable']}, no verdict at {c['balanced_no_verdict']}; at most "
+               f"{c['max_isolated']} isolated equilibria and {c['max_families']} families at one "
+               "speed")
     for d in res["damping"]:
-        r = ", ".join(f"{du.fmt(lo, 'speed')} - {du.fmt(hi, 'speed')}" for lo, hi in d["stable_ranges_rad_s"])
-        typer.echo(f"  damping x{d['damping_factor']:g}: stable at {r or 'no speed'}")
+        nv = (f"; no verdict at {spans(d['no_verdict_ranges_rad_s'])}"
+              if d["no_verdict_ranges_rad_s"] else "")
+        typer.echo(f"  damping x{d['damping_factor']:g}: stable at "
+                   f"{spans(d['stable_ranges_rad_s']) or 'no speed'}{nv}")

@@ -216,7 +216,7 @@ def find_equilibria(system: System, speed: float, n_grid: int | None = None,
 
 
 def _newton_equilibria(system, w: float, n_grid: int, tol: float) -> list:
-    """The Newton-from-a-grid search of :func:`find_equilibria` (N <= 2; unchanged since issue 4)."""
+    """The Newton-from-a-grid search of :func:`find_equilibria` (N <= 2)."""
     b = system.balancer
     n = b.n_balls
     g = -math.pi + TWO_PI * (np.arange(n_grid) + 0.5) / n_grid

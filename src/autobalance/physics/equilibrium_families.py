@@ -351,7 +351,7 @@ def _family_points(system, w: float, n_samples: int, step: float):
     if seeds.size == 0:
         return []
     dims = [family_tangent(system, a).shape[1] for a in seeds]
-    d = max(dims)
+    d = min(dims)           # the generic dimension; where the balls lie on one line it is larger
     if d == 0:
         return []
     seeds = seeds[np.array(dims) == d]
@@ -365,7 +365,7 @@ def _family_points(system, w: float, n_samples: int, step: float):
             covered |= _cross_dist(seeds, pts, same).min(axis=1) < 2.0 * step
             uniq = _dedupe(list(_wrap(pts)), same, 0.5 * step)      # one copy per relabelling
             idx = np.unique(np.round(np.linspace(0, len(uniq), n_samples, endpoint=False)).astype(int))
-            fams.append((np.array([uniq[i] for i in idx if i < len(uniq)]), 1, closed,
+            fams.append((_regular(system, [uniq[i] for i in idx if i < len(uniq)], d), 1, closed,
                          step * len(pts) if closed else math.nan))
         return fams
     more, r2 = _project(system, T, _starts(n, 40 + 12 * n_samples))
@@ -376,7 +376,17 @@ def _family_points(system, w: float, n_samples: int, step: float):
         k = int(np.argmax(dmin))
         chosen.append(pool[k])
         dmin = np.minimum(dmin, _cross_dist(pool[k], pool, same)[0])
-    return [(_wrap(np.array(chosen)), d, False, math.nan)]
+    return [(_regular(system, _wrap(np.array(chosen)), d), d, False, math.nan)]
+
+
+def _regular(system, pts, d: int) -> np.ndarray:
+    """The points (K, N) [rad] where the family has its dimension d: a point with every ball on
+    one line (the Jacobian of W loses rank, the family crosses itself there) is left out
+    (the family is a manifold of dimension N - 2 where that Jacobian has full rank; Green et
+    al. 2008)."""
+    pts = np.asarray(pts, float).reshape(len(pts), system.balancer.n_balls)
+    keep = np.array([family_tangent(system, a).shape[1] == d for a in pts], bool)
+    return pts[keep] if len(pts) else pts
 
 
 def deflate(A: npt.ArrayLike, E: npt.ArrayLike) -> dict:

@@ -15,11 +15,17 @@ Two routes to the linearised full model, :func:`full_stability` picks the right 
 Both report multipliers over one revolution (mu = exp(lambda T) for the first). On a balanced
 family (N >= 3) d = N - 2 of them are 1 with eigenvectors along the family: they are neutral.
 They are removed when they lie within ``NEUTRAL_TOL`` of 1 and their eigenvectors span the
-family's tangent (largest principal-angle sine below ``NEUTRAL_ANGLE_TOL``). Where the family is
-only nearly preserved (gravity in the plane of an N >= 3 balancer) they are removed as *slow*
-directions when |mu - 1| < ``SLOW_RATIO`` x the others' gap to the unit circle and the span
-matches to ``SLOW_ANGLE_TOL`` (the family attracts; the balls drift slowly along it, keeping
-W ~ W*). The verdict is then "stable" when every other multiplier has
+family's tangent (largest principal-angle sine below ``NEUTRAL_ANGLE_TOL``).
+
+Gravity in the plane of an N >= 3 balancer breaks the family as a set of periodic orbits: every
+revolution the balls move along it by a drift of order (g / (R w^2))^2 rad that vanishes at
+isolated points of the family at most, so at a given family point no periodic orbit exists and
+a shooting for one cannot converge. :func:`floquet_full` solves for the drifting orbit
+instead, P(z) = z + V s (V the family's eigenvectors of the monodromy, s the drift per
+revolution), and removes the family's multipliers as *slow* ones when they are
+closer to 1 than ``SLOW_RATIO`` x every other multiplier's distance to 1 and span the tangent
+to ``SLOW_ANGLE_TOL``: the balls wander along the family while W stays at W*, and the verdict
+is on the transverse multipliers. The verdict is "stable" when every other multiplier has
 |mu| < 1 - ``STABLE_MARGIN``, and only for a converged orbit (``SHOOTING_TOL``)."""
 from __future__ import annotations
 
@@ -48,15 +54,18 @@ __all__ = ["NEUTRAL_ANGLE_TOL", "NEUTRAL_TOL", "SHOOTING_TOL", "SLOW_ANGLE_TOL",
 NEUTRAL_TOL = 1e-6
 #: The neutral eigenvectors span the tangent: largest principal-angle sine below this [-].
 NEUTRAL_ANGLE_TOL = 1e-3
-#: A family only nearly preserved (gravity): its multipliers may differ from 1 by up to this
-#: fraction of the others' gap to the unit circle (slow drift along an attracting family) [-]...
-SLOW_RATIO = 0.01
-#: ... with eigenvectors spanning the tangent to this principal-angle sine [-].
-SLOW_ANGLE_TOL = 0.05
+#: A family only nearly preserved (gravity in the plane: the balls drift along it): its
+#: multipliers lie closer to 1 than this fraction of every other multiplier's distance to 1, so
+#: that their eigenvectors are well separated from the transverse ones [-] ...
+SLOW_RATIO = 0.2
+#: ... and span the tangent to this principal-angle sine [-] (the drifting orbit's wobble tilts
+#: them by a few g / (R w^2) out of the ball-angle plane).
+SLOW_ANGLE_TOL = 0.3
 #: Stable when every counted multiplier has |mu| < 1 - STABLE_MARGIN [-].
 STABLE_MARGIN = 1e-7
 #: Shooting (or fixed-point) residual, scaled by the rotor motion L and 0.1 rad, below which the
-#: periodic orbit counts as found [-]; otherwise no verdict is claimed ("stable" is False).
+#: periodic (on a family under gravity: drifting) orbit counts as found [-]; otherwise no
+#: verdict is claimed ("stable" is False).
 SHOOTING_TOL = 1e-6
 
 
@@ -102,14 +111,16 @@ def _neutral_split(mu, V, E, scale) -> dict:
     The d multipliers nearest 1 whose eigenvectors (columns of V, scaled by ``scale``) align
     best with span E are taken. They are *exact* neutral ones when within NEUTRAL_TOL of 1 and
     spanning E to NEUTRAL_ANGLE_TOL; *slow* ones (a family only nearly preserved, e.g. by
-    gravity: a slow drift along an attracting family) when |mu - 1| is below SLOW_RATIO x the
-    gap 1 - max |mu| of the others and they span E to SLOW_ANGLE_TOL. Otherwise none."""
+    gravity: the balls drift slowly along it) when they span E to SLOW_ANGLE_TOL and lie
+    closer to 1 than SLOW_RATIO x the distance min |mu_j - 1| of every other multiplier, so
+    that their eigenvectors are well separated from the transverse ones. Otherwise none."""
     d = E.shape[1]
     Vs = V / scale[:, None]
     Es, _ = np.linalg.qr(E / scale[:, None])
     dist = np.abs(mu - 1.0)
     out = {"neutral_index": np.zeros(0, int), "neutral_ok": False, "neutral_kind": "none",
-           "neutral_distance": float(np.sort(dist)[d - 1]), "neutral_sin_angle": 1.0}
+           "neutral_distance": float(np.sort(dist)[d - 1]), "neutral_sin_angle": 1.0,
+           "neutral_separation": 0.0}
     near = np.argsort(dist)[:d + 2]                 # a few nearest 1; the best aligned d of them
     align = np.linalg.norm(Es.T @ Vs[:, near], axis=0) / np.linalg.norm(Vs[:, near], axis=0)
     pick = near[np.argsort(-align)[:d]]
@@ -118,12 +129,12 @@ def _neutral_split(mu, V, E, scale) -> dict:
     sin = float(np.sqrt(max(0.0, 1.0 - float(cosines.min()) ** 2)))
     rest = np.ones(mu.size, bool)
     rest[pick] = False
-    gap = 1.0 - float(np.abs(mu[rest]).max()) if rest.any() else 1.0
+    sep = float(dist[rest].min()) if rest.any() else 1.0
     far = float(dist[pick].max())
-    out.update(neutral_distance=far, neutral_sin_angle=sin)
+    out.update(neutral_distance=far, neutral_sin_angle=sin, neutral_separation=sep)
     if far < NEUTRAL_TOL and sin < NEUTRAL_ANGLE_TOL:
         out.update(neutral_index=pick, neutral_ok=True, neutral_kind="exact")
-    elif gap > 0.0 and far < SLOW_RATIO * gap and sin < SLOW_ANGLE_TOL:
+    elif far < SLOW_RATIO * sep and sin < SLOW_ANGLE_TOL:
         out.update(neutral_index=pick, neutral_ok=True, neutral_kind="slow")
     return out
 
@@ -141,7 +152,8 @@ def _verdict(mu, V, E, scale) -> dict:
            "neutral_ok": bool(info["neutral_ok"])}
     if E is not None and E.shape[1]:
         res.update(family_dimension=int(E.shape[1]), neutral_distance=info["neutral_distance"],
-                   neutral_sin_angle=info["neutral_sin_angle"], neutral_kind=info["neutral_kind"])
+                   neutral_sin_angle=info["neutral_sin_angle"], neutral_kind=info["neutral_kind"],
+                   neutral_separation=info["neutral_separation"])
     return res
 
 
@@ -168,6 +180,40 @@ def _period_map(system, w, z, options):
     return np.concatenate([[x, y, vx, vy], a, sim.alpha_dot[-1]])
 
 
+def _monodromy(sysl, w: float, z, h, opts) -> np.ndarray:
+    """dP/dz of the one-revolution map P at z by central differences (steps h, state units):
+    the monodromy matrix of Floquet theory (Nayfeh & Balachandran 1995)."""
+    M = np.empty((z.size, z.size))
+    for k in range(z.size):
+        dz = np.zeros_like(z)
+        dz[k] = h[k]
+        M[:, k] = (_period_map(sysl, w, z + dz, opts) - _period_map(sysl, w, z - dz, opts)) / (2 * h[k])
+    return M
+
+
+def _slow_basis(M, E, scale) -> np.ndarray:
+    """Real basis V of the d eigenvectors of M that align best with span E among the d + 2
+    multipliers nearest 1 (columns, state units; scaled by ``scale`` for the comparison),
+    normalised so that E' V = I: the direction in which a point of a nearly preserved family
+    moves along it in one revolution. E itself where that basis is degenerate."""
+    d = E.shape[1]
+    mu, W = np.linalg.eig(M)
+    near = np.argsort(np.abs(mu - 1.0))[:d + 2]       # as _neutral_split: near 1, best aligned
+    Ws = W[:, near] / scale[:, None]
+    Es, _ = np.linalg.qr(E / scale[:, None])
+    align = np.linalg.norm(Es.T @ Ws, axis=0) / np.linalg.norm(Ws, axis=0)
+    pick = near[np.argsort(-align)[:d]]
+    V = np.concatenate([W[:, pick].real, W[:, pick].imag], axis=1)
+    u, sv, _ = np.linalg.svd(V / scale[:, None], full_matrices=False)
+    if sv.size < d or sv[d - 1] < 1e-8 * sv[0]:
+        return E
+    V = scale[:, None] * u[:, :d]
+    try:
+        return V @ np.linalg.inv(E.T @ V)
+    except np.linalg.LinAlgError:       # pragma: no cover - E' V singular: not the family's
+        return E
+
+
 def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int = 6,
                  rtol: float = 1e-11, family: bool = False) -> dict:
     """Floquet multipliers of the full model about an equilibrium (linearised full model).
@@ -175,10 +221,24 @@ def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int 
     The full model (our ``simulate``: 000 eq 2-4 with ball inertia, gravity, eccentricity) at
     constant speed w is periodic with T = 2 pi / w in the inertial frame. Newton shooting finds
     the periodic orbit z* = P(z*) of the one-revolution map P from the kinetic-static equilibrium
-    (drum on its harmonic orbit, balls at rest); the multipliers are the eigenvalues of dP/dz
-    (central finite differences). Rolling resistance and suspension dry friction are switched
-    off (they make P non-smooth; stability of the ideal model). |mu| < 1 for all multipliers:
-    asymptotically stable.
+    (drum on its harmonic orbit, balls at rest); the multipliers are the eigenvalues of
+    M = dP/dz (central finite differences; Floquet theory and shooting as in Nayfeh &
+    Balachandran 1995, *Applied Nonlinear Dynamics*, Wiley). Rolling resistance and suspension
+    dry friction are switched off (they make P non-smooth; stability of the ideal model).
+    |mu| < 1 for all counted multipliers: asymptotically stable.
+
+    On a balanced family (N >= 3 balls, tangent basis t) without gravity every point is a
+    periodic orbit. Gravity in the plane breaks that: the balls drift along the family every
+    revolution (on tests/data/grinder_3balls.toml by -3e-4 rad at every sample at 170 rad/s),
+    so at a given family point no periodic orbit exists. The shooting then solves the
+    drifting-orbit condition
+
+        P(z) = z + V s,    t' (alpha - alpha_0) = 0,
+
+    for z and the drift s [rad per revolution] (d unknowns): V are the d eigenvectors of M that
+    belong to the family (:func:`_slow_basis`, updated at every Newton step, normalised so that
+    their ball-angle part has unit component along t) and the phase condition keeps the point
+    at alpha_0's place on the family. Without gravity s -> 0 and V -> (0, 0, t, 0, 0, 0).
 
     Parameters
     ----------
@@ -189,15 +249,14 @@ def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int 
     alpha : array_like (N,)
         Starting ball angles [rad] (an equilibrium of :func:`find_equilibria`).
     iters : int
-        Newton iterations (>= 1; at least 12 on a family, where the steps are projected).
+        Newton iterations [-] (>= 1; at most 16 on a family, fewer once converged: the
+        drifting orbit converges linearly where the drift is large).
     rtol : float
         Integrator tolerance of each revolution [-].
     family : bool
-        alpha lies on a balanced family (N >= 3): the shooting solves the part of P(z) = z
-        across the family (what is left along it is reported as ``family_drift_rad`` per
-        revolution) and its N - 2 multipliers along the tangent are removed before the verdict:
-        exact ones (1 within NEUTRAL_TOL) or slow ones (a family only nearly preserved, e.g.
-        with gravity; :data:`SLOW_RATIO`).
+        alpha lies on a balanced family (N >= 3): solve the drifting-orbit condition above and
+        remove the family's N - 2 multipliers before the verdict: exact ones (1 within
+        NEUTRAL_TOL) or slow ones (gravity; :data:`SLOW_RATIO`).
 
     Returns
     -------
@@ -206,11 +265,12 @@ def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int 
         "max_modulus" [-] of the counted multipliers, "max_modulus_all" [-], "stable" (bool:
         max |mu| < 1 - STABLE_MARGIN), "neutral_ok" (the neutral ones were found; True without
         a family), with a family also "neutral_kind" ("exact", "slow" or "none"),
-        "neutral_distance" (max |mu - 1| of the chosen ones), "neutral_sin_angle" and
-        "family_drift_rad", "orbit_alpha_rad" (ball angles on the periodic orbit at psi = 0),
-        "shooting_residual" [-] (max |P(z) - z| over 1e4 x the difference steps: L for the rotor,
-        0.1 rad for the balls), "converged" (below SHOOTING_TOL; "stable" needs it), "method"
-        ("floquet").
+        "neutral_distance" (max |mu - 1| of the chosen ones), "neutral_sin_angle",
+        "family_drift_rad" (max |s| [rad per revolution]) and "family_drift_rad_per_rev" (s,
+        signed, along t), "orbit_alpha_rad" (ball angles on the orbit at psi = 0),
+        "shooting_residual" [-] (max |P(z) - z - V s| over 1e4 x the difference steps: L for the
+        rotor, 0.1 rad for the balls), "converged" (below SHOOTING_TOL; "stable" needs it),
+        "method" ("floquet").
     """
     from ..physics.response import steady_orbit_start
     from ..models import SimOptions
@@ -225,50 +285,49 @@ def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int 
     z = np.concatenate([steady_orbit_start(sysl, w, a0), a0, np.zeros(n)])
     L = max(system.rotor.unbalance, b.capacity) / system.total_mass
     h = np.concatenate([[1e-4 * L] * 2, [1e-4 * L * w] * 2, [1e-5] * n, [1e-5 * w * 1e-2] * n])
-    t0 = None
-    if family:      # shooting steps stay transverse: the orbit stays near the given family point
+    scale = np.concatenate([[L] * 2, [L * w] * 2, [1.0] * n, [w] * n])
+    E0 = np.zeros((z.size, 0))
+    if family:      # the phase condition and the drift act along the family's tangent at alpha_0
         from ..physics.equilibria import family_tangent
 
         t0 = family_tangent(sysl, a0)
+        E0 = np.zeros((z.size, t0.shape[1]))
+        E0[4:4 + n] = t0
+    d = E0.shape[1]
+    s = np.zeros(d)
     res = np.inf
-    drift = 0.0
-    for _ in range(max(int(iters), 12) if family else int(iters)):   # projected Newton: slower
+    for _ in range(max(int(iters), 16) if family else int(iters)):
         P0 = _period_map(sysl, w, z, opts)
-        G = P0 - z
-        if t0 is not None:      # a family: solve the transverse part; what is left is a drift along it
-            along = t0.T @ G[4:4 + n]
-            drift = float(np.abs(along).max())
-            G[4:4 + n] -= t0 @ along
+        M = _monodromy(sysl, w, z, h, opts)
+        V = _slow_basis(M, E0, scale) if d else E0
+        G = P0 - z - V @ s
         res = float(np.max(np.abs(G / np.maximum(h * 1e4, 1e-300))))
-        M = np.empty((z.size, z.size))
-        for k in range(z.size):
-            dz = np.zeros_like(z)
-            dz[k] = h[k]
-            M[:, k] = (_period_map(sysl, w, z + dz, opts) - _period_map(sysl, w, z - dz, opts)) / (2 * h[k])
-        A = M - np.eye(z.size)
-        if t0 is not None:
-            A[4:4 + n] -= t0 @ (t0.T @ A[4:4 + n])
+        J = np.zeros((z.size + d, z.size + d))
+        J[:z.size, :z.size] = M - np.eye(z.size)
+        J[:z.size, z.size:] = -V
+        J[z.size:, :z.size] = E0.T
+        rhs = -np.concatenate([G, E0[4:4 + n].T @ (z[4:4 + n] - a0)])
         try:
-            step = np.linalg.lstsq(A, -G, rcond=1e-10)[0]
+            step = np.linalg.lstsq(J, rhs, rcond=1e-10)[0]
         except np.linalg.LinAlgError:   # pragma: no cover
             break
-        if t0 is not None:
-            step[4:4 + n] -= t0 @ (t0.T @ step[4:4 + n])
-        z = z + step
+        z = z + step[:z.size]
+        s = s + step[z.size:]
         if res < 1e-9:
             break
-    mu, V = np.linalg.eig(M)
+    mu, Vm = np.linalg.eig(M)
     E = None
     if family:
+        from ..physics.equilibria import family_tangent
+
         t = family_tangent(sysl, z[4:4 + n])
         E = np.zeros((z.size, t.shape[1]))
         E[4:4 + n] = t
-    L = max(system.rotor.unbalance, b.capacity) / system.total_mass
-    scale = np.concatenate([[L] * 2, [L * w] * 2, [1.0] * n, [w] * n])
-    out = {**_verdict(mu, V, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
+    out = {**_verdict(mu, Vm, E, scale), "orbit_alpha_rad": _wrap(z[4:4 + n]),
            "shooting_residual": res, "converged": res < SHOOTING_TOL, "method": "floquet"}
     if family:
-        out["family_drift_rad"] = drift
+        out["family_drift_rad"] = float(np.abs(s).max()) if d else 0.0
+        out["family_drift_rad_per_rev"] = s
     out["stable"] = bool(out["stable"] and out["converged"])
     return out
 
