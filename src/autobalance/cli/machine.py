@@ -44,16 +44,22 @@ def _raw_key(dkey: str, raw_section: dict) -> Optional[str]:
 
 def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
          json_: JsonOpt = False) -> None:
-    """Show the full parameter set in SI with the source of each value.\f
+    """Show the full parameter set in SI with the source of each value, and the machine's
+    sanity warnings (:func:`autobalance.physics.sanity.config_warnings`).\f
 
     Parameters
     ----------
     source, set_, profile, json_
-        The shared options (:mod:`autobalance.cli.common`); the JSON object is :func:`autobalance.config.describe`.
+        The shared options (:mod:`autobalance.cli.common`); the JSON object is
+        :func:`autobalance.config.describe` with the eccentricity of the grades, e = U/M_t
+        (:func:`_eccentricity`), and ``warnings`` (a list of one-line strings).
     """
+    from ..physics.sanity import config_warnings
+
     with guard():
         cfg = load_machine(source, set_, profile)
-        d = describe(cfg)
+        d = _eccentricity(describe(cfg), cfg)
+        d["warnings"] = config_warnings(cfg)
     if json_:
         print_json(d)
         return
@@ -66,7 +72,11 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         typer.echo(f"[{section}]")
         raw = cfg.raw.get(section, {}) if isinstance(cfg.raw.get(section), dict) else {}
         for key, value in d[section].items():
+            if section == "derived" and key == "eccentricity_definition":
+                continue                    # shown on the eccentricity's own line
             line = f"  {key:<30} {fmt_value(value)}"
+            if section == "derived" and key == "eccentricity_m":
+                line += f"   ({d['derived']['eccentricity_definition']})"
             rk = _raw_key(key, raw)
             if rk is not None:
                 if isinstance(raw[rk], (str, list)) and str(raw[rk]) != str(value):
@@ -76,6 +86,22 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                 if src:
                     line += f"   # {src}"
             typer.echo(line)
+    for w in d["warnings"]:
+        typer.echo(f"warning: {w}")
+
+
+def _eccentricity(d: dict, cfg) -> dict:
+    """``describe``'s derived eccentricity as every grade defines it, e = U/M_t [m] (ISO 1940
+    on the total mass M_t = rotor + balls + liquid, :attr:`autobalance.System.total_mass`;
+    004 sec. 4), with that definition stated (``eccentricity_definition``)."""
+    s = cfg.system
+    derived = {}
+    for key, value in d["derived"].items():
+        derived[key] = value
+        if key == "eccentricity_m":
+            derived[key] = s.rotor.unbalance / s.total_mass
+            derived["eccentricity_definition"] = "e = U/M_t"
+    return {**d, "derived": derived}
 
 
 def _num(v: Any, scale: float = 1.0) -> str:

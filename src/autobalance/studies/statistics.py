@@ -11,7 +11,7 @@ import numpy as np
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-    from ..models import SpeedProfile
+    from ..models import MotorDrive, SpeedProfile
 
 __all__ = ["REGION_NAMES", "TIE_MM_S", "half_drop", "mode", "mode_value", "plateau_speed", "profile_text",
            "regions", "rise_after_min", "start_position_stats", "valid_ranges"]
@@ -247,32 +247,56 @@ def rise_after_min(ratio: np.ndarray, g: np.ndarray, rise: float = 1.0) -> dict:
             "p95_max_after": float(g[j:].max())}
 
 
-def plateau_speed(spin: SpeedProfile) -> float:
+def plateau_speed(spin: SpeedProfile | MotorDrive) -> float:
     """Lowest speed [rad/s] of a profile after its first read-out: the TSR plateau (Fig. 3).
 
     Parameters
     ----------
-    spin : SpeedProfile
-        A profile with knots after its first checkpoint.
+    spin : SpeedProfile or MotorDrive
+        A profile with knots after its first checkpoint (a tsr); a motor drive, whose speed
+        follows its torque law, has none and is refused.
 
     Returns
     -------
     float
         The plateau speed [rad/s].
+
+    Raises
+    ------
+    ParameterError
+        A motor drive, or a profile without a knot after its first read-out (one line).
     """
-    return min(w for t, w in zip(spin.times, spin.speeds) if t > spin.checkpoints[0])
+    from ..models import ParameterError
+
+    kind = getattr(spin, "name", type(spin).__name__)
+    if not hasattr(spin, "times"):
+        raise ParameterError("profile.kind", kind, "a motor drive has no speed plateau (its "
+                             "speed follows the torque law); the plateau needs a tsr profile")
+    after = [w for t, w in zip(spin.times, spin.speeds) if t > spin.checkpoints[0]]
+    if not after:
+        raise ParameterError("profile.kind", kind, "has no speed after its first read-out; "
+                             "the plateau needs a tsr profile")
+    return min(after)
 
 
-def profile_text(spin: SpeedProfile) -> str:
-    """The profile's knots as "t s: f Hz; ..." for reports.
+def profile_text(spin: SpeedProfile | MotorDrive) -> str:
+    """The profile's knots as "t s: f Hz; ..." for reports; a motor drive as its torque law,
+    torque, final and initial speeds and duration ("motor: linear law, T0 = 25 N*m to 16.7
+    Hz (held at 100 %), from 0.0 Hz, 12 s").
 
     Parameters
     ----------
-    spin : SpeedProfile
-        The profile (knot times [s], speeds [rad/s]).
+    spin : SpeedProfile or MotorDrive
+        The profile (knot times [s], speeds [rad/s]) or the motor drive (torque [N*m], final
+        speed [rad/s], duration [s]).
 
     Returns
     -------
     str
     """
+    if not hasattr(spin, "times"):                  # a motor drive (000 eq 15-18)
+        return (f"motor: {spin.law} law, T0 = {spin.torque:g} N*m to "
+                f"{spin.final_speed / (2 * np.pi):.1f} Hz (held at "
+                f"{100 * spin.hold_fraction:g} %), from {spin.initial_speed / (2 * np.pi):.1f} "
+                f"Hz, {spin.duration:g} s")
     return "; ".join(f"{t:g} s: {w / (2 * np.pi):.1f} Hz" for t, w in zip(spin.times, spin.speeds))
