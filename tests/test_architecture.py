@@ -45,7 +45,7 @@ ROOT = "autobalance"
 
 LAYERS = [
     ("core",),
-    ("limits", "validation", "jsonable", "atomic"),
+    ("limits", "validation", "jsonable", "atomic", "confidence"),
     ("models",),
     ("config",),
     ("physics", "liquid"),

@@ -265,20 +265,28 @@ def test_out_to_a_directory_is_refused_before_work(tmp_path):
 # -- design -------------------------------------------------------------------------------------
 @pytest.mark.slow
 def test_design_ranks_cheapest_meeting_design_first_and_marks_the_pareto_front():
+    from autobalance.studies.design_verdicts import VERDICT_ORDER
+
     d = run_json("design", CENTRIFUGE, "--balls", "2,3", "--capacity", "1.3,1.8", "--profiles",
                  "std", "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 4, "--n-unbalance", 2,
-                 "--grade", 25, "--executor", "serial", "--confidence", 0.9)
-    assert d["simulations"] == 4 * 2 * 4 and d["n_designs"] == 4
+                 "--grade", 25, "--executor", "serial", "--confidence", 0.9, "--budget", 0)
+    assert d["simulations"] == d["simulations_first_pass"] == 4 * 2 * 4 and d["n_designs"] == 4
+    assert d["budget"]["spent"] == 0
     assert d["unbalance_kg_m"] == pytest.approx([0.3e-3, 0.5e-3])
     rows = d["designs"]
     for r in rows:
-        assert r["meets"] == (r["margin_grade_G_mm_s"] >= 0)
+        assert r["meets"] == (r["verdict"] == "meets")
         assert r["margin_grade_G_mm_s"] == pytest.approx(25 - r["worst_quantile_grade_G_mm_s"])
         assert r["worst_quantile_grade_G_mm_s"] == pytest.approx(max(r["quantile_grade_G_mm_s"]))
+        lo, hi = r["worst_quantile_grade_G_mm_s_ci"]
+        assert lo <= r["worst_quantile_grade_G_mm_s"]
+        assert hi is None           # 4 starts cannot bound a 90 % quantile above (JSON null)
+        assert r["verdict"] in ("fails", "undecided")        # so nothing meets for sure
+        assert r["verdict"] == ("fails" if lo > 25 else "undecided")
         assert r["capacity_kg_m"] == pytest.approx(r["n_balls"] * r["ball_mass_kg"] * 0.045)
-    keys = [(not r["meets"], round(r["total_ball_mass_kg"], 9)) for r in rows]
+    keys = [(VERDICT_ORDER[r["verdict"]], round(r["total_ball_mass_kg"], 9)) for r in rows]
     assert keys == sorted(keys)
-    assert d["best"] == next((r for r in rows if r["meets"]), None)
+    assert d["best"] is None and d["n_meeting"] == 0
     # the Pareto front: the designs no other is at least as light and as good as, and better in one
     def key(o):
         return o["total_ball_mass_kg"], o["worst_quantile_grade_G_mm_s"]
@@ -300,7 +308,7 @@ def test_design_of_a_machine_on_its_own_ramp():
             "profile.end_speed=1000 rpm", "--set", "profile.ramp_time=6 s", "--set",
             "profile.duration=8 s"]
     common = ["--balls", "2", "--capacity", "1.5", "--starts", 3, "--n-unbalance", 1,
-              "--grade", 40, "--executor", "serial"]
+              "--grade", 40, "--executor", "serial", "--budget", 0]
     r = run("design", "washer_000", *ramp, *common)
     assert r.exit_code == 0, r.output
     assert "the machine's own ramp profile" in r.output
@@ -352,14 +360,20 @@ def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys
 
     d = run_json("design", CENTRIFUGE, "--balls", "2", "--capacity", "1.3", "--profiles", "tsr",
                  "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 3, "--n-unbalance", 2, "--quick",
-                 "--executor", "serial", "--out", tmp_path / "d.nc")
+                 "--executor", "serial", "--out", tmp_path / "d.nc", "--budget", 0)
     p = d["plateau_study"]
     assert p["ratios"] == [1.0, 1.06, 1.12]
     k = int(np.argmin(p["mean_p95_grade_G_mm_s"]))
     assert p["recommended_plateau_ratio"] == p["ratios"][k]
     assert d["simulations_plateau_study"] == 3 * 2 * 3        # ratios x unbalances x (n = 2: 3 runs)
+    # the TSR candidate (1.06 x the natural frequency, raised above the speed map's stable
+    # onset where that is higher) and, where the study recommends another plateau that is not
+    # raised to the same speed, that one
+    names = sorted(r["name"].rsplit("-", 1)[1] for r in d["designs"])
+    rec = p["recommended_plateau_ratio"]
+    assert names[0] == "tsr" and names[1:] in ([], [f"tsr{rec:.3g}"])
     ratios = sorted(r["plateau_ratio"] for r in d["designs"])
-    assert ratios == sorted({1.06, p["recommended_plateau_ratio"]})
+    assert min(ratios) >= min(1.06, rec) - 1e-12
     assert d["simulations"] == d["n_designs"] * 2 * 3
     for r in d["designs"]:
         cfg = load(CENTRIFUGE, r["sets"])
@@ -379,10 +393,15 @@ def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys
 
 @pytest.mark.slow
 def test_design_result_meets_its_target_when_simulated_again_with_new_starts():
-    """The claim of `design`, checked with simulations it did not run: the cheapest design that
-    meets G25 at 95 % over 0.3-0.5 g*m (10 starts per unbalance) is simulated again from 60 other
-    random starts (another seed) at three unbalances of the range. The share at or below G25
-    must reach 95 % within the sampling error of 60 runs (2 sigma = 5.6 %)."""
+    """The claim of `design`, checked with simulations it did not run: the recommended design
+    for G25 at 95 % over 0.3-0.5 g*m (10 starts per unbalance, more where undecided: a
+    decided "meets" has its 95th percentile's upper end at or below G25 at each unbalance,
+    so at least 72 starts) is simulated again from 200 other random starts (another seed) at
+    its worst unbalance: their 95th percentile's interval overlaps the reported one and
+    their 95th percentile lies within the reported interval widened by the fresh one's; and
+    from 60 other starts at three unbalances of the range, the share at or below G25 reaches
+    95 % within the sampling error of 60 runs (2 sigma = 5.6 %)."""
+    from autobalance.confidence import quantile_interval
     from autobalance.config import load_config
     from autobalance.studies.design import DesignSpace, candidate_designs
     from autobalance.studies.start_positions import compute_start_positions, load
@@ -391,7 +410,21 @@ def test_design_result_meets_its_target_when_simulated_again_with_new_starts():
                  "std,tsr", "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 10, "--n-unbalance", 2,
                  "--grade", 25, "--executor", "serial")
     best = d["best"]
-    assert best is not None
+    assert best is not None and best["verdict"] == "meets"
+    assert min(best["starts"]) >= 72 and d["budget"]["spent"] > 0
+    cfg0 = load_config(CENTRIFUGE)
+    worst = int(np.argmax(best["quantile_grade_G_mm_s"]))
+    u = d["unbalance_kg_m"][worst]
+    ds = compute_start_positions(load(cfg0, best["sets"]), samples=200, seed=98765,
+                                 sets=(f"rotor.unbalance={u!r}",), grade=25.0, executor="serial")
+    g = ds["grade_G"].isel(checkpoint=-1).where(ds["status"] == 0).values
+    p95, lo, hi = (float(x) for x in quantile_interval(g, 0.95))
+    rlo, rhi = best["quantile_grade_G_mm_s_ci"][worst]
+    print(f"\nrecommended {best['name']}: reported p95 G{best['quantile_grade_G_mm_s'][worst]:.3g} "
+          f"(95 % CI G{rlo:.3g}-G{rhi:.3g}, {best['starts'][worst]} starts); 200 fresh starts: "
+          f"p95 G{p95:.3g} (G{lo:.3g}-G{hi:.3g})")
+    assert lo <= rhi and rlo <= hi
+    assert rlo - (p95 - lo) <= p95 <= rhi + (hi - p95)
     cfg = load_config(CENTRIFUGE)
     if best["plateau_ratio"] != best["plateau_ratio"] or best["plateau_ratio"] == 1.06:
         space = DesignSpace(n_balls=(best["n_balls"],), capacity_ratios=(1.3,),

@@ -22,6 +22,7 @@ from typing import Annotated, Iterator, Optional
 
 import typer
 
+from ..confidence import interval_text
 from ..config import ConfigError
 from ..config.ranges import grammar_help
 from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt,
@@ -94,8 +95,10 @@ def _study_errors(fields: dict | None = None) -> Iterator[None]:
 def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=None,
              scheduler=None, store=None, units=None, balls: str = "needed"):
     """The checks every study makes before any work; the machine, the target grade [mm/s] and
-    the display units of the text and figures."""
+    the display units of the text and figures. The machine's sanity warnings are printed
+    here, ``warning: ...`` lines before the study's text (:func:`.warn.echo_warnings`)."""
     from ..config.display import display_units
+    from .warn import echo_warnings
 
     config = {"the input config file": source}
     check_plot(plot, PLOT_SUFFIXES, inputs=config)
@@ -109,22 +112,27 @@ def _prepare(source, set_, profile, grade, plot, out, workers=None, executor=Non
     if scheduler or executor == "dask" or os.environ.get("DASK_SCHEDULER_ADDRESS"):
         quiet_dask_logs()
     cfg = load_machine(source, set_, profile, balls=balls)
-    return cfg, G, display_units(cfg, units)
+    du = display_units(cfg, units)
+    echo_warnings(cfg, units)
+    return cfg, G, du
 
 
 def _finish(ds, cfg, out, plot, fig_fn, command: str, t0: float) -> dict:
     """Write the NetCDF (with provenance) and the figure, each atomically (a failed write leaves
-    the previous file: :mod:`autobalance.atomic`); return their paths and the wall time."""
+    the previous file: :mod:`autobalance.atomic`); return their paths, the wall time and the
+    machine's sanity warnings (``warnings``, also an attribute of the NetCDF)."""
     from .. import __version__
     from ..atomic import atomic_output, save_figure
     from ..jsonable import netcdf_safe
+    from .warn import machine_warnings_of
 
-    done = {"wall_time_s": time.perf_counter() - t0}
+    done = {"wall_time_s": time.perf_counter() - t0, "warnings": machine_warnings_of(cfg)}
     if out is not None:
         ds = ds.copy()
         ds.attrs.update({"autobalance_version": __version__, "command": command,
                          "machine": cfg.name, "machine_source": str(cfg.source),
-                         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z")})
+                         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+                         "warnings": done["warnings"]})
         with atomic_output(out, "--out") as tmp:
             netcdf_safe(ds).to_netcdf(tmp)
         done["out"] = str(out)
@@ -227,6 +235,11 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
                    f"{c['p5_grade_G_mm_s']:.2f} / {c['p50_grade_G_mm_s']:.2f} / "
                    f"{c['p95_grade_G_mm_s']:.2f} mm/s, mode {c['mode_grade_G_mm_s']:.1f}, "
                    f"share <= G{G:g}: {100 * c['share_below_grade']:.1f} %")
+        typer.echo(f"  {'':>18}  p95 G{c['p95_grade_G_mm_s']:.3g} ("
+                   + interval_text(*c["p95_grade_G_mm_s_ci"], lambda g: f"G{g:.3g}",
+                                   c["runs_ok"]).replace(" runs", " starts")
+                   + f"), share {interval_text(*c['share_below_grade_ci'], _percent)}: "
+                   f"p95 <= G{G:g} {c['p95_verdict']}")
     if res.get("cells"):
         typer.echo(f"  (pooled over {len(res['cells'])} grid cells; per cell at the last read-out:)")
         for c in res["cells"]:
@@ -235,13 +248,21 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
             where = ", ".join(_coord_text(ax, cell, du, "display") for ax in res["grid"])
             last = c["checkpoints"][-1]
             typer.echo(f"    {where}: G p50/p95 = {last['p50_grade_G_mm_s']:.2f} / "
-                       f"{last['p95_grade_G_mm_s']:.2f} mm/s, share <= G{G:g}: "
-                       f"{100 * last['share_below_grade']:.1f} %")
+                       f"{last['p95_grade_G_mm_s']:.2f} mm/s ("
+                       + interval_text(*last["p95_grade_G_mm_s_ci"], lambda g: f"G{g:.3g}",
+                                       last["runs_ok"]).replace(" runs", " starts")
+                       + f"), share <= G{G:g}: {100 * last['share_below_grade']:.1f} %; "
+                       f"p95 <= G{G:g} {last['p95_verdict']}")
     if res.get("regions"):
         typer.echo("  004 Table 2 regions (first vs last read-out): " + ", ".join(
             f"{k} {100 * v:.1f} %" for k, v in res["regions"].items())
             + f"; grades within {res['tie_mm_s']:g} mm/s taken as equal: " + ", ".join(
             f"{k} {100 * v:.1f} %" for k, v in res["regions_tied"].items()))
+
+
+def _percent(share: float) -> str:
+    """A share [-] as a percentage for text."""
+    return f"{100 * share:.1f} %"
 
 
 def _grid(specs) -> dict | None:
@@ -362,11 +383,21 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     cap = "; ".join(f"{k} G{v:.3g}" for k, v in (("balls", G_b), ("liquid", G_l)) if v)
     typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x {starts}; "
                f"{cap}; target {grade_text(G)}")
+    def ranges(rs) -> str:
+        return ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in rs) or "none"
+
     for proc, d in res["cases"]["nominal"].items():
-        rng = ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in d["valid_ranges_grade_G_mm_s"]) \
-            or "none"
-        typer.echo(f"  {proc:>8}: valid initial unbalance {rng}; efficiency "
-                   f"{100 * d['efficiency']:.0f} %")
+        typer.echo(f"  {proc:>8}: valid initial unbalance {ranges(d['valid_ranges_grade_G_mm_s'])}"
+                   f"; efficiency {100 * d['efficiency']:.0f} %")
+        if "sure_valid_ranges_grade_G_mm_s" in d:
+            lo, hi = d["efficiency_ci"]
+            undecided = d["p95_verdicts"].count("undecided")
+            typer.echo(f"  {'':>8}  at 95 % confidence: valid "
+                       f"{ranges(d['sure_valid_ranges_grade_G_mm_s'])}, possibly valid "
+                       f"{ranges(d['possible_valid_ranges_grade_G_mm_s'])} (a boundary lies "
+                       f"between grid points); efficiency {100 * lo:.0f}-{100 * hi:.0f} %"
+                       + (f"; {undecided} of {len(d['p95_verdicts'])} initial grades undecided "
+                          "(more starts, --n, decide them)" if undecided else ""))
 
 
 @app.command("plateau")
@@ -429,6 +460,15 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     typer.echo(f"  within {res['near_mm_s']:g} mm/s of the best: ratios {lo:.3g}-{hi:.3g}; "
                "neighbours: " + ", ".join(f"{r:.3g} -> G{v:.3g}" for r, v in
                                           res["neighbours_mean_p95_grade_G_mm_s"].items()))
+    if "indistinguishable_ratios" in res:
+        same = res["indistinguishable_ratios"]
+        best = interval_text(*res["best_mean_p95_grade_G_mm_s_ci"], lambda g: f"G{g:.3g}")
+        typer.echo(f"  the best's mean 95th percentile: {best}; " + (
+            "no other plateau comes as close: the recommendation is decided"
+            if res["recommended_decided"] else
+            f"{len(same)} of {len(res['plateau_ratios'])} plateaus are not distinguishable "
+            f"from it ({min(same):.3g}-{max(same):.3g} x the natural frequency): more starts "
+            "per cell (--n) decide between them"))
     if res["at_grid_edge"]:
         typer.echo("  the best plateau is at the edge of the studied ratios: the optimum may lie "
                    "outside (widen the range)")

@@ -9,6 +9,7 @@ from typing import Annotated, Optional
 
 import typer
 
+from ..confidence import interval_text
 from ..config import ConfigError
 from ..config.ranges import grammar_help, parse_interval, parse_list
 from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, SchedulerOpt, SetOpt,
@@ -16,6 +17,7 @@ from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, Schedu
                      print_json)
 from .study import (STUDY_FIELDS, OutOpt, QuickOpt, StoreOpt, _counts,
                     _factors, _finish, _prepare, _store, _study_errors, app)
+from .warn import machine_warnings_of
 
 __all__ = ["design", "tolerances", "unbalance_interval"]
 
@@ -72,6 +74,10 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
            n_unbalance: Annotated[Optional[int], typer.Option(
                "--n-unbalance", help="Unbalances across the range (default 4; quick 3).")] = None,
            seed: Annotated[int, typer.Option("--seed", help="Seed of the start positions.")] = 0,
+           budget: Annotated[Optional[int], typer.Option(
+               "--budget", metavar="RUNS",
+               help="Most runs added where a verdict is undecided, cheapest design first "
+                    "(default 4 x the first pass; 0: none).")] = None,
            refine_plateau: Annotated[bool, typer.Option(
                "--refine-plateau/--no-refine-plateau",
                help="Run the plateau study on the best TSR candidate and add its recommended "
@@ -104,6 +110,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         Random starts per unbalance and design; unbalances across the range (>= 1).
     seed : int
         Seed of the start positions.
+    budget : int or None
+        Most runs the sequential decision adds (>= 0; None: the library's default).
     refine_plateau : bool
         The plateau study on the best TSR candidate.
     """
@@ -137,15 +145,17 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         if names:
             kw["profiles"] = names
         _counts(starts=starts, n_unbalance=n_unbalance)
+        if budget is not None and budget < 0:
+            raise ConfigError(f"--budget = {budget}: must be an integer >= 0 (runs)")
         import dataclasses
 
         space = dataclasses.replace(space, **kw)
         ds = compute_design(cfg, grade=G, confidence=confidence, unbalance_range=rng,
                             n_unbalance=n_unbalance or (3 if quick else 4),
                             starts=starts or (10 if quick else 40), space=space, seed=seed,
-                            quick=quick, refine_plateau=refine_plateau,
+                            quick=quick, refine_plateau=refine_plateau, budget=budget,
                             store_dir=_store(store, cfg, "design", rng, space, starts, seed,
-                                             quick),
+                                             quick, budget),
                             executor=executor, workers=workers, scheduler=scheduler,
                             progress=not json_)
 
@@ -163,8 +173,9 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     u = res["unbalance_kg_m"]
     typer.echo(f"{cfg.name}: {res['n_designs']} designs x {len(u)} unbalances "
                f"({du.fmt(u[0], 'unbalance')} - {du.fmt(u[-1], 'unbalance')}, G{res['G_ini_mm_s'][0]:.3g}-"
-               f"G{res['G_ini_mm_s'][-1]:.3g}) x {res['starts']} starts = {res['simulations']} "
-               f"simulations (+ {res['simulations_plateau_study']} in the plateau study); "
+               f"G{res['G_ini_mm_s'][-1]:.3g}) x {res['starts']} starts = "
+               f"{res['simulations_first_pass']} simulations, {res['simulations']} with those "
+               f"added to decide (+ {res['simulations_plateau_study']} in the plateau study); "
                f"target {grade_text(G)} for {100 * confidence:g} % of starts")
     if "plateau_study" in res:
         p = res["plateau_study"]
@@ -176,15 +187,30 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         typer.echo(f"  every design on the machine's own {cfg.spin.name} "
                    "profile ('given'; the std, slow and tsr variants are of std and tsr "
                    "profiles)")
+    b = res["budget"]
+    typer.echo(f"  budget: up to {b['runs']} more runs where a verdict was undecided; spent "
+               f"{b['spent']} in {b['rounds']} rounds"
+               + ("; the budget ran out first" if b["exhausted"] else "")
+               + (f"; left undecided at the most starts per cell: {', '.join(b['capped'])}"
+                  if b["capped"] else ""))
     typer.echo(f"  {res['n_meeting']} design{' meets' if res['n_meeting'] == 1 else 's meet'} "
-               "the target" + (
-        f"; cheapest: {res['best']['name']} (margin {res['best']['margin_grade_G_mm_s']:.2f} mm/s)"
-        if res["best"] else ""))
+               f"the target at 95 % confidence, {res['n_undecided']} undecided" + (
+        f"; recommended (the cheapest that meets it): {res['best']['name']} (margin "
+        f"{res['best']['margin_grade_G_mm_s']:.2f} mm/s, "
+        + interval_text(*res["best"]["margin_grade_G_mm_s_ci"], lambda v: f"{v:+.2f}")
+        + " mm/s)" if res["best"] else "; no design is decided to meet it: none recommended "
+        "(more starts, --starts or --budget, or other candidates)"))
     for r in res["designs"]:
-        typer.echo(f"  {'meets' if r['meets'] else 'fails'} {r['name']:>24}: balls "
+        lo, hi = r["worst_quantile_grade_G_mm_s_ci"]
+        typer.echo(f"  {r['verdict']:>9} {r['name']:>24}: balls "
                    f"{1e3 * r['total_ball_mass_kg']:.3g} g, worst {100 * confidence:g} % grade "
-                   f"G{r['worst_quantile_grade_G_mm_s']:.3g}, margin "
+                   f"G{r['worst_quantile_grade_G_mm_s']:.3g} ("
+                   + interval_text(lo, hi, lambda g: f"G{g:.3g}", int(min(r["starts"])))
+                   .replace(" runs", " starts at least") + f"), margin "
                    f"{r['margin_grade_G_mm_s']:+.2f} mm/s" + ("  (Pareto)" if r["pareto"] else ""))
+        if r["profile_knots_s_rad_s"]:
+            typer.echo(f"  {'':>9} {'':>24}  profile: " + ", ".join(
+                f"{du.fmt(t, 'time')} {du.fmt(w, 'speed')}" for t, w in r["profile_knots_s_rad_s"]))
     _echo_tolerances(res, G, du)
 
 
@@ -317,6 +343,8 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         if check and res.get("feasible"):
             sim = check_tolerances_by_simulation(cfg, res, n=check)
             res["simulation_check"] = sim
+    notes = list(res.get("warnings", []))        # the study's own notes, printed below
+    res["warnings"] = machine_warnings_of(cfg, units) + notes
     if json_:
         print_json(res)
         return
@@ -351,7 +379,7 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
             f"on the rotor while its rings hold (whirl up to {du.fmt(r_lin, 'length')})"
             if math.isfinite(r_lin) else "a pool at this speed (below its entrainment speed, "
             "003 eq 6): no moment, its mass moves with the rotor") + " (docs/liquid.md sec. 3l)")
-    for wmsg in res.get("warnings", []):
+    for wmsg in notes:
         typer.echo(f"  note: {wmsg}")
     if "simulation_check" in res:
         c = res["simulation_check"]

@@ -145,11 +145,17 @@ def _display(sp, units):
 
 
 def _checkpoint_line(c: dict, grade: float, shown) -> str:
-    """One checkpoint of a summary: 5/50/95 % grades, class of the 95 %, share <= grade."""
+    """One checkpoint of a summary: 5/50/95 % grades, class of the 95 % with its interval,
+    share <= grade with its interval, and the verdict of the 95 % grade."""
+    from ..confidence import interval_text
+
+    p95 = interval_text(*c["grade_G_p95_mm_s_ci"], lambda g: f"{g:.2f} mm/s")
+    share = interval_text(*c["share_below_limit_ci"], lambda v: f"{100 * v:.1f} %")
     return (f"t = {shown.fmt(c['time_s'], 'time')}: G p5/p50/p95 = {c['grade_G_p5_mm_s']:.2f} / "
             f"{c['grade_G_p50_mm_s']:.2f} / {c['grade_G_p95_mm_s']:.2f} mm/s (p95 "
-            f"{class_text(c['grade_G_p95_mm_s'])}), share <= G{grade:g}: "
-            f"{100 * c['share_below_limit']:.1f} %")
+            f"{class_text(c['grade_G_p95_mm_s'])}; {p95}), share <= G{grade:g}: "
+            f"{100 * c['share_below_limit']:.1f} % ({share}); p95 <= G{grade:g}: "
+            f"{c['p95_verdict']}")
 
 
 #: Config kinds of grid axes that have a display unit (:mod:`autobalance.config.display`).

@@ -271,7 +271,8 @@ def plot_start_positions(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The start-position study of any machine
     (:func:`autobalance.studies.start_positions.compute_start_positions`, no grid): the density
     of the grade at each read-out with its share at or below the target, and each run's last
-    against its first read-out (004 Fig. 5-6 generalised)."""
+    against its first read-out (004 Fig. 5-6 generalised); with a single read-out (a motor
+    drive, a constant speed) each run's grade against its start angle instead."""
     fig, (a1, a2) = _fig(2)
     ok = ds["status"].values == 0
     g = ds["grade_G"].values[ok]                    # (run, checkpoint)
@@ -289,6 +290,10 @@ def plot_start_positions(ds: xr.Dataset, title: str | None = None) -> Figure:
     a1.legend(fontsize=7)
     a1.set_title(f"{int(ok.sum())} runs: {ds.attrs['starts']}", fontsize=9)
     labels = ds["checkpoint_label"].values
+    if g.shape[1] < 2:                  # one read-out (a motor drive, a constant speed)
+        _grade_against_start(a2, ds["start_angle"].values[ok], g[:, 0], lim, top, labels[0])
+        fig.suptitle(title or "Start-position Monte Carlo")
+        return fig
     a2.scatter(g[:, 0], g[:, -1], s=5, alpha=0.5)
     a2.plot([0, top], [0, top], "k:", lw=1)
     a2.axhline(lim, color="r", ls=":", lw=1)
@@ -304,17 +309,51 @@ def plot_start_positions(ds: xr.Dataset, title: str | None = None) -> Figure:
     return fig
 
 
+def _grade_against_start(ax, angles: np.ndarray, g: np.ndarray, lim: float, top: float,
+                         label: str) -> None:
+    """The second panel of :func:`plot_start_positions` with a single read-out: each run's
+    grade g [mm/s] against its start, the angle of ball 2 from ball 1 (one ball: its angle)
+    [deg] from ``angles`` (run, ball) [rad]; ``lim`` the target and ``top`` the axis end
+    [mm/s]."""
+    if angles.ndim < 2 or angles.shape[1] == 0:     # a liquid alone: no start positions
+        ax.set_axis_off()
+        return
+    a = angles[:, 1] - angles[:, 0] if angles.shape[1] >= 2 else angles[:, 0]
+    ax.scatter(np.degrees(np.mod(a, 2 * np.pi)), g, s=5, alpha=0.5)
+    ax.axhline(lim, color="r", ls=":", lw=1)
+    ax.set_xlim(0, 360)
+    ax.set_ylim(0, top)
+    ax.set_xlabel("start angle of ball 2 from ball 1 [deg]" if angles.shape[1] >= 2
+                  else "start angle of the ball [deg]")
+    ax.set_ylabel(f"G at {label} [mm/s]")
+
+
 def plot_design(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The design search (:func:`autobalance.studies.design.compute_design`): each design's worst
-    quantile of the final grade against its total ball mass, by profile, the Pareto front
-    joined and the target grade dotted; and each design's quantile against the initial grade."""
+    quantile of the final grade against its total ball mass, by profile, with its interval (a
+    bar; an unbounded end drawn to the top of the axes), filled where the design is
+    decided to meet the target, the Pareto front joined and the target grade dotted; and each
+    design's quantile against the initial grade."""
     fig, (a1, a2) = _fig(2, w=5.5)
     mass = 1e3 * ds["total_ball_mass"].values
     worst = ds["worst_quantile"].values
     prof = ds["profile"].values
+    ci = ds["worst_quantile_ci"].values if "worst_quantile_ci" in ds else None
+    meets = ds["meets"].values.astype(bool)
+    top = np.nanmax(np.where(np.isfinite(ci), ci, np.nan)) if ci is not None else np.nanmax(worst)
+    top = max(float(top), float(ds.attrs["grade"])) * 1.15
     for p, mk in zip(dict.fromkeys(prof), "osd^v"):
         k = prof == p
-        a1.scatter(mass[k], worst[k], marker=mk, label=p)
+        pts = a1.scatter(mass[k], worst[k], marker=mk, label=p)
+        if ci is not None:
+            lo, hi = ci[k, 0], np.where(np.isfinite(ci[k, 1]), ci[k, 1], top)
+            a1.errorbar(mass[k], worst[k], yerr=[worst[k] - lo, hi - worst[k]], fmt="none",
+                        ecolor=pts.get_facecolor()[0], lw=0.8, capsize=2)
+            open_ = k & ~meets
+            a1.scatter(mass[open_], worst[open_], marker=mk, facecolor="white",
+                       edgecolor=pts.get_facecolor()[0], zorder=3)
+    if ci is not None:
+        a1.set_ylim(top=top)
     par = np.flatnonzero(ds["pareto"].values)
     par = par[np.argsort(mass[par])]
     a1.plot(mass[par], worst[par], "k-", lw=0.8, label="Pareto front")

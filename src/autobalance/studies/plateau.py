@@ -8,9 +8,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..confidence import LEVEL
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
+from ..sweep.summary import percentile_intervals
 from .common import case_sets, load, run_start_grid, starts_for_runs, store_path
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
@@ -81,6 +83,21 @@ def default_grid(G_balls: float, quick: bool):
 DESCENT_PCT = (5.0, 25.0, 50.0, 75.0, 95.0)
 
 
+def _require_tsr(spin, what: str) -> None:
+    """Refuse, in one line, a profile that is not a temporary speed reduction: ``what`` (the
+    plateau study, the descent) varies its lower plateau. A motor drive's speed follows its
+    torque law (000 eq 15-18) and has no plateau to vary."""
+    kind = getattr(spin, "name", type(spin).__name__)
+    if kind == "tsr":
+        return
+    from ..models import ParameterError
+
+    why = ("a motor drive's speed follows its torque law, with no plateau to vary; "
+           if kind == "motor" else "")
+    raise ParameterError("profile.kind", kind, f"{what} needs a temporary speed reduction: "
+                         f"{why}use a tsr profile (e.g. --profile tsr)")
+
+
 
 def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | None = None, *,
                     ratios: npt.ArrayLike | None = None, G: npt.ArrayLike | None = None,
@@ -132,12 +149,7 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
     t0 = time.perf_counter()
     cfg = load(base, allow_liquid=True)        # simulations only: a liquid beside is modelled
     s = cfg.system
-    if getattr(cfg.spin, "name", "") != "tsr":
-        from ..models import ParameterError
-
-        raise ParameterError("profile.kind", getattr(cfg.spin, "name", type(cfg.spin).__name__),
-                             "the plateau study needs a temporary speed reduction: use a tsr "
-                             "profile (e.g. --profile tsr)")
+    _require_tsr(cfg.spin, "the plateau study")
     fn = s.natural_frequencies[0]
     n = default_plateau_starts(s.balancer, quick) if n is None else n
     G_b = float(_grade(s.balancer.capacity, s.total_mass, cfg.spin.nominal_speed))
@@ -147,6 +159,7 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
     Gv = g0 if G is None else np.asarray(G, float)
     U = grade_to_unbalance(Gv, s.total_mass, cfg.spin.nominal_speed)
     p95 = np.full((len(cases), ratios.size, Gv.size), np.nan)
+    p95_ci = np.full(p95.shape + (2,), np.nan)
     for ci, case in enumerate(cases):
         mu_r, c_r = cases[case]
         raw = run_start_grid(base, f"{prefix}-plateau-{case}-n{n}", case_sets(cfg, mu_r, c_r),
@@ -157,11 +170,23 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
                              progress=progress)
         g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
         p95[ci] = g.quantile(0.95, dim="sample").transpose("profile__plateau", "rotor__unbalance").values
-    ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), p95, {"units": "mm/s"})},
+        p95_ci[ci] = percentile_intervals(raw.isel(checkpoint=-1), "grade_G", (95,)).isel(
+            percentile=0).transpose("profile__plateau", "rotor__unbalance", "bound").values
+    ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), p95, {"units": "mm/s"}),
+                     "grade_G_p95_ci": (("case", "plateau_ratio", "G_ini", "bound"), p95_ci,
+                                        {"units": "mm/s", "confidence_level": LEVEL,
+                                         "long_name": "interval of the 95th percentile (order "
+                                                      "statistics; inf: unbounded)"})},
                     coords={"case": list(cases), "plateau_ratio": ratios,
-                            "G_ini": ("G_ini", Gv, {"units": "mm/s"})})
-    mean = np.nanmean(np.where(Gv <= g_range, p95, np.nan), axis=2)
+                            "G_ini": ("G_ini", Gv, {"units": "mm/s"}), "bound": ["lo", "hi"]})
+    inside = Gv <= g_range
+    mean = np.nanmean(np.where(inside, p95, np.nan), axis=2)
     ds["mean_p95"] = (("case", "plateau_ratio"), mean, {"units": "mm/s"})
+    # the mean of the bounds bounds the mean (each at the confidence level; an unbounded one
+    # leaves the mean unbounded)
+    ds["mean_p95_ci"] = (("case", "plateau_ratio", "bound"),
+                         np.stack([np.mean(p95_ci[:, :, inside, b], axis=2) for b in (0, 1)], -1),
+                         {"units": "mm/s", "confidence_level": LEVEL})
     ds.attrs.update({"study": "plateau", "n": n, "f_n_hz": fn / (2 * np.pi), "G_balls": G_b,
                      "g_range": float(g_range),
                      "ideal": [float(ratios[np.nanargmin(m)]) for m in mean],
@@ -217,6 +242,7 @@ def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_
 
     t0 = time.perf_counter()
     machine = load(base, allow_liquid=True)    # simulations (G_stick: balls alone, below)
+    _require_tsr(machine.spin, "the descent")
     s0 = machine.system
     fn = s0.natural_frequencies[0]
     U = float(grade_to_unbalance(G_ini, s0.total_mass, machine.spin.nominal_speed))
@@ -283,7 +309,12 @@ def plateau_summary(ds: xr.Dataset, case: str | None = None, near: float = 1.0) 
     dict
         recommended_plateau_ratio [-], recommended_plateau_rad_s, best_mean_p95_grade_G_mm_s,
         neighbours (ratio -> mean p95 [mm/s]), near_optimal_ratios [lo, hi] [-], at_grid_edge
-        (the best ratio is the first or last studied: the optimum may lie outside), and the map.
+        (the best ratio is the first or last studied: the optimum may lie outside), and the map;
+        with the intervals: mean_p95_grade_G_mm_s_ci (per ratio [lo, hi]; null where the runs
+        of a cell cannot bound its 95th percentile), best_mean_p95_grade_G_mm_s_ci,
+        indistinguishable_ratios (the plateaus whose interval reaches below the best's upper
+        end: not distinguishable from the best at the confidence level), recommended_decided
+        (only the best is left).
     """
     case = str(ds["case"].values[0]) if case is None else case
     m = ds["mean_p95"].sel(case=case).values
@@ -300,4 +331,19 @@ def plateau_summary(ds: xr.Dataset, case: str | None = None, near: float = 1.0) 
             "at_grid_edge": bool(k in (0, r.size - 1)),
             "near_mm_s": float(near), "plateau_ratios": r,
             "mean_p95_grade_G_mm_s": m, "G_ini_mm_s": ds["G_ini"].values,
-            "p95_grade_G_mm_s": ds["grade_G_p95"].sel(case=case).values}
+            "p95_grade_G_mm_s": ds["grade_G_p95"].sel(case=case).values,
+            **_indistinguishable(ds, case, r, k)}
+
+
+def _indistinguishable(ds: xr.Dataset, case: str, r: np.ndarray, k: int) -> dict:
+    """The intervals of the mean 95th percentiles of one case and the plateaus not
+    distinguishable from the best one, ``r[k]`` (:func:`plateau_summary`); {} for a map
+    without intervals."""
+    if "mean_p95_ci" not in ds:
+        return {}
+    ci = ds["mean_p95_ci"].sel(case=case).values               # (ratio, bound)
+    best_hi = ci[k, 1]
+    same = [float(x) for x, lo in zip(r, ci[:, 0]) if lo <= best_hi]     # NaN: not compared
+    return {"mean_p95_grade_G_mm_s_ci": ci, "best_mean_p95_grade_G_mm_s_ci": ci[k],
+            "indistinguishable_ratios": same, "recommended_decided": len(same) == 1,
+            "confidence_level": float(ds["mean_p95_ci"].attrs.get("confidence_level", LEVEL))}

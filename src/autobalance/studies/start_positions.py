@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..confidence import verdict
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
@@ -219,7 +220,8 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
     """
     import xarray as xr
 
-    from ..sweep.summary import percentiles, share_below
+    from ..confidence import LEVEL, bootstrap_interval, share_interval
+    from ..sweep.summary import percentile_intervals, percentiles, share_below, share_intervals
 
     t0 = time.perf_counter()
     cfg = load(base, sets, allow_liquid=True)         # only simulations: a liquid beside is modelled
@@ -232,14 +234,24 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
     cell_dims = [d for d in raw["grade_G"].dims if d not in ("sample", "checkpoint")]
     ds = raw[["grade_G", "status", "start_angle"]].copy()
     p = percentiles(raw, "grade_G")
+    p_ci = percentile_intervals(raw, "grade_G")
     for q in (5, 50, 95):
         ds[f"grade_p{q}"] = p.sel(percentile=q, drop=True).assign_attrs(units="mm/s")
+        ds[f"grade_p{q}_ci"] = p_ci.sel(percentile=q, drop=True).assign_attrs(
+            units="mm/s", confidence_level=LEVEL,
+            long_name=f"interval of the {q}th percentile (order statistics; +-inf: unbounded)")
     ds["share_below_grade"] = share_below(raw, grade).assign_attrs(
         units="-", long_name=f"share of runs with G <= {grade:g} mm/s")
+    ds["share_below_grade_ci"] = share_intervals(raw, grade).assign_attrs(
+        confidence_level=LEVEL, long_name=f"interval of the share with G <= {grade:g} mm/s "
+                                          "(Clopper-Pearson)")
+    ds["runs_ok"] = (raw["status"] == 0).sum("sample").assign_attrs(
+        units="1", long_name="runs that finished (the statistics' sample size)")
     g_ok = raw["grade_G"].where(raw["status"] == 0)
     stacked = g_ok.stack(_cell=cell_dims) if cell_dims else g_ok.expand_dims(_cell=[0])
     labels = checkpoint_labels(cfg.spin)
     modes = np.full((stacked.sizes["_cell"], len(labels)), np.nan)
+    modes_ci = np.full((stacked.sizes["_cell"], len(labels), 2), np.nan)
     ties = (0.0, TIE_MM_S)                     # 004's strict table, and ties taken as equal
     region_rows = {tie: [] for tie in ties}
     g_ini = float(_grade(cfg.system.rotor.unbalance, cfg.system.total_mass, cfg.spin.nominal_speed))
@@ -247,7 +259,8 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
         gk = stacked.isel(_cell=k).transpose("sample", "checkpoint").values
         for j in range(len(labels)):
             col = gk[:, j][np.isfinite(gk[:, j])]
-            modes[k, j] = mode_value(col) if col.size else np.nan
+            if col.size:
+                modes[k, j], *modes_ci[k, j] = bootstrap_interval(col, mode_value)
         if len(labels) >= 2:
             okr = np.isfinite(gk[:, 0]) & np.isfinite(gk[:, -1])
             gi = g_ini
@@ -265,6 +278,10 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
 
     ds["grade_mode"] = per_cell(modes, "checkpoint", raw["checkpoint"]).assign_attrs(
         units="mm/s", long_name="mode (1 mm/s bins)")
+    ds["grade_mode_ci"] = xr.concat(
+        [per_cell(modes_ci[..., b], "checkpoint", raw["checkpoint"]) for b in (0, 1)],
+        dim=xr.DataArray(["lo", "hi"], dims="bound")).transpose(..., "bound").assign_attrs(
+        units="mm/s", confidence_level=LEVEL, long_name="interval of the mode (bootstrap)")
     if region_rows[0.0]:
         names = list(REGION_NAMES)
         strict, tied = ([[r[m] for m in names] for r in region_rows[tie]] for tie in ties)
@@ -273,6 +290,14 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
         ds["region_share_tied"] = per_cell(tied, "region", names).assign_attrs(
             units="-", tie_mm_s=TIE_MM_S,
             long_name=f"004 Table 2 regions, grades within {TIE_MM_S:g} mm/s taken as equal")
+        n_both = (raw["status"] == 0).sum("sample")         # the runs the regions count
+        for var in ("region_share", "region_share_tied"):
+            _, lo, hi = share_interval(np.rint(ds[var] * n_both).values, n_both.broadcast_like(
+                ds[var]).values)
+            ds[f"{var}_ci"] = xr.DataArray(np.stack([lo, hi], -1), dims=(*ds[var].dims, "bound"),
+                                           coords=ds[var].coords).assign_attrs(
+                units="-", confidence_level=LEVEL, long_name="interval of the region share "
+                                                             "(Clopper-Pearson)")
     ds = ds.assign_coords(checkpoint_label=("checkpoint", labels))
     for d in cell_dims:                   # the unstacked per-cell variables drop these attrs
         ds[d].attrs.update(raw[d].attrs)
@@ -289,28 +314,52 @@ def compute_start_positions(base: str | Path | Config, *, n: int | None = None,
     return ds
 
 
+def _pair(da) -> list:
+    """A (bound,) DataArray as [lo, hi] floats (+-inf where unbounded: null in JSON)."""
+    return [float(v) for v in np.asarray(da).ravel()]
+
+
+def _row(label: str, t: float, pq: dict, pq_ci: dict, mode: float, mode_ci, share: float,
+         share_ci, runs: int, grade: float) -> dict:
+    """One checkpoint's statistics with their intervals and the verdict of p95 <= grade."""
+    return {"label": label, "time_s": float(t),
+            **{f"p{q}_grade_G_mm_s": float(pq[q]) for q in (5, 50, 95)},
+            **{f"p{q}_grade_G_mm_s_ci": _pair(pq_ci[q]) for q in (5, 50, 95)},
+            "mode_grade_G_mm_s": float(mode), "mode_grade_G_mm_s_ci": _pair(mode_ci),
+            "share_below_grade": float(share), "share_below_grade_ci": _pair(share_ci),
+            "runs_ok": int(runs),
+            "p95_verdict": verdict(*_pair(pq_ci[95]), grade)}
+
+
 def _checkpoint_rows(ds, sel: dict) -> list:
     """Per checkpoint of one cell (``sel``: its grid coordinates) label, time [s],
-    p5/p50/p95 and mode [mm/s], share at or below the target grade [-]."""
+    p5/p50/p95 and mode [mm/s], share at or below the target grade [-], each with its
+    interval (``..._ci``), the runs counted and the verdict of p95 <= the target."""
     rows = []
     for i, t in enumerate(ds["checkpoint"].values):
         at = {**sel, "checkpoint": i}
-        rows.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
-                     **{f"p{q}_grade_G_mm_s": float(ds[f"grade_p{q}"].isel(at))
-                        for q in (5, 50, 95)},
-                     "mode_grade_G_mm_s": float(ds["grade_mode"].isel(at)),
-                     "share_below_grade": float(ds["share_below_grade"].isel(at))})
+        rows.append(_row(str(ds["checkpoint_label"].values[i]), t,
+                         {q: ds[f"grade_p{q}"].isel(at) for q in (5, 50, 95)},
+                         {q: ds[f"grade_p{q}_ci"].isel(at) for q in (5, 50, 95)},
+                         ds["grade_mode"].isel(at), ds["grade_mode_ci"].isel(at),
+                         ds["share_below_grade"].isel(at), ds["share_below_grade_ci"].isel(at),
+                         ds["runs_ok"].isel(sel), ds.attrs["grade"]))
     return rows
 
 
 def _region_rows(ds, sel: dict) -> dict:
     """004 Table 2's region shares of one cell, strict ("regions") and with ties taken as equal
-    ("regions_tied"); {} without two read-outs."""
+    ("regions_tied"), with their intervals ("regions_ci", "regions_tied_ci": [lo, hi] per
+    region); {} without two read-outs."""
     if "region_share" not in ds:
         return {}
     names = [str(r) for r in ds["region"].values]
-    return {key: dict(zip(names, map(float, ds[var].isel(sel).values)))
-            for key, var in (("regions", "region_share"), ("regions_tied", "region_share_tied"))}
+    out = {}
+    for key, var in (("regions", "region_share"), ("regions_tied", "region_share_tied")):
+        out[key] = dict(zip(names, map(float, ds[var].isel(sel).values)))
+        ci = ds[f"{var}_ci"].isel(sel).values
+        out[f"{key}_ci"] = {n: [float(v) for v in ci[k]] for k, n in enumerate(names)}
+    return out
 
 
 def start_positions_summary(ds: xr.Dataset) -> dict:
@@ -328,15 +377,21 @@ def start_positions_summary(ds: xr.Dataset) -> dict:
     -------
     dict
         "grade_G_mm_s", "runs", "failed", "starts", "G_ini_mm_s", "G_balls_mm_s",
-        "checkpoints", "regions" (two read-outs or more), "cells" (with a grid).
+        "confidence_level", "checkpoints" (each percentile, the mode and the share with its
+        interval ``..._ci`` = [lo, hi]: order statistics, bootstrap and Clopper-Pearson,
+        :mod:`autobalance.confidence`; an end the runs cannot bound is null in JSON; "runs_ok",
+        "p95_verdict" of p95 <= the target: meets, fails or undecided), "regions" and
+        "regions_ci" (two read-outs or more), "cells" (with a grid).
     """
-    from ..sweep.summary import grid_axes, percentiles, share_below
+    from ..confidence import LEVEL, bootstrap_interval
+    from ..sweep.summary import (grid_axes, percentile_intervals, percentiles, share_below,
+                                 share_intervals)
 
     a = ds.attrs
     cells = [d for d in ds["grade_G"].dims if d not in ("sample", "checkpoint")]
     out = {"study": "start-positions", "grade_G_mm_s": a["grade"], "runs": a["runs"],
            "failed": a["failed"], "starts": a["starts"], "G_ini_mm_s": a["G_ini"],
-           "G_balls_mm_s": a["G_balls"]}
+           "G_balls_mm_s": a["G_balls"], "confidence_level": LEVEL}
     if not cells:
         out["checkpoints"] = _checkpoint_rows(ds, {})
         out.update(_region_rows(ds, {}))
@@ -345,17 +400,20 @@ def start_positions_summary(ds: xr.Dataset) -> dict:
         return out
     dims = (*cells, "sample")
     p = percentiles(ds, "grade_G", (5, 50, 95), dim=dims)
+    p_ci = percentile_intervals(ds, "grade_G", (5, 50, 95), dim=dims)
     share = share_below(ds, a["grade"], dim=dims)
+    share_ci = share_intervals(ds, a["grade"], dim=dims)
     g_ok = ds["grade_G"].where(ds["status"] == 0)
     pooled = []
     for i, t in enumerate(ds["checkpoint"].values):
         col = g_ok.isel(checkpoint=i).values.ravel()
-        pooled.append({"label": str(ds["checkpoint_label"].values[i]), "time_s": float(t),
-                       **{f"p{q}_grade_G_mm_s": float(p.sel(percentile=q).isel(checkpoint=i))
-                          for q in (5, 50, 95)},
-                       "mode_grade_G_mm_s": mode_value(col[np.isfinite(col)])
-                       if np.isfinite(col).any() else math.nan,
-                       "share_below_grade": float(share.isel(checkpoint=i))})
+        col = col[np.isfinite(col)]
+        m, *m_ci = bootstrap_interval(col, mode_value) if col.size else (math.nan,) * 3
+        pooled.append(_row(str(ds["checkpoint_label"].values[i]), t,
+                           {q: p.sel(percentile=q).isel(checkpoint=i) for q in (5, 50, 95)},
+                           {q: p_ci.sel(percentile=q).isel(checkpoint=i) for q in (5, 50, 95)},
+                           m, m_ci, share.isel(checkpoint=i), share_ci.isel(checkpoint=i),
+                           col.size, a["grade"]))
     out["checkpoints"] = pooled
     out["pooled_over_cells"] = True
     axes = {a["dim"]: a for a in grid_axes(ds)}
@@ -409,6 +467,7 @@ def compute_monte_carlo(base: str | Path, n: int = 50, *, plateau_ratio: float |
 
     t0 = time.perf_counter()
     cfg = load(base)
+    plateau_speed(cfg.spin)         # a motor drive has no STD/TSR read-outs: refused before any run
     sets, name = [], f"mc-n{n}"
     if plateau_ratio is not None:
         fn = cfg.system.natural_frequencies[0]
@@ -457,6 +516,11 @@ def compute_machine(base: str | Path) -> xr.Dataset:
 
     cfg = load(base)
     s, spin = cfg.system, cfg.spin
+    if not hasattr(spin, "speed"):
+        from ..models import ParameterError
+
+        raise ParameterError("profile.kind", spin.name, "a motor drive's speed is an outcome "
+                             "of the run, not a table to sample: use a prescribed profile")
     t = np.arange(0.0, float(spin.duration) + 1e-9, 0.1)
     ds = xr.Dataset({"speed": ("time", np.asarray(spin.speed(t), float), {"units": "rad/s"})},
                     coords={"time": ("time", t, {"units": "s"})})

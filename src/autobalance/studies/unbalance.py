@@ -8,7 +8,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..confidence import LEVEL
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
+from ..sweep.summary import percentile_intervals
 from .common import (capacity_grades, case_sets, checkpoint_labels, load, run_start_grid,
                      store_path)
 from .statistics import profile_text, valid_ranges
@@ -98,6 +100,8 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
     q = np.array([5.0, 50.0, 95.0])
     labels = checkpoint_labels(cfg.spin)
     data = np.full((len(cases), Gv.size, len(labels), q.size), np.nan)
+    data_ci = np.full(data.shape + (2,), np.nan)
+    runs_ok = np.zeros((len(cases), Gv.size), int)
     failed = np.zeros(len(cases), int)
     for ci, case in enumerate(cases):
         mu_r, c_r = cases[case]
@@ -109,12 +113,21 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
         g = raw["grade_G"].where(raw["status"] == 0)
         data[ci] = g.quantile(q / 100, dim="sample").transpose("rotor__unbalance", "checkpoint",
                                                                "quantile").values
+        data_ci[ci] = percentile_intervals(raw, "grade_G", q, dim="sample").transpose(
+            "rotor__unbalance", "checkpoint", "percentile", "bound").values
+        runs_ok[ci] = (raw["status"] == 0).sum("sample").values
         failed[ci] = int((raw["status"] != 0).sum())
     ds = xr.Dataset({"grade_G": (("case", "G_ini", "procedure", "percentile"), data,
                                  {"units": "mm/s", "long_name": "residual grade percentile"}),
+                     "grade_G_ci": (("case", "G_ini", "procedure", "percentile", "bound"),
+                                    data_ci, {"units": "mm/s", "confidence_level": LEVEL,
+                                              "long_name": "interval of the percentile (order "
+                                                           "statistics; +-inf: unbounded)"}),
+                     "runs_ok": (("case", "G_ini"), runs_ok,
+                                 {"units": "1", "long_name": "runs the percentiles count"}),
                      "failed_runs": ("case", failed)},
                     coords={"case": list(cases), "G_ini": ("G_ini", Gv, {"units": "mm/s"}),
-                            "procedure": labels, "percentile": q,
+                            "procedure": labels, "percentile": q, "bound": ["lo", "hi"],
                             "mu_r": ("case", [cases[c][0] for c in cases]),
                             "c_r": ("case", [cases[c][1] for c in cases])})
     lo, hi = operating_boundaries(Gv, G_b)
@@ -238,22 +251,73 @@ def unbalance_summary(ds: xr.Dataset, grade: float = 16.0) -> dict:
     Returns
     -------
     dict
-        grade_G_mm_s, G_balls_mm_s, G_ini_mm_s and, per case -> read-out:
-        valid_ranges_grade_G_mm_s (list of [lo, hi]), efficiency [-], p5/p50/p95 curves [mm/s].
+        grade_G_mm_s, G_balls_mm_s, G_ini_mm_s, confidence_level and, per case -> read-out:
+        valid_ranges_grade_G_mm_s (list of [lo, hi], from the 95th percentiles), efficiency
+        [-], p5/p50/p95 curves [mm/s] with their intervals (``..._ci``, per G_ini [lo, hi];
+        null where the runs cannot bound it), p95_verdicts (per G_ini: meets, fails or
+        undecided for p95 <= grade), and the ranges the intervals allow: sure_valid_ranges
+        (where the interval's upper end is <= grade: valid at the confidence level),
+        possible_valid_ranges (where its lower end is; outside them the grade is missed at
+        that level), efficiency_ci [lo, hi] from the two. A boundary of a valid range lies
+        between the sure and the possible range's.
     """
     Gv = ds["G_ini"].values
     span = float(Gv.max() - Gv.min()) or 1.0
     out = {"grade_G_mm_s": float(grade), "G_balls_mm_s": float(ds.attrs["G_balls"]),
            "G_ini_mm_s": Gv, "lower_boundary_grade_G_mm_s": ds["lower_boundary"].values,
-           "upper_boundary_grade_G_mm_s": ds["upper_boundary"].values, "cases": {}}
+           "upper_boundary_grade_G_mm_s": ds["upper_boundary"].values,
+           "confidence_level": float(ds["grade_G_ci"].attrs.get("confidence_level", LEVEL))
+           if "grade_G_ci" in ds else None, "cases": {}}
     for case in ds["case"].values:
         per = {}
         for proc in ds["procedure"].values:
             g = ds["grade_G"].sel(case=case, procedure=proc)
             rng, eff = valid_ranges(Gv, g.sel(percentile=95.0).values, grade, span)
-            per[str(proc)] = {"valid_ranges_grade_G_mm_s": [list(r) for r in rng],
-                              "efficiency": eff,
-                              **{f"p{int(q)}_grade_G_mm_s": g.sel(percentile=q).values
-                                 for q in (5.0, 50.0, 95.0)}}
+            row = {"valid_ranges_grade_G_mm_s": [list(r) for r in rng], "efficiency": eff,
+                   **{f"p{int(q)}_grade_G_mm_s": g.sel(percentile=q).values
+                      for q in (5.0, 50.0, 95.0)}}
+            if "grade_G_ci" in ds:
+                row.update(_valid_range_intervals(ds["grade_G_ci"].sel(case=case, procedure=proc),
+                                                  Gv, grade, span))
+            per[str(proc)] = row
         out["cases"][str(case)] = per
     return out
+
+
+def _runs(x: np.ndarray, ok: np.ndarray, widen: bool) -> list:
+    """[lo, hi] of each maximal run of grid points with ``ok``; ``widen``: each run extended to
+    the grid points beside it (where a boundary may lie)."""
+    out, k = [], 0
+    while k < ok.size:
+        if not ok[k]:
+            k += 1
+            continue
+        j = k
+        while j + 1 < ok.size and ok[j + 1]:
+            j += 1
+        a, b = (max(k - 1, 0), min(j + 1, ok.size - 1)) if widen else (k, j)
+        out.append([float(x[a]), float(x[b])])
+        k = j + 1
+    return out
+
+
+def _valid_range_intervals(ci: xr.DataArray, Gv: np.ndarray, grade: float, span: float) -> dict:
+    """The percentiles' intervals of one case and read-out (``ci``: G_ini, percentile, bound),
+    the verdict of p95 <= ``grade`` at each initial grade, and the valid ranges they allow
+    (:func:`unbalance_summary`): surely valid, the runs of grid points decided "meets";
+    possibly valid, the runs not decided "fails" widened to the grid points beside them (a
+    boundary lies between a point that meets and one that fails)."""
+    from ..confidence import verdict
+
+    lo95 = ci.sel(percentile=95.0, bound="lo").values
+    hi95 = ci.sel(percentile=95.0, bound="hi").values
+    verdicts = [verdict(a, b, grade) for a, b in zip(lo95, hi95)]
+    sure = _runs(Gv, np.array([v == "meets" for v in verdicts]), widen=False)
+    possible = _runs(Gv, np.array([v != "fails" for v in verdicts]), widen=True)
+    length = lambda rs: sum(b - a for a, b in rs) / span                     # noqa: E731
+    return {**{f"p{int(q)}_grade_G_mm_s_ci": ci.sel(percentile=q).values
+               for q in (5.0, 50.0, 95.0)},
+            "p95_verdicts": verdicts,
+            "sure_valid_ranges_grade_G_mm_s": sure,
+            "possible_valid_ranges_grade_G_mm_s": possible,
+            "efficiency_ci": [length(sure), length(possible)]}

@@ -6,9 +6,11 @@ from .execute import (EXECUTORS, SweepAborted, SweepInterrupted, check_executor,
 from .plan import Plan, make_plan, start_grid
 from .spec import SweepError, SweepSpec, as_spec, load_spec, spec_from_dict
 from .store import StoreBusy, StoreMismatch
-from .summary import percentiles, reduce_over, share_below, summary_dict
+from .summary import (percentile_intervals, percentiles, reduce_over, share_below,
+                      share_intervals, summary_dict)
 
 __all__ = ["EXECUTORS", "Plan", "StoreBusy", "StoreMismatch", "SweepAborted", "SweepError",
            "SweepInterrupted", "SweepSpec", "as_spec", "check_executor", "load_spec",
-           "make_plan", "open_sweep", "percentiles", "reduce_over", "share_below",
+           "make_plan", "open_sweep", "percentile_intervals", "percentiles", "reduce_over",
+           "share_below", "share_intervals",
            "spec_from_dict", "start_grid", "summary_dict", "sweep"]
