@@ -51,14 +51,14 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     ----------
     source, set_, profile, json_
         The shared options (:mod:`autobalance.cli.common`); the JSON object is
-        :func:`autobalance.config.describe` with the eccentricity of the grades, e = U/M_t
-        (:func:`_eccentricity`), and ``warnings`` (a list of one-line strings).
+        :func:`autobalance.config.describe` (its derived eccentricity that of the grades,
+        e = U/M_t), and ``warnings`` (a list of one-line strings).
     """
     from ..physics.sanity import config_warnings
 
     with guard():
         cfg = load_machine(source, set_, profile)
-        d = _eccentricity(describe(cfg), cfg)
+        d = describe(cfg)
         d["warnings"] = config_warnings(cfg)
     if json_:
         print_json(d)
@@ -88,20 +88,6 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
             typer.echo(line)
     for w in d["warnings"]:
         typer.echo(f"warning: {w}")
-
-
-def _eccentricity(d: dict, cfg) -> dict:
-    """``describe``'s derived eccentricity as every grade defines it, e = U/M_t [m] (ISO 1940
-    on the total mass M_t = rotor + balls + liquid, :attr:`autobalance.System.total_mass`;
-    004 sec. 4), with that definition stated (``eccentricity_definition``)."""
-    s = cfg.system
-    derived = {}
-    for key, value in d["derived"].items():
-        derived[key] = value
-        if key == "eccentricity_m":
-            derived[key] = s.rotor.unbalance / s.total_mass
-            derived["eccentricity_definition"] = "e = U/M_t"
-    return {**d, "derived": derived}
 
 
 def _num(v: Any, scale: float = 1.0) -> str:

@@ -92,7 +92,10 @@ def describe(config: Config) -> dict:
         "options": _fields(config.options, SECTIONS["options"]),
         "derived": {
             "total_mass_kg": s.total_mass,
-            "eccentricity_m": s.rotor.eccentricity,
+            # the eccentricity of every grade: ISO 1940 on the total mass M_t (rotor, balls
+            # and liquid, System.total_mass; 004 sec. 4)
+            "eccentricity_m": s.rotor.unbalance / s.total_mass,
+            "eccentricity_definition": "e = U/M_t",
             "ball_capacity_kg_m": s.balancer.capacity,
             **derived_liquid,
             "natural_frequencies_rad_s": [wx, wy],

@@ -331,7 +331,7 @@ def _grade_against_start(ax, angles: np.ndarray, g: np.ndarray, lim: float, top:
 def plot_design(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The design search (:func:`autobalance.studies.design.compute_design`): each design's worst
     quantile of the final grade against its total ball mass, by profile, with its interval (a
-    bar; an unbounded end drawn to the top of the axes), filled where the design is
+    bar; an end beyond the axes, or unbounded, an arrow at the top), filled where the design is
     decided to meet the target, the Pareto front joined and the target grade dotted; and each
     design's quantile against the initial grade."""
     fig, (a1, a2) = _fig(2, w=5.5)
@@ -340,20 +340,26 @@ def plot_design(ds: xr.Dataset, title: str | None = None) -> Figure:
     prof = ds["profile"].values
     ci = ds["worst_quantile_ci"].values if "worst_quantile_ci" in ds else None
     meets = ds["meets"].values.astype(bool)
-    top = np.nanmax(np.where(np.isfinite(ci), ci, np.nan)) if ci is not None else np.nanmax(worst)
-    top = max(float(top), float(ds.attrs["grade"])) * 1.15
-    for p, mk in zip(dict.fromkeys(prof), "osd^v"):
+    top = max(float(np.nanmax(worst)), float(ds.attrs["grade"])) * 1.3
+    span = float(np.ptp(mass)) or float(mass.max()) or 1.0
+    for j, (p, mk) in enumerate(zip(dict.fromkeys(prof), "osd^v")):
         k = prof == p
-        pts = a1.scatter(mass[k], worst[k], marker=mk, label=p)
+        x = mass[k] + (j - 0.5) * 0.015 * span          # profiles side by side
+        pts = a1.scatter(x, worst[k], marker=mk, label=p, zorder=3)
         if ci is not None:
-            lo, hi = ci[k, 0], np.where(np.isfinite(ci[k, 1]), ci[k, 1], top)
-            a1.errorbar(mass[k], worst[k], yerr=[worst[k] - lo, hi - worst[k]], fmt="none",
-                        ecolor=pts.get_facecolor()[0], lw=0.8, capsize=2)
-            open_ = k & ~meets
-            a1.scatter(mass[open_], worst[open_], marker=mk, facecolor="white",
-                       edgecolor=pts.get_facecolor()[0], zorder=3)
+            color = pts.get_facecolor()[0]
+            lo, hi = ci[k, 0], np.minimum(np.where(np.isfinite(ci[k, 1]), ci[k, 1], top), top)
+            a1.errorbar(x, worst[k], yerr=[worst[k] - lo, hi - worst[k]], fmt="none",
+                        ecolor=color, lw=0.8, capsize=2)
+            up = ~np.isfinite(ci[k, 1]) | (ci[k, 1] > top)
+            a1.scatter(x[up], np.full(up.sum(), top), marker="^", color=color, s=18)
+            open_ = ~meets[k]
+            a1.scatter(x[open_], worst[k][open_], marker=mk, facecolor="white",
+                       edgecolor=color, zorder=4)
     if ci is not None:
-        a1.set_ylim(top=top)
+        a1.set_ylim(top=top * 1.02)
+        a1.set_title("filled: decided to meet the target; bar: 95 % interval (arrow: unbounded)",
+                     fontsize=7)
     par = np.flatnonzero(ds["pareto"].values)
     par = par[np.argsort(mass[par])]
     a1.plot(mass[par], worst[par], "k-", lw=0.8, label="Pareto front")
