@@ -22,7 +22,7 @@ setup: $(STAMP)
 # The reproduction report of the seeds, then a design study of a machine not from the papers
 # (examples/toploader.toml: which balls and profile meet G40 at 95 % over 25-75 g*m).
 run: setup
-	$(BIN)/autobalance reproduce all --quick --out out/
+	$(BIN)/autobalance reproduce all --quick --out-dir out/
 	mkdir -p out/design
 	$(BIN)/autobalance design examples/toploader.toml --quick --grade 40 \
 	  --plot out/design/toploader-design.png --out out/design/toploader-design.nc \

@@ -1,4 +1,4 @@
-"""Fault-injection trials of the sweep store (issue 12), with real processes and real signals.
+"""Fault-injection trials of the sweep store, with real processes and real signals.
 
 Prints, for each kind of trial, how many gave a bit-identical dataset, a clean one-line refusal,
 or a corrupted / wrong result, and the seconds from Ctrl-C / SIGTERM to exit:

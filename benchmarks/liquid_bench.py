@@ -1,4 +1,4 @@
-"""Liquid-balancer benchmark (make bench, issue 15): the figures the issue asks for, on 003's
+"""Liquid-balancer benchmark (make bench): its figures on 003's
 bench (preset leblanc_003: R = 0.2 m, h = 0.05 m, water, D = 3000 g*cm, omega_r = 54 1/s).
 
 E. A run-up from rest through resonance, 0 -> 80 1/s in 16 s (the preset's rate): the liquid's

@@ -3,10 +3,10 @@
 1. Side by side in one run, on the paper's grid (17 plateau speeds 0.96-1.12 Omega_n x 9
    initial grades) with 21 starts per cell (n = 6): the sweep with branching (each start's 18 s
    run-up integrated once per cell family, ``simulate_branches``) against the same sweep with
-   every cell alone (``branch=False``, the kernel before branching); wall time, runs/s, and
+   every cell alone (``branch=False``); wall time, runs/s, and
    that the two stores hold the same bytes.
 2. The paper-size map itself (``studies.plateau.compute_plateau``: 153 cells x 210 starts =
-   32 130 runs, nominal case) with today's code: wall time, runs/s and its ideal plateau.
+   32 130 runs, nominal case): wall time, runs/s and its ideal plateau.
 """
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ def _spec(n: int) -> dict:
 def side_by_side(n: int, work: str) -> dict:
     spec = spec_from_dict(_spec(n), "bench")
     # untimed: a stale kernel cache (after a change to core/) is compiled in the workers by the
-    # first sweep of each kind; at stop 36 that put 35 s into the first timed sweep
+    # first sweep of each kind, which would put tens of seconds into the first timed sweep
     for branch in (True, False):
         sweep(spec_from_dict(_spec(1), "warm"), os.path.join(work, f"warm{branch}"),
               executor="local", progress=False, branch=branch)

@@ -1,14 +1,13 @@
 """Speed benchmark (make bench): ours vs scipy.integrate.solve_ivp(Radau), measured side by side.
 
 Cases, all on the 004 preset (Table 1 rig, mu = 0.002, 2 balls):
-  A. 167 Hz hold with the balls stuck (the benchmark of the issue: time per simulated second);
+  A. 167 Hz hold with the balls stuck (time per simulated second);
   B. the standard run-up 0 -> 111 Hz in 12 s, through the 94.2 Hz resonance, where the balls move;
-  C. one full 90 s TSR run (004 profile), ours only: today's kernel (the slip jumps of
-     core/expo.py on); the previous one (exponential_slip = false: DOPRI5 steps every phase,
-     bit for bit the default before stop 37); the ones before (also dense_events = false and
-     exact_ramps = false: the step redone to each located event, stuck ramps stepped, bit for
-     bit the kernel before core/ramp.py); and 004's tanh law emulated on its slow manifold
-     (friction_law "creep").
+  C. one full 90 s TSR run (004 profile), ours only: the default kernel (the slip jumps of
+     core/expo.py on); without the jumps (exponential_slip = false: DOPRI5 steps every phase);
+     also without dense events and exact ramps (dense_events = false and exact_ramps = false:
+     the step redone to each located event, stuck ramps stepped); and 004's tanh law emulated
+     on its slow manifold (friction_law "creep").
 Ours: exact stick-slip, compiled, default tolerances, with and without the closed-form hold.
 Baselines: scipy Radau (rtol 1e-6, atol 1e-9) on 004's tanh law (v_sat = 1e-6 rad/s), with
   (1) our compiled right-hand side called from Python, and
@@ -137,14 +136,14 @@ def main() -> dict:
     lines.append(f"C. one full 90 s TSR run: {t_tsr*1e3:.1f} ms (median of 5; {st['steps']} steps, "
                  f"{st['events']} stick-slip events, {st['exact_holds']} closed-form holds, "
                  f"{st['exact_ramps']} ramps without stepping)")
-    lines.append(f"   no slip jumps (exponential_slip = false, the previous kernel): "
+    lines.append(f"   no slip jumps (exponential_slip = false, DOPRI5 steps every phase): "
                  f"{t_pv*1e3:.1f} ms, {st_p['steps']} steps, {st_p['events']} events; ratio "
                  f"{t_pv / t_tsr:.2f}x; checkpoint grades differ by {dG_p:.1e} mm/s")
-    lines.append(f"   also steps redone to the events and stepped ramps (the kernels before): "
+    lines.append(f"   also steps redone to the events and stepped ramps (dense_events, exact_ramps false): "
                  f"{t_st*1e3:.1f} ms, "
                  f"{st_s['steps']} steps; ratio {t_st / t_tsr:.2f}x; checkpoint grades differ by "
                  f"{dG_r:.1e} mm/s")
-    lines.append("   targets (issue 2): 90 s TSR <= 100 ms; ratio >= 1000x")
+    lines.append("   targets: 90 s TSR <= 100 ms; ratio >= 1000x")
     # the same run under 004's own tanh law, emulated by the creep law (physics/friction.py)
     o_cr = ab.SimOptions(save_dt=-1, friction_law="creep", v_sat=1e-6)
     simulate(cfg.system, cfg.spin, initial=cfg.initial, options=o_cr)

@@ -1,4 +1,4 @@
-"""What an exponential integrator would save on the slipping phases of 004's runs (issue 17).
+"""What an exponential integrator would save on the slipping phases of 004's runs.
 
 For event-free windows of a few runs of 004's rig (no stick-slip event, no profile knot, the balls
 slipping or one of them stuck), side by side in one process:
@@ -112,7 +112,7 @@ def whole_runs() -> None:
     """004's 90 s profile, one start at a time, with and without options.exponential_slip
     (the slip jumps in the kernel), alternated start by start: wall time of simulate (checkpoints
     only, best of 3), DOPRI5 steps, right-hand-side evaluations, and the largest change of the
-    STD and TSR grades (18 s, 90 s) against issue 17's 0.02 mm/s."""
+    STD and TSR grades (18 s, 90 s) against the bound of 0.02 mm/s."""
     import dataclasses
 
     from autobalance.core.layout import S_RHS, S_STEPS

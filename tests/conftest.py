@@ -174,7 +174,7 @@ def quick_report(tmp_path_factory):
     (the report dict, its out directory with figures/, data/ and stores/)."""
     out = tmp_path_factory.mktemp("report")
     t0 = time.perf_counter()
-    p = subprocess.run([str(_autobalance_exe()), "reproduce", "all", "--quick", "--out", str(out), "--json"],
+    p = subprocess.run([str(_autobalance_exe()), "reproduce", "all", "--quick", "--out-dir", str(out), "--json"],
                        capture_output=True, text=True, timeout=1800)
     assert p.returncode == 0, p.stderr[-3000:]
     rep = json.loads(p.stdout)

@@ -1,4 +1,4 @@
-"""Issue 4: seed-000 washer analysis (vibratory forces, equilibria, error bounds, tolerances,
+"""Seed-000 washer analysis (vibratory forces, equilibria, error bounds, tolerances,
 kinetic-static model, studies, CLI).
 
 Choices the paper leaves open (docs/washer-analysis.md): ball damping c_i = 2 1/s (D = c_i m R^2)

@@ -1,4 +1,4 @@
-"""Import graph of src/autobalance (issue 13): one direction of dependency, no package cycles.
+"""Import graph of src/autobalance: one direction of dependency, no package cycles.
 
 Every module under src/autobalance is parsed with ``ast`` (nothing is imported). Its imports of
 autobalance modules are collected: absolute and relative, at module level and inside functions
@@ -28,7 +28,7 @@ of lower layers:
 
 The checks fail on (a) a cycle between packages (strongly connected components of the graph of
 top-level units, and of the graph of (sub)packages) and (b) an upward import, unless it is in
-KNOWN_VIOLATIONS (empty since the refactor of issue 13); they also fail on a KNOWN_VIOLATIONS
+KNOWN_VIOLATIONS (empty); they also fail on a KNOWN_VIOLATIONS
 entry that no longer occurs, so that list only shrinks. A new top-level module or package must be given a layer in LAYERS.
 """
 from __future__ import annotations
@@ -305,7 +305,7 @@ def test_checker_finds_upward_imports_and_cycles(tmp_path):
         violations(src, "pkg", [("low",), ("high", "side")])
 
 
-# -- size: no module over 600 lines, no function body over 100 (issue 13) ---------------------
+# -- size: no module over 600 lines, no function body over 100 --------------------------------
 #: The compiled integrator loop: one numba function, kept whole because a call between numba
 #: functions passes every array as its exploded struct (core/jit.py) and the loop's locals are
 #: its state (core/integrate.py says why). The right-hand side is split into inlined parts.
@@ -337,7 +337,7 @@ def test_no_module_over_600_lines_and_no_function_body_over_100():
     assert not too_long, "split these (docs/architecture.md):\n" + "\n".join(too_long)
 
 
-# -- type hints: every public parameter is annotated (issue 13) --------------------------------
+# -- type hints: every public parameter is annotated -------------------------------------------
 def public_parameters(tree) -> list:
     """(function, parameter, annotated) for every parameter but self/cls of every public function
     and method (names not starting with ``_``, ``__init__`` included) of public classes."""

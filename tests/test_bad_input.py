@@ -55,8 +55,8 @@ def test_tsr_plateau_must_be_below_nominal(plateau):
 
 
 def test_a_constant_profile_refuses_another_start_speed():
-    """SpeedProfile.constant(start_speed=) used to be ignored: a run meant to start elsewhere
-    silently started at full speed."""
+    """SpeedProfile.constant(start_speed=) other than the speed is refused, not ignored: a run
+    meant to start elsewhere does not silently start at full speed."""
     assert ab.SpeedProfile.constant(100.0, 1.0, start_speed=100.0).speeds == (100.0, 100.0)
     with pytest.raises(ab.ParameterError) as e:
         ab.SpeedProfile.constant(100.0, 1.0, start_speed=50.0)
@@ -206,8 +206,8 @@ def test_resource_checks_pass_the_presets():
 
 
 def test_immobility_n_conf_is_refused_before_allocating():
-    r = run("study", "immobility", "vub_jeffcott_004", "--n-conf", "1000000")
-    assert_refused(r, "--n-conf")
+    r = run("study", "immobility", "vub_jeffcott_004", "--starts", "1000000")
+    assert_refused(r, "--starts")
     from autobalance.papers.p004.tsr import immobility
 
     s = load_config("vub_jeffcott_004").system
@@ -240,7 +240,7 @@ def test_response_speed_count_memory_limit_is_a_setting():
 
 
 def test_reproduce_workers_bounded():
-    r = run("reproduce", "--workers", "100000", "--out", "unused-dir")
+    r = run("reproduce", "--workers", "100000", "--out-dir", "unused-dir")
     assert_refused(r, "--workers")
     assert not Path("unused-dir").exists()
 
@@ -249,9 +249,9 @@ def test_reproduce_workers_bounded():
 def test_liquid_count_bounded():
     from autobalance.cli.liquid import app as liquid_app
 
-    r = CliRunner().invoke(liquid_app, ["surface", "--omega", "0:60 rad/s:1000000000"])
+    r = CliRunner().invoke(liquid_app, ["surface", "--speeds", "0:60 rad/s:1000000000"])
     assert isinstance(r.exception, ResourceError) and "omega" in str(r.exception)
-    p = run_exe("liquid", "surface", "--omega", "0:60 rad/s:1000000000")
+    p = run_exe("liquid", "surface", "--speeds", "0:60 rad/s:1000000000")
     assert_refused(p, "omega")
 
 

@@ -1,5 +1,5 @@
 """Batches on Python threads (core/batch.py): the same bytes on one thread or two, an error in
-one run stops the batch, and Ctrl-C interrupts a long batch at once (it used to wait for the
+one run stops the batch, and Ctrl-C interrupts a long batch at once (it does not wait for the
 whole numba prange loop)."""
 from __future__ import annotations
 

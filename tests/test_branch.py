@@ -1,4 +1,4 @@
-"""Branching runs (issue 17): a run paused on arriving at a profile knot continues bit for bit as
+"""Branching runs: a run paused on arriving at a profile knot continues bit for bit as
 the run that did not pause (core/integrate.integrate_span), under its own profile or any other
 that agrees up to the knot; simulate_branches equals separate simulate_batch calls; a sweep over
 profile keys runs its families as BranchTasks and stores exactly what the unbranched sweep

@@ -231,7 +231,7 @@ def test_response_json():
 @pytest.mark.slow
 def test_demo(tmp_path):
     out = tmp_path / "demo"
-    r = run_main("demo", "--out", str(out), "--json")
+    r = run_main("demo", "--out-dir", str(out), "--json")
     assert r.returncode in (0, 1), r.stderr
     d = json.loads(r.stdout)
     assert json.loads((out / "summary.json").read_text()) == d
@@ -240,7 +240,7 @@ def test_demo(tmp_path):
         assert (out / f"{name}.nc").is_file() and (out / f"{name}.png").is_file()
 
 
-# -- entry points and layering (issue 13) ------------------------------------------------------
+# -- entry points and layering -----------------------------------------------------------------
 def run_module(*args):
     """``python -m autobalance ...`` in a subprocess."""
     return subprocess.run([sys.executable, "-m", "autobalance", *args],
@@ -291,7 +291,7 @@ def test_reproduce_passes_the_scheduler_in_the_context(tmp_path, monkeypatch):
 
     monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
     monkeypatch.setattr(importlib.import_module("autobalance.sweep"), "sweep", fake_sweep)
-    r = run("reproduce", "tsr-mc", "--scheduler", "tcp://127.0.0.1:1", "--out",
+    r = run("reproduce", "tsr-mc", "--scheduler", "tcp://127.0.0.1:1", "--out-dir",
             str(tmp_path / "out"), "--json")
     assert r.exit_code == 1, r.output               # the target's error is in the report
     assert seen and seen[0]["scheduler"] == "tcp://127.0.0.1:1"

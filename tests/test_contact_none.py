@@ -1,5 +1,5 @@
 """``balancer.contact = "none"``: 004's point masses, which pass through each other and may
-coincide (issue 16), beside the compliant contact. They must agree where the balls never touch,
+coincide, beside the compliant contact. They must agree where the balls never touch,
 differ where they start together, and the sweep must not keep coincident points together by
 an accident of symmetric arithmetic (docs/sweeps.md)."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``options.friction_law = "creep"`` (issue 16): the exact stick-slip kernel with stuck balls
+"""``options.friction_law = "creep"``: the exact stick-slip kernel with stuck balls
 creeping along the slow manifold of 004's tanh law, -v_sat atanh(lambda / mu N R)
 (physics/friction.py). Checked against scipy Radau on the stiff tanh law itself (the kernel's
 right-hand side with F = mu N R tanh(alpha_dot / v_sat)), on a hold (closed-form jumps, cut

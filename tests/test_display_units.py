@@ -1,4 +1,4 @@
-"""Units in and out (issue 14): text and figures in the units the user wrote (or --units), JSON in
+"""Units in and out: text and figures in the units the user wrote (or --units), JSON in
 SI; --grade G with its ISO 1940 class; ball angles wrapped in the summary."""
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Docstring meta-test (issue 13): every public function and method documents its parameters,
+"""Docstring meta-test: every public function and method documents its parameters,
 and every physical parameter states its unit.
 
 For each package in :data:`PACKAGES` the test walks the package and its public submodules
@@ -37,7 +37,7 @@ import sys
 
 import pytest
 
-#: Packages whose public API is checked (issue 13: models, physics, studies, simulate, liquid).
+#: Packages whose public API is checked (models, physics, studies, simulate, liquid).
 PACKAGES = [
     "autobalance.models",
     "autobalance.physics",

@@ -1,5 +1,5 @@
 """core/expo.py: the phi functions and the exponential Runge-Kutta step for slipping phases
-(issue 17; docs/numerics.md, "An exponential integrator for the slipping phases").
+(docs/numerics.md, "An exponential integrator for the slipping phases").
 
 Tiers: the phi functions against scipy's matrix exponential of the augmented matrix and against
 their scalar closed forms (fast); the method on 004's rig against the kernel's closed-form hold
@@ -156,13 +156,13 @@ def _grades(cfg, starts, slip, max_step=0.0):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("mu_r, grade", [(1.0, 20.0), (0.25, 30.0)])
-def test_slip_jumps_keep_the_grades_within_issue_17s_bound_and_save_steps(mu_r, grade):
+def test_slip_jumps_keep_the_grades_within_0_02_mm_s_and_save_steps(mu_r, grade):
     """12 starts of 004's 90 s profile, STD and TSR grades (18 s, 90 s) with and without the
-    slip jumps. Issue 17 asks every G within 0.02 mm/s of the previous kernel; benchmarks/
-    slip_etd_bench.py measured at most 0.0052 mm/s over 105 starts of four cases (stop 35), and
-    halving DOPRI5's largest step moves G by as much (0.0062 mm/s at mu_r 0.5, G20, 40 starts).
-    Through resting contacts and with a failed window retried up to the step that failed
-    (stop 37), these 12 starts take 14-31 times fewer DOPRI5 steps and 3.7-5.4 times fewer
+    slip jumps. The bound is every G within 0.02 mm/s of the run without jumps;
+    benchmarks/slip_etd_bench.py measured at most 0.0052 mm/s over 105 starts of four cases,
+    and halving DOPRI5's largest step moves G by as much (0.0062 mm/s at mu_r 0.5, G20, 40
+    starts). Through resting contacts and with a failed window retried up to the step that
+    failed, these 12 starts take 14-31 times fewer DOPRI5 steps and 3.7-5.4 times fewer
     right-hand-side evaluations with the jumps than without (measured); here at least four
     fifths of the steps and half of the evaluations must go."""
     cfg, _ = _rig(mu_r, grade, 0)
@@ -200,7 +200,7 @@ def test_slip_jumps_pause_at_a_knot_and_continue_bit_for_bit():
 
 
 def test_slip_jumps_only_where_the_ramp_jumps_apply():
-    """The option is on by default (stop 37), off on request, and active only under the
+    """The option is on by default, off on request, and active only under the
     conditions of the stuck ramps' jumps (pack.fast_paths): not under gravity, nor with the
     creep law."""
     import dataclasses

@@ -1,4 +1,4 @@
-"""One home per formula (issue 13): the compiled twins agree with their Python homes, the
+"""One home per formula: the compiled twins agree with their Python homes, the
 kernels' fast paths come from one derivation, and one status describes every run."""
 import dataclasses
 

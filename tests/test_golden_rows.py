@@ -1,37 +1,20 @@
-"""Same results through the architecture refactor (issue 13): `autobalance reproduce all --quick
---json` must give the rows committed before it — same keys, same verdicts, the same published
+"""The quick report against a committed reference (tests/data/): `autobalance reproduce all
+--quick --json` must give the reference's rows — same keys, same verdicts, the same published
 numbers and tolerances, and computed values equal to 1e-9 relative (the simulations are
-deterministic: two runs of the same code agree bit for bit). The 003-fig5, -fig6 and -fig7
-rows are those of the liquid from physics, which replaced the lumped model there by design
-(issue 15): the reference holds them since that change. Two round-off rows of 001-eq5-7 (the
-relative error of an identity, 1e-16 against a 1e-12 tolerance) changed in their last digit
-when 001's arc xi became radians (issue 13); the reference holds their new values. Four rows
-of 004's quick variants changed when stuck ramps and holds stopped being stepped (issue 17,
-core/ramp.py): three efficiencies by 0.1 % (nominal STD 6.7 -> 6.8, mu_r 0.5 STD 84.5 -> 84.4,
-c_r 0.5 STD 55.3 -> 55.2) and the descent's onset plateau 1.053 -> 1.060 Omega_n, all
-verdicts unchanged: the stick-slip runs' sensitivity (a start position moving from one
-1.97 G bin to the next), as under a change of tolerance; the reference holds the new values.
-Two of them moved back (nominal STD 6.8 -> 6.7, mu_r 0.5 STD 84.4 -> 84.5) when the state at a
-located stick-slip event came from DOPRI5's continuous extension instead of a redone step
-(issue 17, ``options.dense_events``; every G of the 1275-run Monte Carlo within 0.0102 mm/s),
-verdicts unchanged. Six rows moved by one in their last digit when DOPRI5's step was capped
-while balls touch (issue 17, docs/numerics.md "Resting contacts": without the cap the
-integrator ran the contact at its stability edge and the balls chattered spuriously): 000's
-table 1-2 extremes 4.31 -> 4.3, 3.91 -> 3.92 and 11.4 -> 11.39 mm and fig. 11's ratio 124.7 ->
-124.8 (rollers that touch), 004's mu_r 0.5 TSR efficiency 85.6 -> 85.7 and the profile
-comparison's -1.11 -> -1.12; verdicts unchanged. Two rows moved when the exponential slip jumps
-became the default and a failed jump window was retried (issue 17, stop 37): 004's nominal STD
-efficiency 6.7 -> 6.6 (a start crossing a 1.97 G bin) and the descent's p95 minimum, 17.2 mm/s
-in both, read at 1.009 instead of 1.060 Omega_n (a flat minimum); verdicts unchanged. When the
-stuck ramps' series kept only the terms it needs (issue 17, stop 38) that minimum was read at
-1.060 again."""
+deterministic: two runs of the same code agree bit for bit). The 003-fig5, -fig6 and -fig7 rows
+are those of the liquid from physics. A change of the model or the kernel that moves a row on
+purpose updates the reference with it. The rows such a change moves first are the stick-slip
+runs' statistics of 004's quick variants (one start position moving from one 1.97 G bin to the
+next moves an efficiency by 0.1 %; a flat minimum of the descent's p95 can be read at another
+plateau), and round-off rows such as 001-eq5-7's (the relative error of an identity, 1e-16
+against a 1e-12 tolerance), as under a change of tolerance; their verdicts stay."""
 import json
 import math
 from pathlib import Path
 
 import pytest
 
-GOLDEN = Path(__file__).parent / "data" / "quick_rows_before_issue13.json"
+GOLDEN = Path(__file__).parent / "data" / "quick_rows_golden.json"
 REL = 1e-9
 
 
@@ -57,7 +40,7 @@ def test_same_value_rule_can_fail():
 
 
 @pytest.mark.report
-def test_quick_rows_unchanged_by_the_refactor(quick_report):
+def test_quick_rows_match_the_golden_rows(quick_report):
     rep, _ = quick_report
     golden = {r["key"]: r for r in json.loads(GOLDEN.read_text())["rows"]}
     now = {r["key"]: r for t in rep["targets"] for r in t["rows"]}

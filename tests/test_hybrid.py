@@ -32,7 +32,7 @@ def machine(*sets):
 def test_massless_liquid_is_the_ball_run():
     """A liquid of density 1e-3 kg/m^3 (mass 1.5e-7 kg) beside the balls: the run is the ball
     run without it, stepped at the films' pace (a pause every film step) instead of its own.
-    Measured (stop 30): 0.92e-3 of the peak amplitude, 5.1e-3 rad, 0.12 mm/s. The tolerance is the ball
+    Measured: 0.92e-3 of the peak amplitude, 5.1e-3 rad, 0.12 mm/s. The tolerance is the ball
     run's own sensitivity to its step sequence on this machine (slipping balls): the same run
     with a knot every millisecond of the same profile moves by 1.5e-3, 5.7e-3 rad and 0.16
     mm/s, and rtol 1e-6 -> 1e-7 by 1.1e-3, 2.6e-3 rad and 0.12 mm/s."""
@@ -53,7 +53,7 @@ def test_locked_balls_are_the_film_rotor():
     settles, at a constant 40 1/s, on the state of the liquid-alone model (sw_coupled: the
     Jeffcott rotor with D + 2 m R cos 120 deg and the balls' mass). The two couple the same
     film to the rotor through different rotor integrators (RK4 sub-steps / DOPRI5 at rtol);
-    measured (stop 30) 2.4e-4 in |w| and 6.6e-3 of |U| after 8 s (|w| within 0.8 % of the
+    measured 2.4e-4 in |w| and 6.6e-3 of |U| after 8 s (|w| within 0.8 % of the
     quasi-static closed form)."""
     prof = ("profile.kind=constant", "profile.speed=40 rad/s", "profile.duration=8 s")
     cfg = machine("balancer.rolling_resistance=1", "balancer.stiction=1",
@@ -77,7 +77,7 @@ def test_locked_balls_on_a_horizontal_axis_are_the_film_rotor():
     the chamber about the rotation axis, static sag included, and gravity's offset of their
     potential): at a constant 25 1/s, after 30 s (the liquid's slow mode needs it), the
     revolution-averaged whirl, the liquid's synchronous moment and the grade equal the
-    liquid-alone model's. Measured (relative, stop 30) 1.0e-3 in |w|, 8.0e-3 in U (4.8e-3 in
+    liquid-alone model's. Measured (relative) 1.0e-3 in |w|, 8.0e-3 in U (4.8e-3 in
     |U|) and 5.4e-4 in G; after 15 s still converging: 5.0e-3, 4.1 % in U, 1.1 % in G."""
     from autobalance.liquid.simulate import revolution_average
 
@@ -222,9 +222,8 @@ def test_study_start_positions_takes_balls_beside_a_liquid(tmp_path):
 def test_liquid_moment_does_not_depend_on_the_output_spacing():
     """The liquid's synchronous moment is the revolution average on the films' own output grid
     (8 samples per revolution at least), not on the balls' output times: with the checkpoints
-    only (save_dt = -1) it averaged two samples and gave G 18.80 instead of 15.99 mm/s with
-    exit 0 (a run with damping 0.01 N*m*s/rad to 100 1/s; 15.05 mm/s since stop 30's kick
-    fix). Now the final grade and moment are the same for every output spacing."""
+    only (save_dt = -1) an average over those would take two samples and give a wrong grade
+    with exit 0. The final grade and moment are the same for every output spacing."""
     import dataclasses as dc
 
     cfg = machine(*SHORT)
@@ -378,10 +377,8 @@ def test_run_up_with_massless_locked_balls_is_the_liquid_alone_run_up():
     """Balls of 1e-6 kg locked at +-90 deg from D (no unbalance, no mass to speak of) beside
     003's liquid, 0 -> 80 1/s in 16 s through Kollmann's band: the run of balls beside a liquid
     is the liquid-alone film run (simulate_liquid, sw_coupled) through the transient, not only
-    in a steady whirl. Measured (stop 30): peak 5.2500 vs 5.2505 mm, |w| within 0.2 % at 6-16 s.
-    Before the fix of the coupling's kick the hybrid lagged: 25 % off at 14 s, 10 % at 16 s.
-    Since stop 32 the spin-up takes the ramp's acceleration whole (it took it interpolated down
-    to 0 at the ramp's end) and the film starts at 6.05 s, not 5.69: compared from 7 s on.
+    in a steady whirl. Measured: peak 5.2500 vs 5.2505 mm, |w| within 0.2 %. The spin-up takes
+    the ramp's acceleration whole and the film starts at 6.05 s: compared from 7 s on.
     Tolerance 0.5 %: the two integrate the rotor differently (DOPRI5 on w / RK4 on Z)."""
     from autobalance.config import load_config
 

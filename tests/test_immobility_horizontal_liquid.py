@@ -55,8 +55,7 @@ def test_immobility_beside_a_liquid_on_a_horizontal_axis():
     with gravity on the balls (to 1e-12: the Jeffcott orbit is linear in U_t); above it they
     differ. ring_holds is 0 below the film's start and, at each speed, the share of
     configurations whose orbit stays within synchronous_liquid's linear range (counted here
-    directly); the method says what is left out. Until stop 33 the study refused a horizontal
-    axis beside a liquid."""
+    directly); the method says what is left out."""
     cfg = washer()
     s = cfg.system
     w_f = film_start_speed(s.liquid, s.gravity.g)

@@ -1,6 +1,6 @@
 """001's kinetostatic laws against the liquid from physics (liquid/kinetostatic_check.py,
-``autobalance liquid kinetostatic-check``; docs/liquid.md sec. 2b; issue 15: "compare them with
-the dynamic results")."""
+``autobalance liquid kinetostatic-check``; docs/liquid.md sec. 2b): the laws compared with
+the dynamic results."""
 from __future__ import annotations
 
 import json
@@ -81,13 +81,13 @@ def _cli(*args):
 
 def test_cli_text_json_and_figure(tmp_path):
     png = tmp_path / "k.png"
-    p = _cli("--omega", "54, 80 rad/s", "--settle", "2 s", "--json", "--plot", str(png))
+    p = _cli("--speeds", "54, 80 rad/s", "--settle", "2 s", "--json", "--plot", str(png))
     assert p.returncode == 0, p.stderr
     d = json.loads(p.stdout)
     assert d["machine"] == "leblanc_003" and d["omega_rad_s"] == [54.0, 80.0]
     assert d["alpha_film_deg"][1] == pytest.approx(d["alpha_deg"][1], abs=0.5)
     assert png.stat().st_size > 10_000
-    t = _cli("--omega", "80 rad/s", "--settle", "0 s", "--liquid", "viscous_97")
+    t = _cli("--speeds", "80 rad/s", "--settle", "0 s", "--liquid", "viscous_97")
     assert t.returncode == 0, t.stderr
     assert "viscous_97" in t.stdout and "alpha0(001)" in t.stdout
     assert "alpha_film" not in t.stdout
@@ -96,12 +96,12 @@ def test_cli_text_json_and_figure(tmp_path):
 def test_cli_text_speaks_the_machines_units():
     """A machine of one's own (examples/toploader-ring.toml, speeds written in rpm): the table's
     speeds in rpm, as written; ``--units speed=rad/s`` switches them."""
-    p = _cli("examples/toploader-ring.toml", "--omega", "300, 600 rpm", "--settle", "0 s")
+    p = _cli("examples/toploader-ring.toml", "--speeds", "300, 600 rpm", "--settle", "0 s")
     assert p.returncode == 0, p.stderr
     lines = p.stdout.splitlines()
     assert lines[1].split()[0] == "omega[rpm]"
     assert [float(x.split()[0]) for x in lines[2:4]] == pytest.approx([300.0, 600.0])
-    q = _cli("examples/toploader-ring.toml", "--omega", "300, 600 rpm", "--settle", "0 s",
+    q = _cli("examples/toploader-ring.toml", "--speeds", "300, 600 rpm", "--settle", "0 s",
              "--units", "speed=rad/s")
     assert q.stdout.splitlines()[1].split()[0] == "omega[rad/s]"
     assert float(q.stdout.splitlines()[2].split()[0]) == pytest.approx(300 * np.pi / 30,
@@ -110,7 +110,7 @@ def test_cli_text_speaks_the_machines_units():
 
 @pytest.mark.parametrize("args,field", [
     (["leblanc_washer"], "liquid.axis"),
-    (["--omega", "80, 60 rad/s"], "--omega"),
+    (["--speeds", "80, 60 rad/s"], "--speeds"),
     (["--settle", "-1 s"], "--settle"),
     (["leblanc_003_three"], "liquid.chamber_radius"),
     (["--set", "rotor.unbalance=0 kg*m", "--settle", "0 s"], "rotor.unbalance")])

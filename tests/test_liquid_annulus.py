@@ -1,4 +1,4 @@
-"""Annular chambers (issue 15): ``liquid.inner_radius`` in the config, the entrainment speed of
+"""Annular chambers: ``liquid.inner_radius`` in the config, the entrainment speed of
 an annulus, the quasi-static liquid and the film model with an inner wall, 003's concentric
 chambers."""
 from __future__ import annotations

@@ -81,8 +81,8 @@ def test_massless_balls_leave_the_liquid_alone(n, tol):
     """Balls of 1e-8 kg (D 1e-9 kg*m) do not change the rotor with its films: the growth rate is
     the liquid-alone linearisation's (liquid/stability.ring_stability, sw_coupled's scheme; the
     two couple the films through different rotor steps, RK4 on Z = M_t w + U and the exact
-    propagator of w). Measured at 60 1/s: 1.804 vs 1.795 on 64 cells, 1.895 vs 1.893 on 256.
-    Before stop 30's fix of the hybrid coupling's kick it was 1.31 (limit about 1.43)."""
+    propagator of w). Measured at 60 1/s: 1.804 vs 1.795 on 64 cells, 1.895 vs 1.893 on 256;
+    the rotor's lag of U' dt / M_t every step (core/hybrid.py) would give 1.31."""
     s = machine("balancer.ball_mass=1e-8 kg", "rotor.unbalance=1e-9 kg*m")
     a = balanced(s, 60.0)[0]
     c, liq = s.liquid.chambers[0], s.liquid
@@ -212,7 +212,7 @@ def test_liquid_stability_cli_takes_balls(tmp_path):
 
     png = tmp_path / "s.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
-                        "leblanc_003", *[f"--set={x}" for x in BALLS], "--omega",
+                        "leblanc_003", *[f"--set={x}" for x in BALLS], "--speeds",
                         "60:120 rad/s:7", "--json", "--plot", str(png)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
@@ -264,8 +264,8 @@ def test_immobility_beside_a_liquid():
 
 def test_immobility_refuses_partitions():
     """The steady orbit of `study immobility` beside a liquid is the quasi-static liquid's,
-    which has no partitions: one line naming them (before stop 31 the partitions were ignored
-    and the shares were those of the open chamber, exit 0)."""
+    which has no partitions: one line naming them, not the shares of the open chamber with
+    exit 0."""
     from autobalance.studies.immobility import compute_immobility
 
     cfg = load_config("leblanc_003", [*BALLS, "liquid.partitions=4"])

@@ -1,4 +1,4 @@
-"""Several concentric chambers in one machine (issue 15; docs/liquid.md sec. 3g): the
+"""Several concentric chambers in one machine (docs/liquid.md sec. 3g): the
 ``[liquid]`` keys as per-chamber lists, their one-line errors, the films of all chambers
 coupled with the one rotor (closed form of intact rings, independence, volume per chamber),
 ``simulate`` and ``sweep`` of the preset leblanc_003_three, and the one-chamber analyses'
@@ -309,7 +309,7 @@ def test_liquid_simulate_of_three_chambers_is_the_fill_map_and_the_film_run(tmp_
 
     cfg = three(*SHORT)
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "simulate",
-                        "leblanc_003_three", *(f"--set={s}" for s in SHORT), "--omega",
+                        "leblanc_003_three", *(f"--set={s}" for s in SHORT), "--speeds",
                         "5:100 rad/s:20", "--run-up", "--fill-sweep", "--json",
                         "--plot", str(tmp_path / "r.png")], capture_output=True, text=True,
                        timeout=600)

@@ -21,7 +21,7 @@ def _json(args):
 
 def test_speeds_json_reproduces_003_with_g10():
     """003 eq 6 numbers (tolerance: half a unit of the last printed digit, g = 10 m/s^2)."""
-    d = _json(["speeds", "--volume", "100, 200, 300 ml", "--g", "10 m/s^2"])
+    d = _json(["speeds", "--volume", "100, 200, 300 ml", "--gravity", "10 m/s^2"])
     w0 = [r["omega_0_rad_s"] for r in d["speeds"]]
     assert w0 == pytest.approx([28.0, 19.8, 16.2], abs=0.05 + 0.45 * (w0[0] > 27))
     assert d["speeds"][0]["bottom_touch_rad_s"] == pytest.approx(0.89, abs=0.005)
@@ -30,7 +30,7 @@ def test_speeds_json_reproduces_003_with_g10():
 @pytest.mark.slow
 def test_surface_json_and_plot(tmp_path):
     png = tmp_path / "s.png"
-    d = _json(["surface", "--omega", "0, 0.6, 10, 28, 60 rad/s", "--plot", str(png)])
+    d = _json(["surface", "--speeds", "0, 0.6, 10, 28, 60 rad/s", "--plot", str(png)])
     assert [s["mode"] for s in d["surfaces"]] == [1, 2, 3, 4, 4]  # 28 > omega_0 = 27.75 (standard g)
     for s in d["surfaces"]:
         assert s["volume_check_m3"] == pytest.approx(d["volume_m3"], rel=1e-9)
@@ -38,7 +38,7 @@ def test_surface_json_and_plot(tmp_path):
 
 
 def test_modes_and_kinetostatic_json():
-    d = _json(["modes", "--omega", "0:40 rad/s:5"])
+    d = _json(["modes", "--speeds", "0:40 rad/s:5"])
     assert d["mode"] == sorted(d["mode"]) and d["mode"][-1] == 4
     k = _json(["kinetostatic", "--delta", "10, 30 deg", "--k", "1.2", "--liquid", "viscous_97"])
     assert all(abs(x) < 1e-9 for x in k["eq2_residual"]) and k["beta_deg"] > 5
@@ -47,11 +47,11 @@ def test_modes_and_kinetostatic_json():
 @pytest.mark.slow
 def test_simulate_json_and_plots(tmp_path):
     png = tmp_path / "r.png"
-    d = _json(["simulate", "--model", "lumped", "--omega", "10:90 rad/s:9", "--plot", str(png)])
+    d = _json(["simulate", "--model", "lumped", "--speeds", "10:90 rad/s:9", "--plot", str(png)])
     assert d["k"] == pytest.approx(1.0) and len(d["amplitude_m"]) == 9
     assert d["machine"] == "leblanc_003" and d["placement"] == "drach"
     assert png.stat().st_size > 10_000
-    f = _json(["simulate", "--model", "lumped", "--omega", "54 rad/s", "--fill-sweep",
+    f = _json(["simulate", "--model", "lumped", "--speeds", "54 rad/s", "--fill-sweep",
                "--plot", str(tmp_path / "f.png")])
     assert all(s["optimum_volume_m3"] == pytest.approx(150e-6) for s in f["fill_sweep"][1:])
 
@@ -63,7 +63,7 @@ def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
     omega_0 and the fill sweep, in the lumped model's keys; the liquid lowers the whirl above
     resonance only."""
     png = tmp_path / "p.png"
-    d = _json(["simulate", "--model", "physical", "--omega", "15:80 rad/s:14", "--run-up",
+    d = _json(["simulate", "--model", "physical", "--speeds", "15:80 rad/s:14", "--run-up",
                "--plot", str(png)])
     assert d["model"] == "physical" and d["placement"] is None
     amp, dry, w = d["amplitude_m"], d["amplitude_dry_m"], d["omega_rad_s"]
@@ -78,7 +78,7 @@ def test_simulate_physical_model_json_run_up_and_fill_sweep(tmp_path):
     ru = d["run_up"]
     assert ru["peak_amplitude_m"] < ru["peak_amplitude_dry_m"]
     assert png.stat().st_size > 10_000
-    f = _json(["simulate", "--model", "physical", "--omega", "54 rad/s", "--fill-sweep"])
+    f = _json(["simulate", "--model", "physical", "--speeds", "54 rad/s", "--fill-sweep"])
     assert len(f["fill_sweep"]) == 4 and f["fill_sweep"][3]["optimum_volume_m3"] >= 150e-6
 
 
@@ -87,12 +87,12 @@ def test_simulate_takes_any_liquid_machine_and_its_overrides():
     """``liquid simulate`` takes a System: the shortcuts are overrides of the machine's keys, so
     ``--volume`` and ``--set liquid.volume`` give the same run, and 001's liquids set the
     density and viscosity; the suspension keeps its values (k of 003's bench)."""
-    a = _json(["simulate", "--omega", "40, 60 rad/s", "--volume", "200 ml"])
-    b = _json(["simulate", "leblanc_003", "--omega", "40, 60 rad/s", "--set", "liquid.volume=200 ml"])
+    a = _json(["simulate", "--speeds", "40, 60 rad/s", "--volume", "200 ml"])
+    b = _json(["simulate", "leblanc_003", "--speeds", "40, 60 rad/s", "--set", "liquid.volume=200 ml"])
     assert a["amplitude_m"] == b["amplitude_m"] and a["volume_m3"] == pytest.approx(2e-4)
-    c = _json(["simulate", "--omega", "60 rad/s", "--liquid", "heavy_1650"])
+    c = _json(["simulate", "--speeds", "60 rad/s", "--liquid", "heavy_1650"])
     assert c["liquid"] == "heavy_1650" and c["capacity_kg_m"] == pytest.approx(1650 * 150e-6 * 0.2)
-    d = _json(["simulate", "--omega", "60 rad/s"])
+    d = _json(["simulate", "--speeds", "60 rad/s"])
     assert d["omega_n_rad_s"] == pytest.approx(54.0) and c["omega_n_rad_s"] < 54.0  # same k
 
 
@@ -100,15 +100,14 @@ def test_simulate_on_a_horizontal_axis_is_the_fill_maps_model(tmp_path):
     """``liquid simulate`` on the washer's ring (horizontal axis): its start speed is
     sqrt(g / (R/10)), its steady amplitudes are the fill map's (steady_amplitude, axis
     "horizontal": a puddle below the start, the planar ring above) to the root's tolerance, and
-    so are its fill sweeps; the lumped model (003's vertical bench) is refused. Until stop 33
-    the command refused a horizontal axis."""
+    so are its fill sweeps; the lumped model (003's vertical bench) is refused."""
     import math
 
     from autobalance.config import load_config
     from autobalance.liquid.simulate import film_rotor
     from autobalance.liquid.steady import chambers_fill_sweep, steady_amplitude
 
-    d = _json(["simulate", "leblanc_washer", "--omega", "10:120 rad/s:12", "--fill-sweep",
+    d = _json(["simulate", "leblanc_washer", "--speeds", "10:120 rad/s:12", "--fill-sweep",
                "--plot", str(tmp_path / "f.png")])
     s = load_config("leblanc_washer").system
     c, g = s.liquid.chambers[0], s.gravity.g
@@ -131,12 +130,12 @@ def test_simulate_text_speaks_the_machines_units():
     written in (the washer's speeds in rpm), or SI with ``--units si``; JSON stays SI."""
     import math
 
-    r = runner.invoke(app, ["simulate", "leblanc_washer", "--omega", "10:120 rad/s:12"])
+    r = runner.invoke(app, ["simulate", "leblanc_washer", "--speeds", "10:120 rad/s:12"])
     assert r.exit_code == 0, r.output
     w0 = math.sqrt(9.81 / 0.026) * 30 / math.pi                # sqrt(g/(R/10)) [rpm]
     line = next(x for x in r.output.splitlines() if x.startswith("omega_0 "))
     assert line.split()[-1] == "rpm" and float(line.split()[1]) == pytest.approx(w0, rel=1e-3)
-    r = runner.invoke(app, ["simulate", "leblanc_washer", "--omega", "10:120 rad/s:12",
+    r = runner.invoke(app, ["simulate", "leblanc_washer", "--speeds", "10:120 rad/s:12",
                             "--units", "si"])
     assert any(x.startswith("omega_0 ") and x.endswith("rad/s") for x in r.output.splitlines())
 
@@ -149,7 +148,7 @@ def test_simulate_run_up_on_a_horizontal_axis_is_the_machines_run():
     from autobalance.config import load_config
     from autobalance.liquid.simulate import simulate_liquid
 
-    d = _json(["simulate", "leblanc_washer", "--omega", "20, 60, 100 rad/s", "--run-up"])
+    d = _json(["simulate", "leblanc_washer", "--speeds", "20, 60, 100 rad/s", "--run-up"])
     cfg = load_config("leblanc_washer")
     sim = simulate_liquid(cfg.system, cfg.spin)
     assert d["run_up"]["peak_amplitude_m"] == pytest.approx(float(sim.amplitude.max()), rel=1e-9)

@@ -1,5 +1,5 @@
 """The liquid film on the wall of a rotating, displaced chamber (core/shallow_water.py,
-liquid/film.py; issue 15): well balanced (the film at rest on a displaced wall stays at rest to
+liquid/film.py): well balanced (the film at rest on a displaced wall stays at rest to
 round-off, dry cells included), mass conserving, converging to the quasi-static film, with the
 linear wave frequency of shallow water under the centrifugal gravity and the laminar lag of a
 spin-up."""

@@ -193,7 +193,7 @@ def test_cli_on_a_horizontal_axis():
     unstable range in rpm (measured 392-546 rpm on this grid) and the speed without a verdict;
     the JSON the axis and that speed."""
     args = [sys.executable, "-m", "autobalance", "liquid", "stability", "leblanc_washer",
-            "--omega", "190:1000 rpm:5", "--cells", "32"]
+            "--speeds", "190:1000 rpm:5", "--cells", "32"]
     r = subprocess.run(args + ["--json"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)

@@ -1,4 +1,4 @@
-"""The liquid in a displaced chamber, quasi-statically (liquid/quasistatic.py, issue 15): the
+"""The liquid in a displaced chamber, quasi-statically (liquid/quasistatic.py): the
 circle-circle lens against an independent quadrature, mass conservation, and the classical
 limits - the intact ring (rho (V_c - V) d), the thin film gathered at the wall (rho V R),
 Newton's bucket in a centred chamber (003's closed forms) and the planar limit of the paraboloid."""

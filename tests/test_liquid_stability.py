@@ -105,16 +105,16 @@ def test_refusals_are_one_line(kw, field):
 def test_cli_end_to_end(tmp_path):
     png = tmp_path / "s.png"
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
-                        "leblanc_003", "--omega", "40:100 rad/s:13", "--json", "--plot", str(png)],
+                        "leblanc_003", "--speeds", "40:100 rad/s:13", "--json", "--plot", str(png)],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert len(d["growth_rate_1_s"]) == 13 and png.stat().st_size > 0
     lo, hi = d["unstable_ranges_rad_s"][0]
     assert 45.0 < lo < 60.0 < hi < 100.0
-    # the text gives speeds in the unit --omega was written in
+    # the text gives speeds in the unit --speeds was written in
     t = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "stability",
-                        "leblanc_003", "--omega", "400:900 rpm:6"],
+                        "leblanc_003", "--speeds", "400:900 rpm:6"],
                        capture_output=True, text=True, timeout=600)
     assert t.returncode == 0, t.stderr
     assert "rpm - " in t.stdout and "rad/s" not in t.stdout

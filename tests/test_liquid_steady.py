@@ -1,5 +1,5 @@
 """The synchronous whirl with the liquid quasi-static in the displaced chamber
-(liquid/steady.py, issue 15): the intact-ring limit in closed form (a full chamber's mass), the
+(liquid/steady.py): the intact-ring limit in closed form (a full chamber's mass), the
 empty-chamber limit, the roots really solve the rotor's balance, and the classical direction of
 the effect: the liquid reduces the whirl above resonance and increases it below."""
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The liquid balancer as part of the one System: the ``[liquid]`` section (config, show,
 --set, Python), `simulate` with the wall-film model, and one-line refusals where a ball
-analysis or the film model does not apply (issues 13 and 15)."""
+analysis or the film model does not apply."""
 from __future__ import annotations
 
 import json
@@ -314,7 +314,7 @@ def test_liquid_sweep_equals_its_single_runs(tmp_path):
 @pytest.mark.parametrize("extra, needle", [
     ({"monte_carlo": {"kind": "random", "samples": 3}}, "monte_carlo.kind"),
     ({"grid": {"liquid.axis": ["vertical", "horizontal"]}}, "gravity.g"),
-    # too thick for a wall film: it failed at run time, after the first cell's run (stop 29)
+    # too thick for a wall film: refused before any run, not at run time after the first cell's
     ({"sweep": {"set": SHORT + ["liquid.chamber_radius=0.1 m", "liquid.inner_radius=0 m"]},
       "grid": {"liquid.volume": ["100 ml", "1 l"]}}, "grid point liquid.volume='1 l': volume"),
 ])

@@ -141,11 +141,11 @@ def test_sensitivity_varies_the_motor_run_up_through_its_torque(motor):
 # -- end to end --------------------------------------------------------------------------------
 @pytest.mark.slow
 def test_start_positions_on_a_motor_drive(motor, tmp_path):
-    text = _run("study", "start-positions", motor, "--n", 3, *FAST).stdout
+    text = _run("study", "start-positions", motor, "--starts", 3, *FAST).stdout
     assert "small_motor: 6 runs (start grid, 3 positions per ball), 0 failed" in text
     assert "t = 4 s: G p5/p50/p95" in text and "warning" not in text
     out, png = tmp_path / "sp.nc", tmp_path / "sp.png"
-    d = _json("study", "start-positions", motor, "--n", 3, *FAST, "--out", out, "--plot", png)
+    d = _json("study", "start-positions", motor, "--starts", 3, *FAST, "--out", out, "--plot", png)
     assert d["runs"] == 6 and d["failed"] == 0 and d["warnings"] == []
     (c,) = d["checkpoints"]                       # one read-out: the end of the run
     assert c["label"] == "t=4 s" and c["time_s"] == 4.0
@@ -159,7 +159,7 @@ def test_start_positions_on_a_motor_drive(motor, tmp_path):
 
 @pytest.mark.slow
 def test_unbalance_range_on_a_motor_drive(motor, tmp_path):
-    args = ("study", "unbalance-range", motor, "--n", 2, "--steps", 2, *FAST)
+    args = ("study", "unbalance-range", motor, "--starts", 2, "--steps", 2, *FAST)
     text = _run(*args).stdout
     assert "in 3 steps x 2 starts per ball" in text and "t=4 s: valid initial unbalance" in text
     out, png = tmp_path / "ur.nc", tmp_path / "ur.png"
@@ -173,7 +173,7 @@ def test_unbalance_range_on_a_motor_drive(motor, tmp_path):
 
 @pytest.mark.slow
 def test_sensitivity_on_a_motor_drive(motor, tmp_path):
-    args = ("study", "sensitivity", motor, "--n", 2, "--vary", "profile.torque=0.4 N*m", *FAST)
+    args = ("study", "sensitivity", motor, "--starts", 2, "--vary", "profile.torque=0.4 N*m", *FAST)
     text = _run(*args).stdout
     assert "3 runs per variant" in text and "profile.torque=0.4 N*m:" in text
     out = tmp_path / "sens.nc"
@@ -201,7 +201,7 @@ def test_runup_on_a_motor_drive(motor, tmp_path):
 @pytest.mark.slow
 def test_design_on_a_motor_drive(motor, tmp_path):
     out, png = tmp_path / "design.nc", tmp_path / "design.png"
-    d = _json("design", motor, "--quick", "--starts", 2, "--n-unbalance", 2, "--balls", 2,
+    d = _json("design", motor, "--quick", "--random", 2, "--n-unbalance", 2, "--balls", 2,
               "--capacity", 1.5, *FAST, "--out", out, "--plot", png)
     (row,) = d["designs"]                  # decided or not with 2 starts: it ran on the motor
     assert d["n_designs"] == 1 and row["profile"] == "given" and row["duration_s"] == 4.0
@@ -214,7 +214,7 @@ def test_design_on_a_motor_drive(motor, tmp_path):
 @pytest.mark.slow
 def test_a_warned_motor_machine_still_runs_and_says_so(motor):
     sets = ["--set", "balancer.n_balls=1", "--set", "initial.ball_angles=[0]"]
-    text = _run("study", "start-positions", motor, "--n", 2, *FAST, *sets).stdout
+    text = _run("study", "start-positions", motor, "--starts", 2, *FAST, *sets).stdout
     assert text.splitlines()[0].startswith("warning: one ball cancels the unbalance only")
-    d = _json("study", "start-positions", motor, "--n", 2, *FAST, *sets)
+    d = _json("study", "start-positions", motor, "--starts", 2, *FAST, *sets)
     assert len(d["warnings"]) == 1 and d["runs"] == 2

@@ -194,8 +194,8 @@ def test_exact_ramps_equal_integrated_ramps_property(mu, f0, f1, a1, gap, c):
 
     The claim is made where the stepped reference has converged: the same stick-slip events at
     rtol 1e-10 and 1e-11, within the step budget. Near a lightly damped resonance a ball can
-    ratchet, and the micro-cycles follow the last bit. A fresh run of hypothesis (stop 35)
-    found 199, 233 and 6 events at rtol 1e-10 (jump), 1e-10 and 1e-11 (mu 0.00586, 91 Hz,
+    ratchet, and the micro-cycles follow the last bit. A run of hypothesis found 199,
+    233 and 6 events at rtol 1e-10 (jump), 1e-10 and 1e-11 (mu 0.00586, 91 Hz,
     c = 300 N s/m). It also found a run at rtol 1e-11 that chattered to the step budget
     (mu 0.0053, 90 -> 60 Hz).
 

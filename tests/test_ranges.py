@@ -107,8 +107,8 @@ def test_interval():
 
 
 def test_lists():
-    assert parse_list("0, 0.6, 28 rad/s", "speed", "--omega") == pytest.approx([0, 0.6, 28])
-    assert parse_list("300, 600 rpm", "speed", "--omega") == pytest.approx([300 * RPM, 600 * RPM])
+    assert parse_list("0, 0.6, 28 rad/s", "speed", "--speeds") == pytest.approx([0, 0.6, 28])
+    assert parse_list("300, 600 rpm", "speed", "--speeds") == pytest.approx([300 * RPM, 600 * RPM])
     assert parse_list("1 ml, 2 ml", "volume", "--fills") == pytest.approx([1e-6, 2e-6])
     assert parse_list("1, 2", "volume", "--fills") == pytest.approx([1.0, 2.0])
     assert parse_list("600 rpm, 20 Hz", "speed", "--o") == pytest.approx([600 * RPM, 40 * math.pi])
@@ -117,15 +117,15 @@ def test_lists():
                       ("", "expected a value or a list"), ("1,,2", "expected a value or a list"),
                       ("1, 2 kg", "1 kg: expected a rotational speed")]:
         with pytest.raises(ConfigError) as e:
-            parse_list(text, "speed", "--omega")
-        assert str(e.value).startswith(f"--omega = {text!r}: ") and why in str(e.value)
+            parse_list(text, "speed", "--speeds")
+        assert str(e.value).startswith(f"--speeds = {text!r}: ") and why in str(e.value)
     with pytest.raises(ConfigError, match="at most 2 values"):
         parse_list("1, 2, 3", "ratio", "--x", max_points=2)
 
 
 def test_values_take_either_form_and_the_written_unit():
-    assert parse_values("0:60 rad/s:4", "speed", "--omega") == pytest.approx([0, 20, 40, 60])
-    assert parse_values("10, 20 rad/s", "speed", "--omega") == pytest.approx([10, 20])
+    assert parse_values("0:60 rad/s:4", "speed", "--speeds") == pytest.approx([0, 20, 40, 60])
+    assert parse_values("10, 20 rad/s", "speed", "--speeds") == pytest.approx([10, 20])
     assert written_unit("400:900 rpm:6") == "rpm"
     assert written_unit("400 rpm:900:6") == "rpm"
     assert written_unit("1, 2/min") == "1/min"
@@ -179,11 +179,11 @@ PROBES = {
         _call(lambda t: _grid([f"rotor.unbalance={t}"])["rotor.unbalance"]),
         2, 8, 3, "g*cm", 1e-5),
     ("design", "--unbalance"): (_call(unbalance_interval), 3, 9, None, "g*cm", 1e-5),
-    ("liquid surface", "--omega"): (
-        _cli(lambda t: ["liquid", "surface", "--omega", t],
+    ("liquid surface", "--speeds"): (
+        _cli(lambda t: ["liquid", "surface", "--speeds", t],
              lambda d: [s["omega_rad_s"] for s in d["surfaces"]]), 10, 60, 3, "rpm", RPM),
-    ("liquid modes", "--omega"): (
-        _cli(lambda t: ["liquid", "modes", "--omega", t], lambda d: d["omega_rad_s"]),
+    ("liquid modes", "--speeds"): (
+        _cli(lambda t: ["liquid", "modes", "--speeds", t], lambda d: d["omega_rad_s"]),
         10, 60, 3, "rpm", RPM),
     ("liquid speeds", "--volume"): (
         _cli(lambda t: ["liquid", "speeds", "--volume", t],
@@ -192,14 +192,14 @@ PROBES = {
         _cli(lambda t: ["liquid", "kinetostatic", "--delta", t],
              lambda d: [math.radians(x) for x in d["delta_deg"]]),
         10, 60, 3, "deg", math.pi / 180),
-    ("liquid simulate", "--omega"): (
-        _cli(lambda t: ["liquid", "simulate", "--omega", t], lambda d: d["omega_rad_s"]),
+    ("liquid simulate", "--speeds"): (
+        _cli(lambda t: ["liquid", "simulate", "--speeds", t], lambda d: d["omega_rad_s"]),
         300, 600, 2, "rpm", RPM),
-    ("liquid stability", "--omega"): (
-        _cli(lambda t: ["liquid", "stability", "--omega", t], lambda d: d["omega_rad_s"]),
+    ("liquid stability", "--speeds"): (
+        _cli(lambda t: ["liquid", "stability", "--speeds", t], lambda d: d["omega_rad_s"]),
         300, 600, 2, "rpm", RPM),
-    ("liquid kinetostatic-check", "--omega"): (
-        _cli(lambda t: ["liquid", "kinetostatic-check", "--omega", t, "--settle", "0 s"],
+    ("liquid kinetostatic-check", "--speeds"): (
+        _cli(lambda t: ["liquid", "kinetostatic-check", "--speeds", t, "--settle", "0 s"],
              lambda d: d["omega_rad_s"]), 300, 600, 2, "rpm", RPM),
 }
 

@@ -112,22 +112,22 @@ def test_a_huge_duration_names_the_duration(capsys):
 
 # -- options ------------------------------------------------------------------------------------
 def test_errors_name_the_option_typed(capsys):
-    refused(capsys, ["study", "start-positions", "examples/centrifuge.toml", "--n", "100000"],
-            "--n = 100000", "AUTOBALANCE_MAX_MEMORY")
-    line = refused(capsys, ["design", "examples/toploader.toml", "--starts", "100000000"],
-                   "--starts")
+    refused(capsys, ["study", "start-positions", "examples/centrifuge.toml", "--starts", "100000"],
+            "--starts = 100000", "AUTOBALANCE_MAX_MEMORY")
+    line = refused(capsys, ["design", "examples/toploader.toml", "--random", "100000000"],
+                   "--random")
     assert "monte_carlo" not in line
 
 
 @pytest.mark.parametrize("args, needle", [
-    (["study", "start-positions", "examples/centrifuge.toml", "--n", "5", "--random", "5"],
-     "--n = 5 and --random = 5"),
-    (["study", "sensitivity", "examples/centrifuge.toml", "--n", "5", "--random", "5"],
-     "--n = 5 and --random = 5"),
+    (["study", "start-positions", "examples/centrifuge.toml", "--starts", "5", "--random", "5"],
+     "--starts = 5 and --random = 5"),
+    (["study", "sensitivity", "examples/centrifuge.toml", "--starts", "5", "--random", "5"],
+     "--starts = 5 and --random = 5"),
     (["reproduce", "--quick", "--full"], "--quick and --full"),
 ])
 def test_conflicting_options_are_refused(capsys, tmp_path, args, needle):
-    refused(capsys, args + (["--out", str(tmp_path / "o")] if args[0] == "reproduce" else []),
+    refused(capsys, args + (["--out-dir", str(tmp_path / "o")] if args[0] == "reproduce" else []),
             needle)
     assert not (tmp_path / "o").exists()
 

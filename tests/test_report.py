@@ -1,4 +1,4 @@
-"""The reproduction report (issue 7): registry coverage of every seed table/figure, the runner's
+"""The reproduction report: registry coverage of every seed table/figure, the runner's
 bookkeeping (no silent skips), the real `autobalance reproduce all --quick` run once per session,
 its HTML page in a real headless Chromium, and docs/VALIDATION.md generated from the same rows."""
 import json

@@ -95,7 +95,7 @@ def test_cli_text_json_netcdf_and_plot(tmp_path):
 
 
 @pytest.mark.parametrize("extra,field", [
-    (["--law", "cubic"], "--law"), (["--fraction", "0"], "--fraction"),
+    (["--law", "cubic"], "--law"), (["--threshold", "0"], "--threshold"),
     (["--set", "balancer.n_balls=0", "--set", "initial.ball_angles=[]"], "balancer.n_balls")])
 def test_bad_input_is_one_line(extra, field):
     r = runner.invoke(app, ["study", "runup", "washer_000", *[x for s in MOTOR for x in ("--set", s)],

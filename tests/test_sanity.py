@@ -200,12 +200,12 @@ def test_show_uses_the_eccentricity_of_the_grades():
 
 def test_a_study_prints_the_warnings_first_and_lists_them_in_json(tmp_path):
     sets = sum((["--set", s] for s in SMALL_BALLS), [])
-    r = runner.invoke(app, ["study", "immobility", CENTRIFUGE, "--quick", "--n-conf", "12",
+    r = runner.invoke(app, ["study", "immobility", CENTRIFUGE, "--quick", "--starts", "12",
                             *sets])
     assert r.exit_code == 0, r.output                       # a warning never refuses
     assert r.stdout.splitlines()[0].startswith("warning: an unbalance of 2 g*cm")
     out = tmp_path / "imm.nc"
-    r = runner.invoke(app, ["study", "immobility", CENTRIFUGE, "--quick", "--n-conf", "12",
+    r = runner.invoke(app, ["study", "immobility", CENTRIFUGE, "--quick", "--starts", "12",
                             "--json", "--out", str(out), *sets])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)                                 # stdout is JSON alone
@@ -214,6 +214,6 @@ def test_a_study_prints_the_warnings_first_and_lists_them_in_json(tmp_path):
 
     with xr.open_dataset(out) as ds:
         assert json.loads(ds.attrs["warnings"]) == d["warnings"]
-    r = runner.invoke(app, ["study", "immobility", CENTRIFUGE, "--quick", "--n-conf", "12",
+    r = runner.invoke(app, ["study", "immobility", CENTRIFUGE, "--quick", "--starts", "12",
                             "--json"])
     assert json.loads(r.stdout)["warnings"] == []

@@ -1,5 +1,5 @@
 """``study sensitivity``: one change at a time over the same starts, each effect a paired
-difference with a bootstrap standard error (issue 16)."""
+difference with a bootstrap standard error."""
 from __future__ import annotations
 
 import json

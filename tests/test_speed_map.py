@@ -399,7 +399,7 @@ def test_cli_lists_the_family_as_a_family():
 
     from autobalance.cli.analyze import app
 
-    r = CliRunner().invoke(app, ["equilibria", TOP, "--full", "--json"])
+    r = CliRunner().invoke(app, ["equilibria", TOP, "--full-model", "--json"])
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert not any(e["balanced"] for e in out["equilibria"])

@@ -190,7 +190,7 @@ def test_cli_text_names_the_evaluations_and_the_no_verdict_speeds():
 
     from autobalance.cli import app
 
-    args = ["study", "speed-map", GRINDER, "--speeds", "100:175:2", "--damping", "1", "--quick",
+    args = ["study", "speed-map", GRINDER, "--speeds", "100:175:2", "--c-r", "1", "--quick",
             "--units", "speed=rad/s"]
     r = CliRunner().invoke(app, args)
     assert r.exit_code == 0, r.output

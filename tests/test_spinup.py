@@ -72,8 +72,8 @@ def test_laminar_layer_spins_up_as_its_closed_form():
                                        (1.0, 0.02)])     # the slow rate: 2.2 s
 def test_viscous_slow_run_up_is_quasi_static(rate, tol):
     """A liquid 100 times as viscous as water follows the chamber: it reaches the lid at 003 eq
-    6's speed (measured +0.30 % at 0.2 1/s^2, +1.55 % at 1 1/s^2; before stop 32, with the
-    ramp's acceleration interpolated down to 0 at its end, +0.26 % and +1.3 %)."""
+    6's speed (measured +0.30 % at 0.2 1/s^2, +1.55 % at 1 1/s^2, the ramp's acceleration taken
+    whole)."""
     run = spinup_run(R, H, V, ramp(rate), 100.0 / rate, viscosity=1e-4)
     w = run.mode_changes()[-1]["speed_rad_s"]
     assert EQ6 <= w <= EQ6 * (1 + tol)
@@ -82,8 +82,7 @@ def test_viscous_slow_run_up_is_quasi_static(rate, tol):
 @pytest.mark.slow
 def test_entrainment_speed_converges_under_grid_refinement():
     """Water at 1 1/s^2: the chamber speed at the lid on 50, 100, 200 cells (measured 20.881,
-    20.919, 20.925 1/s since stop 32, the ramp's acceleration taken whole; before, 20.2995,
-    20.3263, 20.3312): the differences shrink and 100 cells are within 0.05 % of 200."""
+    20.919, 20.925 1/s, the ramp's acceleration taken whole): the differences shrink and 100 cells are within 0.05 % of 200."""
     w = [spinup_run(R, H, V, ramp(1.0), 60.0, n_cells=n).mode_changes()[-1]["speed_rad_s"]
          for n in (50, 100, 200)]
     assert abs(w[2] - w[1]) < 0.5 * abs(w[1] - w[0])
@@ -174,7 +173,7 @@ def test_cli_end_to_end(tmp_path):
                          capture_output=True, text=True, timeout=600)
     lines = bad.stderr.strip().splitlines()
     assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: profile")
-    # (a horizontal axis ran into a one-line refusal until stop 40: tests/test_rimming.py)
+    # (a horizontal axis: tests/test_rimming.py)
 
 
 @pytest.mark.slow

@@ -1,4 +1,4 @@
-"""The machine-agnostic studies (issue 13): the same study runs on a preset, a TOML path or a
+"""The machine-agnostic studies: the same study runs on a preset, a TOML path or a
 Config built in Python, and gives the same numbers for the same machine; no file under papers/
 is needed."""
 import numpy as np

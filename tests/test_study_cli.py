@@ -42,7 +42,7 @@ def one_line_error(r, field: str):
 @pytest.mark.slow
 def test_start_positions_json_matches_its_netcdf(tmp_path):
     out = tmp_path / "sp.nc"
-    d = run_json("start-positions", CENTRIFUGE, "--n", 4, "--out", out)
+    d = run_json("start-positions", CENTRIFUGE, "--starts", 4, "--out", out)
     assert d["runs"] == 10 and d["failed"] == 0          # 4 (4 + 1) / 2 starts of two balls
     ds = xr.load_dataset(out)
     g = ds["grade_G"].values                             # (sample, checkpoint)
@@ -66,12 +66,12 @@ def test_start_positions_three_balls_random_starts_and_grade():
 @pytest.mark.slow
 def test_start_positions_store_resumes_and_a_changed_machine_gets_its_own(tmp_path):
     store = tmp_path / "stores"
-    a = run_json("start-positions", CENTRIFUGE, "--n", 3, "--store", store, "--executor", "serial")
-    b = run_json("start-positions", CENTRIFUGE, "--n", 3, "--store", store, "--executor", "serial")
+    a = run_json("start-positions", CENTRIFUGE, "--starts", 3, "--store", store, "--executor", "serial")
+    b = run_json("start-positions", CENTRIFUGE, "--starts", 3, "--store", store, "--executor", "serial")
     for k in ("checkpoints", "regions", "runs"):
         assert a[k] == b[k]
     assert len(list(store.iterdir())) == 1
-    c = run_json("start-positions", CENTRIFUGE, "--n", 3, "--store", store, "--executor", "serial",
+    c = run_json("start-positions", CENTRIFUGE, "--starts", 3, "--store", store, "--executor", "serial",
                  "--set", "balancer.rolling_resistance=0.004")
     assert len(list(store.iterdir())) == 2 and c["runs"] == a["runs"]
 
@@ -112,7 +112,7 @@ def test_plateau_default_starts_keep_the_runs_per_cell_for_any_ball_count():
 
 # -- unbalance range ----------------------------------------------------------------------------
 def test_unbalance_range_stays_between_the_operating_boundaries(tmp_path):
-    d = run_json("unbalance-range", CENTRIFUGE, "--steps", 2, "--n", 3, "--plot",
+    d = run_json("unbalance-range", CENTRIFUGE, "--steps", 2, "--starts", 3, "--plot",
                  tmp_path / "u.png", "--executor", "serial")
     G, Gb = np.asarray(d["G_ini_mm_s"]), d["G_balls_mm_s"]
     assert np.allclose(d["lower_boundary_grade_G_mm_s"], np.abs(G - Gb))
@@ -129,7 +129,7 @@ def test_unbalance_range_stays_between_the_operating_boundaries(tmp_path):
 
 # -- plateau ------------------------------------------------------------------------------------
 def test_plateau_recommends_the_best_studied_ratio():
-    d = run_json("plateau", CENTRIFUGE, "--ratios", "1.0,1.1", "--n", 3, "--quick",
+    d = run_json("plateau", CENTRIFUGE, "--ratios", "1.0,1.1", "--starts", 3, "--quick",
                  "--executor", "serial")
     m = np.asarray(d["mean_p95_grade_G_mm_s"])
     k = int(np.argmin(m))
@@ -137,6 +137,9 @@ def test_plateau_recommends_the_best_studied_ratio():
     assert d["recommended_plateau_rad_s"] == pytest.approx(
         d["recommended_plateau_ratio"] * d["natural_frequency_rad_s"])
     assert d["at_grid_edge"] is True
+    # the sequential step: by default at most as many runs again as the start grid ran
+    b = d["budget"]
+    assert b["runs"] == b["first_pass"] == 2 * 3 * 6 and 0 <= b["spent"] <= b["runs"]
 
 
 @pytest.mark.slow
@@ -148,7 +151,7 @@ def test_recommended_plateau_beats_its_neighbour_in_independent_runs():
     from autobalance.physics.iso1940 import unbalance_value
     from autobalance.studies.start_positions import compute_start_positions
 
-    d = run_json("plateau", CENTRIFUGE, "--ratios", "0.98,1.1", "--n", 6, "--quick")
+    d = run_json("plateau", CENTRIFUGE, "--ratios", "0.98,1.1", "--starts", 6, "--quick")
     best = d["recommended_plateau_ratio"]
     other = [r for r in d["plateau_ratios"] if r != best][0]
     cfg = load_config(CENTRIFUGE)
@@ -197,7 +200,7 @@ def test_immobility_figure_speaks_the_configs_speed_unit(tmp_path):
 # -- speed map ----------------------------------------------------------------------------------
 @pytest.mark.slow
 def test_speed_map_cli_json_netcdf_and_the_three_ball_family(tmp_path):
-    d = run_json("speed-map", TOPLOADER, "--quick", "--damping", "1", "--out", tmp_path / "m.nc")
+    d = run_json("speed-map", TOPLOADER, "--quick", "--c-r", "1", "--out", tmp_path / "m.nc")
     assert d["counts"]["max_families"] == 1 and d["counts"]["max_isolated"] <= 4
     (lo, hi), = d["stable_ranges_rad_s"]
     wn = d["natural_frequencies_rad_s"][0]
@@ -224,7 +227,7 @@ def test_tolerances_cli_and_its_simulation_check():
 # -- bad input ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("args, field", [
     (("start-positions", CENTRIFUGE, "--grade", "0"), "--grade"),
-    (("start-positions", CENTRIFUGE, "--n", "0"), "--n"),
+    (("start-positions", CENTRIFUGE, "--starts", "0"), "--starts"),
     (("start-positions", CENTRIFUGE, "--plot", "x.txt"), "--plot"),
     (("start-positions", CENTRIFUGE, "--grid", "rotor.unbalance"), "--grid"),
     (("start-positions", CENTRIFUGE, "--grid", "rotor.nothing=1,2"), "--grid"),
@@ -235,13 +238,15 @@ def test_tolerances_cli_and_its_simulation_check():
     (("unbalance-range", CENTRIFUGE, "--g-max", "-3"), "--g-max"),
     (("plateau", TOPLOADER, "--quick"), "profile.kind"),
     (("plateau", CENTRIFUGE, "--ratios", "1,x"), "--ratios"),
+    (("plateau", CENTRIFUGE, "--budget", "-1"), "--budget"),
+    (("unbalance-range", CENTRIFUGE, "--budget", "-5"), "--budget"),
     (("immobility", "washer_000", "--quick"), "suspension"),
     (("immobility", CENTRIFUGE, "--mu-r", "0"), "--mu-r"),
-    (("immobility", CENTRIFUGE, "--n-conf", "1"), "--n-conf"),
+    (("immobility", CENTRIFUGE, "--starts", "1"), "--starts"),
     (("speed-map", CENTRIFUGE, "--speeds", "5000 rpm:300 rpm:10"), "--speeds"),
     (("speed-map", CENTRIFUGE, "--speeds", "1:2"), "--speeds"),
     (("speed-map", CENTRIFUGE, "--speeds", "0:5000 rpm:10"), "--speeds"),
-    (("speed-map", CENTRIFUGE, "--damping", "-1"), "--damping"),
+    (("speed-map", CENTRIFUGE, "--c-r", "-1"), "--c-r"),
     (("tolerances", CENTRIFUGE, "--split", "rolling=x"), "--split"),
     (("tolerances", CENTRIFUGE, "--speed", "-3 rpm"), "--speed"),
     (("tolerances", CENTRIFUGE, "--method", "paper"), "--method"),
@@ -268,7 +273,7 @@ def test_design_ranks_cheapest_meeting_design_first_and_marks_the_pareto_front()
     from autobalance.studies.design_verdicts import VERDICT_ORDER
 
     d = run_json("design", CENTRIFUGE, "--balls", "2,3", "--capacity", "1.3,1.8", "--profiles",
-                 "std", "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 4, "--n-unbalance", 2,
+                 "std", "--unbalance", "0.3 g*m:0.5 g*m", "--random", 4, "--n-unbalance", 2,
                  "--grade", 25, "--executor", "serial", "--confidence", 0.9, "--budget", 0)
     assert d["simulations"] == d["simulations_first_pass"] == 4 * 2 * 4 and d["n_designs"] == 4
     assert d["budget"]["spent"] == 0
@@ -307,7 +312,7 @@ def test_design_of_a_machine_on_its_own_ramp():
     ramp = ["--profile", "ramp", "--set", "profile.start_speed=0 rpm", "--set",
             "profile.end_speed=1000 rpm", "--set", "profile.ramp_time=6 s", "--set",
             "profile.duration=8 s"]
-    common = ["--balls", "2", "--capacity", "1.5", "--starts", 3, "--n-unbalance", 1,
+    common = ["--balls", "2", "--capacity", "1.5", "--random", 3, "--n-unbalance", 1,
               "--grade", 40, "--executor", "serial", "--budget", 0]
     r = run("design", "washer_000", *ramp, *common)
     assert r.exit_code == 0, r.output
@@ -326,14 +331,14 @@ def test_design_beside_a_horizontal_liquid_keeps_the_tolerances_notes():
     """The washer's ring with two balls on its own ramp: design gives the tolerances of study
     tolerances with that study's notes (there the balanced state's Floquet verdict on a
     horizontal axis and the warning that a run-up can end in an asynchronous whirl), in the
-    JSON and the text. Until stop 33 design dropped them."""
+    JSON and the text."""
     from autobalance.studies.tolerances import compute_tolerances
 
     balls = ["balancer.n_balls=2", "balancer.ball_mass=0.5 kg", "balancer.race_radius=0.3 m",
              "balancer.ball_radius=15 mm", "balancer.damping=20 N*mm*s/rad",
              "balancer.rolling_resistance=0.001"]
     args = ["design", "leblanc_washer", *[x for b in balls for x in ("--set", b)], "--balls", "2",
-            "--capacity", "1.5", "--starts", 1, "--n-unbalance", 1, "--grade", 100,
+            "--capacity", "1.5", "--random", 1, "--n-unbalance", 1, "--grade", 100,
             "--executor", "serial"]
     d = run_json(*args)
     notes = d["tolerances"]["notes"]
@@ -359,7 +364,7 @@ def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys
     from autobalance.studies.tolerances import compute_tolerances
 
     d = run_json("design", CENTRIFUGE, "--balls", "2", "--capacity", "1.3", "--profiles", "tsr",
-                 "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 3, "--n-unbalance", 2, "--quick",
+                 "--unbalance", "0.3 g*m:0.5 g*m", "--random", 3, "--n-unbalance", 2, "--quick",
                  "--executor", "serial", "--out", tmp_path / "d.nc", "--budget", 0)
     p = d["plateau_study"]
     assert p["ratios"] == [1.0, 1.06, 1.12]
@@ -407,7 +412,7 @@ def test_design_result_meets_its_target_when_simulated_again_with_new_starts():
     from autobalance.studies.start_positions import compute_start_positions, load
 
     d = run_json("design", CENTRIFUGE, "--balls", "2,3", "--capacity", "1.3", "--profiles",
-                 "std,tsr", "--unbalance", "0.3 g*m:0.5 g*m", "--starts", 10, "--n-unbalance", 2,
+                 "std,tsr", "--unbalance", "0.3 g*m:0.5 g*m", "--random", 10, "--n-unbalance", 2,
                  "--grade", 25, "--executor", "serial")
     best = d["best"]
     assert best is not None and best["verdict"] == "meets"

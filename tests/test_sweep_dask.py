@@ -144,19 +144,19 @@ def test_reproduce_target_on_the_cluster_equals_local(cluster, tmp_path, monkeyp
     monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
     runner = CliRunner()
     m0, _ = run_task_counts(cluster)
-    r = runner.invoke(app, ["reproduce", "004-fig5-6-table2", "--json", "--out", str(tmp_path / "d"),
+    r = runner.invoke(app, ["reproduce", "004-fig5-6-table2", "--json", "--out-dir", str(tmp_path / "d"),
                             "--scheduler", cluster.scheduler_address])
     assert r.exit_code == 0, r.output
     m1, _ = run_task_counts(cluster)
     assert m1 > m0                                              # really ran on the cluster
     assert "DASK_SCHEDULER_ADDRESS" not in os.environ          # restored
-    r2 = runner.invoke(app, ["reproduce", "004-fig5-6-table2", "--json", "--out", str(tmp_path / "l")])
+    r2 = runner.invoke(app, ["reproduce", "004-fig5-6-table2", "--json", "--out-dir", str(tmp_path / "l")])
     assert r2.exit_code == 0, r2.output
     rows = [json.loads(x.stdout)["targets"][0]["rows"] for x in (r, r2)]
     assert rows[0] == rows[1] and rows[0][0]["computed"] == 78
 
 
-# -- a real `dask scheduler` / `dask worker` pair in their own processes (issue 12) -------------
+# -- a real `dask scheduler` / `dask worker` pair in their own processes ------------------------
 def _free_port() -> int:
     import socket
 

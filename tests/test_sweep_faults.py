@@ -1,4 +1,4 @@
-"""Nothing silently wrong (issue 12): store identity, tasks keyed by run, per-cell options, the
+"""Nothing silently wrong: store identity, tasks keyed by run, per-cell options, the
 store lock, prompt interruption (real SIGINT / SIGTERM / kill -9 on real processes), write
 errors, corrupted task files, failed runs, resource guards, start placement up to capacity.
 

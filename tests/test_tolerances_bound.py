@@ -1,4 +1,4 @@
-"""Issue 14 item 6: tolerances from a target grade and a worst case that is a true bound, for N
+"""Tolerances from a target grade and a worst case that is a true bound, for N
 balls and any balancer (physics/worst_case.py, physics/tolerance.py, studies/tolerances.py,
 ``analyze bounds`` and ``analyze tolerance``; docs/tolerances.md).
 
@@ -314,7 +314,7 @@ def test_analyze_bounds_three_balls_no_blow_up():
 
 @pytest.mark.slow
 def test_analyze_tolerance_text_and_json():
-    r = runner.invoke(app, ["tolerance", TOP, "--grade", "6.3", "--fraction", "0.1"])
+    r = runner.invoke(app, ["tolerance", TOP, "--grade", "6.3", "--residual-fraction", "0.1"])
     assert r.exit_code == 0, r.output
     assert "G6.3 (ISO class G6.3)" in r.stdout and "000 method" in r.stdout
     r = runner.invoke(app, ["tolerance", TOP, "--json"])
@@ -385,7 +385,7 @@ def test_bad_input_one_line_error(fn, field):
 
 @pytest.mark.parametrize("args", [
     ["tolerance", TOP, "--grade", "-3"],
-    ["tolerance", TOP, "--fraction", "2"],
+    ["tolerance", TOP, "--residual-fraction", "2"],
     ["bounds", TOP, "--f-r", "2"],
 ])
 def test_cli_bad_input_exit_2(args):

@@ -403,7 +403,7 @@ runner = CliRunner()
 def test_cli_immobility_json_and_plot(tmp_path):
     png = tmp_path / "im.png"
     r = runner.invoke(app, ["study", "immobility", "vub_jeffcott_004", "--json", "--plot", str(png),
-                            "--mu-r", "0.5,1", "--c-r", "1,1.4", "--n-conf", "24"])
+                            "--mu-r", "0.5,1", "--c-r", "1,1.4", "--starts", "24"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     # the machine's own grade (ISO 1940 with the total mass): 1e3 U / (M + 2 m) Omega_nom
@@ -418,7 +418,7 @@ def test_cli_reproduce_single_target_text(tmp_path):
     """One target by name, text output: the summary line, one progress line, its figure and a
     report of that target alone (004-table1-fig3: the cheapest 004 target; 004-fig4's own rows
     and figure are checked on the quick report above)."""
-    r = runner.invoke(app, ["reproduce", "004-table1-fig3", "--out", str(tmp_path)])
+    r = runner.invoke(app, ["reproduce", "004-table1-fig3", "--out-dir", str(tmp_path)])
     assert r.exit_code == 0, r.output
     assert "published quantities reproduced" in r.stdout
     assert r.stderr.startswith("[1/1] 004-table1-fig3")   # progress, one line per target
@@ -440,7 +440,7 @@ def test_cli_reproduce_monte_carlo_json_resumes(quick_report, report_targets, tm
                 for p in (tmp_path / "stores").rglob("*") if p.is_file() and p.name != "lock"}
 
     before = files()
-    args = ["reproduce", "004-fig5-6-table2", "--executor", "serial", "--json", "--out", str(tmp_path)]
+    args = ["reproduce", "004-fig5-6-table2", "--executor", "serial", "--json", "--out-dir", str(tmp_path)]
     r = runner.invoke(app, args)
     assert r.exit_code == 0, r.output
     assert json.loads(r.stdout)["targets"][0]["rows"] == report_targets["004-fig5-6-table2"]["rows"]
@@ -467,7 +467,7 @@ def test_cli_bad_input_one_line_exit_2(args, word, monkeypatch):
 def test_cli_reproduce_out_is_a_file(tmp_path):
     f = tmp_path / "x"
     f.write_text("keep")
-    r = runner.invoke(app, ["reproduce", "004-fig8-10", "--out", str(f)])
+    r = runner.invoke(app, ["reproduce", "004-fig8-10", "--out-dir", str(f)])
     assert r.exit_code == 2 and "--out" in r.output and f.read_text() == "keep"
 
 
@@ -515,8 +515,8 @@ def test_immobility_with_gravity_is_the_kernels_over_a_revolution(alpha, f_hz):
 def test_gravity_alone_moves_balls_below_its_speed():
     """Below Omega^2 = g sqrt(1 + mu_s^2) / (mu_s R) (59.6 Hz on 004's rig: mu_s = 0.002,
     R = 35 mm) no ball at rest stays: immobility 0, G* = 0; far above it (167 Hz) G* moves by
-    the relative g / (mu_s R Omega^2) only. Until stop 33 the closed forms left gravity out, and
-    `study immobility` gave a horizontal machine the vertical one's numbers."""
+    the relative g / (mu_s R Omega^2) only, so `study immobility` does not give a horizontal
+    machine the vertical one's numbers."""
     import dataclasses
 
     s0 = t._cfg().system

@@ -19,8 +19,10 @@ from typing import Optional
 import typer
 
 from . import analyze, liquid, machine, reproduce, response, simulate, study, sweep
-from . import liquid_check, study_design, study_liquid, study_maps, study_runup  # noqa: F401  (register their commands)
+from . import (liquid_check, study_design, study_liquid, study_maps,  # noqa: F401  (register their commands)
+               study_runup, study_tsr)
 from .common import ERRORS_PRINTED, USER_ERRORS, error_text, forget_written, one_line, print_error
+from .vocabulary import rewrite_deprecated
 
 __all__ = ["app", "main"]
 
@@ -70,6 +72,9 @@ def main(argv: Optional[list[str]] = None) -> None:
 
     forget_written()
     printed = ERRORS_PRINTED[0]
+    argv, warnings = rewrite_deprecated(sys.argv[1:] if argv is None else list(argv))
+    for w in warnings:
+        print(w, file=sys.stderr)
     try:
         rv = app(args=argv, prog_name="autobalance", standalone_mode=False)
     except NoArgsIsHelpError:           # the help was printed

@@ -107,7 +107,7 @@ def _full_verdict(system, w: float, alpha, family: bool) -> dict:
 
 @app.command()
 def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
-               full: Annotated[bool, typer.Option("--full", help="Also the linearised full model "
+               full: Annotated[bool, typer.Option("--full-model", help="Also the linearised full model "
                                                   "(eigenvalues in a steady rotor frame, else "
                                                   "Floquet multipliers by shooting).")] = False,
                json_: JsonOpt = False) -> None:
@@ -313,11 +313,12 @@ def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
               grade: Annotated[float, typer.Option("--grade", help="Target ISO 1940 grade G "
                                                    "[mm/s] (default 16).")] = 16.0,
               fraction: Annotated[Optional[float], typer.Option(
-                  "--fraction", help="Also the 000 paper's method (one ball, mR = Me): required "
+                  "--residual-fraction", help="Also the 000 paper's method (one ball, mR = Me): required "
                                      "residual / Me, e.g. 0.1.")] = None,
               json_: JsonOpt = False) -> None:
     """Tolerances for a target grade (000 eq 56-66 for any balancer, on the true worst-case
-    bound) and the worst case of the machine's own tolerances; --fraction: the 000 method.\f
+    bound) and the worst case of the machine's own tolerances; --residual-fraction: the 000
+    method.\f
 
     Parameters
     ----------
@@ -337,7 +338,7 @@ def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         if not (math.isfinite(grade) and grade > 0):
             raise ConfigError(f"--grade = {grade!r}: must be a grade G > 0 [mm/s], e.g. 16 (ISO 1940 G16)")
         if fraction is not None and not (math.isfinite(fraction) and 0 < fraction <= 1):
-            raise ConfigError(f"--fraction = {fraction!r}: must be within (0, 1]: the required "
+            raise ConfigError(f"--residual-fraction = {fraction!r}: must be within (0, 1]: the required "
                               "residual / Me of the 000 method, e.g. 0.1")
         s = cfg.system
         w = speed_at(cfg, speed) if speed is not None else None

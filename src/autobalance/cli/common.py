@@ -163,14 +163,14 @@ def guard() -> Iterator[None]:
 @contextmanager
 def as_options(fields: dict[str, str]) -> Iterator[None]:
     """Context manager: an input error that names a library field the user gave through an
-    option names that option instead (``monte_carlo.n = 100000: ...`` becomes ``--n = 100000:
+    option names that option instead (``monte_carlo.n = 100000: ...`` becomes ``--starts = 100000:
     ...``), so the one line speaks the command line the user typed.
 
     Parameters
     ----------
     fields : dict of str to str
         Library field (the start of the message) -> the option that set it, e.g.
-        ``{"monte_carlo.n": "--n"}``.
+        ``{"monte_carlo.n": "--starts"}``.
 
     Raises
     ------

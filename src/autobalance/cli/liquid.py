@@ -1,7 +1,7 @@
 """``autobalance liquid ...``: liquid (Leblanc) balancer commands (seeds 001, 003).
 
 Every command takes ``--json`` (one JSON object on stdout, SI, unit-suffixed keys). Values take
-units: ``--volume "100 ml"``, ``--radius "0.2 m"``, ``--omega "28 rad/s"``, ``--delta "30 deg"``.
+units: ``--volume "100 ml"``, ``--radius "0.2 m"``, ``--speeds "28 rad/s"``, ``--delta "30 deg"``.
 
 The liquid options: ``volume`` the liquid volume [m^3], ``radius`` and ``height`` the chamber's
 [m], ``omega`` the speed(s) [rad/s], ``g`` the gravity [m/s^2] (each with units, or a bare number
@@ -38,7 +38,8 @@ app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
 VolOpt = Annotated[str, typer.Option("--volume", "-V", help="Liquid volume, e.g. '100 ml'.")]
 ROpt = Annotated[str, typer.Option("--radius", "-R", help="Chamber radius, e.g. '0.2 m'.")]
 HOpt = Annotated[str, typer.Option("--height", help="Chamber height, e.g. '0.05 m'.")]
-GOpt = Annotated[str, typer.Option("--g", help="Gravity; 003's printed speeds use '10 m/s^2'.")]
+GOpt = Annotated[str, typer.Option(
+    "--gravity", help="Gravity; 003's printed speeds use '10 m/s^2'.")]
 
 #: Figure formats of the liquid commands' ``--plot``.
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
@@ -69,19 +70,19 @@ def _q(value: str, kind: str, field: str) -> float:
 
 #: Memory of one value of a range or list [B]: its result row (a dict of floats) and JSON text.
 LIST_BYTES_PER_POINT = 2048
-#: Help of ``--omega`` where it takes several speeds.
+#: Help of ``--speeds`` where it takes several speeds.
 OMEGA_HELP = grammar_help("Speeds", "0:60 rad/s:13")
 
 
 def _increasing(ws: list[float], omega: str, allowed: str) -> None:
-    """ConfigError naming ``--omega`` unless the speeds ``ws`` [rad/s] increase and are > 0."""
+    """ConfigError naming ``--speeds`` unless the speeds ``ws`` [rad/s] increase and are > 0."""
     if any(b <= a for a, b in zip(ws, ws[1:])) or min(ws) <= 0:
-        raise ConfigError(f"--omega = {omega!r}: {allowed}")
+        raise ConfigError(f"--speeds = {omega!r}: {allowed}")
 
 
 def _list(value: str, kind: str, option: str) -> list[float]:
     """The values [SI unit of ``kind``] of a liquid option ``option`` (as typed, e.g.
-    ``"--omega"``): a range ``LO:HI:N`` with N >= 1 or a list ``a, b, c unit``
+    ``"--speeds"``): a range ``LO:HI:N`` with N >= 1 or a list ``a, b, c unit``
     (:func:`autobalance.config.ranges.parse_values`), the table within the memory limit."""
     return [float(v) for v in parse_values(value, kind, option, min_points=1,
                                            bytes_per_point=LIST_BYTES_PER_POINT)]
@@ -107,7 +108,7 @@ def _liquid(name: str):
 
 @app.command()
 def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
-            omega: Annotated[str, typer.Option("--omega", metavar=VALUES_METAVAR,
+            omega: Annotated[str, typer.Option("--speeds", metavar=VALUES_METAVAR,
                                                help=OMEGA_HELP)] = "0, 0.6, 0.89, 10, 28, 60 rad/s",
             g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False, plot: PlotOpt = None):
     """Free surface z(r) = z_* + omega^2 r^2/(2g) clipped to the chamber (003 eq 2-5).\f
@@ -124,8 +125,8 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
     _check_plot(plot)
     V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
                _q(height, "length", "height"))
-    gg = _q(g, "acceleration", "g")
-    ws = _list(omega, "speed", "--omega")
+    gg = _q(g, "acceleration", "gravity")
+    ws = _list(omega, "speed", "--speeds")
     rows = []
     for w in ws:
         fs = free_surface(w, V, R, h, gg)
@@ -174,7 +175,7 @@ def speeds(volume: Annotated[str, typer.Option(
 
 @app.command()
 def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
-          omega: Annotated[str, typer.Option("--omega", metavar=VALUES_METAVAR,
+          omega: Annotated[str, typer.Option("--speeds", metavar=VALUES_METAVAR,
                                                help=OMEGA_HELP)] = "0:60 rad/s:13",
           g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False):
     """003 motion mode (1..4) at each speed.\f
@@ -188,8 +189,8 @@ def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.0
 
     V, R, h = (_q(volume, "volume", "volume"), _q(radius, "length", "radius"),
                _q(height, "length", "height"))
-    gg = _q(g, "acceleration", "g")
-    ws = _list(omega, "speed", "--omega")
+    gg = _q(g, "acceleration", "gravity")
+    ws = _list(omega, "speed", "--speeds")
     m = [motion_mode(w, V, R, h, gg) for w in ws]
     _out({"volume_m3": V, "omega_rad_s": ws, "mode": m,
           "mode_name": [MODE_NAMES[i] for i in m], **mode_speeds(V, R, h, gg)}, as_json)
@@ -202,7 +203,8 @@ def kinetostatic(delta: Annotated[str, typer.Option(
                  k: Annotated[float, typer.Option(help="k = D0/D.")] = 1.1,
                  liquid: Annotated[str, typer.Option(help="Liquid of liquids_001 for beta.")] = "water",
                  volume: VolOpt = "150 ml", radius: ROpt = "0.2 m",
-                 omega: Annotated[str, typer.Option(help="Speed for beta.")] = "30 rad/s",
+                 omega: Annotated[str, typer.Option("--speed", help="Speed for beta.")] = (
+                     "30 rad/s"),
                  arc: Annotated[str, typer.Option(help="Liquid arc xi (001 eq 5).")] = "180 deg",
                  as_json: JsonOpt = False):
     """Liquid angle alpha0 (001 eq 3), e_c/e, lambda0 (001 eq 4), friction angle beta (eq 6).\f
@@ -228,7 +230,7 @@ def kinetostatic(delta: Annotated[str, typer.Option(
         raise ParameterError("k", k, "k = D0/D must be > 0 and finite")
     L = _liquid(liquid)
     V, R = _q(volume, "volume", "volume"), _q(radius, "length", "radius")
-    w = _q(omega, "speed", "omega")
+    w = _q(omega, "speed", "speed")
     xi = _q(arc, "angle", "arc")
     a0 = alpha0(ds, k)
     beta = float(friction_angle(L.dynamic_viscosity, R, xi, L.density * V, w))
@@ -290,7 +292,8 @@ def simulate(source: Annotated[str, typer.Argument(
                  help="One of 001's liquids (sets density and viscosity).")] = None,
              placement: Annotated[Optional[str], typer.Option(
                  help="drach | deflection (the lumped model's law)")] = None,
-             omega: Annotated[str, typer.Option(metavar=VALUES_METAVAR, help=grammar_help(
+             omega: Annotated[str, typer.Option(
+                 "--speeds", metavar=VALUES_METAVAR, help=grammar_help(
                  "Steady speeds", "5:100 rad/s:96", tail="increasing and > 0 for --model "
                  "physical"))] = "5:100 rad/s:96",
              run: Annotated[bool, typer.Option("--run-up/--no-run-up",
@@ -346,7 +349,7 @@ def simulate(source: Annotated[str, typer.Argument(
     model = LiquidModel(**({"placement": placement} if placement else {}))
     cfg, rot, bal, chambers = _machine(source, sets, radius, liquid, volume, unbalance)
     _check_plot(plot, source)
-    ws = _list(omega, "speed", "--omega")
+    ws = _list(omega, "speed", "--speeds")
     physical = model_kind == "physical"
     L = cfg.system.liquid
     if bal is None and not physical:
@@ -510,7 +513,8 @@ def stability(source: Annotated[str, typer.Argument(
                   metavar="PRESET|CONFIG", help="A machine with a [liquid] section (a vertical "
                   "or horizontal axis), alone or beside balls.")] = "leblanc_003",
               sets: SetOpt = None,
-              omega: Annotated[str, typer.Option(metavar=VALUES_METAVAR, help=grammar_help(
+              omega: Annotated[str, typer.Option(
+                  "--speeds", metavar=VALUES_METAVAR, help=grammar_help(
                   "Speeds", "10:120 rad/s:45", tail="increasing"))] = "10:120 rad/s:45",
               cells: Annotated[int, typer.Option(
                   "--cells", help="Cells around each wall.")] = 64,
@@ -542,7 +546,7 @@ def stability(source: Annotated[str, typer.Argument(
 
     _check_plot(plot, source)
     cfg = load_machine(source, sets, balls="liquid")
-    ws = _list(omega, "speed", "--omega")
+    ws = _list(omega, "speed", "--speeds")
     balls = cfg.system.balancer.n_balls > 0
     with as_options({"n_cells": "--cells"}):
         res = (balanced_machine_stability(cfg.system, ws, cells) if balls
@@ -565,7 +569,7 @@ def stability(source: Annotated[str, typer.Argument(
     if not as_json:
         from ..config.display import display_units
 
-        # speeds in the unit --omega was written in (e.g. rpm), else as the config writes them
+        # speeds in the unit --speeds was written in (e.g. rpm), else as the config writes them
         unit = written_unit(omega)
         du = display_units(cfg, f"speed={unit}" if unit else None)
         sp = lambda x: du.fmt(x, "speed")       # noqa: E731

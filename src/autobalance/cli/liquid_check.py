@@ -21,7 +21,8 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
                        sets: SetOpt = None,
                        liquid: Annotated[Optional[str], typer.Option(
                            help="One of 001's liquids (sets density and viscosity).")] = None,
-                       omega: Annotated[str, typer.Option(metavar=VALUES_METAVAR, help=grammar_help(
+                       omega: Annotated[str, typer.Option(
+                           "--speeds", metavar=VALUES_METAVAR, help=grammar_help(
                            "Speeds", "40:100 rad/s:13", tail="increasing"))] = "40:100 rad/s:13",
                        settle: Annotated[str, typer.Option(
                            help="Also run the coupled film this long at each speed ('0 s': "
@@ -61,7 +62,7 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
                           "one chamber")
     L.vertical("for 001's kinetostatic laws (a vertical rotor)")
     _check_plot(plot, source)
-    ws = _list(omega, "speed", "--omega")
+    ws = _list(omega, "speed", "--speeds")
     _increasing(ws, omega, "must be increasing speeds > 0")
     t = _q(settle, "time", "settle")
     if not 0 <= t <= 60:

@@ -10,6 +10,8 @@ import typer
 
 from ..atomic import write_atomic
 from ..config import describe, list_presets, load_config
+from ..config.display import DISPLAY_KINDS, display_units
+from ..config.schema import PROFILE_KINDS, SECTIONS
 from ..jsonable import to_jsonable
 from .common import JsonOpt, ProfileOpt, SetOpt, SourceArg, guard, load_machine, print_json
 from .simulate import fmt_value, run_config, write_outputs
@@ -33,13 +35,20 @@ def presets(json_: JsonOpt = False) -> None:
         typer.echo(f"{p['name']:<{width}}  {p['description']}")
 
 
-def _raw_key(dkey: str, raw_section: dict) -> Optional[str]:
-    """The key of the config file that a described key (``kx_N_m``) comes from (``kx``)."""
+#: Derived quantities of ``show`` -> their display kind (also shown in the config's units).
+DERIVED_KINDS = {"total_mass_kg": "mass", "eccentricity_m": "length",
+                 "ball_capacity_kg_m": "unbalance", "natural_frequencies_rad_s": "speed"}
+
+
+def _raw_key(dkey: str, raw_section: dict, fields=()) -> Optional[str]:
+    """The key of the config file that a described key (``kx_N_m``) comes from (``kx``): the
+    longest of the section's ``fields`` and file keys that it starts with, if the file has it
+    (``unbalance_schedule_s_kg_m`` is not ``unbalance``)."""
     best = None
-    for k in raw_section:
+    for k in (*fields, *raw_section):
         if (dkey == k or dkey.startswith(k + "_")) and (best is None or len(k) > len(best)):
             best = k
-    return best
+    return best if best in raw_section else None
 
 
 def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
@@ -65,6 +74,9 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         return
     typer.echo(f"{d['name']}: {d['description']}")
     typer.echo(f"source: {d['source']}")
+    du = display_units(cfg)
+    fields = {**{k: tuple(v) for k, v in SECTIONS.items()},
+              "profile": tuple(PROFILE_KINDS.get(cfg.profile_kind, ()))}
     for section in ("rotor", "suspension", "balancer", "gravity", "liquid", "profile", "initial",
                     "options", "derived"):
         if section not in d:
@@ -75,9 +87,14 @@ def show(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
             if section == "derived" and key == "eccentricity_definition":
                 continue                    # shown on the eccentricity's own line
             line = f"  {key:<30} {fmt_value(value)}"
+            if section == "derived" and key in DERIVED_KINDS:
+                vals = value if isinstance(value, (list, tuple)) else [value]
+                shown = ", ".join(du.fmt(v, DERIVED_KINDS[key]) for v in vals)
+                if du.unit(DERIVED_KINDS[key]) != DISPLAY_KINDS[DERIVED_KINDS[key]]:
+                    line += f"   (= {shown})"        # in the units the config writes
             if section == "derived" and key == "eccentricity_m":
                 line += f"   ({d['derived']['eccentricity_definition']})"
-            rk = _raw_key(key, raw)
+            rk = _raw_key(key, raw, fields.get(section, ()))
             if rk is not None:
                 if isinstance(raw[rk], (str, list)) and str(raw[rk]) != str(value):
                     line += f"   (= {raw[rk]!s})" if isinstance(raw[rk], list) else \
@@ -102,7 +119,8 @@ def _row(name: str, status: str, wall: Any, summary: dict) -> str:
             f" {_num(final.get('grade_G_mm_s')):>10} {_num(summary.get('max_amplitude_m'), 1e3):>12}")
 
 
-def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("demo"),
+def demo(out: Annotated[Path, typer.Option("--out-dir", metavar="DIR",
+                                           help="Output directory.")] = Path("demo"),
          json_: JsonOpt = False) -> None:
     """Simulate every preset; write DIR/summary.json, DIR/<preset>.nc and DIR/<preset>.png.\f
 
@@ -127,7 +145,7 @@ def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] =
             cfg = load_config(p["name"])
             sim, wall = run_config(cfg)
             files = write_outputs(sim, out / f"{p['name']}.nc", out / f"{p['name']}.png",
-                                  what=("--out", "--out"))
+                                  what=("--out-dir", "--out-dir"))
             summary = dict(sim.summary())
             summary.setdefault("status", sim.status)
             results[p["name"]] = {**summary, "wall_time_s": wall, "files": files}
@@ -136,7 +154,7 @@ def demo(out: Annotated[Path, typer.Option("--out", help="Output directory.")] =
         ok = all(r.get("status") == "ok" for r in results.values())
         report = {"status": "ok" if ok else "failed", "out": str(out), "presets": results}
         write_atomic(out / "summary.json", json.dumps(to_jsonable(report), indent=1,
-                                                      allow_nan=False), "--out")
+                                                      allow_nan=False), "--out-dir")
     if json_:
         print_json(report)
     else:

@@ -33,12 +33,12 @@ TargetsArg = Annotated[Optional[list[str]], typer.Argument(
 
 
 def _check_out(out: Path) -> Path:
-    """``--out DIR``: a directory (made if missing) this process can write the report's files
+    """``--out-dir DIR``: a directory (made if missing) this process can write the report's files
     into (each is written beside its final name, then renamed: :mod:`autobalance.atomic`)."""
     if out.exists() and not out.is_dir():
-        raise ConfigError(f"--out = {str(out)!r}: exists and is not a directory")
+        raise ConfigError(f"--out-dir = {str(out)!r}: exists and is not a directory")
     if out.is_dir() and not os.access(out, os.W_OK | os.X_OK):
-        raise ConfigError(f"--out = {str(out)!r}: the directory is not writable")
+        raise ConfigError(f"--out-dir = {str(out)!r}: the directory is not writable")
     return out
 
 
@@ -82,7 +82,7 @@ def reproduce(targets: TargetsArg = None,
                                                   "default).")] = False,
               full: Annotated[bool, typer.Option("--full", help="The papers' grids (hours, "
                                                  "resumable).")] = False,
-              out: Annotated[Path, typer.Option("--out", metavar="DIR",
+              out: Annotated[Path, typer.Option("--out-dir", metavar="DIR",
                                                 help="Report directory.")] = Path("out"),
               as_json: JsonOpt = False, executor: ExecutorOpt = "local",
               workers: WorkersOpt = None, scheduler: SchedulerOpt = None,
@@ -123,7 +123,7 @@ def reproduce(targets: TargetsArg = None,
                               "default; --full: the papers' grids)")
         ctx = _context(not full, out, executor, workers, scheduler)
         report = run_targets(chosen, ctx, progress=_progress)   # on stderr
-        paths = write_report(report, ctx.out, "--out")
+        paths = write_report(report, ctx.out, "--out-dir")
     if as_json:
         print_json({**report, "files": paths})
     else:

@@ -45,10 +45,15 @@ StoreOpt = Annotated[Optional[Path], typer.Option(
                                    "(a rerun computes only what is missing).")]
 
 StartsOpt = Annotated[Optional[int], typer.Option(
-    "--n", help="Start positions per ball of 004's equispaced grid (default 50 for 2 balls, "
+    "--starts", help="Start positions per ball of 004's equispaced grid (default 50 for 2 balls, "
                 "20 for 3; quick 12 / 8).")]
 RandomOpt = Annotated[Optional[int], typer.Option(
     "--random", help="Uniform random start angles instead of the grid: this many.")]
+
+BudgetOpt = Annotated[Optional[int], typer.Option(
+    "--budget", metavar="RUNS",
+    help="Most runs added where the decision is undecided at 95 % confidence (default: as many "
+         "as the start grid ran; 0: none).")]
 
 #: Most speeds of a ``study speed-map --speeds`` grid.
 MAX_MAP_SPEEDS = 2000
@@ -57,20 +62,37 @@ PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
 def _counts(**values) -> None:
-    """Refuse a count option below 1 (``--n``, ``--steps``, ...); None (not given) passes; ``n``
-    and ``random`` (the two ways of choosing the start positions) given together are refused."""
+    """Refuse a count option below 1 (``--starts``, ``--steps``, ...); None (not given) passes;
+    ``starts`` and ``random`` (the two ways of choosing the start positions) given together are
+    refused."""
     for name, v in values.items():
         if v is not None and v < 1:
             raise ConfigError(f"--{name.replace('_', '-')} = {v}: must be an integer >= 1")
-    if values.get("n") is not None and values.get("random") is not None:
-        raise ConfigError(f"--n = {values['n']} and --random = {values['random']}: give one of "
-                          "them (--n N: 004's equispaced grid of N positions per ball; --random "
-                          "K: K random starts)")
+    if values.get("starts") is not None and values.get("random") is not None:
+        raise ConfigError(f"--starts = {values['starts']} and --random = {values['random']}: "
+                          "give one of them (--starts N: 004's equispaced grid of N positions "
+                          "per ball; --random K: K random starts)")
 
 
 #: The sweep fields the shared study options set (:func:`_study_errors` names the options).
-STUDY_FIELDS = {"monte_carlo.n": "--n", "monte_carlo.samples": "--random",
+STUDY_FIELDS = {"monte_carlo.n": "--starts", "monte_carlo.samples": "--random",
                 "monte_carlo.seed": "--seed"}
+
+
+def check_budget(budget: Optional[int]) -> None:
+    """Refuse a negative ``--budget`` in one line (None: the study's default)."""
+    if budget is not None and budget < 0:
+        raise ConfigError(f"--budget = {budget}: must be an integer >= 0 (runs)")
+
+
+def budget_text(runs: int, spent: int, rounds: int, exhausted: bool, capped: str = "",
+                what: str = "a verdict was undecided") -> str:
+    """The line a study prints of its sequential step: the budget, what it bought and why it
+    stopped (:func:`autobalance.studies.sequential.refine`)."""
+    return (f"  budget: up to {runs} more runs where {what}; spent {spent} in {rounds} "
+            f"round{'' if rounds == 1 else 's'}"
+            + ("; the budget ran out first" if exhausted else "")
+            + (f"; left undecided at the most starts per cell: {capped}" if capped else ""))
 
 
 @contextmanager
@@ -203,7 +225,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units, balls="beside")
-        _counts(n=n, random=samples)
+        _counts(starts=n, random=samples)
         axes = _grid(grid)
         if axes and "balancer.n_balls" in axes and samples is None:
             raise ConfigError("--grid balancer.n_balls=...: needs --random K (the start grid's "
@@ -316,166 +338,6 @@ def _value(text: str):
     return t
 
 
-@app.command("unbalance-range")
-def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-                    grade: GradeOpt = 16.0, units: UnitsOpt = None,
-                    g_max: Annotated[Optional[float], typer.Option(
-                        "--g-max", help="Largest initial grade [mm/s] (default 1.5 x the "
-                                        "balancer's grade: balls and liquid).")] = None,
-                    steps: Annotated[Optional[int], typer.Option(
-                        "--steps", help="Grid intervals of the initial grade (default 25; "
-                                        "quick 10).")] = None,
-                    n: StartsOpt = None,
-                    quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
-                    plot: PlotOpt = None, scheduler: SchedulerOpt = None,
-                    workers: WorkersOpt = None, executor: ExecutorOpt = None,
-                    json_: JsonOpt = False) -> None:
-    """Residual grade against the initial unbalance (5/50/95 % over start positions), the
-    operating boundaries, the valid initial-unbalance ranges for --grade and their efficiency
-    (004 sec. 4.3).\f
-
-    Parameters
-    ----------
-    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor, json_
-        The options of every study (:mod:`autobalance.cli.study`).
-    g_max : float
-        Largest initial grade of the grid [mm/s] (> 0).
-    steps : int
-        Intervals of the initial-grade grid (>= 1).
-    n : int
-        Start positions per ball (>= 1).
-    """
-    import numpy as np
-
-    from ..studies.common import capacity_grades, default_starts
-    from ..studies.unbalance import compute_unbalance, unbalance_summary
-
-    t0 = time.perf_counter()
-    with guard(), _study_errors():
-        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units, balls="balancer")
-        if g_max is not None:
-            check_grade(g_max, "--g-max")
-        _counts(steps=steps, n=n)
-        s = cfg.system
-        G_b, G_l = capacity_grades(cfg)
-        top = 1.5 * (G_b + G_l) if g_max is None else g_max
-        Gv = np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
-        nn = n or default_starts(s.balancer.n_balls, quick)
-        ds = compute_unbalance(cfg, G=Gv, n=nn,
-                               store_dir=_store(store, cfg, "unbalance-range", list(Gv)),
-                               executor=executor,
-                               workers=workers, scheduler=scheduler, prefix="study",
-                               progress=not json_)
-
-        def fig():
-            from ..plotting.tsr import plot_unbalance
-
-            return plot_unbalance(ds, G, f"{cfg.name}: residual grade against initial unbalance")
-
-        res = {"study": "unbalance-range", "machine": cfg.name, "n": nn,
-               **unbalance_summary(ds, G)}
-        res.update(_finish(ds, cfg, out, plot, fig, "study unbalance-range", t0))
-    if json_:
-        print_json(res)
-        return
-    starts = f"{nn} starts per ball" if s.balancer.n_balls else "one run (a liquid alone)"
-    cap = "; ".join(f"{k} G{v:.3g}" for k, v in (("balls", G_b), ("liquid", G_l)) if v)
-    typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x {starts}; "
-               f"{cap}; target {grade_text(G)}")
-    def ranges(rs) -> str:
-        return ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in rs) or "none"
-
-    for proc, d in res["cases"]["nominal"].items():
-        typer.echo(f"  {proc:>8}: valid initial unbalance {ranges(d['valid_ranges_grade_G_mm_s'])}"
-                   f"; efficiency {100 * d['efficiency']:.0f} %")
-        if "sure_valid_ranges_grade_G_mm_s" in d:
-            lo, hi = d["efficiency_ci"]
-            undecided = d["p95_verdicts"].count("undecided")
-            typer.echo(f"  {'':>8}  at 95 % confidence: valid "
-                       f"{ranges(d['sure_valid_ranges_grade_G_mm_s'])}, possibly valid "
-                       f"{ranges(d['possible_valid_ranges_grade_G_mm_s'])} (a boundary lies "
-                       f"between grid points); efficiency {100 * lo:.0f}-{100 * hi:.0f} %"
-                       + (f"; {undecided} of {len(d['p95_verdicts'])} initial grades undecided "
-                          "(more starts, --n, decide them)" if undecided else ""))
-
-
-@app.command("plateau")
-def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-            grade: GradeOpt = 16.0, units: UnitsOpt = None,
-            n: Annotated[Optional[int], typer.Option(
-                "--n", help="Start positions per ball (default: at most 210 runs per cell, "
-                            "20 for 2 balls, 9 for 3; quick 36 runs: 8 / 5).")] = None,
-            ratios: Annotated[Optional[str], typer.Option(
-                "--ratios", help="Plateau speeds as multiples of the natural frequency, e.g. "
-                                 "'1.0,1.05,1.1,1.15' (default 0.96-1.12 every 0.01; quick "
-                                 "0.98,1.02,1.06,1.10).")] = None,
-            quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
-            plot: PlotOpt = None, scheduler: SchedulerOpt = None, workers: WorkersOpt = None,
-            executor: ExecutorOpt = None, json_: JsonOpt = False) -> None:
-    """The lower plateau of a temporary speed reduction: plateau x initial-unbalance map of the
-    95th percentile, the recommended plateau (004 sec. 4.6) and how sharp the optimum is.\f
-
-    Parameters
-    ----------
-    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor, json_
-        The options of every study (:mod:`autobalance.cli.study`); the profile must be a tsr.
-    n : int
-        Start positions per ball (>= 1).
-    ratios : str
-        Comma-separated plateau / natural-frequency ratios [-] (> 0).
-    """
-    from ..studies.plateau import compute_plateau, plateau_summary
-
-    t0 = time.perf_counter()
-    with guard(), _study_errors():
-        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
-                              scheduler, store, units, balls="beside")
-        _counts(n=n)
-        rr = None if ratios is None else sorted(_factors(ratios, "--ratios"))
-        ds = compute_plateau(cfg, n=n, quick=quick, ratios=rr,
-                             store_dir=_store(store, cfg, "plateau", rr, quick),
-                             executor=executor, workers=workers, scheduler=scheduler,
-                             prefix="study", progress=not json_)
-
-        def fig():
-            from ..plotting.tsr import plot_plateau
-
-            return plot_plateau(ds, G, f"{cfg.name}: lower plateau of the speed reduction")
-
-        res = {"study": "plateau", "machine": cfg.name, "n": int(ds.attrs["n"]), "grade_G_mm_s": G,
-               **plateau_summary(ds)}
-        p95 = res["p95_grade_G_mm_s"]
-        k = list(res["plateau_ratios"]).index(res["recommended_plateau_ratio"])
-        res["recommended_meets_grade_share"] = float((p95[k] <= G).mean())
-        res.update(_finish(ds, cfg, out, plot, fig, "study plateau", t0))
-    if json_:
-        print_json(res)
-        return
-    lo, hi = res["near_optimal_ratios"]
-    typer.echo(f"{cfg.name}: recommended plateau {du.fmt(res['recommended_plateau_rad_s'], 'speed')} = "
-               f"{res['recommended_plateau_ratio']:.3g} x the natural frequency; mean 95th "
-               f"percentile G{res['best_mean_p95_grade_G_mm_s']:.3g} over G_ini <= "
-               f"{ds.attrs['g_range']:.3g} mm/s")
-    typer.echo(f"  within {res['near_mm_s']:g} mm/s of the best: ratios {lo:.3g}-{hi:.3g}; "
-               "neighbours: " + ", ".join(f"{r:.3g} -> G{v:.3g}" for r, v in
-                                          res["neighbours_mean_p95_grade_G_mm_s"].items()))
-    if "indistinguishable_ratios" in res:
-        same = res["indistinguishable_ratios"]
-        best = interval_text(*res["best_mean_p95_grade_G_mm_s_ci"], lambda g: f"G{g:.3g}")
-        typer.echo(f"  the best's mean 95th percentile: {best}; " + (
-            "no other plateau comes as close: the recommendation is decided"
-            if res["recommended_decided"] else
-            f"{len(same)} of {len(res['plateau_ratios'])} plateaus are not distinguishable "
-            f"from it ({min(same):.3g}-{max(same):.3g} x the natural frequency): more starts "
-            "per cell (--n) decide between them"))
-    if res["at_grid_edge"]:
-        typer.echo("  the best plateau is at the edge of the studied ratios: the optimum may lie "
-                   "outside (widen the range)")
-    typer.echo(f"  at the recommended plateau the 95th percentile meets {grade_text(G)} for "
-               f"{100 * res['recommended_meets_grade_share']:.0f} % of the initial grades studied")
-
-
 @app.command("immobility")
 def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                grade: GradeOpt = 16.0, units: UnitsOpt = None,
@@ -485,7 +347,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                                                  "resistance, e.g. '0.5,1,2'.")] = "1",
                c_r: Annotated[str, typer.Option("--c-r", help="Factors on the suspension "
                                                 "damping, e.g. '0.5,1'.")] = "1",
-               n_conf: Annotated[int, typer.Option("--n-conf", help="Positions per ball.")] = 100,
+               n_conf: Annotated[int, typer.Option("--starts", help="Positions per ball of the "
+                                                   "grid of balls at rest.")] = 100,
                quick: QuickOpt = False, out: OutOpt = None, plot: PlotOpt = None,
                json_: JsonOpt = False) -> None:
     """Immobility of balls at rest against speed and the stick threshold G*(speed) for this
@@ -518,10 +381,10 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         if not (math.isfinite(gi) and gi >= 0):
             raise ConfigError(f"--g-ini = {g_ini}: must be a finite grade >= 0 [mm/s], e.g. 20")
         if n_conf < 2:
-            raise ConfigError(f"--n-conf = {n_conf}: must be an integer >= 2")
+            raise ConfigError(f"--starts = {n_conf}: must be an integer >= 2")
         mus, cs = _factors(mu_r, "--mu-r"), _factors(c_r, "--c-r")
         ds = compute_immobility(cfg, G_ini=gi, mu_r=mus, c_r=cs, n_conf=n_conf, quick=quick,
-                                field="--n-conf")
+                                field="--starts")
 
         def fig():
             from ..plotting.tsr import plot_immobility

@@ -16,7 +16,8 @@ from .common import (ExecutorOpt, GradeOpt, JsonOpt, PlotOpt, ProfileOpt, Schedu
                      SourceArg, UnitsOpt, WorkersOpt, grade_text, guard,
                      print_json)
 from .study import (STUDY_FIELDS, OutOpt, QuickOpt, StoreOpt, _counts,
-                    _factors, _finish, _prepare, _store, _study_errors, app)
+                    _factors, _finish, _prepare, _store, _study_errors, app, budget_text,
+                    check_budget)
 from .warn import machine_warnings_of
 
 __all__ = ["design", "tolerances", "unbalance_interval"]
@@ -69,8 +70,8 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                                   "std,tsr; a machine whose profile is not std or tsr: "
                                   "given).")] = None,
            starts: Annotated[Optional[int], typer.Option(
-               "--starts", help="Random start positions per unbalance and design (default "
-                                "40; quick 10).")] = None,
+               "--random", help="Uniform random start positions per unbalance and design in "
+                                "the first pass (default 40; quick 10).")] = None,
            n_unbalance: Annotated[Optional[int], typer.Option(
                "--n-unbalance", help="Unbalances across the range (default 4; quick 3).")] = None,
            seed: Annotated[int, typer.Option("--seed", help="Seed of the start positions.")] = 0,
@@ -118,7 +119,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     from ..studies.design import DesignSpace, compute_design, design_summary
 
     t0 = time.perf_counter()
-    with guard(), _study_errors({**STUDY_FIELDS, "monte_carlo.samples": "--starts"}):
+    with guard(), _study_errors(STUDY_FIELDS):
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units, balls="beside")
         if not (math.isfinite(confidence) and 0 < confidence < 1):
@@ -144,15 +145,13 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         names, own = _profiles(profiles, cfg)
         if names:
             kw["profiles"] = names
-        _counts(starts=starts, n_unbalance=n_unbalance)
-        if budget is not None and budget < 0:
-            raise ConfigError(f"--budget = {budget}: must be an integer >= 0 (runs)")
+        _counts(random=starts, n_unbalance=n_unbalance)
+        check_budget(budget)
         import dataclasses
 
         space = dataclasses.replace(space, **kw)
         ds = compute_design(cfg, grade=G, confidence=confidence, unbalance_range=rng,
-                            n_unbalance=n_unbalance or (3 if quick else 4),
-                            starts=starts or (10 if quick else 40), space=space, seed=seed,
+                            n_unbalance=n_unbalance, starts=starts, space=space, seed=seed,
                             quick=quick, refine_plateau=refine_plateau, budget=budget,
                             store_dir=_store(store, cfg, "design", rng, space, starts, seed,
                                              quick, budget),
@@ -188,18 +187,15 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    "profile ('given'; the std, slow and tsr variants are of std and tsr "
                    "profiles)")
     b = res["budget"]
-    typer.echo(f"  budget: up to {b['runs']} more runs where a verdict was undecided; spent "
-               f"{b['spent']} in {b['rounds']} rounds"
-               + ("; the budget ran out first" if b["exhausted"] else "")
-               + (f"; left undecided at the most starts per cell: {', '.join(b['capped'])}"
-                  if b["capped"] else ""))
+    typer.echo(budget_text(b["runs"], b["spent"], b["rounds"], b["exhausted"],
+                           ", ".join(b["capped"])))
     typer.echo(f"  {res['n_meeting']} design{' meets' if res['n_meeting'] == 1 else 's meet'} "
                f"the target at 95 % confidence, {res['n_undecided']} undecided" + (
         f"; recommended (the cheapest that meets it): {res['best']['name']} (margin "
         f"{res['best']['margin_grade_G_mm_s']:.2f} mm/s, "
         + interval_text(*res["best"]["margin_grade_G_mm_s_ci"], lambda v: f"{v:+.2f}")
         + " mm/s)" if res["best"] else "; no design is decided to meet it: none recommended "
-        "(more starts, --starts or --budget, or other candidates)"))
+        "(more starts, --random or --budget, or other candidates)"))
     for r in res["designs"]:
         lo, hi = r["worst_quantile_grade_G_mm_s_ci"]
         typer.echo(f"  {r['verdict']:>9} {r['name']:>24}: balls "

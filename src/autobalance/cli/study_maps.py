@@ -60,7 +60,7 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
     with guard(), _study_errors():
         cfg, G, du = _prepare(source, set_, profile, grade, None, out, workers, executor,
                               scheduler, store, units, balls="beside")
-        _counts(n=n, random=samples)
+        _counts(starts=n, random=samples)
         if not (math.isfinite(z) and z > 0):
             raise ConfigError(f"--z = {z:g}: must be a number > 0, e.g. 2")
         variants = None
@@ -131,8 +131,8 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
                       tail=f"0 < LO < HI, 2 <= N <= {MAX_MAP_SPEEDS}; default 0.3 x the first "
                            "natural frequency to 1.3 x nominal"))] = None,
               damping: Annotated[Optional[str], typer.Option(
-                  "--damping", help="Factors on the suspension damping for the second map, "
-                                    "e.g. '0.5,1,2'.")] = None,
+                  "--c-r", help="Factors on the suspension damping for the second map, "
+                                "e.g. '0.5,1,2'.")] = None,
               ks_only: Annotated[bool, typer.Option(
                   "--ks-only", help="Judge stability in the kinetic-static model (000 eq 13) "
                                     "instead of the linearised full model.")] = False,
@@ -161,7 +161,7 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units,
                               balls="beside")
         grid = map_speeds(speeds)
-        facs = None if damping is None else _factors(damping, "--damping")
+        facs = None if damping is None else _factors(damping, "--c-r")
         ds = compute_speed_map(cfg, speeds=grid, damping_factors=facs, quick=quick,
                                full=not ks_only)
 

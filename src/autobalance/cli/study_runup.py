@@ -25,7 +25,7 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
           bare: Annotated[bool, typer.Option(
               "--bare/--no-bare", help="Also run without the balls (the amplitude ratio).")] = True,
           fraction: Annotated[float, typer.Option(
-              "--fraction", help="Balancing threshold as a fraction of e = U/M_t [-].")] = 0.05,
+              "--threshold", help="Balancing threshold as a fraction of e = U/M_t [-].")] = 0.05,
           out: OutOpt = None, plot: PlotOpt = None, json_: JsonOpt = False) -> None:
     """The run-up: time to full speed, whirl through resonance with and without the balls,
     ball travel, balancing time and the grade it leaves (000 Tables 1-2, Fig. 10-11, for any
@@ -50,7 +50,7 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units,
                               balls="balancer")
         if not (math.isfinite(fraction) and fraction > 0):
-            raise ConfigError(f"--fraction = {fraction}: must be a number > 0, e.g. 0.05")
+            raise ConfigError(f"--threshold = {fraction}: must be a number > 0, e.g. 0.05")
         laws = None
         if law is not None:
             laws = (MotorDrive.LAWS if law.strip() == "all"

@@ -264,7 +264,27 @@ class DisplayUnits:
         """
         if value_si is None:
             return f"- {self.unit(kind)}"
-        return f"{self.to(value_si, kind):.{digits}g} {self.unit(kind)}"
+        return f"{number_text(self.to(value_si, kind), digits)} {self.unit(kind)}"
+
+
+def number_text(x: float, digits: int = 4) -> str:
+    """``x`` with ``digits`` significant digits, without an exponent between 1e-4 and 1e7
+    (``11000``, not ``1.1e+04``; ``0.00012``); outside that range, or NaN and inf, as ``g``.
+
+    Parameters
+    ----------
+    x : float
+        The number [any unit].
+    digits : int
+        Significant digits (>= 1).
+    """
+    x = float(x)
+    if not math.isfinite(x) or x == 0.0 or not 1e-4 <= abs(x) < 1e7:
+        return f"{x:.{digits}g}"
+    x = float(f"{x:.{digits}g}")                 # round to the digits first
+    d = max(0, digits - 1 - math.floor(math.log10(abs(x))))
+    text = f"{x:.{d}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text
 
 
 def display_units(cfg: Config | dict | None, choice: str | None = None) -> DisplayUnits:
@@ -360,6 +380,9 @@ def as_written(message: str, raw: dict | None) -> str:
     if not same:
         return message
     si, f = DISPLAY_KINDS[kind], _factor(unit, kind)
+    if unit.replace(" ", "") == si.replace(" ", ""):
+        return f"{path} = {written.strip()}: {allowed}"      # written in SI: nothing to add
     also = re.sub(rf"({NUMBER}) {re.escape(si)}(?![\w*/^])",
-                  lambda x: f"{x.group(0)} ({float(x.group(1)) * f:.4g} {unit})", allowed)
+                  lambda x: f"{x.group(0)} ({number_text(float(x.group(1)) * f)} {unit})",
+                  allowed)
     return f"{path} = {written.strip()} ({v:.6g} {si}): {also}"

@@ -1,4 +1,4 @@
-"""Exponential integration of slipping phases (issue 17, first step; docs/numerics.md, "An
+"""Exponential integration of slipping phases (docs/numerics.md, "An
 exponential integrator for the slipping phases").
 
 Used by ``integrate`` as the slip jump (``slip_window``, ``options.exponential_slip``, on by

@@ -1,5 +1,5 @@
 """Balls beside a liquid: the ball kernel (integrate.py, with its exact stick-slip) and the wall
-films of core/shallow_water.py advanced together, one film time step at a time (issue 15).
+films of core/shallow_water.py advanced together, one film time step at a time.
 
 Coupling (explicit, as :func:`.shallow_water.sw_coupled` couples the films with the Jeffcott
 rotor): over a step [t, t + dt] (the films' CFL step)
@@ -14,10 +14,10 @@ rotor): over a step [t, t + dt] (the films' CFL step)
    Z' by nothing: over the step Z moved by M_t w' (the kernel's) and the held U', i.e. by U' dt
    of the films' change dU; the chamber's deflection and rate take the rest,
    w -= (dU - U' dt) / M_t, w' -= dU' / M_t (the films' acceleration felt by the rotor;
-   sw_coupled keeps Z and Z' through the films' update in the same way). Until stop 30 the
-   deflection took all of dU: the rotor lagged by U' dt / M_t every step, which leaves a
-   synchronous whirl (U' = 0 in the rotor frame) alone but changed its transients and growth
-   rates (docs/liquid.md sec. 3k).
+   sw_coupled keeps Z and Z' through the films' update in the same way). Were the deflection
+   to take all of dU, the rotor would lag by U' dt / M_t every step, which leaves a synchronous
+   whirl (U' = 0 in the rotor frame) alone but changes its transients and growth rates
+   (docs/liquid.md sec. 3k).
 
 With a film of no mass this is the ball kernel's run stepped at the films' pace; with balls that
 cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both).

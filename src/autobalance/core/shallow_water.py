@@ -1,5 +1,5 @@
 """Depth-averaged shallow-water (Saint-Venant) equations of a liquid film on the outer wall of a
-rotating, displaced chamber, along its circumference (issue 15; model: docs/liquid.md sec. 3c).
+rotating, displaced chamber, along its circumference (model: docs/liquid.md sec. 3c).
 
 Unknowns per cell of the periodic wall coordinate x = R theta (chamber frame): the film thickness
 eta [m] and its tangential discharge q = eta v [m^2/s] (v relative to the wall):

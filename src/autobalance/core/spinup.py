@@ -1,6 +1,6 @@
 """Axisymmetric shallow-water equations of the liquid on the bottom of a rotating chamber with a
 vertical axis, from rest until its free surface reaches the lid at the outer wall: the spin-up
-of the liquid through 003's modes 1-3 (issue 15; model: docs/liquid.md sec. 3h).
+of the liquid through 003's modes 1-3 (model: docs/liquid.md sec. 3h).
 
 Unknowns per ring of cells r_{i-1/2} < r < r_{i+1/2} (chamber frame, turning at Omega(t)): the
 depth h [m] of the liquid along the axis, its radial discharge q = h u and its azimuthal

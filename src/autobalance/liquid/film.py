@@ -1,5 +1,5 @@
-"""The liquid film on the outer wall of a rotating, displaced chamber, in time (issue 15, first
-dynamic step): the depth-averaged shallow-water equations along the circumference
+"""The liquid film on the outer wall of a rotating, displaced chamber, in time: the
+depth-averaged shallow-water equations along the circumference
 (:mod:`autobalance.core.shallow_water`, docs/liquid.md sec. 3c) driven by a prescribed spin
 Omega(t) and a prescribed chamber displacement c(t) in the rotor frame. The film is the liquid
 of 003's mode 4 (a ring on the wall, lid to bottom); its first moment about the chamber centre is

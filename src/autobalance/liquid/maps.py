@@ -1,4 +1,4 @@
-"""Linear modes of a scheme's maps (issue 15; docs/liquid.md sec. 3j, 3k, 3m): the Jacobian of a
+"""Linear modes of a scheme's maps (docs/liquid.md sec. 3j, 3k, 3m): the Jacobian of a
 one-step or one-period map by central differences, its eigenvalues as growth rates, and Newton
 shooting for the periodic state of a one-period map. The liquid's stability analyses
 (liquid/stability.py, studies/liquid_balanced.py) linearise the film runs' own schemes with

@@ -1,4 +1,4 @@
-"""The liquid in a displaced chamber, quasi-statically (issue 15): rigid rotation about the
+"""The liquid in a displaced chamber, quasi-statically: rigid rotation about the
 *rotation axis* while the chamber's centre is displaced by the rotor's deflection.
 
 In a frame turning with the rotor at Omega, a liquid in rigid rotation is in equilibrium under the

@@ -1,5 +1,5 @@
 """The synchronous whirl of a rotor with a Leblanc balancer whose liquid sits quasi-statically
-in the displaced chamber (issue 15): no calibrated engagement, no lumped capacity.
+in the displaced chamber: no calibrated engagement, no lumped capacity.
 
 A Jeffcott rotor (mass M, stiffness k, damping c, unbalance D along the rotor frame's x axis)
 carries a chamber with liquid of mass m_l = rho V. In steady synchronous whirl at Omega the

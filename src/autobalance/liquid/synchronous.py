@@ -23,7 +23,7 @@ the chamber). Two walls make the response depend on the whirl's direction (1 alo
 1 - 8/pi^2 across): not a scalar added mass, refused. The films of ``simulate`` at rest on a displaced
 wall give f(p) within 1e-4 on 960 cells (6.7e-5 for p = 8; tests/test_tolerances_liquid.py).
 
-**A horizontal axis** (since stop 32). Gravity in the plane moves the surface's axis by
+**A horizontal axis**. Gravity in the plane moves the surface's axis by
 x0 = g/Omega^2 from the rotation axis (:func:`.quasistatic.quasi_static`, "horizontal"): the
 surface is the cylinder |x - x0| = r_s, pi r_s^2 h = pi R^2 h - V, through the whole height. The
 core's moment is linear in the chamber's offset from x0, so the whirl's part is the same

@@ -204,7 +204,14 @@ class SpeedProfile:
         _duration("profile.duration", duration)
         in_range("profile.runup_fraction", runup_fraction, 1e-6, 1.0)
         t_read = runup_fraction * duration
-        t_ru = t_read if runup_time is None else in_range("profile.runup_time", runup_time, 1e-9, t_read)
+        t_ru = t_read
+        if runup_time is not None:
+            t_ru = positive("profile.runup_time", runup_time)
+            if t_ru > t_read:
+                raise ParameterError("profile.runup_time", runup_time,
+                                     f"must end by the first read-out, runup_fraction x "
+                                     f"duration = {t_read:g} s (raise runup_fraction or "
+                                     "duration)")
         times = [0.0, t_ru] + ([duration] if duration > t_ru else [])
         speeds = [0.0, nominal] + ([nominal] if duration > t_ru else [])
         return cls(tuple(times), tuple(speeds), nominal_speed=nominal,

@@ -222,13 +222,13 @@ class SimOptions:
     dense_events : bool
         Take the state at a located stick-slip event from DOPRI5's continuous extension of the
         accepted step (order 4, no re-stepping; docs/numerics.md). False redoes the step to the
-        event (the kernel before, bit for bit).
+        event.
     exponential_slip : bool
         Where a ball slips, jump ahead by the exponential integrator ETDRK4-B with Richardson's
         error estimate (core/expo.py; docs/numerics.md), under the conditions of
-        ``exact_ramps``; DOPRI5 locates the events. On by default since stop 37: 1.2-1.7x
-        faster on 004's sweeps, the grades within 0.0015 mm/s of converged runs. False steps
-        every phase with DOPRI5 (the kernel before, bit for bit).
+        ``exact_ramps``; DOPRI5 locates the events. On by default: 1.2-1.7x faster on
+        004's sweeps than stepping every phase, the grades within 0.0015 mm/s of converged
+        runs. False steps every phase with DOPRI5.
     """
 
     friction_law: str = "stick"

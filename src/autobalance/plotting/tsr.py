@@ -21,6 +21,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     import xarray as xr
 
 G_LIMIT = 16.0
@@ -105,6 +106,23 @@ def plot_monte_carlo(ds: xr.Dataset) -> Figure:
     return fig
 
 
+def interval_band(ax: Axes, x: np.ndarray, est: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                  color: str) -> None:
+    """Draw the 95 % confidence interval of a sampled curve ``est`` as a band from ``lo`` to
+    ``hi`` [units of the curve]; where the upper end is unbounded (too few runs) an upward
+    arrow marks the estimate instead (:mod:`autobalance.confidence`)."""
+    have = set(ax.get_legend_handles_labels()[1])
+    band, arrow = "95 % confidence interval", "upper end unbounded (too few starts)"
+    lo = np.where(np.isfinite(lo), lo, np.nan)
+    top = np.isinf(hi) & np.isfinite(est)
+    hi = np.where(np.isfinite(hi), hi, np.nan)
+    ax.fill_between(x, lo, hi, color=color, alpha=0.18, lw=0,
+                    label=None if band in have else band)
+    if top.any():
+        ax.plot(x[top], est[top], "^", color=color, ms=5, mfc="none",
+                label=None if arrow in have else arrow)
+
+
 def plot_unbalance(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = None) -> Figure:
     """004 Fig. 7 (and 11-12 per case) from :func:`compute_unbalance`: the 5 and 95 % isolines of
     the first and last read-outs (004: STD and TSR) against G_ini, the operating boundaries and
@@ -118,6 +136,10 @@ def plot_unbalance(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = N
         for proc, col in zip(procs, ("0.5", "k")):
             d = ds["grade_G"].sel(case=case, procedure=proc)
             ax.plot(G, d.sel(percentile=95.0), color=col, lw=1.6, label=f"{proc} 95 %")
+            if "grade_G_ci" in ds:
+                ci = ds["grade_G_ci"].sel(case=case, procedure=proc, percentile=95.0)
+                interval_band(ax, G, d.sel(percentile=95.0).values, ci.sel(bound="lo").values,
+                              ci.sel(bound="hi").values, col)
             ax.plot(G, d.sel(percentile=5.0), color=col, lw=1.0, ls="--", label=f"{proc} 5 %")
         ax.plot(G, G, "k:", lw=0.8, label="G = G_ini")
         if np.isfinite(lo).any():
@@ -196,7 +218,7 @@ def plot_plateau(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = Non
     cases = list(ds["case"].values)
     fig = Figure(figsize=(5.0 * len(cases), 8.0), constrained_layout=True)
     FigureCanvasAgg(fig)
-    for i, (case, ideal) in enumerate(zip(cases, ds.attrs["ideal"])):
+    for i, (case, ideal) in enumerate(zip(cases, np.atleast_1d(ds.attrs["ideal"]))):
         ax = fig.add_subplot(2, len(cases), i + 1)
         d = ds["grade_G_p95"].sel(case=case)
         m = ax.pcolormesh(ds["G_ini"].values, ds["plateau_ratio"].values, d.values,
@@ -208,9 +230,14 @@ def plot_plateau(ds: xr.Dataset, grade: float = G_LIMIT, title: str | None = Non
         ax.set_title(f"case {case}")
         ax.legend(fontsize=8)
         bx = fig.add_subplot(2, len(cases), len(cases) + i + 1)
+        r = ds["plateau_ratio"].values
         for g in ds["G_ini"].values:
-            bx.plot(ds["plateau_ratio"].values, d.sel(G_ini=g).values, "o-", ms=3, lw=0.8,
-                    label=f"G_ini = {g:.3g}")
+            bx.plot(r, d.sel(G_ini=g).values, "o-", ms=3, lw=0.8, label=f"G_ini = {g:.3g}")
+        mean = ds["mean_p95"].sel(case=case).values
+        bx.plot(r, mean, "k-", lw=2.0, label="mean (picks the plateau)")
+        if "mean_p95_ci" in ds:
+            ci = ds["mean_p95_ci"].sel(case=case).values
+            interval_band(bx, r, mean, ci[:, 0], ci[:, 1], "k")
         bx.axhline(grade, color="r", ls=":", lw=0.8)
         bx.axvline(ideal, color="r", ls="--", lw=1)
         bx.set_xlabel("lower plateau / Omega_n [-]")

@@ -24,7 +24,7 @@ def modules() -> tuple:
     return (p000, p004, p003, p001)
 
 
-#: Seed -> (short title, file in shared/seeds).
+#: Seed -> (short title, the paper's text file name, shown in the HTML report).
 PAPERS = {
     "000": ("Majewski et al.: self-balancing of a washing machine (balls/rollers)",
             "000_d14c4c556587a3f7.txt"),

@@ -53,7 +53,8 @@ TOLERANCES_BESIDE_LIQUID = ("beside this liquid the tolerance bound does not hol
 
 
 def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence: float = 0.95,
-                   unbalance_range: tuple | None = None, n_unbalance: int = 4, starts: int = 20,
+                   unbalance_range: tuple | None = None, n_unbalance: int | None = None,
+                   starts: int | None = None,
                    space: DesignSpace | None = None, quick: bool = False, seed: int = 0,
                    store_dir: str | Path | None = None, executor: str = "local",
                    workers: int | None = None, scheduler: str | None = None,
@@ -74,10 +75,11 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
     unbalance_range : (float, float) or None
         Expected initial unbalance [kg*m] (lo, hi), 0 <= lo <= hi, hi > 0; None = 0.5-1.5 x the
         machine's.
-    n_unbalance : int
-        Unbalances studied across the range (>= 1; the ends included).
-    starts : int
-        Uniform random ball start positions per unbalance and design (>= 1).
+    n_unbalance : int or None
+        Unbalances studied across the range (>= 1; the ends included); None = 4 (quick 3).
+    starts : int or None
+        Uniform random ball start positions per unbalance and design (>= 1) in the first pass;
+        None = 40 (quick 10).
     space : DesignSpace or None
         The candidates; None = :class:`DesignSpace` (quick: :meth:`DesignSpace.quick`).
     quick : bool
@@ -117,6 +119,8 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
 
     t0 = time.perf_counter()
     cfg = load(base, allow_liquid=True)     # simulations; beside a liquid too (sec. 3i)
+    n_unbalance = (3 if quick else 4) if n_unbalance is None else n_unbalance
+    starts = (10 if quick else 40) if starts is None else starts
     if not (0.0 < confidence < 1.0):
         raise ParameterError("confidence", confidence, "must be within (0, 1), e.g. 0.95")
     for name, v in (("n_unbalance", n_unbalance), ("starts", starts)):
@@ -127,8 +131,6 @@ def compute_design(base: str | Path | Config, *, grade: float = 16.0, confidence
     if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo <= hi and hi > 0):
         raise ParameterError("unbalance_range", (lo, hi), "must be 0 <= lo <= hi with hi > 0 [kg*m]")
     space = space or (DesignSpace.quick() if quick else DesignSpace())
-    if quick and unbalance_range is not None and n_unbalance == 4:
-        n_unbalance = 3
     Us = np.linspace(lo, hi, n_unbalance) if n_unbalance > 1 else np.array([hi])
     variants = profile_variants(cfg)
     cands = candidate_designs(cfg, space, hi, variants)
@@ -314,7 +316,7 @@ def _refine_plateau(cfg, cand: dict, Us, starts: int, quick: bool, *, seed, stor
     ds = compute_plateau(cand["config"], ratios=ratios, G=G, n=n, g_range=float(G.max()),
                          store_dir=store_path(store_dir, f"design-plateau-{cand['name']}"),
                          executor=executor, workers=workers, scheduler=scheduler,
-                         prefix="design", progress=progress)
+                         prefix="design", budget=0, progress=progress)   # judged by decide
     ps = plateau_summary(ds)
     r = ps["recommended_plateau_ratio"]
     new = None

@@ -13,8 +13,9 @@ its margin is the target minus that, with the interval the other way round.
 
 The decision is sequential (:func:`decide`): the candidates are taken cheapest first (total
 ball mass, then profile length); for an undecided one, more starts are run at the unbalances
-still undecided, doubling their number each round, until the design is decided, a cell holds
-:data:`MAX_STARTS` starts, or the budget of runs is spent. The search stops at the first
+still undecided (:func:`autobalance.studies.sequential.refine`: doubling their number each
+round) until the design is decided, a cell holds :data:`MAX_STARTS` starts, or the budget of
+runs is spent. The search stops at the first
 candidate decided "meets": it is the recommendation, and dearer ones cannot change it. The
 95th percentile needs at least 72 starts at an unbalance before its upper end is bounded
 (:func:`autobalance.confidence.runs_to_bound`), so a "meets" of the 95th percentile is never
@@ -28,11 +29,10 @@ from typing import Callable
 import numpy as np
 
 from ..confidence import quantile_interval, verdict
+from .sequential import MAX_STARTS, refine
 
 __all__ = ["MAX_STARTS", "VERDICT_ORDER", "candidate_verdicts", "decide", "pad"]
 
-#: Most starts at one unbalance of one candidate that the sequential decision runs [-].
-MAX_STARTS = 1280
 #: Sort rank of the verdicts: decided "meets" first, "fails" last.
 VERDICT_ORDER = {"meets": 0, "undecided": 1, "fails": 2}
 
@@ -115,35 +115,31 @@ def decide(cells: list, order: list, grade: float, confidence: float, budget: in
         None), "exhausted" (the budget ran out first), "capped" (candidates left undecided
         at :data:`MAX_STARTS`).
     """
-    spent, rounds, capped, exhausted = 0, 0, [], False
+    spent, rounds, capped = 0, 0, []
     for d in order:
-        while True:
-            v = candidate_verdicts(pad([cells[d]]), grade, confidence)
-            if v["verdict"][0] == "meets":
-                return {"spent": spent, "rounds": rounds, "budget": int(budget),
-                        "recommended": d, "exhausted": False, "capped": capped}
-            if v["verdict"][0] == "fails":
-                break
-            todo = [u for u, c in enumerate(v["cell_verdict"][0]) if c == "undecided"]
-            have = min(cells[d][u].size for u in todo)
-            k = min(have, MAX_STARTS - have)
-            if k <= 0:
-                capped.append(d)
-                break
-            if spent + k * len(todo) > budget:
-                k = (budget - spent) // len(todo)
-                if k <= 0:
-                    exhausted = True
-                    break
-            rounds += 1
-            new = run_more(d, todo, int(k), rounds)
-            for u, a in zip(todo, new):
-                cells[d][u] = np.concatenate([cells[d][u], np.asarray(a, float)])
-            spent += int(k) * len(todo)
-        if exhausted:
-            break
+        def undecided(c, d=d):
+            v = candidate_verdicts(pad([[c[u] for u in range(len(cells[d]))]]), grade,
+                                   confidence)
+            if v["verdict"][0] != "undecided":
+                return []
+            return [u for u, x in enumerate(v["cell_verdict"][0]) if x == "undecided"]
+
+        mine = dict(enumerate(cells[d]))
+        r = refine(mine, undecided, budget - spent,
+                   lambda units, k, rnd, d=d: run_more(d, units, k, rnd),
+                   first_round=rounds + 1)
+        cells[d][:] = [mine[u] for u in range(len(cells[d]))]
+        spent, rounds = spent + r["spent"], rounds + r["rounds"]
+        if r["capped"]:
+            capped.append(d)
+        if r["exhausted"]:
+            return {"spent": spent, "rounds": rounds, "budget": int(budget),
+                    "recommended": None, "exhausted": True, "capped": capped}
+        if candidate_verdicts(pad([cells[d]]), grade, confidence)["verdict"][0] == "meets":
+            return {"spent": spent, "rounds": rounds, "budget": int(budget),
+                    "recommended": d, "exhausted": False, "capped": capped}
     return {"spent": spent, "rounds": rounds, "budget": int(budget), "recommended": None,
-            "exhausted": exhausted, "capped": capped}
+            "exhausted": False, "capped": capped}
 
 
 def verdict_text(v: str, lo: float, hi: float) -> str:

@@ -1,5 +1,5 @@
 """The balanced state of balls beside a liquid and its linear stability at a constant speed
-(issue 15; docs/liquid.md sec. 3k): the rotor on the axis, the balls where they cancel the
+(docs/liquid.md sec. 3k): the rotor on the axis, the balls where they cancel the
 unbalance, every film uniform and at rest on its wall. Whether it stays balanced decides what
 the speed map reports for such a machine.
 

@@ -8,12 +8,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..confidence import LEVEL
+from ..confidence import LEVEL, quantile_interval
 from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from ..sweep.summary import percentile_intervals
 from .common import case_sets, load, run_start_grid, starts_for_runs, store_path
+from .sequential import SEED_STEP, refine
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
 if TYPE_CHECKING:
@@ -24,8 +24,8 @@ if TYPE_CHECKING:
 
     from ..models import BallBalancer
 
-__all__ = ["DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", "default_grid",
-           "default_plateau_starts", "plateau_summary"]
+__all__ = ["BUDGET_FACTOR", "DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", "default_grid",
+           "default_plateau_starts", "plateau_summary", "refine_plateaus"]
 
 #: Most start configurations per cell of the plateau map (full, quick): 004 Fig. 14-15's
 #: n = 20 positions for two balls (210 runs), 36 (n = 8) for a first look.
@@ -105,6 +105,7 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
                     store_dir: str | Path | None = None, executor: str = "local",
                     workers: int | None = None, scheduler: str | None = None,
                     g_range: float | None = None, prefix: str = "study",
+                    budget: int | None = None, seed: int = 0,
                     progress: bool = False) -> xr.Dataset:
     """004 sec. 4.6, Fig. 14-15: the lower TSR plateau (as Omega/Omega_n) x G_ini in [G0, G34] ->
     95th percentile of G_TSR (90 s); ideal plateau = argmin of its mean over G_ini <= ``g_range``
@@ -134,14 +135,22 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
         balls' grade G_balls.
     prefix : str
         Prefix of the sweeps' names.
+    budget : int or None
+        Most runs [-] the sequential step adds (:func:`refine_plateaus`) where the recommended
+        plateau is not distinguishable from others; None = as many as the start grid ran
+        (:data:`BUDGET_FACTOR`), 0 = the start grid alone (004's protocol).
+    seed : int
+        Seed of the added random starts.
     progress : bool
         Show each sweep's progress bar on stderr.
 
     Returns
     -------
     xarray.Dataset
-        grade_G_p95 [mm/s] over (case, plateau_ratio [-], G_ini [mm/s]), its mean over G_ini
-        mean_p95 [mm/s]; attrs: ideal ratio per case [-], f_n_hz [Hz].
+        grade_G_p95 [mm/s] over (case, plateau_ratio [-], G_ini [mm/s]) with its interval
+        grade_G_p95_ci, the starts of each cell, the mean over G_ini mean_p95 [mm/s] with
+        mean_p95_ci; attrs: ideal ratio per case [-], f_n_hz [Hz], budget, budget_spent,
+        budget_rounds, budget_exhausted, budget_capped.
     """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
@@ -158,41 +167,123 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
     ratios = r0 if ratios is None else np.asarray(ratios, float)
     Gv = g0 if G is None else np.asarray(G, float)
     U = grade_to_unbalance(Gv, s.total_mass, cfg.spin.nominal_speed)
-    p95 = np.full((len(cases), ratios.size, Gv.size), np.nan)
-    p95_ci = np.full(p95.shape + (2,), np.nan)
+    inside = Gv <= g_range
+    cells, sets = {}, {}
     for ci, case in enumerate(cases):
         mu_r, c_r = cases[case]
-        raw = run_start_grid(base, f"{prefix}-plateau-{case}-n{n}", case_sets(cfg, mu_r, c_r),
-                         {"profile.plateau": [float(r * fn) for r in ratios],
-                          "rotor.unbalance": [float(u) for u in U]}, n,
+        sets[ci] = case_sets(cfg, mu_r, c_r)
+        raw = run_start_grid(base, f"{prefix}-plateau-{case}-n{n}", sets[ci],
+                             {"profile.plateau": [float(r * fn) for r in ratios],
+                              "rotor.unbalance": [float(u) for u in U]}, n,
                              store=store_path(store_dir, f"plateau-{case}-n{n}-r{ratios.size}-g{Gv.size}"),
                              executor=executor, workers=workers, scheduler=scheduler,
                              progress=progress)
-        g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1)
-        p95[ci] = g.quantile(0.95, dim="sample").transpose("profile__plateau", "rotor__unbalance").values
-        p95_ci[ci] = percentile_intervals(raw.isel(checkpoint=-1), "grade_G", (95,)).isel(
-            percentile=0).transpose("profile__plateau", "rotor__unbalance", "bound").values
-    ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), p95, {"units": "mm/s"}),
-                     "grade_G_p95_ci": (("case", "plateau_ratio", "G_ini", "bound"), p95_ci,
+        g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1).transpose(
+            "profile__plateau", "rotor__unbalance", "sample").values
+        cells.update({(ci, i, j): g[i, j] for i in range(ratios.size) for j in range(Gv.size)})
+    first = sum(a.size for a in cells.values())
+    budget = BUDGET_FACTOR * first if budget is None else int(budget)
+
+    def run_more(keys, k, rnd):
+        out = {}
+        for ci, case in enumerate(cases):
+            mine = [key for key in keys if key[0] == ci]
+            if not mine:
+                continue
+            ri = sorted({key[1] for key in mine})
+            gj = sorted({key[2] for key in mine})
+            raw = run_start_grid(base, f"{prefix}-plateau-{case}-more{rnd}", sets[ci],
+                                 {"profile.plateau": [float(ratios[i] * fn) for i in ri],
+                                  "rotor.unbalance": [float(U[j]) for j in gj]}, 0,
+                                 samples=k, seed=seed + SEED_STEP * rnd,
+                                 store=store_path(store_dir, f"plateau-{case}-n{n}-more{rnd}"),
+                                 executor=executor, workers=workers, scheduler=scheduler,
+                                 progress=progress)
+            g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1).transpose(
+                "profile__plateau", "rotor__unbalance", "sample").values
+            out.update({(ci, i, j): g[a, b] for a, i in enumerate(ri) for b, j in enumerate(gj)})
+        return [out[key] for key in keys]
+
+    ref = refine(cells, lambda c: refine_plateaus(c, len(cases), ratios.size, inside), budget,
+                 run_more)
+    est, lo, hi, starts = _cell_quantiles(cells, (len(cases), ratios.size, Gv.size))
+    ds = xr.Dataset({"grade_G_p95": (("case", "plateau_ratio", "G_ini"), est, {"units": "mm/s"}),
+                     "grade_G_p95_ci": (("case", "plateau_ratio", "G_ini", "bound"),
+                                        np.stack([lo, hi], -1),
                                         {"units": "mm/s", "confidence_level": LEVEL,
                                          "long_name": "interval of the 95th percentile (order "
-                                                      "statistics; inf: unbounded)"})},
+                                                      "statistics; inf: unbounded)"}),
+                     "starts": (("case", "plateau_ratio", "G_ini"), starts,
+                                {"units": "1", "long_name": "runs of the cell (start grid and "
+                                                            "added random starts)"})},
                     coords={"case": list(cases), "plateau_ratio": ratios,
                             "G_ini": ("G_ini", Gv, {"units": "mm/s"}), "bound": ["lo", "hi"]})
-    inside = Gv <= g_range
-    mean = np.nanmean(np.where(inside, p95, np.nan), axis=2)
+    mean, mean_ci = _mean_over_range(est, lo, hi, inside)
     ds["mean_p95"] = (("case", "plateau_ratio"), mean, {"units": "mm/s"})
-    # the mean of the bounds bounds the mean (each at the confidence level; an unbounded one
-    # leaves the mean unbounded)
-    ds["mean_p95_ci"] = (("case", "plateau_ratio", "bound"),
-                         np.stack([np.mean(p95_ci[:, :, inside, b], axis=2) for b in (0, 1)], -1),
+    ds["mean_p95_ci"] = (("case", "plateau_ratio", "bound"), mean_ci,
                          {"units": "mm/s", "confidence_level": LEVEL})
     ds.attrs.update({"study": "plateau", "n": n, "f_n_hz": fn / (2 * np.pi), "G_balls": G_b,
                      "g_range": float(g_range),
                      "ideal": [float(ratios[np.nanargmin(m)]) for m in mean],
                      "ratio_step": float(np.diff(ratios).min()) if ratios.size > 1 else 0.0,
+                     "simulations_first_pass": int(first), "budget": int(budget),
+                     "budget_spent": int(ref["spent"]), "budget_rounds": int(ref["rounds"]),
+                     "budget_exhausted": int(ref["exhausted"]),
+                     "budget_capped": int(ref["capped"]), "seed": int(seed),
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
+
+
+#: Default budget of the sequential step, in units of the start grid's runs [-].
+BUDGET_FACTOR = 1
+
+
+def _cell_quantiles(cells: dict, shape: tuple) -> tuple:
+    """The 95th percentile [mm/s] of every cell with its interval (order statistics) and the
+    runs it holds, as arrays of ``shape`` (the cells' keys are indices into it)."""
+    est, lo, hi = (np.full(shape, np.nan) for _ in range(3))
+    starts = np.zeros(shape, int)
+    for key, a in cells.items():
+        est[key], lo[key], hi[key] = (float(x) for x in quantile_interval(a, 0.95))
+        starts[key] = a.size
+    return est, lo, hi, starts
+
+
+def _mean_over_range(est, lo, hi, inside) -> tuple:
+    """The mean over the initial grades ``inside`` the range of the 95th percentiles (case,
+    ratio, G_ini) and its interval: the mean of the bounds bounds the mean (each at the
+    confidence level; an unbounded one leaves the mean unbounded)."""
+    mean = np.nanmean(np.where(inside, est, np.nan), axis=2)
+    ci = np.stack([np.mean(b[:, :, inside], axis=2) for b in (lo, hi)], -1)
+    return mean, ci
+
+
+def refine_plateaus(cells: dict, n_cases: int, n_ratios: int, inside: np.ndarray) -> list:
+    """The cells that leave a plateau study's recommendation undecided: per case, where more
+    than one plateau is not distinguishable from the best (their mean 95th percentile's
+    interval reaches below the best's upper end), every cell of those plateaus within the
+    range of initial grades the mean is taken over.
+
+    Parameters
+    ----------
+    cells : dict
+        (case, ratio, G_ini) index -> final grades [mm/s].
+    n_cases, n_ratios : int
+        The map's sizes.
+    inside : ndarray of bool
+        The initial grades the mean runs over [-].
+    """
+    n_g = inside.size
+    est, lo, hi, _ = _cell_quantiles(cells, (n_cases, n_ratios, n_g))
+    mean, ci = _mean_over_range(est, lo, hi, inside)
+    todo = []
+    for c in range(n_cases):
+        if not np.isfinite(mean[c]).any():
+            continue
+        same = _not_distinguishable(ci[c], int(np.nanargmin(mean[c])))
+        if len(same) > 1:
+            todo += [(c, i, j) for i in same for j in range(n_g) if inside[j]]
+    return todo
 
 
 def compute_descent(base: str | Path, *, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
@@ -308,7 +399,7 @@ def plateau_summary(ds: xr.Dataset, case: str | None = None, near: float = 1.0) 
     -------
     dict
         recommended_plateau_ratio [-], recommended_plateau_rad_s, best_mean_p95_grade_G_mm_s,
-        neighbours (ratio -> mean p95 [mm/s]), near_optimal_ratios [lo, hi] [-], at_grid_edge
+        neighbours (ratio -> mean p95 [mm/s]), near_optimal_ratios (lo, hi) [-], at_grid_edge
         (the best ratio is the first or last studied: the optimum may lie outside), and the map;
         with the intervals: mean_p95_grade_G_mm_s_ci (per ratio [lo, hi]; null where the runs
         of a cell cannot bound its 95th percentile), best_mean_p95_grade_G_mm_s_ci,
@@ -342,8 +433,14 @@ def _indistinguishable(ds: xr.Dataset, case: str, r: np.ndarray, k: int) -> dict
     if "mean_p95_ci" not in ds:
         return {}
     ci = ds["mean_p95_ci"].sel(case=case).values               # (ratio, bound)
-    best_hi = ci[k, 1]
-    same = [float(x) for x, lo in zip(r, ci[:, 0]) if lo <= best_hi]     # NaN: not compared
+    same = [float(r[i]) for i in _not_distinguishable(ci, k)]
     return {"mean_p95_grade_G_mm_s_ci": ci, "best_mean_p95_grade_G_mm_s_ci": ci[k],
             "indistinguishable_ratios": same, "recommended_decided": len(same) == 1,
             "confidence_level": float(ds["mean_p95_ci"].attrs.get("confidence_level", LEVEL))}
+
+
+def _not_distinguishable(ci: np.ndarray, k: int) -> list:
+    """The plateaus (indices) whose mean 95th percentile is not distinguishable from the best
+    one, ``k``: their interval's lower end reaches below the best's upper end (``ci``: ratio,
+    bound [mm/s]; NaN is not compared)."""
+    return [i for i in range(len(ci)) if ci[i, 0] <= ci[k, 1]]

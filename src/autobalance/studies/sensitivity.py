@@ -1,4 +1,4 @@
-"""Which modelling choices move which results, for any machine (issue 16; 004 sec. 4.2's
+"""Which modelling choices move which results, for any machine (004 sec. 4.2's
 statistics as the results): the start-position Monte Carlo of the machine as given and of one
 variant per changed choice, over the same starts, and each variant's effect on every quantity
 with its sampling uncertainty.

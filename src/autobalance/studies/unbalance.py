@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..confidence import LEVEL
+from ..confidence import LEVEL, quantile_interval
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
-from ..sweep.summary import percentile_intervals
 from .common import (capacity_grades, case_sets, checkpoint_labels, load, run_start_grid,
                      store_path)
+from .sequential import SEED_STEP, refine
 from .statistics import profile_text, valid_ranges
 
 if TYPE_CHECKING:
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     import xarray as xr
 
-__all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
+__all__ = ["BUDGET_FACTOR", "compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
            "unbalance_summary"]
 
 
@@ -51,7 +51,8 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
                       G: npt.ArrayLike | None = None, n: int = 50, quick: bool = False,
                       store_dir: str | Path | None = None, executor: str = "local",
                       workers: int | None = None, scheduler: str | None = None,
-                      prefix: str = "study", progress: bool = False) -> xr.Dataset:
+                      prefix: str = "study", grade: float = 16.0, budget: int | None = None,
+                      seed: int = 0, progress: bool = False) -> xr.Dataset:
     """004 sec. 4.3-4.5: G_ini over [G0, G50] x the start grid for each (mu_r, c_r) case;
     5/50/95 % of G_STD (18 s) and G_TSR (90 s), valid ranges for G16 and efficiencies.
 
@@ -77,6 +78,15 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
         ``workers`` and ``scheduler`` as for :func:`autobalance.studies.common.run_start_grid`.
     prefix : str
         Prefix of the sweeps' names.
+    grade : float
+        The target grade [mm/s] the valid ranges are decided for (004: G16): where the 95th
+        percentile of a read-out is undecided against it, the sequential step
+        (:func:`autobalance.studies.sequential.refine`) adds random starts.
+    budget : int or None
+        Most runs [-] the sequential step adds; None = as many as the start grid ran
+        (:data:`BUDGET_FACTOR`), 0 = the start grid alone (004's protocol).
+    seed : int
+        Seed of the added random starts.
     progress : bool
         Show each sweep's progress bar on stderr.
 
@@ -85,9 +95,12 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
     xarray.Dataset
         grade_G [mm/s] over (case, G_ini [mm/s], procedure = the profile's read-outs
         (:func:`~autobalance.studies.common.checkpoint_labels`; 004: STD/TSR),
-        percentile 5/50/95), failed_runs per case, the operating boundaries [mm/s]
-        (:func:`operating_boundaries`; NaN beside a liquid, whose moment they leave out);
-        attrs G_balls and G_liquid (:func:`.common.capacity_grades`) [mm/s], grid_step [mm/s].
+        percentile 5/50/95) with its interval grade_G_ci, runs_ok (the runs each G_ini
+        counts, start grid and added starts), failed_runs per case, the operating boundaries
+        [mm/s] (:func:`operating_boundaries`; NaN beside a liquid, whose moment they leave
+        out); attrs G_balls and G_liquid (:func:`.common.capacity_grades`) [mm/s], grid_step
+        [mm/s], grade [mm/s], budget, budget_spent, budget_rounds, budget_exhausted,
+        budget_capped.
     """
     cases = {"nominal": (1.0, 1.0)} if cases is None else dict(cases)
     import xarray as xr
@@ -99,24 +112,46 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
     U = grade_to_unbalance(Gv, cfg.system.total_mass, cfg.spin.nominal_speed)
     q = np.array([5.0, 50.0, 95.0])
     labels = checkpoint_labels(cfg.spin)
+    cells, sets = {}, {}
+    for ci, case in enumerate(cases):
+        mu_r, c_r = cases[case]
+        sets[ci] = case_sets(cfg, mu_r, c_r)
+        raw = run_start_grid(base, f"{prefix}-unb-{case}-n{n}-g{Gv.size}", sets[ci],
+                             {"rotor.unbalance": [float(u) for u in U]}, n,
+                             store=store_path(store_dir, f"unbalance-{case}-n{n}-g{Gv.size}"),
+                             executor=executor, workers=workers, scheduler=scheduler,
+                             progress=progress)
+        cells.update(_grades(raw, ci, range(Gv.size)))
+    first = sum(len(a) for a in cells.values())
+    budget = (0 if cfg.system.balancer.n_balls == 0 else        # a liquid alone: one run
+              BUDGET_FACTOR * first if budget is None else int(budget))
+
+    def run_more(keys, k, rnd):
+        out = {}
+        for ci, case in enumerate(cases):
+            js = sorted({j for c, j in keys if c == ci})
+            if js:
+                raw = run_start_grid(base, f"{prefix}-unb-{case}-more{rnd}", sets[ci],
+                                     {"rotor.unbalance": [float(U[j]) for j in js]}, 0,
+                                     samples=k, seed=seed + SEED_STEP * rnd,
+                                     store=store_path(store_dir, f"unbalance-{case}-n{n}-more{rnd}"),
+                                     executor=executor, workers=workers, scheduler=scheduler,
+                                     progress=progress)
+                out.update(_grades(raw, ci, js))
+        return [out[key] for key in keys]
+
+    ref = refine(cells, lambda c: _undecided(c, grade), budget, run_more)
     data = np.full((len(cases), Gv.size, len(labels), q.size), np.nan)
     data_ci = np.full(data.shape + (2,), np.nan)
     runs_ok = np.zeros((len(cases), Gv.size), int)
     failed = np.zeros(len(cases), int)
-    for ci, case in enumerate(cases):
-        mu_r, c_r = cases[case]
-        raw = run_start_grid(base, f"{prefix}-unb-{case}-n{n}-g{Gv.size}", case_sets(cfg, mu_r, c_r),
-                         {"rotor.unbalance": [float(u) for u in U]}, n,
-                             store=store_path(store_dir, f"unbalance-{case}-n{n}-g{Gv.size}"),
-                             executor=executor, workers=workers, scheduler=scheduler,
-                             progress=progress)
-        g = raw["grade_G"].where(raw["status"] == 0)
-        data[ci] = g.quantile(q / 100, dim="sample").transpose("rotor__unbalance", "checkpoint",
-                                                               "quantile").values
-        data_ci[ci] = percentile_intervals(raw, "grade_G", q, dim="sample").transpose(
-            "rotor__unbalance", "checkpoint", "percentile", "bound").values
-        runs_ok[ci] = (raw["status"] == 0).sum("sample").values
-        failed[ci] = int((raw["status"] != 0).sum())
+    for (ci, j), a in cells.items():
+        for m, qq in enumerate(q):
+            est, lo, hi = quantile_interval(a, qq / 100.0, axis=0)
+            data[ci, j, :, m], data_ci[ci, j, :, m, 0], data_ci[ci, j, :, m, 1] = est, lo, hi
+        ok = np.isfinite(a).all(axis=1)
+        runs_ok[ci, j] += int(ok.sum())
+        failed[ci] += int((~ok).sum())
     ds = xr.Dataset({"grade_G": (("case", "G_ini", "procedure", "percentile"), data,
                                  {"units": "mm/s", "long_name": "residual grade percentile"}),
                      "grade_G_ci": (("case", "G_ini", "procedure", "percentile", "bound"),
@@ -137,9 +172,40 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
                                           "the unbalance: |G_ini - G_balls|"})
     ds["upper_boundary"] = ("G_ini", hi, {"units": "mm/s", "long_name": "every ball with the "
                                           "unbalance: G_ini + G_balls"})
-    ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "G_liquid": G_l, "grid_step": float(np.diff(Gv).max()) if Gv.size > 1 else 0.0,
+    ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "G_liquid": G_l,
+                     "grid_step": float(np.diff(Gv).max()) if Gv.size > 1 else 0.0,
+                     "grade": float(grade), "simulations_first_pass": int(first),
+                     "budget": int(budget), "budget_spent": int(ref["spent"]),
+                     "budget_rounds": int(ref["rounds"]),
+                     "budget_exhausted": int(ref["exhausted"]),
+                     "budget_capped": int(ref["capped"]), "seed": int(seed),
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
+
+
+#: Default budget of the sequential step, in units of the start grid's runs [-].
+BUDGET_FACTOR = 1
+
+
+def _grades(raw: xr.Dataset, case: int, js) -> dict:
+    """(case, G_ini index) -> the final grades [mm/s] (sample, read-out) of a sweep over the
+    initial unbalances ``js`` (in its order); failed runs NaN."""
+    g = raw["grade_G"].where(raw["status"] == 0).transpose("rotor__unbalance", "sample",
+                                                           "checkpoint").values
+    return {(case, j): g[a] for a, j in enumerate(js)}
+
+
+def _undecided(cells: dict, grade: float) -> list:
+    """The cells whose 95th percentile is undecided against ``grade`` [mm/s] at some read-out
+    (:func:`autobalance.confidence.verdict` of its interval)."""
+    from ..confidence import verdict
+
+    out = []
+    for key, a in cells.items():
+        _, lo, hi = quantile_interval(a, 0.95, axis=0)
+        if any(verdict(x, y, grade) == "undecided" for x, y in zip(lo, hi)):
+            out.append(key)
+    return out
 
 
 def compute_profile(base: str | Path, other_sets: Iterable[str], *,
@@ -194,7 +260,7 @@ def compute_profile(base: str | Path, other_sets: Iterable[str], *,
             or "nominal" not in unbalance_ds["case"].values or unbalance_ds.attrs["n"] != n:
         unbalance_ds = compute_unbalance(base, {"nominal": (1.0, 1.0)}, G=Gv, n=n,
                                          store_dir=store_dir, executor=executor, workers=workers,
-                                         scheduler=scheduler, prefix=prefix)
+                                         scheduler=scheduler, prefix=prefix, budget=0)
     U = grade_to_unbalance(Gv, cfg.system.total_mass, cfg.spin.nominal_speed)
     raw = run_start_grid(base, f"{prefix}-slow-n{n}-g{Gv.size}", list(other_sets),
                          {"rotor.unbalance": [float(u) for u in U]}, n,

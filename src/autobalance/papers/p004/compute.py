@@ -61,7 +61,8 @@ def compute_unbalance(cases: Sequence[str] = ("nominal",), *, G: ArrayLike | Non
     G = unbalance_grid(quick) if G is None else G
     return _unb.compute_unbalance(PRESET, {c: UNBALANCE_CASES[c] for c in cases}, G=G, n=n,
                                   quick=quick, store_dir=store_dir, executor=executor,
-                                  workers=workers, scheduler=scheduler, prefix="tsr")
+                                  workers=workers, scheduler=scheduler, prefix="tsr",
+                                  budget=0)     # 004's protocol: the start grid alone
 
 
 def compute_profile(*, G: ArrayLike | None = None, n: int = 50, quick: bool = False,
@@ -100,7 +101,7 @@ def compute_plateau(cases: Sequence[str] = ("nominal",), *, ratios: ArrayLike | 
     return _pl.compute_plateau(PRESET, {c: PLATEAU_CASES[c] for c in cases}, ratios=ratios, G=G,
                                n=n, quick=quick, store_dir=store_dir, executor=executor,
                                workers=workers, scheduler=scheduler, g_range=G_TSR_RANGE,
-                               prefix="tsr")
+                               prefix="tsr", budget=0)     # 004's protocol: the start grid alone
 
 
 def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,

@@ -1,4 +1,4 @@
-"""Readings of what 004 leaves open, taken together (issue 16): how many of 004's published
+"""Readings of what 004 leaves open, taken together: how many of 004's published
 Monte-Carlo quantities (sec. 4.2, Fig. 5-6, Table 2: two modes, four shares, five regions) each
 reading reproduces, with the tolerances of the report's rows (:func:`.compare.compare_monte_carlo`).
 
