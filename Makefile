@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: setup run test test-fast bench faults browser validation clean
+.PHONY: setup run test test-fast bench faults browser validation docs docs-serve clean
 
 # Debian's Chromium opens the HTML report in the tests (installed once, with sudo if not root).
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
@@ -48,6 +48,13 @@ browser:
 validation: run
 	cp out/VALIDATION.md docs/VALIDATION.md
 
+# The documentation site (MkDocs; warnings are errors) into site/, or served on 127.0.0.1:8000.
+docs: setup
+	$(BIN)/python -m mkdocs build --strict --site-dir site
+
+docs-serve: setup
+	$(BIN)/python -m mkdocs serve -a 127.0.0.1:8000
+
 bench: setup
 	$(BIN)/python benchmarks/run.py
 	$(BIN)/python benchmarks/sweep_bench.py
@@ -60,5 +67,5 @@ faults: setup
 	$(BIN)/python benchmarks/faults.py
 
 clean:
-	rm -rf $(VENV) out .pytest_cache
+	rm -rf $(VENV) out site .pytest_cache
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete

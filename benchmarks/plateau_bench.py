@@ -5,7 +5,7 @@
    run-up integrated once per cell family, ``simulate_branches``) against the same sweep with
    every cell alone (``branch=False``); wall time, runs/s, and
    that the two stores hold the same bytes.
-2. The paper-size map itself (``studies.plateau.compute_plateau``: 153 cells x 210 starts =
+2. The paper-size map itself (``studies._plateau.compute_plateau``: 153 cells x 210 starts =
    32 130 runs, nominal case): wall time, runs/s and its ideal plateau.
 """
 from __future__ import annotations
@@ -20,7 +20,7 @@ import numpy as np
 
 from autobalance.config import load_config
 from autobalance.physics.iso1940 import grade_value, unbalance_value
-from autobalance.studies.plateau import compute_plateau, default_grid
+from autobalance.studies._plateau import compute_plateau, default_grid
 from autobalance.sweep import spec_from_dict, sweep
 
 PRESET = "vub_jeffcott_004"

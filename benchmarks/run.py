@@ -155,7 +155,7 @@ def main() -> dict:
                  f"({t_cr/t_tsr:.2f}x stick); checkpoint grades differ by {dG:.1e} mm/s")
     # --- D: the worst-case residual bound behind `study tolerances` (physics/worst_case.py) -----
     import autobalance.physics.reachable_set as wc
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._tolerances import compute_tolerances
 
     compute_tolerances("examples/centrifuge.toml", grade=16.0)          # compile
     tol = {}

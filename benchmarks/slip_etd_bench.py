@@ -13,7 +13,7 @@ slipping or one of them stuck), side by side in one process:
 Then whole runs of 004's profile with and without the slip jumps in the kernel
 (``options.exponential_slip``, on by default), side by side: ``whole_runs``.
 
-Part of ``make bench`` (about 4 minutes; docs/numerics.md).
+Part of ``make bench`` (about 4 minutes; docs/numerics/index.md).
 """
 from __future__ import annotations
 

@@ -108,7 +108,7 @@ def main() -> dict:
         dG0 = np.abs(ds1["grade_G"].values - ds0["grade_G"].values)
         s3, w3, e3, ds3 = run(SimOptions(exponential_slip=False, dense_events=False), "older",
                               work)
-        # DOPRI5's phases run at ~1.5 ms steps (stability-bound, docs/numerics.md): capping the
+        # DOPRI5's phases run at ~1.5 ms steps (stability-bound, docs/numerics/index.md): capping the
         # step at 0.75 ms halves them, and cuts the slip jumps' steps (10-50 ms) far more
         h = 0.75e-3
         s2, w2, e2, ds2 = run(SimOptions(max_step=h), "half", work)

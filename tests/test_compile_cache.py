@@ -1,4 +1,4 @@
-"""The compiled cache of core/ follows every core source (docs/numerics.md, "Compilation cache"):
+"""The compiled cache of core/ follows every core source (docs/numerics/index.md, "Compilation cache"):
 numba alone keeps a kernel's machine code while a kernel it calls in another file changes."""
 from autobalance.core.jit import _drop_stale_cache
 

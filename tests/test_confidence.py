@@ -127,3 +127,28 @@ def test_intervals_cover_a_machines_grade_distribution(tmp_path):
         print(f"\ncoverage of the p{100 * q:g} (truth G{truth:.3g}) by 80-start intervals: "
               f"{100 * cov:.1f} %")
         assert 0.93 <= cov <= 0.995, (q, cov)
+
+
+def test_share_intervals_of_a_sweep_count_each_cell_and_read_out():
+    """sweep.summary.share_intervals on a grid of 3 values x 2 read-outs (status per run, grade
+    per run and read-out; one failed run): each interval is Clopper-Pearson of that cell's own
+    count, the failed run left out."""
+    import xarray as xr
+
+    from autobalance.sweep.summary import share_intervals
+
+    g = np.array([[[1, 30], [2, 3], [20, 20], [5, 5], [9, 40]],       # (cell, sample, read-out)
+                  [[1, 1], [1, 1], [1, 1], [1, 1], [1, 1]],
+                  [[30, 30], [30, 1], [30, 30], [30, 30], [30, 30]]], float)
+    status = np.zeros((3, 5), int)
+    status[0, 4] = 3                                                    # a failed run
+    ds = xr.Dataset({"grade_G": (("rotor__unbalance", "sample", "checkpoint"), g),
+                     "status": (("rotor__unbalance", "sample"), status)},
+                    coords={"rotor__unbalance": [0.1, 0.2, 0.3], "checkpoint": [0, 1]})
+    ci = share_intervals(ds, 16.0).transpose("rotor__unbalance", "checkpoint", "bound").values
+    for c in range(3):
+        ok = status[c] == 0
+        for k in range(2):
+            hits = int(((g[c, :, k] <= 16) & ok).sum())
+            _, lo, hi = share_interval(hits, int(ok.sum()))
+            assert ci[c, k] == pytest.approx([float(lo), float(hi)]), (c, k)

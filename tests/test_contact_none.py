@@ -12,13 +12,13 @@ import pytest
 
 from autobalance.models import InitialState, ParameterError
 from autobalance.simulate import simulate
-from autobalance.studies.start_positions import compute_start_positions, load
+from autobalance.studies._start_positions import compute_start_positions, load
 from autobalance.sweep.plan import COINCIDENT_SPLIT, split_coincident
 
 
 def _run(contact: str, angles, *sets, checkpoints_only: bool = False):
     """One simulation; ``checkpoints_only``: the outputs a sweep stores (with a dense history
-    the slip jumps' windows end at its samples, docs/numerics.md)."""
+    the slip jumps' windows end at its samples, docs/numerics/index.md)."""
     cfg = load("vub_jeffcott_004", [f"balancer.contact={contact}", *sets])
     o = dataclasses.replace(cfg.options, save_dt=-1.0) if checkpoints_only else cfg.options
     return simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=tuple(angles)),

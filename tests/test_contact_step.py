@@ -1,4 +1,4 @@
-"""The step cap while balls touch (simulate/pack.contact_step, core/integrate.py; docs/numerics.md,
+"""The step cap while balls touch (simulate/pack.contact_step, core/integrate.py; docs/numerics/index.md,
 "Resting contacts"): the cap is two thirds of DOPRI5's stability edge on the contact's modes,
 computed here from the kernel's own tableau, and 004's runs whose balls settle in contact
 give the grade of a run whose steps are twenty times smaller (before the cap they missed it by

@@ -1,5 +1,5 @@
 """core/expo.py: the phi functions and the exponential Runge-Kutta step for slipping phases
-(docs/numerics.md, "An exponential integrator for the slipping phases").
+(docs/numerics/index.md, "An exponential integrator for the slipping phases").
 
 Tiers: the phi functions against scipy's matrix exponential of the augmented matrix and against
 their scalar closed forms (fast); the method on 004's rig against the kernel's closed-form hold

@@ -1,5 +1,5 @@
 """`study fill-map`: a liquid balancer's steady whirl over fill x speed with the liquid from
-physics, for any vertical-axis machine (studies/fill_map.py; docs/liquid.md sec. 3f)."""
+physics, for any vertical-axis machine (studies/_fill_map.py; docs/liquid/machine.md sec. 3f)."""
 from __future__ import annotations
 
 import json
@@ -15,7 +15,7 @@ from autobalance.config import load_config
 from autobalance.liquid.models import VerticalRotor
 from autobalance.liquid.steady import pool_response, ring_response
 from autobalance.models import ParameterError
-from autobalance.studies.fill_map import compute_fill_map, fill_map_summary
+from autobalance.studies._fill_map import compute_fill_map, fill_map_summary
 
 
 #: 003's bench as a cylinder (its chamber is an annulus 0.15-0.2 m): room for a 3 l fill.
@@ -104,7 +104,7 @@ def test_linear_map_is_ring_stability_per_point_and_a_pool_below_entrainment():
     horizontal axis is refused in one line."""
     from autobalance.liquid.simulate import film_rotor
     from autobalance.liquid.stability import machine_stability, ring_stability
-    from autobalance.studies.fill_map import compute_linear_map
+    from autobalance.studies._fill_map import compute_linear_map
 
     cfg = load_config("leblanc_003")
     L = cfg.system.liquid
@@ -126,8 +126,8 @@ def test_linear_map_is_ring_stability_per_point_and_a_pool_below_entrainment():
 def test_stability_map_tells_steady_from_asynchronous_whirl():
     """The coupled film at constant speed (one sweep, local processes): 75 ml at 45 1/s settles
     on the synchronous whirl; 300 ml of water at 80 1/s (1.5 omega_r) keeps whirling
-    asynchronously (docs/liquid.md sec. 3d), its amplitude spreading by > 50 % of its mean."""
-    from autobalance.studies.fill_map import SPREAD_MAX, compute_stability_map
+    asynchronously (docs/liquid/film.md sec. 3d), its amplitude spreading by > 50 % of its mean."""
+    from autobalance.studies._fill_map import SPREAD_MAX, compute_stability_map
 
     st = compute_stability_map("leblanc_003", fills=[75e-6, 300e-6], speeds=[45.0, 80.0],
                                duration=6.0, executor="local", workers=2)
@@ -179,7 +179,7 @@ def test_horizontal_stability_map_reads_the_synchronous_part():
     unbalance (a revolution average: gravity's once-per-revolution wobble about the sag is not
     unsteadiness). The washer's 250 ml ring at 1000 rpm is steady (spread 0.005); 1000 ml at
     740 rpm is not (0.14, while the raw amplitude spreads by 0.20)."""
-    from autobalance.studies.fill_map import compute_stability_map
+    from autobalance.studies._fill_map import compute_stability_map
     w = np.array([740.0, 1000.0]) * np.pi / 30
     st = compute_stability_map("leblanc_washer", fills=[250e-6, 1000e-6], speeds=w,
                                executor="serial")

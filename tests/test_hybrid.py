@@ -1,4 +1,4 @@
-"""Balls beside a liquid (core/hybrid.py, simulate/hybrid.py; docs/liquid.md sec. 3i): the ball
+"""Balls beside a liquid (core/hybrid.py, simulate/hybrid.py; docs/liquid/balls-beside-liquid/index.md sec. 3i): the ball
 simulator with the wall films on the same rotor, checked against its two limits (a liquid of no
 mass: the ball run; balls that cannot move: the Jeffcott rotor with the film), bad input, the
 NetCDF file and the CLI end to end."""
@@ -283,8 +283,8 @@ def test_simulation_studies_take_balls_beside_a_liquid():
     forms the liquid is not in (the balls' operating boundaries, the stick threshold) are NaN
     instead of the balls' alone."""
     from autobalance.physics.iso1940 import unbalance_value
-    from autobalance.studies.plateau import compute_plateau
-    from autobalance.studies.runup import compute_runup
+    from autobalance.studies._plateau import compute_plateau
+    from autobalance.studies._runup import compute_runup
     from autobalance.studies.unbalance import compute_unbalance
 
     cfg = machine(*TSR)
@@ -316,7 +316,7 @@ def test_simulation_studies_take_balls_beside_a_liquid():
 
 
 def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
-    from autobalance.studies.start_positions import compute_single
+    from autobalance.studies._start_positions import compute_single
 
     with pytest.raises(ParameterError) as e:
         compute_single(machine())
@@ -327,7 +327,7 @@ def test_closed_form_studies_refuse_a_liquid_naming_the_ones_that_take_it():
 
 
 def test_sensitivity_varies_the_liquid_viscosity_beside_balls():
-    from autobalance.studies.sensitivity import default_variants
+    from autobalance.studies._sensitivity import default_variants
 
     v = default_variants(machine())
     nu = machine().system.liquid.kinematic_viscosity
@@ -342,8 +342,8 @@ def test_design_takes_balls_beside_a_liquid(tmp_path):
     candidate's own run (balls beside the liquid) from the start its sweep stored, and the
     tolerances are the bound beside the liquid (study tolerances of the picked design)."""
     from autobalance.config import load_config
-    from autobalance.studies.design import DesignSpace, compute_design, design_summary
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._design import DesignSpace, compute_design, design_summary
+    from autobalance.studies._tolerances import compute_tolerances
     from autobalance.sweep.execute import open_sweep
 
     std = ("profile.kind=std", "profile.nominal=100 rad/s", "profile.runup_time=4 s",

@@ -1,4 +1,4 @@
-"""`study immobility` beside a liquid on a horizontal axis (studies/immobility.py, docs/liquid.md
+"""`study immobility` beside a liquid on a horizontal axis (studies/_immobility.py, docs/liquid/index.md
 sec. 3k): the balls at rest on the steady orbit with the planar quasi-static liquid, gravity's
 pull on the balls kept; checked against the fill map's steady amplitude, the pool machine below
 the film's start, and the run of balls beside the films under gravity (core/hybrid.py)."""
@@ -18,7 +18,7 @@ from autobalance.models import InitialState, SimOptions, SpeedProfile
 from autobalance.physics.immobility import configurations, steady_deflection
 from autobalance.physics.unbalance import residual_unbalance
 from autobalance.simulate.hybrid import simulate_hybrid
-from autobalance.studies.immobility import compute_immobility, liquid_response
+from autobalance.studies._immobility import compute_immobility, liquid_response
 
 # two 0.5 kg balls on 0.3 m beside the washer's ring (1 l on R = 0.26 m, horizontal axis)
 BALLS = ("balancer.n_balls=2", "balancer.ball_mass=0.5 kg", "balancer.race_radius=0.3 m",

@@ -1,5 +1,5 @@
 """001's kinetostatic laws against the liquid from physics (liquid/kinetostatic_check.py,
-``autobalance liquid kinetostatic-check``; docs/liquid.md sec. 2b): the laws compared with
+``autobalance liquid kinetostatic-check``; docs/liquid/kinetostatics.md sec. 2b): the laws compared with
 the dynamic results."""
 from __future__ import annotations
 
@@ -52,7 +52,7 @@ def test_001_eq3_puts_the_liquid_short_of_where_physics_puts_it(water):
     """At the physical phase delta and ratio k, 001 eq 3's alpha0 lies 9-14 deg short of the
     physical liquid angle above resonance (measured 9.5, 14.2, 13.3 deg at 65, 80, 100 1/s), on
     the same side: 001's eq 2 makes the *resultant* D_c sit at delta from D, the physics makes
-    the liquid sit at the deflection (docs/liquid.md sec. 2, note on eq 2)."""
+    the liquid sit at the deflection (docs/liquid/kinetostatics.md sec. 2, note on eq 2)."""
     gap = np.abs(water["alpha_deg"]) - np.abs(water["alpha0_deg"])
     assert np.all(gap > 5.0) and np.all(gap < 20.0)
     assert np.all(np.sign(water["alpha0_deg"]) == np.sign(water["alpha_deg"]))

@@ -71,7 +71,7 @@ def test_003_bottom_touch_speed_100ml():
 
     Tolerance: half a unit of the last printed digit (0.005 1/s). 003's printed speeds follow from
     g = 10 m/s^2 (0.892); with standard g we get 0.883, a miss of 0.8 % (reported in
-    docs/liquid.md), so the published number is checked with g = 10 m/s^2.
+    docs/liquid/index.md), so the published number is checked with g = 10 m/s^2.
     """
     assert bottom_touch_speed(100 * ML, R, 10.0) == pytest.approx(0.89, abs=0.005)
     assert bottom_touch_speed(100 * ML, R, G) == pytest.approx(0.8834, abs=1e-4)
@@ -84,7 +84,7 @@ def test_003_entrainment_speed_eq6(V_ml, published, tol):
 
     Tolerance: half a unit of the last printed digit. Reproduced with g = 10 m/s^2 (the value
     003's numbers imply); with g = 9.80665 the 200 and 300 ml values (19.62, 16.02) miss by
-    0.9-1.1 % -- reported as misses in docs/liquid.md, not hidden by a wider tolerance.
+    0.9-1.1 % -- reported as misses in docs/liquid/index.md, not hidden by a wider tolerance.
     """
     assert entrainment_speed(V_ml * ML, R, H, 10.0) == pytest.approx(published, abs=tol)
     assert entrainment_speed(V_ml * ML, R, H, G) == pytest.approx(
@@ -174,7 +174,7 @@ def test_scalar_liquid_angle_is_alpha0_minus_beta(d, k, mu, w):
 
 
 # -- dynamics: bench behaviour (003) and 001 trends --------------------------------------------
-MODEL = LiquidModel()   # the lumped model's defaults (docs/liquid.md sec. 3)
+MODEL = LiquidModel()   # the lumped model's defaults (docs/liquid/models.md sec. 3)
 
 
 @pytest.fixture(scope="module")
@@ -197,7 +197,7 @@ def test_entrainment_and_subcritical_onset(bench):
 
     The onset is where chi (0 at omega_0 of eq 6, 1 at engagement_ratio*omega_0) makes the
     liquid act; engagement_ratio = 1.5 is an input calibrated on 003 Fig. 7a-b, so this checks
-    the chain, not an independent prediction (docs/liquid.md).
+    the chain, not an independent prediction (docs/liquid/index.md).
     """
     wr = 54.0
     r = steady_response(bench.rotor, bench.balancer, [wr / 3, wr / 2, 0.6 * wr], MODEL)
@@ -260,7 +260,7 @@ def test_001_efficiency_rises_toward_critical(bench):
 
 
 def test_001_damping_trend_is_a_miss():
-    """MISS (docs/liquid.md): 001 states that efficiency rises with external damping (larger
+    """MISS (docs/liquid/index.md): 001 states that efficiency rises with external damping (larger
     phase angle delta). Its own eq 3 gives, at fixed k != 1, alpha0 moving away from pi as delta
     grows, so e/e_c falls with damping; at k = 1 it is independent of delta. We report the
     computed trend and do not reproduce 001's claim."""

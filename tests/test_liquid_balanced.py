@@ -1,4 +1,4 @@
-"""The balanced state of balls beside a liquid (studies/liquid_balanced.py, docs/liquid.md sec.
+"""The balanced state of balls beside a liquid (studies/liquid_balanced.py, docs/liquid/index.md sec.
 3k): its linearisation against the run of balls beside a liquid, against the liquid alone and
 the balls alone, and its refusals."""
 from __future__ import annotations
@@ -150,7 +150,7 @@ def test_speed_map_beside_a_liquid():
     states are judged, each as balanced_stability judges it, and a range's edge is where its
     growth rate changes sign. Measured on this machine: stable from 89.8 1/s (quick grid)."""
     from autobalance.config import from_models, load_config
-    from autobalance.studies.speed_map import compute_speed_map
+    from autobalance.studies._speed_map import compute_speed_map
 
     cfg = load_config("leblanc_003", list(BALLS))
     s = cfg.system
@@ -174,7 +174,7 @@ def test_speed_map_beside_a_liquid():
 
 
 def test_speed_map_beside_a_liquid_refusals():
-    from autobalance.studies.speed_map import compute_speed_map
+    from autobalance.studies._speed_map import compute_speed_map
 
     cfg = load_config("leblanc_003", list(BALLS))
     with pytest.raises(ParameterError, match="^full"):
@@ -234,7 +234,7 @@ def test_immobility_beside_a_liquid():
     from autobalance.liquid.models import VerticalRotor
     from autobalance.liquid.start import film_start_speed
     from autobalance.liquid.steady import chambers_steady_response
-    from autobalance.studies.immobility import compute_immobility, liquid_response
+    from autobalance.studies._immobility import compute_immobility, liquid_response
 
     cfg = load_config("leblanc_003", [*BALLS, "balancer.rolling_resistance=0.01"])
     s = cfg.system
@@ -266,7 +266,7 @@ def test_immobility_refuses_partitions():
     """The steady orbit of `study immobility` beside a liquid is the quasi-static liquid's,
     which has no partitions: one line naming them, not the shares of the open chamber with
     exit 0."""
-    from autobalance.studies.immobility import compute_immobility
+    from autobalance.studies._immobility import compute_immobility
 
     cfg = load_config("leblanc_003", [*BALLS, "liquid.partitions=4"])
     with pytest.raises(ParameterError) as e:
@@ -280,7 +280,7 @@ def test_partitions_take_the_runs_cells():
     liquid alone. Before, both refused 64 cells, and the speed map counted every speed with a
     film as 'no verdict' and reported the machine stable at no speed with exit 0."""
     from autobalance.liquid.stability import machine_stability, ring_stability
-    from autobalance.studies.speed_map import compute_speed_map
+    from autobalance.studies._speed_map import compute_speed_map
 
     s = machine("liquid.partitions=3")
     a = balanced(s, 100.0)[0]

@@ -1,4 +1,4 @@
-"""Several concentric chambers in one machine (docs/liquid.md sec. 3g): the
+"""Several concentric chambers in one machine (docs/liquid/machine.md sec. 3g): the
 ``[liquid]`` keys as per-chamber lists, their one-line errors, the films of all chambers
 coupled with the one rotor (closed form of intact rings, independence, volume per chamber),
 ``simulate`` and ``sweep`` of the preset leblanc_003_three, and the one-chamber analyses'
@@ -201,7 +201,7 @@ def test_fill_map_of_three_chambers_is_pools_and_intact_rings():
     its liquid's mass only (a pool); the map equals that closed form at every speed, chamber by
     chamber (to 1e-9), and its fill is the total, each chamber scaled alike."""
     from autobalance.liquid.steady import pool_response, start_speed
-    from autobalance.studies.fill_map import compute_fill_map
+    from autobalance.studies._fill_map import compute_fill_map
 
     cfg = three()
     s = cfg.system
@@ -222,7 +222,7 @@ def test_fill_map_of_three_chambers_is_pools_and_intact_rings():
 
 
 def test_fill_map_refusals_with_several_chambers():
-    from autobalance.studies.fill_map import compute_fill_map
+    from autobalance.studies._fill_map import compute_fill_map
 
     with pytest.raises(ParameterError) as e:
         compute_fill_map("leblanc_003_three", fills=[5000e-6], speeds=[30.0, 40.0])
@@ -237,7 +237,7 @@ def test_fill_map_refusals_with_several_chambers():
 def test_stability_map_of_three_chambers_runs_each_fill(tmp_path):
     """--dynamic on several chambers: one sweep over the speeds per fill (every chamber's volume
     set), each cell the machine's own constant-speed run; resumable from the store."""
-    from autobalance.studies.fill_map import compute_stability_map
+    from autobalance.studies._fill_map import compute_stability_map
 
     fills, speeds = [225e-6, 450e-6], [60.0]
     st = compute_stability_map("leblanc_003_three", fills=fills, speeds=speeds, duration=1.0,
@@ -305,7 +305,7 @@ def test_liquid_simulate_of_three_chambers_is_the_fill_map_and_the_film_run(tmp_
     import sys
 
     from autobalance.liquid.simulate import ramp_run_up
-    from autobalance.studies.fill_map import compute_fill_map, default_fills
+    from autobalance.studies._fill_map import compute_fill_map, default_fills
 
     cfg = three(*SHORT)
     r = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "simulate",

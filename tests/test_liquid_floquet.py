@@ -1,5 +1,5 @@
 """Linear stability of a rotor with wall films on a horizontal axis (liquid/stability.py
-ring_floquet; docs/liquid.md sec. 3m): Floquet multipliers about the periodic state that gravity
+ring_floquet; docs/liquid/horizontal-axis.md sec. 3m): Floquet multipliers about the periodic state that gravity
 turning in the rotor frame makes of the centred one. Its limit without gravity (the one-step
 map's eigenvalues), the periodic state and the growth rate against the film kernel's own run,
 the compartments' volumes, Kollmann's band of the washer, no verdict on a crescent, bad input
@@ -159,7 +159,7 @@ def test_washers_kollmann_band_on_its_horizontal_axis():
     """The washer preset (liquid alone, horizontal axis, omega_n 295 rpm with the liquid), on 32
     cells: unstable at 450 rpm, stable at 1000 rpm, no verdict at 190 rpm (the film's start is
     185 rpm). Measured on 64 cells over 100-1400 rpm: unstable from 327 to 542 rpm against
-    300-596 rpm on a vertical axis (docs/liquid.md sec. 3m)."""
+    300-596 rpm on a vertical axis (docs/liquid/horizontal-axis.md sec. 3m)."""
     res = machine_stability(WASHER, np.array([190.0, 450.0, 1000.0]) * RPM, n_cells=32)
     g = res["growth_rate_1_s"]
     assert res["axis"] == "horizontal"

@@ -1,4 +1,4 @@
-"""A liquid under a motor drive (docs/liquid.md sec. 3i): a liquid alone through the kernel of
+"""A liquid under a motor drive (docs/liquid/balls-beside-liquid/index.md sec. 3i): a liquid alone through the kernel of
 balls beside a liquid with no balls (`simulate_liquid_motor`), the pool's spin-up from rest
 beside a motor-driven spin (`_pool_phase`), the CLI, and the one-line refusals. The references
 are the prescribed-profile models run through the motor run's own speed history: the film
@@ -195,7 +195,7 @@ def test_runup_study_and_sweep_of_a_liquid_alone_under_a_motor(tmp_path):
     `liquid_run`): the study's amplitude before the film is the run's own (the pool spinning up
     beside the motor, not the quasi-steady bound), and each stored sweep cell is the machine's
     own run."""
-    from autobalance.studies.runup import compute_runup
+    from autobalance.studies._runup import compute_runup
     from autobalance.sweep import spec_from_dict, sweep
 
     sets = [*MOTOR, "profile.initial_speed=0 rad/s", "profile.duration=6 s"]

@@ -93,7 +93,7 @@ def test_the_film_breaks_into_a_crescent_that_gathers_the_liquid_at_the_far_wall
 
 def test_thin_film_limit_is_the_capacity_rho_V_R():
     """A vanishing volume in a displaced chamber is a sliver at the far wall: U / (rho V R) -> 1
-    (the lumped model's capacity, docs/liquid.md sec. 3), from below, as V -> 0."""
+    (the lumped model's capacity, docs/liquid/models.md sec. 3), from below, as V -> 0."""
     prev = 0.0
     for V in (1e-3 * VC, 1e-5 * VC, 1e-7 * VC):
         q = quasi_static(R, H, V, RHO, 300.0, 0.01 + 0j, axis="planar")

@@ -1,5 +1,5 @@
 """Linear stability of the centred state of a rotor with wall films (liquid/stability.py;
-docs/liquid.md sec. 3j): the rotor's own eigenvalues with a film of no mass, the film runs' own
+docs/liquid/stability.md sec. 3j): the rotor's own eigenvalues with a film of no mass, the film runs' own
 growth rates from a small deflection, the instability band above resonance on 003's bench that
 the film runs show, convergence in the cells, partitions, refusals and the CLI."""
 from __future__ import annotations
@@ -65,7 +65,7 @@ def test_growth_rate_is_the_film_runs(speed, volume, end):
 def test_003_bench_is_unstable_just_above_resonance():
     """Kollmann's band on 003's bench (omega_r = 54 1/s): 150 ml is stable at 45 and 100 1/s
     and unstable at 60 and 68.7 1/s, where the fill map's film runs do not reach a synchronous
-    whirl (docs/liquid.md sec. 3f). The band widens with the fill: 300 ml is unstable at 80."""
+    whirl (docs/liquid/machine.md sec. 3f). The band widens with the fill: 300 ml is unstable at 80."""
     assert bench(150e-6, 45.0).stable and bench(150e-6, 100.0).stable
     assert not bench(150e-6, 60.0).stable and not bench(150e-6, 68.7).stable
     assert not bench(300e-6, 80.0).stable and bench(75e-6, 80.0).stable

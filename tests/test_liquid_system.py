@@ -149,7 +149,7 @@ def test_film_starts_at_the_entrainment_speed_on_a_turning_start():
 def test_steady_whirl_matches_the_quasi_static_liquid():
     """At a constant 40 1/s (below resonance, where the synchronous whirl is stable) the run
     settles on the quasi-static root (liquid/steady.py, planar: the film has no axial gravity).
-    Tolerance 2 |w|/R: the film's wall height is first order in |w|/R (docs/liquid.md sec. 3c);
+    Tolerance 2 |w|/R: the film's wall height is first order in |w|/R (docs/liquid/film.md sec. 3c);
     measured 0.93 % at |w|/R = 0.0094, the same on 128, 256 and 512 cells."""
     cfg = bench()
     s, L = cfg.system, cfg.system.liquid
@@ -357,8 +357,8 @@ def test_unbalance_range_and_runup_studies_take_a_liquid_alone():
     "without" the rotor with its chamber empty. The studies with ball closed forms still
     refuse a liquid alone in one line."""
     from autobalance.physics.iso1940 import unbalance_value
-    from autobalance.studies.plateau import compute_plateau
-    from autobalance.studies.runup import compute_runup
+    from autobalance.studies._plateau import compute_plateau
+    from autobalance.studies._runup import compute_runup
     from autobalance.studies.unbalance import compute_unbalance
 
     cfg = bench(*SHORT_RUN)

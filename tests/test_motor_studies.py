@@ -15,9 +15,9 @@ from typer.testing import CliRunner
 from autobalance.cli import app
 from autobalance.config import load_config
 from autobalance.models import MotorDrive, ParameterError
-from autobalance.studies.plateau import compute_descent, compute_plateau
-from autobalance.studies.sensitivity import default_variants
-from autobalance.studies.start_positions import compute_machine, compute_monte_carlo
+from autobalance.studies._plateau import compute_descent, compute_plateau
+from autobalance.studies._sensitivity import default_variants
+from autobalance.studies._start_positions import compute_machine, compute_monte_carlo
 from autobalance.studies.statistics import plateau_speed, profile_text
 
 MACHINE = """\

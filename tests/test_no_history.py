@@ -58,7 +58,7 @@ def test_no_development_history_in_the_project():
     assert not found, f"{len(found)} lines of development history:\n" + "\n".join(found[:60])
 
 
-@pytest.mark.parametrize("text", ["on by default since stop 37", "(issue 15; docs/liquid.md)",
+@pytest.mark.parametrize("text", ["on by default since stop 37", "(issue 15; docs/liquid/index.md)",
                                   "this session's runs", "Until now it was refused",
                                   "see ../shared/seeds/README.md", "measured 2026-11-30"])
 def test_the_check_finds_planted_history(tmp_path, text):

@@ -1,4 +1,4 @@
-"""Stuck-ball speed ramps without stepping (core/ramp.py, docs/numerics.md).
+"""Stuck-ball speed ramps without stepping (core/ramp.py, docs/numerics/index.md).
 
 Closed forms: the series (R2) at zero ramp rate is the hold's steady response (core/hold.py);
 at a nonzero rate it solves the ramp equation (R1), checked against scipy's DOP853 on (R1) in

@@ -1,4 +1,4 @@
-"""The liquid on a horizontal axis in time (core/rimming.py, liquid/rimming.py; docs/liquid.md
+"""The liquid on a horizontal axis in time (core/rimming.py, liquid/rimming.py; docs/liquid/index.md
 sec. 3n): the puddle at rest (the thin layer's horizontal chord) kept to round-off, volume to
 round-off, the friction's lag under a constant spin-up and the ring's forced wave under gravity
 against their closed forms, grid convergence, the model's quasi-static ring, and the runs'
@@ -140,7 +140,7 @@ def test_a_water_puddle_leaves_the_model_on_the_washers_run_up():
     """0 -> 1000 rpm in 30 s from the puddle at rest: the wall drags the puddle up its rising
     side, the liquid barely turning (6-7 rpm), until more than 1 % of it lies where nothing
     holds it on the wall (measured at 216, 233, 242 rpm on 128, 256, 512 cells). The
-    single-layer model stops there (docs/liquid.md sec. 3n)."""
+    single-layer model stops there (docs/liquid/horizontal-axis.md sec. 3n)."""
     r = rimming_run(R, H, V, ([0.0, 30.0], [0.0, 1000 * RPM]), 30.0, g=G, n_cells=128)
     assert r.status == "unheld" and r.ring_time is None
     assert r.loose[-1] > 0.01

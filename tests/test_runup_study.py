@@ -1,4 +1,4 @@
-"""``study runup`` (studies/runup.py): the run-up of any machine with and without its balls.
+"""``study runup`` (studies/_runup.py): the run-up of any machine with and without its balls.
 The study answers 000's Table 1 questions for 000's washer exactly as the paper module's own
 runs do, its time to speed meets the unloaded drive's closed form within the load of the
 unbalance and balls (000 eq 15), and bad input is one line."""
@@ -17,7 +17,7 @@ from autobalance.config import from_models
 from autobalance.models import InitialState, MotorDrive, ParameterError, SimOptions
 from autobalance.papers.p000 import runup as p000
 from autobalance.papers.p000.washer import W1000, washer
-from autobalance.studies.runup import balancing_time, compute_runup, runup_summary
+from autobalance.studies._runup import balancing_time, compute_runup, runup_summary
 
 TOPLOADER = str(Path(__file__).resolve().parents[1] / "examples" / "toploader.toml")
 runner = CliRunner()

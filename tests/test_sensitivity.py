@@ -12,9 +12,9 @@ from typer.testing import CliRunner
 
 from autobalance.cli import app
 from autobalance.models import ParameterError
-from autobalance.studies.sensitivity import (QUANTITIES, compute_sensitivity, default_variants,
+from autobalance.studies._sensitivity import (QUANTITIES, compute_sensitivity, default_variants,
                                              quantities, sensitivity_summary)
-from autobalance.studies.start_positions import compute_start_positions, load
+from autobalance.studies._start_positions import compute_start_positions, load
 
 CENTRIFUGE = str(Path(__file__).resolve().parents[1] / "examples" / "centrifuge.toml")
 TOPLOADER = str(Path(__file__).resolve().parents[1] / "examples" / "toploader.toml")

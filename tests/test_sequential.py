@@ -113,7 +113,7 @@ def test_plateau_study_adds_starts_until_the_recommendation_is_decided(tmp_path)
     before its upper end is bounded); with a budget it adds random starts only at the plateaus
     not distinguishable from the best, until one is left; without one (004's protocol) it is
     the start grid alone, and a rerun of the same study from its stores computes nothing."""
-    from autobalance.studies.plateau import compute_plateau, plateau_summary
+    from autobalance.studies._plateau import compute_plateau, plateau_summary
 
     kw = dict(ratios=[0.98, 1.02, 1.10], G=[10.0, 20.0], n=5, executor="serial")
     grid = compute_plateau("vub_jeffcott_004", budget=0, **kw)

@@ -26,8 +26,8 @@ from autobalance.physics.unbalance import residual_unbalance
 from autobalance.physics.vibratory import vibratory_forces
 from autobalance.studies.equilibria import (NEUTRAL_TOL, _ideal, floquet_full, full_stability,
                                             linearised_full, steady_rotor_frame, verify_by_simulation)
-from autobalance.studies.start_positions import load
-from autobalance.studies.speed_map import compute_speed_map, speed_map_summary
+from autobalance.studies._start_positions import load
+from autobalance.studies._speed_map import compute_speed_map, speed_map_summary
 
 TOP = "examples/toploader.toml"
 CEN = "examples/centrifuge.toml"

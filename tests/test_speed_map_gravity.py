@@ -22,9 +22,9 @@ from autobalance.physics.equilibria import find_equilibrium_set
 from autobalance.simulate import simulate
 from autobalance.simulate.result import residual_unbalance_history
 from autobalance.studies.equilibria import _ideal, full_stability, steady_rotor_frame
-from autobalance.studies.speed_map import (FLOQUET_FAMILY_SAMPLES, _bisect, compute_speed_map,
+from autobalance.studies._speed_map import (FLOQUET_FAMILY_SAMPLES, _bisect, compute_speed_map,
                                            speed_map_summary)
-from autobalance.studies.start_positions import load
+from autobalance.studies._start_positions import load
 
 GRINDER = str(Path(__file__).parent / "data" / "grinder_3balls.toml")
 REVS = 150              # revolutions simulated from each perturbed balanced state [-]

@@ -1,4 +1,4 @@
-"""The liquid's spin-up from rest (core/spinup.py, liquid/spinup.py; docs/liquid.md sec. 3h):
+"""The liquid's spin-up from rest (core/spinup.py, liquid/spinup.py; docs/liquid/spin-up.md sec. 3h):
 closed-form limits (rigid rotation kept, the laminar layer's spin-up, the quasi-static speeds of
 003 eq 6 for a viscous liquid on a slow run-up), conservation, convergence under grid
 refinement, the lag's trends, bad input and the CLI end to end."""

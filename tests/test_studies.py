@@ -5,7 +5,10 @@ import numpy as np
 import pytest
 
 from autobalance.config import load_config
-from autobalance.studies import common, immobility, plateau, start_positions, statistics, unbalance
+from autobalance.studies import _immobility as immobility
+from autobalance.studies import _plateau as plateau
+from autobalance.studies import _start_positions as start_positions
+from autobalance.studies import common, statistics, unbalance
 
 SHORT = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s",
          "profile.plateau_time=2 s", "profile.up_time=1 s"]

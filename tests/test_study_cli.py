@@ -149,7 +149,7 @@ def test_recommended_plateau_beats_its_neighbour_in_independent_runs():
     furthest from it; the 95th percentile must be lower at the recommended one."""
     from autobalance.config import load_config
     from autobalance.physics.iso1940 import unbalance_value
-    from autobalance.studies.start_positions import compute_start_positions
+    from autobalance.studies._start_positions import compute_start_positions
 
     d = run_json("plateau", CENTRIFUGE, "--ratios", "0.98,1.1", "--starts", 6, "--quick")
     best = d["recommended_plateau_ratio"]
@@ -186,7 +186,7 @@ def test_immobility_json_and_the_stick_threshold_closed_form(tmp_path):
 
 def test_immobility_figure_speaks_the_configs_speed_unit(tmp_path):
     from autobalance.plotting.tsr import plot_immobility
-    from autobalance.studies.immobility import compute_immobility
+    from autobalance.studies._immobility import compute_immobility
 
     ds = compute_immobility(CENTRIFUGE, G_ini=20.0, mu_r=(1.0,), c_r=(1.0,), n_conf=20, quick=True)
     ax = plot_immobility(ds, stick=True, speed_unit="rpm").axes[0]
@@ -332,7 +332,7 @@ def test_design_beside_a_horizontal_liquid_keeps_the_tolerances_notes():
     tolerances with that study's notes (there the balanced state's Floquet verdict on a
     horizontal axis and the warning that a run-up can end in an asynchronous whirl), in the
     JSON and the text."""
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._tolerances import compute_tolerances
 
     balls = ["balancer.n_balls=2", "balancer.ball_mass=0.5 kg", "balancer.race_radius=0.3 m",
              "balancer.ball_radius=15 mm", "balancer.damping=20 N*mm*s/rad",
@@ -359,9 +359,9 @@ def test_design_plateau_study_joins_the_search_and_the_tolerances_are_the_studys
     its mean 95th percentiles) joins as a candidate judged like the others, and its --set
     overrides rebuild it; the tolerances given for the recommended design are study
     tolerances' for that design; --out keeps both."""
-    from autobalance.studies.start_positions import load
+    from autobalance.studies._start_positions import load
     from autobalance.studies.statistics import plateau_speed
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._tolerances import compute_tolerances
 
     d = run_json("design", CENTRIFUGE, "--balls", "2", "--capacity", "1.3", "--profiles", "tsr",
                  "--unbalance", "0.3 g*m:0.5 g*m", "--random", 3, "--n-unbalance", 2, "--quick",
@@ -408,8 +408,8 @@ def test_design_result_meets_its_target_when_simulated_again_with_new_starts():
     95 % within the sampling error of 60 runs (2 sigma = 5.6 %)."""
     from autobalance.confidence import quantile_interval
     from autobalance.config import load_config
-    from autobalance.studies.design import DesignSpace, candidate_designs
-    from autobalance.studies.start_positions import compute_start_positions, load
+    from autobalance.studies._design import DesignSpace, candidate_designs
+    from autobalance.studies._start_positions import compute_start_positions, load
 
     d = run_json("design", CENTRIFUGE, "--balls", "2,3", "--capacity", "1.3", "--profiles",
                  "std,tsr", "--unbalance", "0.3 g*m:0.5 g*m", "--random", 10, "--n-unbalance", 2,

@@ -163,7 +163,7 @@ def test_options_grid_each_run_uses_its_cells_options(tmp_path):
         cfg = load_config("vub_jeffcott_004", SHORT + [f"options.rtol={rtol}"])
         for s in (0, n_s - 1):
             # checkpoints only, as the sweep stores: a stored history would cut the slip
-            # jumps' windows at its samples (docs/numerics.md)
+            # jumps' windows at its samples (docs/numerics/index.md)
             sim = ab.simulate(cfg.system, cfg.spin,
                               options=dataclasses.replace(cfg.options, save_dt=-1.0),
                               initial=ab.InitialState(ball_angles=tuple(plan.start_angles[s])))

@@ -105,7 +105,7 @@ def test_003_fig4_free_surface(rows, data):
 
 
 def test_003_fig5_optimum_fill_and_misses(rows, data):
-    """The liquid from physics (docs/liquid.md sec. 3d, 4): below resonance every fill raises
+    """The liquid from physics (docs/liquid/film.md sec. 3d, 4): below resonance every fill raises
     the whirl (the least fill is best), above it the whirl falls with the fill until the film
     breaks and then stays flat; the resonance falls with the fill."""
     r = rows("003-fig5")
@@ -113,7 +113,7 @@ def test_003_fig5_optimum_fill_and_misses(rows, data):
     for k in ("optimum_fill_ml/R100mm", "optimum_fill_ml/R150mm", "optimum_fill_ml/R200mm",
               "liquid_reduces_amplitude", "off_optimum/strength", "resonance_rad_s",
               "suspension_frequency_hz"):
-        assert not r[k]["ok"], k  # docs/liquid.md sec. 4 misses
+        assert not r[k]["ok"], k  # docs/liquid/validation.md sec. 4 misses
     for k in ("sufficient_fill_unbalance", "off_optimum/direction",
               "critical_speed_falls_with_fluid_mass"):
         assert r[k]["ok"], k

@@ -1,5 +1,5 @@
 """Tolerances from a target grade and a worst case that is a true bound, for N
-balls and any balancer (physics/worst_case.py, physics/tolerance.py, studies/tolerances.py,
+balls and any balancer (physics/worst_case.py, physics/tolerance.py, studies/_tolerances.py,
 ``analyze bounds`` and ``analyze tolerance``; docs/tolerances.md).
 
 Tiers: 1 closed-form limits (zero tolerances, exact eccentricity of 000 eq 46-47, the 000
@@ -33,7 +33,7 @@ from autobalance.physics.worst_case import (attained_residual, friction_displace
                                             synchronous_gain)
 from autobalance.simulate import simulate
 from autobalance.studies.statistics import plateau_speed
-from autobalance.studies.tolerances import (check_tolerances_by_simulation, compute_tolerances,
+from autobalance.studies._tolerances import (check_tolerances_by_simulation, compute_tolerances,
                                             machine_with_tolerances)
 
 from conftest import RPM, washer_000
@@ -328,7 +328,7 @@ def test_study_with_000s_method_is_000_eq60_63_66_and_its_true_bound_beside_it()
     eq 63 f/r = 2 p_r q e/R, eq 65 F = (1/2) p_f q Me^2 sin(2pi/3) w^2/(2 Me cos gamma) with
     000's M = 37 kg, R = 0.28 m, gamma = 61 deg; beside it the true bound of the washer built
     with those tolerances (the estimate is not a guarantee)."""
-    from autobalance.studies.start_positions import load
+    from autobalance.studies._start_positions import load
 
     Me, q, w, gam = 0.025, 0.1, 1000 * RPM, math.radians(61.0)
     r = compute_tolerances(load("washer_000", [f"rotor.unbalance={Me!r}"]), residual_fraction=q,

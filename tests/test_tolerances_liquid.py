@@ -1,4 +1,4 @@
-"""The tolerance bound of balls beside a liquid (docs/liquid.md sec. 3l): the liquid's
+"""The tolerance bound of balls beside a liquid (docs/liquid/balls-beside-liquid/index.md sec. 3l): the liquid's
 synchronous moment as an added mass (autobalance.liquid.synchronous), checked against the films
 (partitions), the quasi-static liquid (a rest state solved with the full nonlinear liquid), and
 runs of balls beside the films."""
@@ -179,7 +179,7 @@ def test_beyond_the_linear_range_no_bound_is_claimed():
     (("suspension.ky=2e5 N/m",), "suspension"),
 ])
 def test_refusals(sets, field):
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._tolerances import compute_tolerances
 
     with pytest.raises(ParameterError) as e:
         compute_tolerances(load_config("leblanc_003", [*BALLS, *sets]))
@@ -187,7 +187,7 @@ def test_refusals(sets, field):
 
 
 def test_two_partitions_in_one_of_three_chambers_name_it():
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._tolerances import compute_tolerances
 
     with pytest.raises(ParameterError) as e:
         compute_tolerances(load_config("leblanc_003_three", [
@@ -226,13 +226,13 @@ def test_tolerances_of_balls_beside_a_horizontal_ring():
     """`study tolerances` of the washer's ring with two 0.5 kg balls at 1000 rpm: the bound
     takes the ring's added mass (5.371 kg) and its range less gravity's offset (21.3 - 0.9 mm),
     and the text gives the balanced state's Floquet verdict at the nominal speed (linearly
-    stable, docs/liquid.md sec. 3m) and says that a run-up can still end in an asynchronous
+    stable, docs/liquid/horizontal-axis.md sec. 3m) and says that a run-up can still end in an asynchronous
     whirl (runs of this machine whirl at 22-33 mm, beyond the rings' range, sec. 3l). The 000
     estimate is refused beside a liquid."""
     import subprocess
     import sys
 
-    from autobalance.studies.tolerances import compute_tolerances
+    from autobalance.studies._tolerances import compute_tolerances
 
     sets = ("balancer.n_balls=2", "balancer.ball_mass=0.5 kg", "balancer.race_radius=0.27 m",
             "balancer.ball_radius=15 mm", "balancer.damping=20 N*mm*s/rad",
@@ -262,7 +262,7 @@ def test_runs_beside_the_films_stay_within_the_bound():
     import subprocess
     import sys
 
-    from autobalance.studies.tolerances import check_tolerances_by_simulation, compute_tolerances
+    from autobalance.studies._tolerances import check_tolerances_by_simulation, compute_tolerances
 
     cfg = load_config("leblanc_003", [*BALLS, *RUN])
     d = compute_tolerances(cfg, grade=16)

@@ -11,7 +11,7 @@ import os as _os
 # One BLAS thread unless the user set it (before numpy's first import): the package's linear
 # algebra is many small matrices (Jacobians, propagators, <= a few hundred rows) where BLAS
 # threads gain nothing, and beside another busy process on 2 cores their spin-waits made the
-# liquid speed map 11x slower (70 s against 6.1 s; docs/numerics.md).
+# liquid speed map 11x slower (70 s against 6.1 s; docs/numerics/index.md).
 for _v in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     _os.environ.setdefault(_v, "1")
 

@@ -333,7 +333,7 @@ def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     with guard():
         cfg = load_machine(source, set_, balls="needed")
         from ..physics.tolerance import design_tolerances
-        from ..studies.tolerances import compute_tolerances
+        from ..studies._tolerances import compute_tolerances
 
         if not (math.isfinite(grade) and grade > 0):
             raise ConfigError(f"--grade = {grade!r}: must be a grade G > 0 [mm/s], e.g. 16 (ISO 1940 G16)")

@@ -311,7 +311,7 @@ def simulate(source: Annotated[str, typer.Argument(
     preset, 003's bench); ``autobalance simulate`` runs it through its own profile with the
     coupled film instead. On a horizontal axis (physical model only) the liquid is a puddle
     below the film's start g/Omega^2 = R/10 and the planar ring above it (as ``study
-    fill-map``; docs/liquid.md sec. 3k), and the run-up is the film model's with gravity.
+    fill-map``; docs/liquid/stability.md sec. 3k), and the run-up is the film model's with gravity.
 
     Parameters
     ----------
@@ -331,9 +331,9 @@ def simulate(source: Annotated[str, typer.Argument(
         duration (leblanc_003: 0 -> 100 rad/s in 20 s).
     fill : bool
         Amplitude vs fill at 0.6, 0.8, 1, 1.2 omega_n (003 Fig. 5), over the fill map's default
-        fills (:func:`autobalance.studies.fill_map.default_fills`).
+        fills (:func:`autobalance.studies._fill_map.default_fills`).
     model_kind : str
-        "physical" (docs/liquid.md sec. 3b-3d) or "lumped" (sec. 3).
+        "physical" (docs/liquid/models.md sec. 3b-3d) or "lumped" (sec. 3).
     plot : str
         Figure (.png, .pdf, .svg): the response, or the fill sweep with ``--fill-sweep``.
     units : str
@@ -342,7 +342,7 @@ def simulate(source: Annotated[str, typer.Argument(
     from ..config.display import display_units
     from ..liquid import LiquidModel, fill_sweep, run_up, steady_response
     from ..liquid.steady import start_speed
-    from ..studies.fill_map import default_fills
+    from ..studies._fill_map import default_fills
 
     if model_kind not in ("lumped", "physical"):
         raise ConfigError(f"--model = {model_kind!r}: must be 'physical' or 'lumped'")
@@ -359,7 +359,7 @@ def simulate(source: Annotated[str, typer.Argument(
     if not physical:                # the lumped model is 003's vertical bench
         L.vertical("for --model lumped (003's bench); --model physical takes a horizontal axis")
     # gravity: along a vertical axis (the entrainment), in the plane of a horizontal one (the
-    # film's start g/Omega^2 = R/10; the ring planar, docs/liquid.md sec. 3k)
+    # film's start g/Omega^2 = R/10; the ring planar, docs/liquid/stability.md sec. 3k)
     g = cfg.system.gravity.g if L.axis == "horizontal" else model.g
     if physical:
         from ..liquid.film import physical_run_up as run_up  # noqa: F811
@@ -394,7 +394,7 @@ def simulate(source: Annotated[str, typer.Argument(
                   else run_up(rot, bal, model, w_end, t_end, n_out=1500))
         out["run_up"] = ru.summary()
     if fill:
-        from ..studies.fill_map import chamber_fills
+        from ..studies._fill_map import chamber_fills
 
         vols = default_fills(L)
         if physical:
@@ -427,10 +427,10 @@ def spinup(source: Annotated[str, typer.Argument(
                "horizontal: 256 around the wall).")] = None,
            plot: PlotOpt = None, as_json: JsonOpt = False):
     """The liquid's spin-up from rest through 003's modes 1-3 until it reaches the lid (mode 4,
-    the entrainment), from the axisymmetric shallow-water model (docs/liquid.md sec. 3h),
+    the entrainment), from the axisymmetric shallow-water model (docs/liquid/spin-up.md sec. 3h),
     beside 003 eq 4 and eq 6's quasi-static speeds. On a horizontal axis the liquid in time
     around the wall from a puddle at rest, or from a ring if the profile starts turning, until
-    it closes into a ring, breaks, or leaves the model (docs/liquid.md sec. 3n).\f
+    it closes into a ring, breaks, or leaves the model (docs/liquid/horizontal-axis.md sec. 3n).\f
 
     Parameters
     ----------
@@ -521,7 +521,7 @@ def stability(source: Annotated[str, typer.Argument(
               plot: PlotOpt = None, as_json: JsonOpt = False):
     """Linear stability of the centred state (no unbalance) against speed: the growth rate of
     the least stable perturbation of the rotor with its wall films and the unstable ranges
-    (Kollmann's band of partly filled rotors; docs/liquid.md sec. 3j); on a horizontal axis
+    (Kollmann's band of partly filled rotors; docs/liquid/stability.md sec. 3j); on a horizontal axis
     of the periodic state under gravity (Floquet, sec. 3m). With balls beside the liquid: the
     balanced state's, balls and films together (sec. 3k).\f
 
@@ -559,7 +559,7 @@ def stability(source: Annotated[str, typer.Argument(
         model = ("the film runs' step linearised about the centred state "
                  "(autobalance.liquid.stability)")
     if res.get("axis") == "horizontal":
-        model += "; on a horizontal axis over a revolution: Floquet (docs/liquid.md sec. 3m)"
+        model += "; on a horizontal axis over a revolution: Floquet (docs/liquid/horizontal-axis.md sec. 3m)"
     out = {"system": cfg.system.name, "model": model, **res}
     if plot:
         from ..plotting.liquid import stability_figure

@@ -1,6 +1,6 @@
 """``autobalance liquid kinetostatic-check``: 001's kinetostatic laws against the liquid from
 physics on a machine (:func:`autobalance.liquid.kinetostatic_check.kinetostatic_vs_physics`;
-docs/liquid.md sec. 2b). Registered on the liquid group (:mod:`autobalance.cli.liquid`)."""
+docs/liquid/kinetostatics.md sec. 2b). Registered on the liquid group (:mod:`autobalance.cli.liquid`)."""
 from __future__ import annotations
 
 from typing import Annotated, Optional

@@ -1,6 +1,6 @@
 """``autobalance liquid spinup`` on a horizontal axis: the liquid in time from a puddle at rest
 (or from a ring, for a profile that starts turning) through the machine's profile
-(:func:`autobalance.liquid.rimming.horizontal_spinup`; docs/liquid.md sec. 3n)."""
+(:func:`autobalance.liquid.rimming.horizontal_spinup`; docs/liquid/horizontal-axis.md sec. 3n)."""
 from __future__ import annotations
 
 import math

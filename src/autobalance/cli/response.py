@@ -19,8 +19,8 @@ import typer
 
 from ..config import ConfigError, parse_quantity
 from ..config.ranges import grammar_help, parse_list, parse_range
-from .common import (JsonOpt, ProfileOpt, SetOpt, SourceArg, echo_fields, guard, load_machine,
-                     print_json)
+from .common import (JsonOpt, ProfileOpt, SetOpt, SourceArg, UnitsOpt, echo_fields, guard,
+                     load_machine, print_json)
 
 if TYPE_CHECKING:
     import numpy as np
@@ -160,18 +160,22 @@ def ball_angles(cfg: Config, spec: Optional[str]) -> np.ndarray:
 
 
 def response(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-             speeds: SpeedsOpt = None, json_: JsonOpt = False) -> None:
+             speeds: SpeedsOpt = None, units: UnitsOpt = None, json_: JsonOpt = False) -> None:
     """Harmonic (steady-state) unbalance response of the suspended rotor and its critical speeds.\f
 
     Parameters
     ----------
-    source, set_, profile, json_
-        The shared options (:mod:`autobalance.cli.common`); the JSON object is the table (SI).
+    source, set_, profile, units, json_
+        The shared options (:mod:`autobalance.cli.common`); the JSON object is the table (SI),
+        the text in the config's units (or ``--units``).
     speeds : str
         Speed grid ``"LO:HI:N"`` [rad/s or with units] (:func:`speed_grid`).
     """
+    from ..config.display import display_units
+
     with guard():
         cfg = load_machine(source, set_, profile, balls="rotor")
+        du = display_units(cfg, units)
         grid = speed_grid(speeds, cfg.spin.nominal_speed)
         from ..physics.response import response_table
 
@@ -181,17 +185,17 @@ def response(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         print_json(result)
         return
     typer.echo(f"{cfg.name}: harmonic response, {len(grid)} speeds "
-               f"{grid[0]:.4g} .. {grid[-1]:.4g} rad/s")
+               f"{du.fmt(grid[0], 'speed')} .. {du.fmt(grid[-1], 'speed')}")
     hz = table.get("natural_frequencies_hz", [])
-    typer.echo("  natural frequencies: " + ", ".join(
-        f"{f:.4g} Hz ({f * 60:.4g} rpm)" for f in hz))
+    typer.echo("  natural frequencies: " + ", ".join(du.fmt(2 * math.pi * f, "speed")
+                                                     for f in hz))
     w = list(table.get("speed_rad_s", []))
     for axis in ("x", "y"):
         amp = list(table.get(f"amplitude_{axis}_m", []))
         if amp and w:
             i = max(range(len(amp)), key=lambda j: amp[j])
-            typer.echo(f"  peak amplitude {axis}: {amp[i]:.4g} m at {w[i]:.4g} rad/s "
-                       f"({w[i] * 30 / math.pi:.4g} rpm)")
+            typer.echo(f"  peak amplitude {axis}: {du.fmt(amp[i], 'length')} at "
+                       f"{du.fmt(w[i], 'speed')}")
 
 
 #: The values ``analyze response`` shows as text.

@@ -218,7 +218,7 @@ def start_positions(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         Grid axes "PATH=V1,V2,..." or "PATH=LO:HI:N" (:mod:`autobalance.config.ranges`;
         values with units, bare numbers SI).
     """
-    from ..studies.start_positions import compute_start_positions, start_positions_summary
+    from ..studies._start_positions import compute_start_positions, start_positions_summary
     from .sweep import _coord_text
 
     t0 = time.perf_counter()
@@ -366,10 +366,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
     n_conf : int
         Positions per ball (>= 2; n_conf^N configurations).
     """
-    import numpy as np
-
     from ..physics.iso1940 import grade_value
-    from ..studies.immobility import compute_immobility
+    from ..studies._immobility import compute_immobility, immobility_summary
 
     t0 = time.perf_counter()
     with guard():
@@ -392,21 +390,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
             return plot_immobility(ds, f"{cfg.name}: immobility at G_ini = G{gi:.3g}",
                                    stick=cfg.system.liquid is None, speed_unit=du.unit("speed"))
 
-        w = 2 * np.pi * ds["speed"].values
-        imm = ds["immobility"].sel(mu_r=mus[0] if 1.0 not in mus else 1.0,
-                                   c_r=cs[0] if 1.0 not in cs else 1.0).values
-        k = int(np.argmin(imm))
-        res = {"study": "immobility", "machine": cfg.name, "G_ini_mm_s": gi, "grade_G_mm_s": G,
-               "speeds_rad_s": w, "immobility": imm,
-               "stick_threshold_grade_G_mm_s": ds["G_stick"].values,
-               "mu_r": mus, "c_r": cs, "immobility_by_case": ds["immobility"].values,
-               "least_immobility": float(imm[k]), "least_immobility_speed_rad_s": float(w[k]),
-               "natural_frequency_rad_s": 2 * np.pi * ds.attrs["f_n_hz"],
-               "nominal_speed_rad_s": cfg.spin.nominal_speed,
-               "stick_threshold_at_nominal_grade_G_mm_s": float(np.interp(
-                   cfg.spin.nominal_speed, w, ds["G_stick"].values))}
-        if "ring_holds" in ds:          # beside a liquid on a horizontal axis
-            res["ring_holds"] = ds["ring_holds"].sel(c_r=cs[0] if 1.0 not in cs else 1.0).values
+        res = {"study": "immobility", "machine": cfg.name, "grade_G_mm_s": G,
+               **immobility_summary(ds, cfg.spin.nominal_speed)}
         res.update(_finish(ds, cfg, out, plot, fig, "study immobility", t0))
     if json_:
         print_json(res)
@@ -417,10 +402,10 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
     gs = res["stick_threshold_at_nominal_grade_G_mm_s"]
     if cfg.system.liquid is not None:
         typer.echo("  beside the liquid: the balls at rest on the rotor's steady orbit with the "
-                   "quasi-static liquid (docs/liquid.md sec. 3k); no stick threshold G* (a "
+                   "quasi-static liquid (docs/liquid/stability.md sec. 3k); no stick threshold G* (a "
                    "closed form of the balls alone)")
         if "ring_holds" in res:
-            typer.echo(_ring_holds_text(res["ring_holds"], w, du))
+            typer.echo(_ring_holds_text(res["ring_holds"], res["speeds_rad_s"], du))
         return
     typer.echo(f"  stick threshold at the nominal speed: G*{gs:.3g} mm/s "
                f"({'below' if gs <= G else 'above'} the target {grade_text(G)}): balls that "

@@ -1,5 +1,5 @@
 """``autobalance design`` and ``autobalance study tolerances``: what to build for a machine
-(:mod:`autobalance.studies.design`, :mod:`autobalance.studies.tolerances`). The options and
+(:mod:`autobalance.studies._design`, :mod:`autobalance.studies._tolerances`). The options and
 helpers are those of :mod:`autobalance.cli.study`; registered by :mod:`autobalance.cli`."""
 from __future__ import annotations
 
@@ -116,7 +116,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     refine_plateau : bool
         The plateau study on the best TSR candidate.
     """
-    from ..studies.design import DesignSpace, compute_design, design_summary
+    from ..studies._design import DesignSpace, compute_design, design_summary
 
     t0 = time.perf_counter()
     with guard(), _study_errors(STUDY_FIELDS):
@@ -237,11 +237,11 @@ def _profiles(spec: str | None, cfg) -> tuple[tuple, bool]:
     spec : str or None
         ``--profiles`` (comma-separated: given, std, slow, tsr); None: the design space's
         default, or ``("given",)`` for a machine whose profile has no variants (a ramp, a table,
-        a motor; :func:`autobalance.studies.design.profile_variants`).
+        a motor; :func:`autobalance.studies._design.profile_variants`).
     cfg : autobalance.config.Config
         The machine.
     """
-    from ..studies.design import profile_variants
+    from ..studies._design import profile_variants
 
     if spec is None:
         own = list(profile_variants(cfg)) == ["given"]
@@ -316,7 +316,7 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         "bound" or "000".
     """
     from ..config import parse_quantity
-    from ..studies.tolerances import check_tolerances_by_simulation, compute_tolerances
+    from ..studies._tolerances import check_tolerances_by_simulation, compute_tolerances
 
     with guard():
         cfg, G, du = _prepare(source, set_, profile, grade, None, None, units=units,
@@ -374,7 +374,7 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
             f"its synchronous moment is an added mass of {res['liquid_added_mass_kg']:.4g} kg "
             f"on the rotor while its rings hold (whirl up to {du.fmt(r_lin, 'length')})"
             if math.isfinite(r_lin) else "a pool at this speed (below its entrainment speed, "
-            "003 eq 6): no moment, its mass moves with the rotor") + " (docs/liquid.md sec. 3l)")
+            "003 eq 6): no moment, its mass moves with the rotor") + " (docs/liquid/balls-beside-liquid/index.md sec. 3l)")
     for wmsg in notes:
         typer.echo(f"  note: {wmsg}")
     if "simulation_check" in res:

@@ -1,5 +1,5 @@
 """``autobalance study fill-map``: the fill map of any liquid-balancer machine
-(:mod:`autobalance.studies.fill_map`). Registered on the ``study`` app by :mod:`autobalance.cli`."""
+(:mod:`autobalance.studies._fill_map`). Registered on the ``study`` app by :mod:`autobalance.cli`."""
 from __future__ import annotations
 
 import time
@@ -54,7 +54,7 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     speeds : str or None
         Speeds [rad/s or with units]: a range or a list.
     dynamic : bool
-        Add the stability map (:func:`autobalance.studies.fill_map.compute_stability_map`).
+        Add the stability map (:func:`autobalance.studies._fill_map.compute_stability_map`).
     linear : bool
         Add the balanced state's linear stability (:func:`autobalance.studies.fill_map.
         compute_linear_map`).
@@ -64,7 +64,7 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         The sweep's processes (:mod:`autobalance.cli.common`).
     """
     from ..config import parse_quantity
-    from ..studies.fill_map import (compute_fill_map, compute_linear_map,
+    from ..studies._fill_map import (compute_fill_map, compute_linear_map,
                                     compute_stability_map, dynamic_speeds, fill_map_summary)
     from .liquid import _list
 

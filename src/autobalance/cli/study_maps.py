@@ -1,6 +1,6 @@
 """``autobalance study speed-map`` and ``autobalance study sensitivity``: where the machine
-balances and which modelling choices matter (:mod:`autobalance.studies.speed_map`,
-:mod:`autobalance.studies.sensitivity`). The options and helpers are those of
+balances and which modelling choices matter (:mod:`autobalance.studies._speed_map`,
+:mod:`autobalance.studies._sensitivity`). The options and helpers are those of
 :mod:`autobalance.cli.study`; registered by :mod:`autobalance.cli`."""
 from __future__ import annotations
 
@@ -54,7 +54,7 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
     z : float
         Significance threshold [-] (> 0).
     """
-    from ..studies.sensitivity import compute_sensitivity, sensitivity_summary
+    from ..studies._sensitivity import compute_sensitivity, sensitivity_summary
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
@@ -154,7 +154,7 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
     ks_only : bool
         Kinetic-static verdicts only (faster, not the full model).
     """
-    from ..studies.speed_map import compute_speed_map, speed_map_summary
+    from ..studies._speed_map import compute_speed_map, speed_map_summary
 
     t0 = time.perf_counter()
     with guard():
@@ -185,8 +185,8 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
         typer.echo(f"  beside the liquid: a {'puddle' if h else 'pool'} below "
                    f"{du.fmt(res['film_from_rad_s'], 'speed')} (the balls' verdicts, with its "
                    "mass), a film from there: only the balanced state is judged, with the films "
-                   + ("(Floquet about its periodic state under gravity, docs/liquid.md sec. 3m)"
-                      if h else "(docs/liquid.md sec. 3k)"))
+                   + ("(Floquet about its periodic state under gravity, docs/liquid/horizontal-axis.md sec. 3m)"
+                      if h else "(docs/liquid/stability.md sec. 3k)"))
     def spans(ranges) -> str:
         return ", ".join(du.fmt(lo, "speed") if lo == hi else
                          f"{du.fmt(lo, 'speed')} - {du.fmt(hi, 'speed')}" for lo, hi in ranges)

@@ -1,5 +1,5 @@
 """``autobalance study runup``: the run-up of any machine, with and without its balls
-(:mod:`autobalance.studies.runup`). Registered on the ``study`` app by :mod:`autobalance.cli`."""
+(:mod:`autobalance.studies._runup`). Registered on the ``study`` app by :mod:`autobalance.cli`."""
 from __future__ import annotations
 
 import math
@@ -43,7 +43,7 @@ def runup(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         Threshold of the balancing time as a fraction of the rotor's eccentricity [-].
     """
     from ..models import MotorDrive
-    from ..studies.runup import compute_runup, runup_summary
+    from ..studies._runup import compute_runup, runup_summary
 
     t0 = time.perf_counter()
     with guard():

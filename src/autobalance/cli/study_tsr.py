@@ -1,7 +1,7 @@
 """``autobalance study unbalance-range`` and ``autobalance study plateau``: the valid range of
 initial unbalance and the lower plateau of a temporary speed reduction, each decided at 95 %
 confidence with more starts where undecided (:mod:`autobalance.studies.unbalance`,
-:mod:`autobalance.studies.plateau`). The options and helpers are those of
+:mod:`autobalance.studies._plateau`). The options and helpers are those of
 :mod:`autobalance.cli.study`; registered by :mod:`autobalance.cli`."""
 from __future__ import annotations
 
@@ -95,8 +95,15 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     cap = "; ".join(f"{k} G{v:.3g}" for k, v in (("balls", G_b), ("liquid", G_l)) if v)
     typer.echo(f"{cfg.name}: initial grade 0-{top:.3g} mm/s in {Gv.size} steps x {starts}; "
                f"{cap}; target {grade_text(G)}")
+    from ..physics.iso1940 import unbalance_value
+
+    def u(g: float) -> str:               # a grade as the unbalance it is, in the config's unit
+        return du.fmt(float(unbalance_value(g, s.total_mass, cfg.spin.nominal_speed)),
+                      "unbalance", 3)
+
     def ranges(rs) -> str:
-        return ", ".join(f"[G{lo:.3g}, G{hi:.3g}]" for lo, hi in rs) or "none"
+        return ", ".join(f"[G{lo:.3g}, G{hi:.3g}] ({u(lo)} - {u(hi)})" for lo, hi in rs) \
+            or "none"
 
     b = res["budget"]
     if b["runs"] or b["spent"]:
@@ -146,7 +153,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     seed : int
         Seed of the added starts.
     """
-    from ..studies.plateau import compute_plateau, plateau_summary
+    from ..studies._plateau import compute_plateau, plateau_summary
 
     t0 = time.perf_counter()
     with guard(), _study_errors():

@@ -8,7 +8,7 @@ machine code with its whole call tree linked in and optimised again (numba/core/
 two ``prange`` drivers added ~23 s each to the kernels' ~95 s first compilation, for a loop
 that a thread pool runs as fast: on one thread 6.28-6.33 ms a run against 6.24-6.25 with
 ``prange``, on two 3.36-3.38 against 3.52-3.63 ms (004's nominal runs in batches of 64;
-docs/numerics.md, "Compilation cache").
+docs/numerics/compilation.md, "Compilation cache").
 """
 from __future__ import annotations
 

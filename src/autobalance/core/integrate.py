@@ -48,7 +48,7 @@ STICK_TOL = 1e-9
 
 #: largest creep of a stuck ball [rad] within one closed-form jump of a hold under the creep law
 #: (P_FLAW = 2): the jump is cut into chunks, each advancing the balls at their creep speed at the
-#: chunk's midpoint (docs/numerics.md, "The tanh law's slow manifold")
+#: chunk's midpoint (docs/numerics/kernel.md, "The tanh law's slow manifold")
 CREEP_CHUNK = 1e-5
 
 #: event kinds of _event_g / _locate / _modes, and "no event"; numpy integers, not Python ones:
@@ -669,8 +669,8 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                    trig, gs, stats, exact)
                     continue
         # two balls in compliant contact: DOPRI5 resolves the contact's oscillation (docs/
-        # numerics.md, "Resting contacts"); at its stability limit it chatters spuriously. A
-        # pair whose balls are both stuck has no such mode (their angles are held): no cap
+        # numerics/contacts.md, "Resting contacts"); at its stability limit it chatters spuriously.
+        # A pair whose balls are both stuck has no such mode (their angles are held): no cap
         if h > P[P_HC] > 0.0:
             for i in range(N):
                 if in_contact[i] == 1 and (stuck[i] == 0 or stuck[(i + 1) % N] == 0):

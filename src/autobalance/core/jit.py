@@ -12,7 +12,7 @@ to allocate would fail to compile (typing error), not misbehave.
 An integer constant passed to a kernel (``f(0, ...)``) is typed as that literal value, and
 numba compiles the callee once per value: a copy of its whole call tree each (``_stage`` of
 the slip jumps was five). Call sites pass ``np.int64(...)``, a module-level numpy integer, or
-the array row instead of an index (docs/numerics.md, "Compilation cache").
+the array row instead of an index (docs/numerics/compilation.md, "Compilation cache").
 
 ``inline_kernel`` also inlines the function into its compiled callers (numba IR inlining),
 for small helpers called per vector component: a call between numba functions passes every

@@ -1,6 +1,6 @@
 """Shallow-water equations of the liquid on the outer wall of a chamber turning about a
 *horizontal* axis, from a puddle at rest (until it closes into a ring) or from a ring (until it
-breaks), at any speed (model: docs/liquid.md sec. 3n).
+breaks), at any speed (model: docs/liquid/horizontal-axis.md sec. 3n).
 
 Unknowns per cell of the periodic wall coordinate x = R theta (chamber frame, turning at
 Omega(t), spin angle psi): the layer's thickness h [m] and discharge q = h v [m^2/s], v relative

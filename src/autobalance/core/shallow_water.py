@@ -1,5 +1,5 @@
 """Depth-averaged shallow-water (Saint-Venant) equations of a liquid film on the outer wall of a
-rotating, displaced chamber, along its circumference (model: docs/liquid.md sec. 3c).
+rotating, displaced chamber, along its circumference (model: docs/liquid/film.md sec. 3c).
 
 Unknowns per cell of the periodic wall coordinate x = R theta (chamber frame): the film thickness
 eta [m] and its tangential discharge q = eta v [m^2/s] (v relative to the wall):
@@ -80,8 +80,8 @@ def friction_rate(h: float, v: float, nu: float, R: float) -> float:
     Re = 4 h |v| / nu (hydraulic diameter of a wide film); 0 for a dry cell (R: the scale).
     The larger of the two, not a switch at a Reynolds number: Blasius overtakes the laminar law
     at Re = (96 / 0.3164)^(4/3) = 2039 (in pipe flow's transition range), so k is continuous
-    (a switch at Re 2300 made it jump by 9 % and the films' step discontinuous; docs/liquid.md
-    sec. 3m)."""
+    (a switch at Re 2300 made it jump by 9 % and the films' step discontinuous;
+    docs/liquid/horizontal-axis.md sec. 3m)."""
     if h <= DRY_FRACTION * R:
         return 0.0
     k = 3.0 * nu / (h * h)
@@ -332,7 +332,8 @@ def films_spin(h: np.ndarray, q: np.ndarray, starts: np.ndarray, Rs: np.ndarray,
     """The thin films' (:func:`films_moment`'s layout) second moment about the chamber centre
     I_c = sum rho H R^3 sum(eta) dtheta [kg*m^2] (the liquid at R) and their angular momentum
     relative to the wall H_rel = sum rho H R^2 sum(q) dtheta [kg*m^2/s] (q = eta v, v relative
-    to the wall): the liquid's terms in the spin equation (docs/liquid.md sec. 3i)."""
+    to the wall): the liquid's terms in the spin equation (docs/liquid/balls-beside-liquid/index.md
+    sec. 3i)."""
     ic = 0.0
     hr = 0.0
     for f in range(starts.shape[0] - 1):

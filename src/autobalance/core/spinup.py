@@ -1,6 +1,6 @@
 """Axisymmetric shallow-water equations of the liquid on the bottom of a rotating chamber with a
 vertical axis, from rest until its free surface reaches the lid at the outer wall: the spin-up
-of the liquid through 003's modes 1-3 (model: docs/liquid.md sec. 3h).
+of the liquid through 003's modes 1-3 (model: docs/liquid/spin-up.md sec. 3h).
 
 Unknowns per ring of cells r_{i-1/2} < r < r_{i+1/2} (chamber frame, turning at Omega(t)): the
 depth h [m] of the liquid along the axis, its radial discharge q = h u and its azimuthal
@@ -30,8 +30,8 @@ centrifugal, Coriolis and curvature terms; with the geometric source g h_i^2/2 (
 r_{i-1/2}) of the same cell value, a liquid in rigid rotation at any speed, dry centre
 included, is kept to round-off. Without it (B from the chamber's speed and the rest as a cell
 source) the lag of the liquid did not converge under grid refinement (HLL's diffusion acts on
-the departure from the chamber's paraboloid, large while the liquid lags: docs/liquid.md sec.
-3h). The azimuthal discharge is carried by the mass flux (upwind); friction implicit; forward
+the departure from the chamber's paraboloid, large while the liquid lags: docs/liquid/spin-up.md
+sec. 3h). The azimuthal discharge is carried by the mass flux (upwind); friction implicit; forward
 Euler; reflecting walls at the inner wall (or the axis, face radius 0) and the outer wall.
 """
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Liquid (Leblanc) balancers: free surface and motion modes (003), kinetostatics (001),
 the liquid in a displaced chamber (quasi-static), reduced-order run-up dynamics. See
-docs/liquid.md."""
+docs/liquid/index.md."""
 from .dynamics import RunUp, engagement, fill_sweep, run_up, steady_response
 from .free_surface import (MODE_NAMES, FreeSurface, bottom_touch_speed, entrainment_speed,
                            free_surface, gravity_mode_speed, lid_touch_speed, liquid_volume,

@@ -1,6 +1,6 @@
 """Reduced-order dynamics of a vertical rotor with a liquid (Leblanc) balancer.
 
-Model (docs/liquid.md, "Dynamics", derives it and lists its limits):
+Model (docs/liquid/models.md sec. 3, derives it and lists its limits):
 
 * Rotor: isotropic Jeffcott rotor in the plane, complex deflection u = x + i y,
   (M + m_l) u'' + c u' + k u = W (Omega^2 - i Omega') e^{i phi}, W = D + D0 e^{i theta}

@@ -1,6 +1,6 @@
 """The liquid film on the outer wall of a rotating, displaced chamber, in time: the
 depth-averaged shallow-water equations along the circumference
-(:mod:`autobalance.core.shallow_water`, docs/liquid.md sec. 3c) driven by a prescribed spin
+(:mod:`autobalance.core.shallow_water`, docs/liquid/film.md sec. 3c) driven by a prescribed spin
 Omega(t) and a prescribed chamber displacement c(t) in the rotor frame. The film is the liquid
 of 003's mode 4 (a ring on the wall, lid to bottom); its first moment about the chamber centre is
 the liquid's unbalance. Not yet coupled to the rotor, and no spin-up from rest (modes 1-3).

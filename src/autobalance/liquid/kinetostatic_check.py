@@ -1,6 +1,6 @@
 """001's kinetostatic laws (eq 1, 3, 6) against the liquid from physics, on one machine
 (the kinetostatic laws kept as analysis functions and compared with the dynamic results;
-docs/liquid.md sec. 2b).
+docs/liquid/kinetostatics.md sec. 2b).
 
 At each speed the physical model gives the rotor's phase delta (the deflection's angle behind
 the unbalance D), the liquid's moment U_l (magnitude k = |U_l|/|D|, angle alpha from D) and the

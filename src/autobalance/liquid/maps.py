@@ -1,8 +1,8 @@
-"""Linear modes of a scheme's maps (docs/liquid.md sec. 3j, 3k, 3m): the Jacobian of a
-one-step or one-period map by central differences, its eigenvalues as growth rates, and Newton
-shooting for the periodic state of a one-period map. The liquid's stability analyses
-(liquid/stability.py, studies/liquid_balanced.py) linearise the film runs' own schemes with
-these.
+"""Linear modes of a scheme's maps (docs/liquid/stability.md sec. 3j, 3k, horizontal-axis.md
+sec. 3m): the Jacobian of a one-step or one-period map by central differences, its eigenvalues
+as growth rates, and Newton shooting for the periodic state of a one-period map. The liquid's
+stability analyses (liquid/stability.py, studies/liquid_balanced.py) linearise the film runs'
+own schemes with these.
 """
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Liquid (Leblanc) balancer parameters as frozen dataclasses in SI, validated on construction.
 
 Every class raises :class:`autobalance.models.ParameterError` (one line: field, value, what is
-allowed) from ``__post_init__``. See docs/liquid.md for the sources of the defaults.
+allowed) from ``__post_init__``. See docs/liquid/index.md for the sources of the defaults.
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ if TYPE_CHECKING:
 #: Standard gravity [m/s^2] (CGPM 1901). 003's printed speeds follow from g = 10 m/s^2.
 G_STANDARD = 9.80665
 
-#: Liquid placement laws of the reduced-order dynamics (docs/liquid.md, "Dynamics").
+#: Liquid placement laws of the reduced-order dynamics (docs/liquid/models.md sec. 3).
 PLACEMENT_LAWS = ("drach", "deflection")
 
 
@@ -242,7 +242,8 @@ class VerticalRotor:
 
 @dataclass(frozen=True)
 class LiquidModel:
-    """Choices of the reduced-order liquid dynamics (docs/liquid.md lists the reasons).
+    """Choices of the reduced-order liquid dynamics (docs/liquid/models.md sec. 3 lists the
+    reasons).
 
     Parameters
     ----------

@@ -1,7 +1,7 @@
 """The liquid of a chamber on a horizontal axis in time, from a puddle at rest or from a ring
 turning with the chamber: the circumferential shallow-water model of
-:mod:`autobalance.core.rimming` (docs/liquid.md sec. 3n), with the normal acceleration of the
-liquid's own rotation and of gravity.
+:mod:`autobalance.core.rimming` (docs/liquid/horizontal-axis.md sec. 3n), with the normal
+acceleration of the liquid's own rotation and of gravity.
 
 What it answers, and where it stops:
 * from a puddle (a profile from rest): how the wall drags it (its lag, how far up the rising
@@ -11,8 +11,8 @@ What it answers, and where it stops:
 * the run stops where the state leaves the model: more than :data:`autobalance.core.rimming.
   LOOSE_MAX` of the liquid where nothing holds it on the wall (G <= 0; a real liquid falls),
   or a layer thicker than the chamber's gap. On water puddles the single-layer model leaves
-  it while the wall shoves the puddle up its rising side (docs/liquid.md sec. 3n): the
-  transition from puddle to ring needs a wall layer the depth average does not have.
+  it while the wall shoves the puddle up its rising side (docs/liquid/horizontal-axis.md sec. 3n):
+  the transition from puddle to ring needs a wall layer the depth average does not have.
 
 The rotor's whirl is not in the model (the chamber turns about its centre), as in the vertical
 axis' spin-up (:mod:`.spinup`).
@@ -41,7 +41,7 @@ __all__ = ["RING_LEVEL", "STATUS", "RimSpinUp", "closing_centroid", "closing_rin
 #: V / (2 pi R H) (and the liquid is held all round); as the vertical spin-up's dry level
 #: (:data:`.spinup.DRY_LEVEL`), our criterion [-].
 RING_LEVEL = 0.01
-#: Cells around the wall by default [-] (docs/liquid.md sec. 3n).
+#: Cells around the wall by default [-] (docs/liquid/horizontal-axis.md sec. 3n).
 DEFAULT_CELLS = 256
 #: The run's end, by the kernel's status [-].
 STATUS = {_k.RUN_TO_END: "end", _k.STOP_CLOSED: "closed", _k.STOP_BROKEN: "broken",

@@ -3,7 +3,7 @@ profile, with the wall film coupled two-way to the rotor (:func:`.film.coupled_r
 
 The film model holds once the liquid is a ring on the wall (:func:`film_start`): from rest on
 a vertical axis, where the liquid's spin-up from a flat layer at rest reaches the lid
-(:mod:`.spinup`, 003's mode 4, docs/liquid.md sec. 3h), the film lagging the chamber as the
+(:mod:`.spinup`, 003's mode 4, docs/liquid/spin-up.md sec. 3h), the film lagging the chamber as the
 spin-up leaves it; otherwise from the first time the profile reaches the film's start speed
 omega_f (:func:`film_start_speed`: on a vertical axis the entrainment speed of 003 eq 6; on a
 horizontal one the speed where gravity's offset of the potential g/Omega^2 is R/10), the film
@@ -11,7 +11,7 @@ at rest on the wall. Before it the liquid lies as a pool; the run starts on the 
 orbit of the rotor carrying the liquid as a rigid centred mass (a quasi-steady start: the
 Jeffcott closed form, valid for a run-up slow against the rotor's decay time), plus the static
 sag M_t g / k under in-plane gravity, with the film on the displaced wall.
-The reported deflection is the whirl about the static sag. docs/liquid.md sec. 3e gives the
+The reported deflection is the whirl about the static sag. docs/liquid/machine.md sec. 3e gives the
 scope and what is not modelled yet.
 """
 from __future__ import annotations
@@ -49,7 +49,7 @@ __all__ = ["FilmStart", "LiquidSimulation", "check_liquid_run", "film_rotor", "f
 
 
 #: Wall time of one film step on 256 cells with its 4 rotor sub-steps [s] (measured on the
-#: 2-core machine of docs/numerics.md: 15232 steps of the leblanc_003 run-up in 1.0 s).
+#: 2-core machine of docs/benchmarks.md: 15232 steps of the leblanc_003 run-up in 1.0 s).
 STEP_COST_256 = 6.6e-5
 #: Film steps per CFL estimate of the uniform film's wave speed (measured on leblanc_003: the
 #: film's own velocity and thickness variations shorten the step) [-].

@@ -1,6 +1,7 @@
 """The spin-up of the liquid from rest on a vertical axis, through 003's modes 1-3 until it
 reaches the lid at the outer wall (mode 4, where the wall film of :mod:`.film` takes over): the
-axisymmetric shallow-water equations of :mod:`autobalance.core.spinup` (docs/liquid.md sec. 3h).
+axisymmetric shallow-water equations of :mod:`autobalance.core.spinup` (docs/liquid/spin-up.md
+sec. 3h).
 
 With a slow run-up and a liquid that follows the chamber, the model's mode changes are the
 quasi-static speeds of :mod:`.free_surface` (003 eq 4 and 6); otherwise the liquid lags and
@@ -36,7 +37,7 @@ GRAVITY_FRACTION = 0.25
 #: criterion) [-].
 DRY_LEVEL = 0.01
 #: Cells of equal bottom area per chamber by default: the entrainment speed within 0.05 % of 200
-#: cells' and 0.2 % of 800 cells' (docs/liquid.md sec. 3h) [-].
+#: cells' and 0.2 % of 800 cells' (docs/liquid/spin-up.md sec. 3h) [-].
 DEFAULT_CELLS = 100
 #: Most cells per chamber: the steps grow as the cells (CFL on the outermost, narrowest cell) and
 #: each step's work too; 800 cells took 60 s for 60 s of run-up, 2000 take about 6 min [-].
@@ -180,7 +181,7 @@ def spinup_run(radius: float, height: float, volume: float,
         Gravity along the axis [m/s^2].
     n_cells : int
         Cells of equal bottom area from the inner wall (axis) to the outer wall [-] (100: the
-        entrainment speed within 0.2 % of 800 cells', docs/liquid.md sec. 3h).
+        entrainment speed within 0.2 % of 800 cells', docs/liquid/spin-up.md sec. 3h).
     save_dt : float or None
         Output spacing [s] (None: 400 outputs).
     initial : (array, array, array) or None
@@ -408,9 +409,9 @@ def rigid_pool(radius: float, inner_radius: float, volume: float, speed: float, 
 class PoolSpin:
     """A chamber's liquid in its spin-up (:func:`spinup_run`'s model) advanced one coupling step
     at a time under a spin known only step by step: a motor drive, whose torque the liquid's
-    change of angular momentum loads (docs/liquid.md sec. 3i). From rest (a flat layer at rest
-    in the inertial frame) or, for a drive that starts turning, from the pool turning with the
-    chamber (:func:`rigid_pool`); until its surface reaches the lid at the outer wall.
+    change of angular momentum loads (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i). From rest (a flat
+    layer at rest in the inertial frame) or, for a drive that starts turning, from the pool turning
+    with the chamber (:func:`rigid_pool`); until its surface reaches the lid at the outer wall.
 
     Parameters
     ----------

@@ -2,7 +2,7 @@
 about its centred state (no unbalance: the rotor on the axis, every film uniform and at rest on
 its wall). This is the classical question of partly filled rotors: they can whirl
 asynchronously above resonance (Kollmann 1962; Wolf 1968, ASME J. Appl. Mech. 35, 676-682;
-Ehrich 1992), which the quasi-static liquid (liquid/steady.py) cannot show (docs/liquid.md
+Ehrich 1992), which the quasi-static liquid (liquid/steady.py) cannot show (docs/liquid/stability.md
 sec. 3j).
 
 Method (our choice): the linearisation of the very scheme the film runs use. One time step
@@ -235,9 +235,9 @@ def ring_floquet(rotor: VerticalRotor, st: FilmsState, Mt: float, speed: float,
                  gravity: float) -> RingStability:
     """The linear stability of a rotor with wall films under gravity in the chamber's plane (a
     horizontal axis) at a constant spin: Floquet's theory about its periodic state (our
-    method, docs/liquid.md sec. 3m). Gravity turns at -Omega in the rotor frame, so the state
-    the centred state becomes (the rotor's static sag M_t g / k, the films flowing over the
-    wall that passes under the potential offset by g / Omega^2) repeats every revolution
+    method, docs/liquid/horizontal-axis.md sec. 3m). Gravity turns at -Omega in the rotor frame, so
+    the state the centred state becomes (the rotor's static sag M_t g / k, the films flowing over
+    the wall that passes under the potential offset by g / Omega^2) repeats every revolution
     T = 2 pi / Omega in the rotor frame. The scheme's one-revolution map P
     (:func:`_ring_period_map`, m steps of sw_coupled) has that state as a fixed point, found
     by :func:`periodic_state` from :func:`_ring_guess` (where that does not converge, through

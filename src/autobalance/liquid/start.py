@@ -1,7 +1,8 @@
-"""Where a run's wall film starts (docs/liquid.md sec. 3e, 3h): the quasi-static start speed
-omega_f (003 eq 6 on a vertical axis; g/Omega^2 = R/10 on a horizontal one) and, for a run-up
-on a vertical axis, the spin-up from rest to the lid (:mod:`.spinup`). Used by the liquid's
-own runs (:mod:`.simulate`) and by balls beside a liquid (:mod:`autobalance.simulate.hybrid`).
+"""Where a run's wall film starts (docs/liquid/machine.md sec. 3e, spin-up.md sec. 3h): the
+quasi-static start speed omega_f (003 eq 6 on a vertical axis; g/Omega^2 = R/10 on a horizontal one)
+and, for a run-up on a vertical axis, the spin-up from rest to the lid (:mod:`.spinup`). Used by the
+liquid's own runs (:mod:`.simulate`) and by balls beside a liquid
+(:mod:`autobalance.simulate.hybrid`).
 """
 from __future__ import annotations
 
@@ -49,7 +50,7 @@ def _film_table(spin: SpeedProfile, w0: float,
     if above.size == 0:
         raise ParameterError("profile", f"max {w.max():.4g} rad/s", f"never reaches the film "
                              f"model's start speed {w0:.4g} rad/s (below it the liquid is a "
-                             "pool, not a wall film; docs/liquid.md sec. 3e)")
+                             "pool, not a wall film; docs/liquid/machine.md sec. 3e)")
     i = int(above[0])
     t0 = t[0] if i == 0 else t[i - 1] + (w0 - w[i - 1]) / (w[i] - w[i - 1]) * (t[i] - t[i - 1])
     if start is not None and start > t0:
@@ -98,10 +99,10 @@ class FilmStart(NamedTuple):
 
 
 def film_start(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) -> FilmStart:
-    """Where the wall film of a run starts (docs/liquid.md sec. 3e, 3h). On a vertical axis,
-    for a profile that starts below :func:`film_start_speed` (003 eq 6), the liquid spins up
-    (:func:`autobalance.liquid.spinup.spinup_of`: from a flat layer at rest, or from the pool
-    turning with the chamber at the profile's first speed) and the film starts when the last
+    """Where the wall film of a run starts (docs/liquid/machine.md sec. 3e, spin-up.md sec. 3h). On
+    a vertical axis, for a profile that starts below :func:`film_start_speed` (003 eq 6), the liquid
+    spins up (:func:`autobalance.liquid.spinup.spinup_of`: from a flat layer at rest, or from the
+    pool turning with the chamber at the profile's first speed) and the film starts when the last
     chamber's liquid reaches the lid, with each chamber's lag there. Otherwise (a profile that
     starts at or above it: a ring from the start; a horizontal axis) where the profile first
     reaches :func:`film_start_speed`, with the liquid a ring turning with the chamber; so too
@@ -135,7 +136,7 @@ def film_start(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) 
         if t_lid is None:
             raise ParameterError("profile", f"end at {spin.duration:.4g} s", "comes before the "
                                  f"liquid of the chamber R = {c.chamber_radius:.4g} m reaches "
-                                 "the lid in its spin-up (docs/liquid.md sec. 3h): "
+                                 "the lid in its spin-up (docs/liquid/spin-up.md sec. 3h): "
                                  "no ring for the film model; give a longer or faster run-up")
     t1 = max(t_lid for t_lid, _ in lids)
     _film_table(spin, w0, t1)
@@ -155,9 +156,10 @@ def _lid(radius: float, height: float, inner_radius: float, volume: float, visco
 
 
 def pool_machine(system: System) -> System:
-    """The machine with its liquid as a pool (below the film's start, docs/liquid.md sec. 3i):
-    its mass moves with the rotor and it pulls nothing, so the ball models take the machine
-    with the liquid's mass added to the rotor's and no ``[liquid]`` section. M_t is kept.
+    """The machine with its liquid as a pool (below the film's start,
+    docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i): its mass moves with the rotor and it pulls nothing,
+    so the ball models take the machine with the liquid's mass added to the rotor's and no
+    ``[liquid]`` section. M_t is kept.
 
     Parameters
     ----------

@@ -2,7 +2,7 @@
 
 The liquid analyses (:mod:`autobalance.liquid`) take the composite
 :class:`autobalance.liquid.LiquidBalancer` (chamber + liquid + fill); ``LiquidBalancer.of``
-builds it from this section. docs/liquid.md gives the model and the sources of the defaults.
+builds it from this section. docs/liquid/index.md gives the model and the sources of the defaults.
 """
 from __future__ import annotations
 
@@ -52,7 +52,7 @@ class LiquidDevice:
     chambers (003 sec. 4.2's device has three): then the keys of :data:`PER_CHAMBER` are tuples
     with one value per chamber, from the axis outwards (a scalar given for one of them holds for
     every chamber), and the liquid's keys (density, viscosity, axis) are shared.
-    :attr:`chambers` gives each chamber as a one-chamber device (docs/liquid.md sec. 3g).
+    :attr:`chambers` gives each chamber as a one-chamber device (docs/liquid/machine.md sec. 3g).
 
     Parameters
     ----------
@@ -152,7 +152,7 @@ class LiquidDevice:
         raise ParameterError("liquid.chamber_radius", list(self.chamber_radius),
                              f"{self.n_chambers} concentric chambers: {what} takes one chamber "
                              "(simulate, sweep, study fill-map and liquid simulate's physical model take "
-                             "several; docs/liquid.md sec. 3g)")
+                             "several; docs/liquid/machine.md sec. 3g)")
 
     def vertical(self, why: str) -> LiquidDevice:
         """This device if it turns about a vertical axis; a one-line ParameterError on

@@ -204,7 +204,8 @@ class SimOptions:
     rtol : float
         Relative tolerance of the adaptive Dormand-Prince 5(4) integrator [-].
     atol_scale : float
-        Absolute tolerances are atol_scale times characteristic scales (docs/numerics.md) [-].
+        Absolute tolerances are atol_scale times characteristic scales (docs/numerics/kernel.md)
+        [-].
     max_step : float
         Largest step [s]; 0 = automatic.
     save_dt : float
@@ -214,18 +215,18 @@ class SimOptions:
         Step budget; exceeding it ends the run with status "max_steps".
     exact_holds : bool
         Solve constant-speed holds with every ball stuck in closed form (isotropic rotor without
-        gravity, base motion or dry friction; docs/numerics.md). False integrates them.
+        gravity, base motion or dry friction; docs/numerics/speed.md). False integrates them.
     exact_ramps : bool
         Solve linear speed ramps with every ball stuck without stepping, under the same
-        conditions and the exact stick-slip law (core/ramp.py; docs/numerics.md). False
+        conditions and the exact stick-slip law (core/ramp.py; docs/numerics/stuck-phases.md). False
         integrates them.
     dense_events : bool
         Take the state at a located stick-slip event from DOPRI5's continuous extension of the
-        accepted step (order 4, no re-stepping; docs/numerics.md). False redoes the step to the
-        event.
+        accepted step (order 4, no re-stepping; docs/numerics/stuck-phases.md). False redoes the
+        step to the event.
     exponential_slip : bool
         Where a ball slips, jump ahead by the exponential integrator ETDRK4-B with Richardson's
-        error estimate (core/expo.py; docs/numerics.md), under the conditions of
+        error estimate (core/expo.py; docs/numerics/exponential-slip.md), under the conditions of
         ``exact_ramps``; DOPRI5 locates the events. On by default: 1.2-1.7x faster on
         004's sweeps than stepping every phase, the grades within 0.0015 mm/s of converged
         runs. False steps every phase with DOPRI5.

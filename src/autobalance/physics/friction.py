@@ -12,7 +12,7 @@ Systems*, 3rd ed., sec. 11.2):
     -mu N R tanh(phi_dot / v_sat) = lambda   =>   phi_dot = -v_sat atanh(lambda / (mu N R)),
 
 a creep at a fraction of v_sat while |lambda| < mu N R. The exact stick-slip model is its limit
-v_sat -> 0. docs/numerics.md sec. "The tanh law's slow manifold" gives the accuracy tests.
+v_sat -> 0. docs/numerics/kernel.md sec. "The tanh law's slow manifold" gives the accuracy tests.
 """
 from __future__ import annotations
 

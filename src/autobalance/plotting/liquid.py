@@ -474,7 +474,7 @@ def liquid_run_figure(sim: LiquidSimulation, grade_limit: float = 16.0,
 
 def fill_map_figure(ds: xr.Dataset, speed_unit: str = "rad/s", speed_factor: float = 1.0,
                     title: str = "") -> Figure:
-    """The fill map (:func:`autobalance.studies.fill_map.compute_fill_map`): the steady whirl
+    """The fill map (:func:`autobalance.studies._fill_map.compute_fill_map`): the steady whirl
     vs speed for each fill beside the rotor without liquid, and the efficiency A(no liquid) /
     A(liquid) (above 1: the liquid balances).
 

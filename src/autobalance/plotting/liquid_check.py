@@ -1,6 +1,6 @@
 """The figure of 001's kinetostatic laws against the liquid from physics
-(:func:`autobalance.liquid.kinetostatic_check.kinetostatic_vs_physics`; docs/liquid.md sec. 2b):
-data in, a matplotlib Figure out (angles in degrees as computed), nothing saved here."""
+(:func:`autobalance.liquid.kinetostatic_check.kinetostatic_vs_physics`; docs/liquid/kinetostatics.md
+sec. 2b): data in, a matplotlib Figure out (angles in degrees as computed), nothing saved here."""
 from __future__ import annotations
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Figure of a run-up study (:func:`autobalance.studies.runup.compute_runup`): reads the dataset
+"""Figure of a run-up study (:func:`autobalance.studies._runup.compute_runup`): reads the dataset
 and draws; no physics here. Top: spin speed against time per case. Bottom: whirl amplitude with
 the balls (solid) and without (dashed), the balancing threshold dotted."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Figure of a speed map (:func:`autobalance.studies.speed_map.compute_speed_map`): reads the
+"""Figure of a speed map (:func:`autobalance.studies._speed_map.compute_speed_map`): reads the
 dataset and draws; no physics here.
 
 Top panel: ISO 1940 grade of the best stable state against speed, the speed ranges where the

@@ -296,7 +296,7 @@ def plot_speed_profile(ds: xr.Dataset) -> Figure:
 
 def plot_start_positions(ds: xr.Dataset, title: str | None = None) -> Figure:
     """The start-position study of any machine
-    (:func:`autobalance.studies.start_positions.compute_start_positions`, no grid): the density
+    (:func:`autobalance.studies._start_positions.compute_start_positions`, no grid): the density
     of the grade at each read-out with its share at or below the target, and each run's last
     against its first read-out (004 Fig. 5-6 generalised); with a single read-out (a motor
     drive, a constant speed) each run's grade against its start angle instead."""
@@ -356,7 +356,7 @@ def _grade_against_start(ax, angles: np.ndarray, g: np.ndarray, lim: float, top:
 
 
 def plot_design(ds: xr.Dataset, title: str | None = None) -> Figure:
-    """The design search (:func:`autobalance.studies.design.compute_design`): each design's worst
+    """The design search (:func:`autobalance.studies._design.compute_design`): each design's worst
     quantile of the final grade against its total ball mass, by profile, with its interval (a
     bar; an end beyond the axes, or unbounded, an arrow at the top), filled where the design is
     decided to meet the target, the Pareto front joined and the target grade dotted; and each

@@ -50,7 +50,7 @@ def render_markdown(report: dict) -> str:
                    f"{c['not computed']} | {c['unreported']} |")
     out += ["", "A **miss** is a published number we compute but do not reproduce within the "
             "tolerance; its note says why. Tolerances are justified in each target's notes and in "
-            "the study docs (washer-analysis.md, tsr-studies.md, liquid.md).", ""]
+            "the study docs (washer-analysis.md, tsr-studies.md, liquid/index.md).", ""]
     for paper in PAPERS:
         recs = [r for r in report["targets"] if r["paper"] == paper]
         if not recs:

@@ -1,7 +1,7 @@
 """One run of a machine with balls beside a liquid (a ``[balancer]`` with balls and a
 ``[liquid]`` section): the ball simulator with the wall films of the liquid's chambers on the
-same rotor (:mod:`autobalance.core.hybrid`; docs/liquid.md sec. 3i). :func:`autobalance.simulate`
-runs it for such a machine.
+same rotor (:mod:`autobalance.core.hybrid`; docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i).
+:func:`autobalance.simulate` runs it for such a machine.
 
 Before the film starts (:func:`autobalance.liquid.simulate.film_start`: from rest on a vertical
 axis where the liquid's spin-up reaches the lid; otherwise where the profile reaches 003 eq 6's
@@ -33,11 +33,11 @@ from ..models import InitialState, MotorDrive, ParameterError, SimOptions, Speed
 from .result import Simulation, SimulationError
 
 #: Coupling step of a pool's spin-up beside a motor-driven spin (:func:`_pool_phase`) [s]: the
-#: pools' torque lags by one step (docs/liquid.md sec. 3i).
+#: pools' torque lags by one step (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i).
 POOL_STEP = 1.0e-3
 #: The note of a run whose motor started below the film's start on a horizontal axis.
 RIGID_NOTE = ("before the film's start the liquid turned with the drum: its pool flow is not "
-              "modelled, its effect on the run-up is bounded (docs/liquid.md sec. 3i)")
+              "modelled, its effect on the run-up is bounded (docs/liquid/balls-beside-liquid/index.md sec. 3i)")
 
 __all__ = ["LiquidPart", "check_hybrid", "check_liquid", "liquid_run", "simulate_hybrid",
            "simulate_liquid_motor"]
@@ -124,9 +124,9 @@ def check_liquid(system: System, spin: SpeedProfile | MotorDrive,
 
 
 def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
-    """A motor drive beside a liquid (docs/liquid.md sec. 3i). A drive that starts at or above
-    the film's start speed starts the films at t = 0 turning with the chamber (rule
-    "quasi-static"); one that starts below it runs :func:`_pool_phase` first (rule "pool"):
+    """A motor drive beside a liquid (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i). A drive that
+    starts at or above the film's start speed starts the films at t = 0 turning with the chamber
+    (rule "quasi-static"); one that starts below it runs :func:`_pool_phase` first (rule "pool"):
     on a vertical axis the pools spin up beside the kernel, on a horizontal one the liquid turns
     with the chamber until the film's start speed. Its end speed must reach the film's start
     speed. On a horizontal axis the kernel's spin row takes gravity's torque on the films' held
@@ -137,7 +137,7 @@ def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
     if spin.final_speed < w_f:
         raise ParameterError("profile.final_speed", spin.final_speed, f"must be >= the film's "
                              f"start speed {w_f:.4g} rad/s with a motor drive and a liquid "
-                             "(below it the liquid stays a pool: docs/liquid.md sec. 3e)")
+                             "(below it the liquid stays a pool: docs/liquid/machine.md sec. 3e)")
     n = liq.n_chambers
     if spin.initial_speed >= w_f:
         fs = FilmStart(0.0, float(spin.initial_speed), (0.0,) * n, "quasi-static")
@@ -147,7 +147,7 @@ def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
         chamber_films(system, FilmStart(0.0, w_f, (0.0,) * n, "quasi-static"), 256, 0j)
         return FilmStart(0.0, float(spin.initial_speed), (0.0,) * n, "pool")
     why = next((f"with the chamber R = {c.chamber_radius:.4g} m more than half full (outside "
-                "the spin-up model, docs/liquid.md sec. 3h)" for c in liq.chambers
+                "the spin-up model, docs/liquid/spin-up.md sec. 3h)" for c in liq.chambers
                 if not within_spinup(c.chamber_radius, c.chamber_height, c.inner_radius,
                                      c.volume)), None)
     if why is not None:
@@ -161,9 +161,9 @@ def _pool_phase(system: System, g_axial: float, P: np.ndarray, B: np.ndarray, N:
                 y: np.ndarray, t_end: float, rtol: float, atol: np.ndarray, h_max: float,
                 budget: int, out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray,
                 carry: np.ndarray) -> FilmStart | None:
-    """A motor drive from below the film's start speed (docs/liquid.md sec. 3i), one coupling
-    step of :data:`POOL_STEP` at a time. On a vertical axis each chamber's pool spins up
-    (:class:`autobalance.liquid.spinup.PoolSpin`, the axisymmetric model of sec. 3h) beside
+    """A motor drive from below the film's start speed (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i),
+    one coupling step of :data:`POOL_STEP` at a time. On a vertical axis each chamber's pool spins
+    up (:class:`autobalance.liquid.spinup.PoolSpin`, the axisymmetric model of sec. 3h) beside
     the kernel: the pools' change of angular momentum reaches the spin as a torque one step late
     (as the films'); a chamber whose liquid has reached the lid turns on with the chamber at its
     lag, its moment of inertia in the kernel's spin row. On a horizontal axis the liquid turns
@@ -223,7 +223,7 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
     spin : SpeedProfile or MotorDrive
         Prescribed speed [rad/s] over time [s], or a motor drive (from any speed, on a
         vertical axis with every chamber at most half full below the film's start; to a speed
-        at or above the film's start [rad/s]; docs/liquid.md sec. 3i).
+        at or above the film's start [rad/s]; docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i).
     initial : InitialState, optional
         Ball angles [rad] and rotor state at t = 0 (:func:`autobalance.simulate`'s default).
     options : SimOptions, optional
@@ -343,13 +343,13 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
                           n_out: int | None = None,
                           g_axial: float = G_STANDARD) -> LiquidSimulation:
     """A liquid alone (no balls) under a motor drive: :func:`simulate_hybrid`'s kernel with no
-    balls, the spin a degree of freedom taking the films' inertia and torque (docs/liquid.md
-    sec. 3i), read as a run of :func:`autobalance.liquid.simulate.simulate_liquid`. The drive
-    ends at or above the film's start speed. The run starts on the steady orbit of the rotor
-    carrying the liquid as a rigid centred mass (as ``simulate_liquid``'s); from the film's
-    start speed or above with the films turning with the chamber, from below it through
-    :func:`_pool_phase` (the pools' spin-up on a vertical axis, the liquid turning with the
-    drum on a horizontal one).
+    balls, the spin a degree of freedom taking the films' inertia and torque
+    (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i), read as a run of
+    :func:`autobalance.liquid.simulate.simulate_liquid`. The drive ends at or above the film's start
+    speed. The run starts on the steady orbit of the rotor carrying the liquid as a rigid centred
+    mass (as ``simulate_liquid``'s); from the film's start speed or above with the films turning
+    with the chamber, from below it through :func:`_pool_phase` (the pools' spin-up on a vertical
+    axis, the liquid turning with the drum on a horizontal one).
 
     Parameters
     ----------

@@ -29,7 +29,7 @@ def contact_step(zeta: float) -> float:
 
     At the edge of that region the integrator's error estimate let the balls chatter
     spuriously: 2400 stick-slip events per run of 004 instead of about 400, and grades off by
-    up to 0.15 mm/s (docs/numerics.md, "Resting contacts"). For 004's restitution 0.5
+    up to 0.15 mm/s (docs/numerics/contacts.md, "Resting contacts"). For 004's restitution 0.5
     (zeta = 0.215) the edge is at 3.04 and the step 2.03 / w_c; 2 and 3 gave the same grades
     to 9e-4 mm/s over 1092 runs.
 
@@ -273,7 +273,7 @@ def atol_vector(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
 
     The length scale is the larger of the rotor's and the balls' eccentricity
     max(U, sum(m_i) R) / M_t and the base amplitudes [m]; the angle scale is 1 rad; the rates
-    multiply them by max(nominal speed, 1 rad/s) (docs/numerics.md).
+    multiply them by max(nominal speed, 1 rad/s) (docs/numerics/kernel.md).
 
     Parameters
     ----------

@@ -244,7 +244,7 @@ def _stable_onset(cfg, fn: float) -> float:
     speed, from the speed map (:func:`.speed_map.compute_speed_map`, the machine's own damping,
     16 speeds from 0.9 to 3 x ``fn`` [rad/s] with its edges bisected); NaN when the map finds
     no such range or cannot judge this machine."""
-    from .speed_map import compute_speed_map, speed_map_summary
+    from ._speed_map import compute_speed_map, speed_map_summary
 
     wn = cfg.spin.nominal_speed
     try:

@@ -1,5 +1,5 @@
 """The balanced state of balls beside a liquid and its linear stability at a constant speed
-(docs/liquid.md sec. 3k): the rotor on the axis, the balls where they cancel the
+(docs/liquid/stability.md sec. 3k): the rotor on the axis, the balls where they cancel the
 unbalance, every film uniform and at rest on its wall. Whether it stays balanced decides what
 the speed map reports for such a machine.
 
@@ -167,8 +167,8 @@ def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,
                        n_cells: int = 64, family: bool = False) -> RingStability:
     """The linear stability of a balanced state of balls beside a liquid at the constant spin
     ``speed`` (module docstring); on a horizontal axis Floquet's about its periodic state under
-    gravity (:func:`autobalance.studies.liquid_floquet.balanced_floquet`, docs/liquid.md
-    sec. 3m).
+    gravity (:func:`autobalance.studies.liquid_floquet.balanced_floquet`,
+    docs/liquid/horizontal-axis.md sec. 3m).
 
     Parameters
     ----------
@@ -270,7 +270,7 @@ def balanced_machine_stability(system: System, speeds: npt.ArrayLike,
     (:func:`autobalance.studies.equilibria.linearised_full`; on a horizontal axis, where it is
     a puddle, their Floquet multipliers, :func:`autobalance.studies.equilibria.floquet_full`);
     from there :func:`balanced_stability` (Floquet about the periodic state under gravity on a
-    horizontal axis, docs/liquid.md sec. 3m).
+    horizontal axis, docs/liquid/horizontal-axis.md sec. 3m).
 
     Parameters
     ----------

@@ -1,5 +1,5 @@
 """The balanced state of balls beside a liquid on a horizontal axis and its linear stability at a
-constant speed (docs/liquid.md sec. 3m): Floquet's theory about the periodic state
+constant speed (docs/liquid/horizontal-axis.md sec. 3m): Floquet's theory about the periodic state
 that in-plane gravity, turning at -Omega in the rotor frame, makes of the balanced state.
 
 Method (our choice): sec. 3k's step map of the coupling the run of balls beside a liquid uses

@@ -245,17 +245,12 @@ def _cancel(client, futs) -> None:
         pass
 
 
-def _estimate_line(plan: Plan, n_todo: int, workers: int) -> str:
-    from ..limits import fmt_seconds, step_cost, steps_estimate
-
-    c = plan.cells[0]
-    if c.system.liquid is not None:
-        from ..liquid.simulate import run_seconds_estimate
-        sec = n_todo * run_seconds_estimate(c.system, c.spin)
-    else:
-        sec = n_todo * steps_estimate(c.system, c.spin, c.options) * step_cost(plan.n_balls)
-    return (f"{plan.spec.name}: {n_todo} of {plan.n_runs} runs to compute, about "
-            f"{fmt_seconds(sec / max(workers, 1))} on {workers} worker(s) (estimate)")
+def _start_line(plan: Plan, n_todo: int, workers: int) -> str:
+    """The sweep's start line: what it will compute and where. No time is promised here: the
+    progress bar's rate and ETA are measured (a step-count estimate before the first run can be
+    off by 100x on stick-slip runs)."""
+    return (f"{plan.spec.name}: {n_todo} of {plan.n_runs} runs to compute on {workers} "
+            f"worker(s)")
 
 
 def sweep(spec: SweepSpec | dict | str | Path, store: str | Path, *,
@@ -443,7 +438,7 @@ def _sweep_locked(plan, store, lock, executor, workers, client, resume, progress
     if executor == "dask":
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
     if todo_tasks and progress:
-        print(_estimate_line(plan, plan.n_runs - done_runs, n_workers), file=sys.stderr,
+        print(_start_line(plan, plan.n_runs - done_runs, n_workers), file=sys.stderr,
               flush=True)
     bar = Progress(plan.n_runs, done_runs, enabled=progress)
     payloads = (task_payload(plan, t) for t in todo_tasks)

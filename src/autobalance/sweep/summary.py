@@ -116,8 +116,8 @@ def share_intervals(ds: xr.Dataset, grade: float, var: str = "grade_G",
     xarray.DataArray
         (the other dimensions..., bound) with bound = lo, hi [-].
     """
-    ok = _over(ds["status"] == 0, dim)
     hit = _over((ds[var] <= grade) & (ds["status"] == 0), dim)
+    ok = _over(ds["status"] == 0, dim).broadcast_like(hit).transpose(*hit.dims)  # + checkpoint
     _, lo, hi = share_interval(hit.sum("_s").values, ok.sum("_s").values, level)
     da = _bounds(np.stack([lo, hi], axis=-1), hit)
     da.attrs.update({"units": "-", "confidence_level": level})

@@ -274,7 +274,7 @@ def run_tolerance(ctx: Context) -> Outcome:
     """
     from ...physics.error_bounds import friction_force_for_deviation
     from ...studies.common import load
-    from ...studies.tolerances import compute_tolerances
+    from ...studies._tolerances import compute_tolerances
 
     rows = rows_of("000-tolerance")
     gam = math.radians(61.0)

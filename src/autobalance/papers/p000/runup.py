@@ -31,7 +31,7 @@ import numpy as np
 
 from ...models import MotorDrive
 from ...physics.runup import runup_fraction_closed_form, runup_time_closed_form
-from ...studies.runup import balancing_time as _balancing_time
+from ...studies._runup import balancing_time as _balancing_time
 from ...validation.target import Rows
 from .washer import W1000, washer
 
@@ -90,7 +90,7 @@ PUBLISHED = {
 def balancing_time(sim: Simulation, fraction: float = 0.05) -> float:
     """Last time [s] at which the whirl amplitude exceeds ``fraction`` of the unbalanced drum's
     amplitude far above resonance, e = Me/M_t [m] (000 eq 6-7 with a = e); the run-up study's
-    :func:`autobalance.studies.runup.balancing_time` on a Simulation.
+    :func:`autobalance.studies._runup.balancing_time` on a Simulation.
 
     Parameters
     ----------

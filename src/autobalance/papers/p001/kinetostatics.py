@@ -71,8 +71,8 @@ def run_eq3_4(ctx: Context) -> Outcome:
 
 def _against_physics(ctx: Context) -> tuple:
     """001's laws at the physical phase and ratio of 003's bench (150 ml of water), beside the
-    quasi-static liquid and the settled coupled film (docs/liquid.md sec. 2b): (Dataset,
-    figure, note)."""
+    quasi-static liquid and the settled coupled film (docs/liquid/kinetostatics.md sec. 2b):
+    (Dataset, figure, note)."""
     from ...liquid.kinetostatic_check import kinetostatic_vs_physics
     from ...plotting.liquid_check import kinetostatic_check_figure
 
@@ -90,12 +90,12 @@ def _against_physics(ctx: Context) -> tuple:
     note = (f"Against the physics (003's bench, 150 ml of water, {ws[0]:g}-{ws[-1]:g} 1/s, not a "
             "published number): the quasi-static liquid sits on the deflection, the coupled film "
             f"settles within {np.nanmax(film):.2f} deg of it, and 001 eq 3 at the physical "
-            f"phase and k {eq3}; docs/liquid.md sec. 2b).")
+            f"phase and k {eq3}; docs/liquid/kinetostatics.md sec. 2b).")
     fig = kinetostatic_check_figure(res, "001's kinetostatics against the liquid from physics "
                                          "(003's bench, 150 ml water)")
     ds = xr.Dataset({k: ("omega_rad_s", np.asarray(v, float)) for k, v in res.items()
                      if k != "omega_rad_s"}, coords={"omega_rad_s": ws},
-                    attrs={"source": "001 eq 1, 3, 6 against docs/liquid.md sec. 2b's physics"})
+                    attrs={"source": "001 eq 1, 3, 6 against docs/liquid/kinetostatics.md sec. 2b's physics"})
     return ds, fig, note
 
 

@@ -4,7 +4,7 @@ quasi-static liquid in the displaced chamber, :func:`autobalance.liquid.steady.
 physical_steady_response`, :func:`autobalance.liquid.steady.physical_fill_sweep`; nothing
 calibrated). The steady synchronous whirl of a liquid turning rigidly with the chamber does not
 depend on its viscosity: viscosity acts on the film's waves and on whether that whirl is
-reached (docs/liquid.md sec. 3f, the stability map).
+reached (docs/liquid/machine.md sec. 3f, the stability map).
 """
 from __future__ import annotations
 
@@ -83,7 +83,7 @@ def _fill_rows(rows: Rows, b: Bench, liquids: dict) -> dict:
              "omega_r, 670-1650 kg/m^3 [ml]",
              "/".join(str(opt[n]) for n in DENSITY_SERIES), "within one 50 ml step",
              spread <= 50, "the liquid's moment follows from the deflection and the film's "
-             "geometry, not from a capacity rho V R (docs/liquid.md sec. 3d)"
+             "geometry, not from a capacity rho V R (docs/liquid/film.md sec. 3d)"
              + ("" if spread <= 50 else "; a denser liquid still needs less volume, by less "
                 "than 1/rho"))
     return opt

@@ -2,7 +2,7 @@
 the steady whirl of the bench with the liquid from physics (the quasi-static liquid in the
 displaced chamber, :func:`autobalance.liquid.steady.physical_fill_sweep`,
 :func:`autobalance.liquid.steady.physical_steady_response`; no calibrated engagement, no
-capacity) against the bench measurements (docs/liquid.md sec. 3d).
+capacity) against the bench measurements (docs/liquid/film.md sec. 3d).
 """
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ __all__ = ["PHYSICAL_NOTE", "TIE", "fill_grid", "resonance_speeds", "run_fig5", 
 #: intact ring).
 TIE = 0.01
 #: The model behind Fig. 5 and 6 (shown in the report).
-PHYSICAL_NOTE = ("Model: the liquid from physics (docs/liquid.md sec. 3b, 3d): Newton's bucket "
+PHYSICAL_NOTE = ("Model: the liquid from physics (docs/liquid/models.md sec. 3b, 3d): Newton's bucket "
                  "about the rotation axis in the chamber displaced by the whirl, the rotor's "
                  "synchronous balance solved for the deflection; below the entrainment speed "
                  "(eq 6) the liquid is a centred pool. Nothing calibrated; leblanc_003 preset: "
@@ -97,7 +97,7 @@ def _optimum_rows(rows: Rows, b: Bench, g: dict) -> None:
              f"{rho * 150 * ML * 0.2 / GCM:.0f} g*cm = {k150:.3f} D", "+-25 ml (half a portion)",
              abs(1.0 / k150 - 1.0) * 150 <= 25,
              "arithmetic on 003's numbers; the physical model has no capacity: the liquid's "
-             "moment follows from the deflection (docs/liquid.md sec. 3d)")
+             "moment follows from the deflection (docs/liquid/film.md sec. 3d)")
     # the published optimum of each chamber (150 ml; 150-200 ml for R = 0.15, 0.1 m)
     pub_fills = {0.2: (150,), 0.15: (150, 200), 0.1: (150, 200)}
     effs = [dry[j] / amp[i, j, list(vml).index(v)] for i, R in enumerate(b.radii)
@@ -223,7 +223,7 @@ def _fig6_rows(rows: Rows, b: Bench, eff, Ds) -> None:
     rows.add("larger_radius_better", "mean efficiency over speed, R = 0.1/0.15/0.2 m [-]",
              "; ".join(f"{D:.0f}: " + "/".join(f"{x:.3g}" for x in m) for D, m in zip(Ds, mean)),
              "R = 0.2 m largest", ok, "the same fill is a thinner film in the larger chamber, "
-             "which breaks into a crescent at a smaller deflection (docs/liquid.md sec. 3b)")
+             "which breaks into a crescent at a smaller deflection (docs/liquid/models.md sec. 3b)")
     k_r = FIG5_RATIOS.index(1.0)
     peak = eff.argmax(axis=-1) == k_r
     miss = [f"{Ds[i]:.0f}/{b.radii[j]:g}" for i, j in zip(*np.nonzero(~peak))]

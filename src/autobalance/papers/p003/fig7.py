@@ -52,7 +52,7 @@ def _frame_rows(rows: Rows, b: Bench, st: dict) -> None:
     rows.add("d_effective_at_80", "steady efficiency at 80 1/s [-]", round(float(eff[3]), 2),
              f"> {BALANCING}", eff[3] > BALANCING,
              "the steady state; its stability is not part of this row. The coupled film run-up "
-             "whirls asynchronously there with 300 ml of water (docs/liquid.md sec. 3d), and "
+             "whirls asynchronously there with 300 ml of water (docs/liquid/film.md sec. 3d), and "
              f"the balanced state is linearly {'stable' if lam.stable else 'unstable'} there "
              f"(growth rate {lam.growth_rate:+.2f} 1/s on 256 cells, sec. 3j), while 003 "
              "observes balancing")
@@ -67,7 +67,7 @@ def _frame_rows(rows: Rows, b: Bench, st: dict) -> None:
              f"{q.regime} about the rotation axis, offset {abs(w80) * 1e3:.2f} mm from the "
              "chamber centre", "a ring, shifted", q.regime == "ring" and abs(w80) > 0,
              "the quasi-static liquid turns about the rotation axis while the chamber is "
-             "displaced by the whirl (docs/liquid.md sec. 3b)")
+             "displaced by the whirl (docs/liquid/models.md sec. 3b)")
 
 
 def _entrainment_rows(rows: Rows, b: Bench) -> dict:
@@ -93,7 +93,7 @@ def _entrainment_rows(rows: Rows, b: Bench) -> dict:
     acc = shake * max(w0s[200], w0s[300]) ** 2 / g
     rows.add("entrainment_depends_on_unbalance", "omega_0 vs D", "independent of D", "-", False,
              "eq 6 contains no D, nor does the spin-up from rest (axisymmetric: the rotor's "
-             "whirl is not in it, docs/liquid.md sec. 3h); 003's dependence is experimental. "
+             "whirl is not in it, docs/liquid/spin-up.md sec. 3h); 003's dependence is experimental. "
              f"At omega_0 (200, 300 ml) the whirl of D = 3000 g*cm is at most "
              f"{shake * 1e3:.3f} mm, a wall acceleration of {100 * acc:.2f} % of g: the rotor "
              "barely shakes the pool there")

@@ -5,10 +5,10 @@ Every leaf is a number or a statement the seed publishes and becomes one row
 ``<target id>/<path>`` (:class:`autobalance.validation.target.Rows`); ``source`` and keys
 starting with ``_`` are descriptions. A (lo, hi) tuple is a published range.
 
-Thresholds that the seed does not give (ours, fixed before comparing, docs/liquid.md sec. 4):
-"balancing" means efficiency A_dry/A_wet > :data:`BALANCING`; "liquid opposite the unbalance"
-means |theta| > :data:`OPPOSITE_DEG`; printed numbers get half a unit of their last digit
-(:func:`printed_tolerance`).
+Thresholds that the seed does not give (ours, fixed before comparing, docs/liquid/validation.md
+sec. 4): "balancing" means efficiency A_dry/A_wet > :data:`BALANCING`; "liquid opposite the
+unbalance" means |theta| > :data:`OPPOSITE_DEG`; printed numbers get half a unit of their last
+digit (:func:`printed_tolerance`).
 """
 from __future__ import annotations
 

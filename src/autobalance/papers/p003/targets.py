@@ -5,7 +5,7 @@ video frames (Fig. 7).
 
 This module wires the targets; the published numbers are in :mod:`.published`, the
 computations and rows in :mod:`.closed_forms`, :mod:`.fig5_6` and :mod:`.fig7`. Model choices
-and the reasons for misses are in each target's ``notes`` and in docs/liquid.md.
+and the reasons for misses are in each target's ``notes`` and in docs/liquid/validation.md.
 """
 from __future__ import annotations
 
@@ -49,7 +49,7 @@ TARGETS = [
     Target("003-fig7", "003", ("Fig. 7",), "Liquid states vs speed (video frames a-d)",
            fig7.run_fig7, PUBLISHED["003-fig7"],
            notes=PHYSICAL_NOTE + " Frames at 18, 30, 54, 80 1/s with 300 ml; the figure's "
-                 "run-up is the wall film coupled with the rotor from omega_0 (docs/liquid.md "
+                 "run-up is the wall film coupled with the rotor from omega_0 (docs/liquid/index.md "
                  "sec. 3c). Nothing is calibrated: the onset of balancing is predicted.",
            quick=QUICK),
 ]

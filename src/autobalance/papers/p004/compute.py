@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ...studies import immobility as _imm
-from ...studies import plateau as _pl
-from ...studies import start_positions as _sp
+from ...studies import _immobility as _imm
+from ...studies import _plateau as _pl
+from ...studies import _start_positions as _sp
 from ...studies import unbalance as _unb
 from .published import (C_R, G_LIMIT, G_TSR_RANGE, MU_R, PLATEAU_CASES, PRESET, SLOW_SETS,
                         UNBALANCE_CASES, immobility_speeds_hz, plateau_grid, unbalance_grid)
@@ -31,13 +31,13 @@ def _cfg(overrides=()):
 
 
 def compute_table1() -> xr.Dataset:
-    """004 Table 1's derived numbers (:func:`autobalance.studies.start_positions.compute_machine`)."""
+    """004 Table 1's derived numbers (:func:`autobalance.studies._start_positions.compute_machine`)."""
     return _sp.compute_machine(PRESET)
 
 
 def compute_single(save_dt: float = 0.01, G_start: float | None = 14.0,
                    n_family: int = 24) -> xr.Dataset:
-    """004 Fig. 4 (:func:`autobalance.studies.start_positions.compute_single`); save_dt [s],
+    """004 Fig. 4 (:func:`autobalance.studies._start_positions.compute_single`); save_dt [s],
     G_start [mm/s]."""
     return _sp.compute_single(PRESET, save_dt, G_start, n_family, limit=G_LIMIT)
 
@@ -46,7 +46,7 @@ def compute_monte_carlo(n: int = 50, *, plateau_ratio: float | None = None,
                         store_dir: str | Path | None = None, executor: str = "local",
                         workers: int | None = None,
                         scheduler: str | None = None) -> xr.Dataset:
-    """004 sec. 4.2, Fig. 5-6, Table 2 (:func:`autobalance.studies.start_positions.compute_monte_carlo`)."""
+    """004 sec. 4.2, Fig. 5-6, Table 2 (:func:`autobalance.studies._start_positions.compute_monte_carlo`)."""
     return _sp.compute_monte_carlo(PRESET, n, plateau_ratio=plateau_ratio, store_dir=store_dir,
                                    executor=executor, workers=workers, scheduler=scheduler,
                                    limit=G_LIMIT, prefix="tsr")
@@ -81,7 +81,7 @@ def compute_immobility(*, G_ini: float = 20.0, mu_r: Sequence[float] = MU_R,
                        c_r: Sequence[float] = C_R, speeds_hz: ArrayLike | None = None,
                        n_conf: int = 100, quick: bool = False,
                        field: str = "n_conf") -> xr.Dataset:
-    """004 Fig. 8/10 (:func:`autobalance.studies.immobility.compute_immobility`); G_ini [mm/s],
+    """004 Fig. 8/10 (:func:`autobalance.studies._immobility.compute_immobility`); G_ini [mm/s],
     speeds_hz [Hz]."""
     speeds_hz = immobility_speeds_hz(quick) if speeds_hz is None else speeds_hz
     return _imm.compute_immobility(PRESET, G_ini=G_ini, mu_r=mu_r, c_r=c_r, speeds_hz=speeds_hz,
@@ -94,7 +94,7 @@ def compute_plateau(cases: Sequence[str] = ("nominal",), *, ratios: ArrayLike | 
                     workers: int | None = None,
                     scheduler: str | None = None) -> xr.Dataset:
     """004 sec. 4.6, Fig. 14-16 for the named :data:`PLATEAU_CASES`
-    (:func:`autobalance.studies.plateau.compute_plateau`); ratios [-], G [mm/s]."""
+    (:func:`autobalance.studies._plateau.compute_plateau`); ratios [-], G [mm/s]."""
     r0, g0 = plateau_grid(quick)
     ratios = r0 if ratios is None else ratios
     G = g0 if G is None else G
@@ -109,7 +109,7 @@ def compute_descent(*, G_ini: float = 5.0, n: int = 50, ratio_end: float = 0.9,
                     store_dir: str | Path | None = None, executor: str = "local",
                     workers: int | None = None,
                     scheduler: str | None = None) -> xr.Dataset:
-    """004 sec. 4.6, Fig. 13 (:func:`autobalance.studies.plateau.compute_descent`); G_ini [mm/s],
+    """004 sec. 4.6, Fig. 13 (:func:`autobalance.studies._plateau.compute_descent`); G_ini [mm/s],
     down_time and history_dt [s]."""
     return _pl.compute_descent(PRESET, G_ini=G_ini, n=n, ratio_end=ratio_end, down_time=down_time,
                                history_dt=history_dt, store_dir=store_dir, executor=executor,

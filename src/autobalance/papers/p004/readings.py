@@ -9,7 +9,7 @@ that changes a parameter 004 states says so in its ``changes_stated`` text.
 
     python -m autobalance.papers.p004.readings --n 50 --store DIR     # paper size, ~5 min
 
-The runs are :func:`autobalance.studies.sensitivity.compute_sensitivity` over the same starts,
+The runs are :func:`autobalance.studies._sensitivity.compute_sensitivity` over the same starts,
 so the readings' differences are paired.
 """
 from __future__ import annotations
@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...studies.sensitivity import compute_sensitivity
+from ...studies._sensitivity import compute_sensitivity
 from ...studies.common import load
 from ...studies.statistics import start_position_stats
 from .compare import compare_monte_carlo
@@ -71,7 +71,7 @@ def compute_readings(n: int = 50, *, readings: dict | None = None,
     readings : dict or None
         name -> (overrides, changes_stated); None = :data:`READINGS`.
     store_dir, executor, workers, scheduler : str, Path, int or None
-        As for :func:`autobalance.studies.sensitivity.compute_sensitivity`.
+        As for :func:`autobalance.studies._sensitivity.compute_sensitivity`.
 
     Returns
     -------

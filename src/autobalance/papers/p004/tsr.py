@@ -29,8 +29,8 @@ from ...physics.immobility import (IMMOBILITY_BYTES, IMMOBILITY_BYTES_PER_BALL, 
 from ...physics.iso1940 import grade_value as _grade
 from ...physics.iso1940 import unbalance_value as grade_to_unbalance
 from ...simulate.probe import kernel_required_friction
-from ...studies.plateau import DESCENT_PCT
-from ...studies.start_positions import start_family
+from ...studies._plateau import DESCENT_PCT
+from ...studies._start_positions import start_family
 from ...studies.statistics import half_drop as _half_drop
 from ...studies.statistics import mode as _mode
 from ...studies.statistics import plateau_speed, regions, valid_ranges

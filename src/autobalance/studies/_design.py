@@ -46,8 +46,9 @@ if TYPE_CHECKING:
 __all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary",
            "profile_variants"]
 
-#: Why a design beside a liquid may have no tolerances (docs/liquid.md sec. 3l), before the
-#: bound's one-line refusal (a horizontal axis, two partitions, an anisotropic suspension).
+#: Why a design beside a liquid may have no tolerances (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3l),
+#: before the bound's one-line refusal (a horizontal axis, two partitions, an anisotropic
+#: suspension).
 TOLERANCES_BESIDE_LIQUID = ("beside this liquid the tolerance bound does not hold; judge a "
                             "built design by simulation (study sensitivity)")
 
@@ -305,7 +306,7 @@ def _refine_plateau(cfg, cand: dict, Us, starts: int, quick: bool, *, seed, stor
     returns the recommended ratio, the study's mean 95th percentiles and, when it differs
     from :data:`PLATEAU_RATIO`, the candidate with that plateau (else None)."""
     from ..sweep.plan import identical_balls, n_start_grid
-    from .plateau import compute_plateau, plateau_summary
+    from ._plateau import compute_plateau, plateau_summary
     from .common import starts_for_runs
 
     b = cand["config"].system.balancer
@@ -337,7 +338,7 @@ def _design_tolerances(config, grade: float) -> dict:
     the true bound) as flat SI attrs, with the study's notes (e.g. beside a liquid on a
     horizontal axis, the balanced state's Floquet verdict); feasible = 0 with the study's
     reason (and NaN tolerances) when it refuses, e.g. below the balancing onset."""
-    from .tolerances import compute_tolerances
+    from ._tolerances import compute_tolerances
 
     t = compute_tolerances(config, grade=grade)
     keys = ("max_eccentricity_m", "max_rolling_resistance", "max_suspension_friction_N")

@@ -4,7 +4,7 @@ chamber, :func:`autobalance.liquid.steady.physical_fill_sweep`; below each fill'
 a centred pool on a vertical axis, a puddle held by gravity on a horizontal one), beside the
 rotor without liquid. It answers the design questions of
 003 Fig. 5-6 for any machine: which fill balances at which speed, how much, and where the
-resonance moves. docs/liquid.md sec. 3f.
+resonance moves. docs/liquid/machine.md sec. 3f.
 """
 from __future__ import annotations
 
@@ -169,10 +169,11 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
 def compute_linear_map(base: str | Path | Config, *, fills: Sequence[float],
                        speeds: Sequence[float], n_cells: int = 64) -> xr.Dataset:
     """The linear stability of the balanced (centred) state over fill x speed
-    (:func:`autobalance.liquid.stability.ring_stability`, docs/liquid.md sec. 3j): the growth
-    rate of its least stable perturbation; NaN below the fill's entrainment speed (a pool). On
-    a horizontal axis about the periodic state under gravity (Floquet, docs/liquid.md sec. 3m;
-    NaN also where no periodic state with an intact film exists).
+    (:func:`autobalance.liquid.stability.ring_stability`, docs/liquid/stability.md sec. 3j): the
+    growth rate of its least stable perturbation; NaN below the fill's entrainment speed (a pool).
+    On a horizontal axis about the periodic state under gravity (Floquet,
+    docs/liquid/horizontal-axis.md sec. 3m; NaN also where no periodic state with an intact film
+    exists).
 
     Parameters
     ----------

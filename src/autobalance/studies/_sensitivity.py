@@ -20,7 +20,7 @@ import numpy as np
 from ..models import ParameterError
 from ..physics.iso1940 import grade_value
 from .common import load
-from .start_positions import compute_start_positions
+from ._start_positions import compute_start_positions
 from .statistics import TIE_MM_S, mode_value, regions
 
 if TYPE_CHECKING:
@@ -76,7 +76,7 @@ def default_variants(base: str | Path | Config) -> dict:
     the run-up time x0.78 (004: an 18 s reading of Fig. 3 against 14 s; of a motor drive,
     whose run-up time scales as B_z w_f / T0 (000 eq 15), the torque T0 / 0.78) and, for a TSR
     profile, the plateau x0.96 (004: 1.06 against 1.02 Omega_n); beside a liquid, its viscosity
-    x0.5 and x2 (the films' wall shear, docs/liquid.md sec. 3d).
+    x0.5 and x2 (the films' wall shear, docs/liquid/film.md sec. 3d).
 
     Parameters
     ----------

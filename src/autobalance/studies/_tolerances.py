@@ -3,8 +3,9 @@ to N balls and any balancer), the true worst case of the machine's own tolerance
 Carlo of real simulations of the machine built with the tolerances at their limits.
 
 Beside a liquid (vertical axis, isotropic suspension) the bounds take the liquid's synchronous
-moment (:func:`autobalance.liquid.synchronous.synchronous_liquid`, docs/liquid.md sec. 3l) and
-the simulations are runs of balls beside the films (:mod:`autobalance.simulate.hybrid`).
+moment (:func:`autobalance.liquid.synchronous.synchronous_liquid`,
+docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3l) and the simulations are runs of balls beside the films
+(:mod:`autobalance.simulate.hybrid`).
 
 :func:`compute_tolerances` is closed form (:mod:`autobalance.physics.tolerance`,
 :mod:`autobalance.physics.worst_case`); :func:`check_tolerances_by_simulation` integrates
@@ -232,8 +233,9 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
 
 def _horizontal_verdict(system: System, speed: float, warnings: list) -> float:
     """The growth rate [1/s] of the balanced state of balls beside a liquid on a horizontal
-    axis at ``speed`` [rad/s] (Floquet about its periodic state under gravity, docs/liquid.md
-    sec. 3m; NaN where not decided), and its note appended to ``warnings``."""
+    axis at ``speed`` [rad/s] (Floquet about its periodic state under gravity,
+    docs/liquid/horizontal-axis.md sec. 3m; NaN where not decided), and its note appended to
+    ``warnings``."""
     from .liquid_balanced import balanced_machine_stability
 
     try:
@@ -244,7 +246,7 @@ def _horizontal_verdict(system: System, speed: float, warnings: list) -> float:
                "linearly stable" if gr < 0 else "unstable")
     warnings.append(f"on a horizontal axis the balanced state beside the liquid is {verdict} "
                     f"at the nominal speed (growth rate {gr:.3g} 1/s, Floquet about its periodic "
-                    "state, docs/liquid.md sec. 3m); a run-up can still end in an asynchronous "
+                    "state, docs/liquid/horizontal-axis.md sec. 3m); a run-up can still end in an asynchronous "
                     "whirl beyond the rings' range, where the bound says nothing: check with "
                     "--check (sec. 3l)")
     return gr
@@ -422,7 +424,7 @@ def _hybrid_runs(systems, cfg, inits, t_read: float):
     """Runs of balls beside a liquid (:func:`autobalance.simulate`, the films of
     :mod:`autobalance.simulate.hybrid`) read out at ``t_read`` [s], in the fields of a
     BatchResult that :func:`check_tolerances_by_simulation` reads. The runs share the cores in
-    threads: the hybrid kernel releases the GIL (core/hybrid.py; docs/numerics.md)."""
+    threads: the hybrid kernel releases the GIL (core/hybrid.py; docs/numerics/compilation.md)."""
     import os
     from concurrent.futures import ThreadPoolExecutor
     from types import SimpleNamespace

@@ -74,7 +74,8 @@ RANGE_RTOL, RANGE_RTOL_QUICK = 1e-4, 1e-3
 ORBIT_DRIFT = 0.5
 #: Sample points per family, and how many of them the Floquet route judges [-].
 FAMILY_SAMPLES, FLOQUET_FAMILY_SAMPLES = 12, 4
-#: Film cells around each wall of a liquid beside the balls [-] (docs/liquid.md sec. 3j-3k).
+#: Film cells around each wall of a liquid beside the balls [-] (docs/liquid/stability.md
+#: sec. 3j-3k).
 FILM_CELLS = 64
 #: Verdicts on one state, and the balanced state's verdict codes over speed (index = code):
 #: 0 no reachable balanced state, 1 unstable, 2 stable, 3 no verdict.
@@ -351,7 +352,7 @@ def compute_speed_map(base: str | Path | Config, *, speeds: npt.ArrayLike | None
         require_balanced_liquid(system)
         if not full:
             raise ParameterError("full", full, "must be True beside a liquid: the kinetic-static "
-                                 "model has no films (docs/liquid.md sec. 3k)")
+                                 "model has no films (docs/liquid/stability.md sec. 3k)")
     w, factors = _validate(_default_speeds(cfg, quick) if speeds is None else speeds,
                            (DAMPING_FACTORS_QUICK if quick else DAMPING_FACTORS)
                            if damping_factors is None else damping_factors)

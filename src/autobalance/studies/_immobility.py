@@ -21,7 +21,7 @@ if TYPE_CHECKING:
 
     from ..models import System
 
-__all__ = ["compute_immobility", "liquid_response"]
+__all__ = ["compute_immobility", "immobility_summary", "liquid_response"]
 
 #: Magnitudes of the residual unbalance |U_t| on which the liquid's steady orbit is tabulated
 #: (full, quick) [-]. Each costs one quasi-static whirl over the speeds (~0.1-0.2 s per 91
@@ -38,8 +38,8 @@ def liquid_response(system: System, speeds: npt.ArrayLike, n_mag: int = LIQUID_M
     chamber's entrainment speed, 003 eq 6; a ring on the displaced wall above it, followed up
     the speeds). On a horizontal axis a puddle below the film's start (g/Omega^2 = R/10) and
     the planar ring above it: the whirl's orbit about the static sag, exact while the rings
-    hold under gravity's offset (:func:`ring_holds`; docs/liquid.md sec. 3k). The liquid is
-    axisymmetric, so w(U_t) = w(|U_t|) U_t / |U_t|; w(|U_t|) is
+    hold under gravity's offset (:func:`ring_holds`; docs/liquid/stability.md sec. 3k). The liquid
+    is axisymmetric, so w(U_t) = w(|U_t|) U_t / |U_t|; w(|U_t|) is
     tabulated on ``n_mag`` magnitudes from 0 to |U| + the balls' capacity and interpolated
     linearly.
 
@@ -92,7 +92,7 @@ def ring_holds(system: System, speeds: npt.ArrayLike, n_conf: int,
     range (the whirl up to which the core stays inside the outer wall and clear of the inner
     one in the worst direction; 0 below the film's start, where the liquid is a puddle). There
     the planar orbit of :func:`liquid_response` is exact; beyond it, first order in
-    g/(Omega^2 R) (docs/liquid.md sec. 3k).
+    g/(Omega^2 R) (docs/liquid/stability.md sec. 3k).
 
     Parameters
     ----------
@@ -229,3 +229,42 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
 def _plateau_hz(spin) -> float:
     """The plateau [Hz] of a temporary-speed-reduction profile, else NaN."""
     return plateau_speed(spin) / (2 * np.pi) if getattr(spin, "name", "") == "tsr" else float("nan")
+
+
+def immobility_summary(ds: xr.Dataset, nominal_speed: float) -> dict:
+    """The answer of a :func:`compute_immobility` map, JSON-ready: the immobility and the stick
+    threshold over speed, the least immobility of the case mu_r = c_r = 1 (or the first) and
+    where, and the stick threshold at the nominal speed.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A :func:`compute_immobility` result.
+    nominal_speed : float
+        The profile's nominal speed [rad/s].
+
+    Returns
+    -------
+    dict
+        G_ini_mm_s, speeds_rad_s, immobility (of the case read), stick_threshold_grade_G_mm_s,
+        mu_r, c_r, immobility_by_case, least_immobility [-], least_immobility_speed_rad_s,
+        natural_frequency_rad_s, nominal_speed_rad_s, stick_threshold_at_nominal_grade_G_mm_s,
+        and ring_holds beside a liquid on a horizontal axis.
+    """
+    mus, cs = list(ds["mu_r"].values), list(ds["c_r"].values)
+    mu, c = (1.0 if 1.0 in mus else mus[0]), (1.0 if 1.0 in cs else cs[0])
+    w = 2 * np.pi * ds["speed"].values
+    imm = ds["immobility"].sel(mu_r=mu, c_r=c).values
+    k = int(np.argmin(imm))
+    out = {"G_ini_mm_s": float(ds.attrs["G_ini"]), "speeds_rad_s": w, "immobility": imm,
+           "stick_threshold_grade_G_mm_s": ds["G_stick"].values,
+           "mu_r": [float(x) for x in mus], "c_r": [float(x) for x in cs],
+           "immobility_by_case": ds["immobility"].values,
+           "least_immobility": float(imm[k]), "least_immobility_speed_rad_s": float(w[k]),
+           "natural_frequency_rad_s": 2 * np.pi * float(ds.attrs["f_n_hz"]),
+           "nominal_speed_rad_s": float(nominal_speed),
+           "stick_threshold_at_nominal_grade_G_mm_s": float(np.interp(
+               nominal_speed, w, ds["G_stick"].values))}
+    if "ring_holds" in ds:          # beside a liquid on a horizontal axis
+        out["ring_holds"] = ds["ring_holds"].sel(c_r=c).values
+    return out
