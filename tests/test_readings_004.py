@@ -50,7 +50,7 @@ def test_the_table_shows_the_published_values_and_bolds_what_is_reproduced(small
 
 @pytest.mark.slow
 def test_command_line_prints_the_table(capsys, tmp_path):
-    main(["--starts", "2", "--executor", "serial", "--netcdf", str(tmp_path / "r.nc")])
+    main(["--n", "2", "--executor", "serial", "--netcdf", str(tmp_path / "r.nc")])
     out = capsys.readouterr().out
     assert "| 004 published |" in out and "runs per reading" in out
     import xarray as xr

@@ -142,7 +142,9 @@ class FreeSurface:
         """
         r = np.linspace(0.0, self.radius, n)
         d = self.depth(r)
-        return float(np.trapezoid(r * r * d, r) / np.trapezoid(r * d, r))
+        from scipy.integrate import trapezoid      # numpy < 2 has no np.trapezoid
+
+        return float(trapezoid(r * r * d, r) / trapezoid(r * d, r))
 
     def to_dict(self) -> dict:
         """The surface as a dict with SI units in the keys (``omega_rad_s``, ``z_star_m``, ...)."""
