@@ -24,8 +24,8 @@ if TYPE_CHECKING:
 
     from ..models import BallBalancer
 
-__all__ = ["BUDGET_FACTOR", "DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau", "default_grid",
-           "default_plateau_starts", "plateau_summary", "refine_plateaus"]
+__all__ = ["BUDGET_FACTOR", "DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau",
+           "default_grid", "default_plateau_starts", "plateau_summary", "refine_plateaus"]
 
 #: Most start configurations per cell of the plateau map (full, quick): 004 Fig. 14-15's
 #: n = 20 positions for two balls (210 runs), 36 (n = 8) for a first look.
