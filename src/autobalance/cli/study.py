@@ -85,13 +85,15 @@ def check_budget(budget: Optional[int]) -> None:
         raise ConfigError(f"--budget = {budget}: must be an integer >= 0 (runs)")
 
 
-def budget_text(runs: int, spent: int, rounds: int, exhausted: bool, capped: str = "",
-                what: str = "a verdict was undecided") -> str:
-    """The line a study prints of its sequential step: the budget, what it bought and why it
-    stopped (:func:`autobalance.studies.sequential.refine`)."""
-    return (f"  budget: up to {runs} more runs where {what}; spent {spent} in {rounds} "
-            f"round{'' if rounds == 1 else 's'}"
-            + ("; the budget ran out first" if exhausted else "")
+def budget_text(budget: dict, what: str = "a verdict was undecided") -> str:
+    """The line a study prints of its sequential step (:func:`autobalance.studies.sequential.
+    refine`): the budget, what it bought and why it stopped, from a study's JSON ``budget``
+    (runs, spent, rounds, exhausted, capped: a text or a list of the candidates capped)."""
+    rounds, capped = budget["rounds"], budget["capped"]
+    capped = capped if isinstance(capped, str) else ", ".join(capped)
+    return (f"  budget: up to {budget['runs']} more runs where {what}; spent {budget['spent']} "
+            f"in {rounds} round{'' if rounds == 1 else 's'}"
+            + ("; the budget ran out first" if budget["exhausted"] else "")
             + (f"; left undecided at the most starts per cell: {capped}" if capped else ""))
 
 

@@ -186,9 +186,7 @@ def design(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
         typer.echo(f"  every design on the machine's own {cfg.spin.name} "
                    "profile ('given'; the std, slow and tsr variants are of std and tsr "
                    "profiles)")
-    b = res["budget"]
-    typer.echo(budget_text(b["runs"], b["spent"], b["rounds"], b["exhausted"],
-                           ", ".join(b["capped"])))
+    typer.echo(budget_text(res["budget"]))
     typer.echo(f"  {res['n_meeting']} design{' meets' if res['n_meeting'] == 1 else 's meet'} "
                f"the target at 95 % confidence, {res['n_undecided']} undecided" + (
         f"; recommended (the cheapest that meets it): {res['best']['name']} (margin "

@@ -105,10 +105,7 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         return ", ".join(f"[G{lo:.3g}, G{hi:.3g}] ({u(lo)} - {u(hi)})" for lo, hi in rs) \
             or "none"
 
-    b = res["budget"]
-    if b["runs"] or b["spent"]:
-        typer.echo(budget_text(b["runs"], b["spent"], b["rounds"], b["exhausted"], b["capped"],
-                               "a grid point was undecided"))
+    _echo_budget(res["budget"], "a grid point was undecided")
     for proc, d in res["cases"]["nominal"].items():
         typer.echo(f"  {proc:>8}: valid initial unbalance {ranges(d['valid_ranges_grade_G_mm_s'])}"
                    f"; efficiency {100 * d['efficiency']:.0f} %")
@@ -189,10 +186,7 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     typer.echo(f"  within {res['near_mm_s']:g} mm/s of the best: ratios {lo:.3g}-{hi:.3g}; "
                "neighbours: " + ", ".join(f"{r:.3g} -> G{v:.3g}" for r, v in
                                           res["neighbours_mean_p95_grade_G_mm_s"].items()))
-    b = res["budget"]
-    if b["runs"] or b["spent"]:
-        typer.echo(budget_text(b["runs"], b["spent"], b["rounds"], b["exhausted"], b["capped"],
-                               "plateaus were not distinguishable from the best"))
+    _echo_budget(res["budget"], "plateaus were not distinguishable from the best")
     if "indistinguishable_ratios" in res:
         same = res["indistinguishable_ratios"]
         best = interval_text(*res["best_mean_p95_grade_G_mm_s_ci"], lambda g: f"G{g:.3g}")
@@ -207,6 +201,13 @@ def plateau(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                    "outside (widen the range)")
     typer.echo(f"  at the recommended plateau the 95th percentile meets {grade_text(G)} for "
                f"{100 * res['recommended_meets_grade_share']:.0f} % of the initial grades studied")
+
+
+def _echo_budget(budget: dict, what: str) -> None:
+    """The budget line (:func:`autobalance.cli.study.budget_text`) unless no run was allowed
+    or added (``--budget 0``)."""
+    if budget["runs"] or budget["spent"]:
+        typer.echo(budget_text(budget, what))
 
 
 def _budget(ds) -> dict:

@@ -13,7 +13,7 @@ from ..physics.immobility import stick_threshold_grade
 from ..physics.iso1940 import grade_value as _grade
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .common import case_sets, load, run_start_grid, starts_for_runs, store_path
-from .sequential import SEED_STEP, refine
+from .sequential import SEED_STEP, budget_attrs, default_budget, refine
 from .statistics import half_drop, plateau_speed, profile_text, rise_after_min
 
 if TYPE_CHECKING:
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 
     from ..models import BallBalancer
 
-__all__ = ["BUDGET_FACTOR", "DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau",
+__all__ = ["DESCENT_PCT", "PLATEAU_RUNS", "compute_descent", "compute_plateau",
            "default_grid", "default_plateau_starts", "plateau_summary", "refine_plateaus"]
 
 #: Most start configurations per cell of the plateau map (full, quick): 004 Fig. 14-15's
@@ -138,7 +138,8 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
     budget : int or None
         Most runs [-] the sequential step adds (:func:`refine_plateaus`) where the recommended
         plateau is not distinguishable from others; None = as many as the start grid ran
-        (:data:`BUDGET_FACTOR`), 0 = the start grid alone (004's protocol).
+        (:data:`autobalance.studies.sequential.BUDGET_FACTOR`), 0 = the start grid alone
+        (004's protocol).
     seed : int
         Seed of the added random starts.
     progress : bool
@@ -178,11 +179,9 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
                              store=store_path(store_dir, f"plateau-{case}-n{n}-r{ratios.size}-g{Gv.size}"),
                              executor=executor, workers=workers, scheduler=scheduler,
                              progress=progress)
-        g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1).transpose(
-            "profile__plateau", "rotor__unbalance", "sample").values
-        cells.update({(ci, i, j): g[i, j] for i in range(ratios.size) for j in range(Gv.size)})
+        cells.update(_final_grades(raw, ci, range(ratios.size), range(Gv.size)))
     first = sum(a.size for a in cells.values())
-    budget = BUDGET_FACTOR * first if budget is None else int(budget)
+    budget = default_budget(budget, first)
 
     def run_more(keys, k, rnd):
         out = {}
@@ -199,9 +198,7 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
                                  store=store_path(store_dir, f"plateau-{case}-n{n}-more{rnd}"),
                                  executor=executor, workers=workers, scheduler=scheduler,
                                  progress=progress)
-            g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1).transpose(
-                "profile__plateau", "rotor__unbalance", "sample").values
-            out.update({(ci, i, j): g[a, b] for a, i in enumerate(ri) for b, j in enumerate(gj)})
+            out.update(_final_grades(raw, ci, ri, gj))
         return [out[key] for key in keys]
 
     ref = refine(cells, lambda c: refine_plateaus(c, len(cases), ratios.size, inside), budget,
@@ -226,16 +223,17 @@ def compute_plateau(base: str | Path, cases: dict[str, tuple[float, float]] | No
                      "g_range": float(g_range),
                      "ideal": [float(ratios[np.nanargmin(m)]) for m in mean],
                      "ratio_step": float(np.diff(ratios).min()) if ratios.size > 1 else 0.0,
-                     "simulations_first_pass": int(first), "budget": int(budget),
-                     "budget_spent": int(ref["spent"]), "budget_rounds": int(ref["rounds"]),
-                     "budget_exhausted": int(ref["exhausted"]),
-                     "budget_capped": int(ref["capped"]), "seed": int(seed),
+                     **budget_attrs(first, budget, ref, seed),
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
 
 
-#: Default budget of the sequential step, in units of the start grid's runs [-].
-BUDGET_FACTOR = 1
+def _final_grades(raw: xr.Dataset, case: int, ri, gj) -> dict:
+    """(case, ratio index, G_ini index) -> the final grades [mm/s] of a plateau sweep over the
+    ratios ``ri`` and initial grades ``gj`` (indices, in the sweep's order); failed runs NaN."""
+    g = raw["grade_G"].where(raw["status"] == 0).isel(checkpoint=-1).transpose(
+        "profile__plateau", "rotor__unbalance", "sample").values
+    return {(case, i, j): g[a, b] for a, i in enumerate(ri) for b, j in enumerate(gj)}
 
 
 def _cell_quantiles(cells: dict, shape: tuple) -> tuple:

@@ -15,12 +15,49 @@ from typing import Callable, Hashable
 
 import numpy as np
 
-__all__ = ["MAX_STARTS", "SEED_STEP", "refine"]
+__all__ = ["BUDGET_FACTOR", "MAX_STARTS", "SEED_STEP", "budget_attrs", "default_budget",
+           "refine"]
 
 #: Most starts one cell reaches by the sequential step [-].
 MAX_STARTS = 1280
 #: Seed offset of the start stream of each round [-]: round r draws from ``seed + SEED_STEP r``.
 SEED_STEP = 7919
+#: Default budget of a study's sequential step, in units of its first pass's runs [-].
+BUDGET_FACTOR = 1
+
+
+def default_budget(budget: int | None, first: int) -> int:
+    """The runs [-] a study's sequential step may add.
+
+    Parameters
+    ----------
+    budget : int or None
+        The runs asked for [-]; None = :data:`BUDGET_FACTOR` x ``first``.
+    first : int
+        The runs of the study's first pass [-].
+    """
+    return BUDGET_FACTOR * int(first) if budget is None else int(budget)
+
+
+def budget_attrs(first: int, budget: int, result: dict, seed: int) -> dict:
+    """A study's NetCDF attrs of its sequential step: simulations_first_pass, budget,
+    budget_spent, budget_rounds, budget_exhausted, budget_capped (0/1) and seed.
+
+    Parameters
+    ----------
+    first : int
+        The runs of the first pass [-].
+    budget : int
+        The runs the step could add [-].
+    result : dict
+        What :func:`refine` returned.
+    seed : int
+        Seed of the added starts.
+    """
+    return {"simulations_first_pass": int(first), "budget": int(budget),
+            "budget_spent": int(result["spent"]), "budget_rounds": int(result["rounds"]),
+            "budget_exhausted": int(result["exhausted"]),
+            "budget_capped": int(result["capped"]), "seed": int(seed)}
 
 
 def refine(cells: dict, undecided: Callable[[dict], list], budget: int,

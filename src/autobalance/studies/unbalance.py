@@ -12,7 +12,7 @@ from ..confidence import LEVEL, quantile_interval
 from ..physics.iso1940 import unbalance_value as grade_to_unbalance
 from .common import (capacity_grades, case_sets, checkpoint_labels, load, run_start_grid,
                      store_path)
-from .sequential import SEED_STEP, refine
+from .sequential import SEED_STEP, budget_attrs, default_budget, refine
 from .statistics import profile_text, valid_ranges
 
 if TYPE_CHECKING:
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     import xarray as xr
 
-__all__ = ["BUDGET_FACTOR", "compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
+__all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_boundaries",
            "unbalance_summary"]
 
 
@@ -84,7 +84,8 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
         (:func:`autobalance.studies.sequential.refine`) adds random starts.
     budget : int or None
         Most runs [-] the sequential step adds; None = as many as the start grid ran
-        (:data:`BUDGET_FACTOR`), 0 = the start grid alone (004's protocol).
+        (:data:`autobalance.studies.sequential.BUDGET_FACTOR`), 0 = the start grid alone
+        (004's protocol).
     seed : int
         Seed of the added random starts.
     progress : bool
@@ -123,8 +124,8 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
                              progress=progress)
         cells.update(_grades(raw, ci, range(Gv.size)))
     first = sum(len(a) for a in cells.values())
-    budget = (0 if cfg.system.balancer.n_balls == 0 else        # a liquid alone: one run
-              BUDGET_FACTOR * first if budget is None else int(budget))
+    budget = (0 if cfg.system.balancer.n_balls == 0         # a liquid alone: one run
+              else default_budget(budget, first))
 
     def run_more(keys, k, rnd):
         out = {}
@@ -174,17 +175,9 @@ def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | 
                                           "unbalance: G_ini + G_balls"})
     ds.attrs.update({"study": "unbalance", "n": n, "G_balls": G_b, "G_liquid": G_l,
                      "grid_step": float(np.diff(Gv).max()) if Gv.size > 1 else 0.0,
-                     "grade": float(grade), "simulations_first_pass": int(first),
-                     "budget": int(budget), "budget_spent": int(ref["spent"]),
-                     "budget_rounds": int(ref["rounds"]),
-                     "budget_exhausted": int(ref["exhausted"]),
-                     "budget_capped": int(ref["capped"]), "seed": int(seed),
+                     "grade": float(grade), **budget_attrs(first, budget, ref, seed),
                      "wall_s": time.perf_counter() - t0, "profile": profile_text(cfg.spin)})
     return ds
-
-
-#: Default budget of the sequential step, in units of the start grid's runs [-].
-BUDGET_FACTOR = 1
 
 
 def _grades(raw: xr.Dataset, case: int, js) -> dict:
