@@ -315,11 +315,9 @@ runner = CliRunner()
 
 
 @pytest.mark.parametrize("args,key", [
-    (["response", "washer_000", "--angles", "120 deg,-120 deg"], "a_0x_m"),
     (["forces", "washer_000", "--speed", "1000 rpm"], "F_n"),
     (["equilibria", "washer_000", "--set", "gravity.g=0"], "equilibria"),
     (["bounds", "washer_000", "--f-r", "1e-4", "--set", "balancer.eccentricity=0.1 mm"], "rolling_eq32_rad"),
-    (["tolerance", "washer_000"], "design"),
     (["kinetic-static", "washer_000", "--set", "gravity.g=0", "--duration", "2 s"], "max_D_x_m"),
     (["washer-study", "fig16"], "rows"),
 ])
@@ -343,7 +341,7 @@ def test_cli_plots(tmp_path):
 
 @pytest.mark.slow
 def test_plotting_module_figures():
-    from autobalance.cli.washer_figures import plot_eccentricity_deviation, plot_vibratory_force_damping
+    from autobalance.studies.washer_figures import plot_eccentricity_deviation, plot_vibratory_force_damping
     s = washer_000(Me=0.025, n=1)
     f = plot_vibratory_force_damping(s, [W, 18.0])
     assert len(f.axes) == 2
@@ -370,7 +368,6 @@ def test_bad_input_raises_parameter_error(fn):
 
 
 @pytest.mark.parametrize("args", [
-    ["response", "washer_000", "--speed", "5 kg"],
     ["forces", "washer_000", "--angles", "1,2,3"],
     ["bounds", "washer_000", "--f-r", "-1"],
     ["kinetic-static", "washer_000", "--duration", "-2 s"],

@@ -13,8 +13,8 @@ import typer
 from conftest import run_main
 
 from autobalance.cli import app
-from autobalance.cli.vocabulary import (DEPRECATED, STUDY_SHARED, VOCABULARY,
-                                        rewrite_deprecated)
+from autobalance.cli.vocabulary import (DEPRECATED, DEPRECATED_COMMANDS, STUDY_SHARED,
+                                        VOCABULARY, rewrite_deprecated)
 
 
 def options(typer_app) -> dict[tuple, dict[str, str]]:
@@ -63,6 +63,19 @@ def inconsistencies(table: dict[tuple, dict[str, str]], vocabulary: dict[str, st
                 bad.append(f"{cmd}: the former name {old} is still an option")
             if new not in opts:
                 bad.append(f"{cmd}: {old} is said to be {new}, which it does not take")
+    for path, (now, _) in DEPRECATED_COMMANDS.items():
+        cmd = " ".join(path)
+        if now is not None and path in table:
+            bad.append(f"{cmd}: merged into {' '.join(now)} but still a command")
+        target = table.get(now or path)
+        if target is None:
+            bad.append(f"{cmd}: said to be {' '.join(now or path)}, which is not a command")
+            continue
+        for old, new in DEPRECATED.get(path, {}).items():
+            missing = [t for t in new.split() if t.startswith("-") and t not in target]
+            if missing:
+                bad.append(f"{cmd}: {old} is said to be {new}, which {' '.join(now or path)} "
+                           "does not take")
     for name, by_kind in kinds.items():
         if len(by_kind) > 1:
             bad.append(f"{name} takes different values: {by_kind}")
@@ -124,6 +137,44 @@ def test_former_names_are_rewritten_for_their_command_only(argv, expect):
     assert out == expect
     assert len(warnings) == (0 if out == argv else len({a.partition("=")[0] for a in argv}
                                                        - {a.partition("=")[0] for a in out}))
+
+
+@pytest.mark.parametrize("argv, expect, said", [
+    (["analyze", "response", "w", "--speed", "9"], ["response", "w", "--speed", "9"],
+     ["analyze response"]),
+    (["analyze", "tolerance", "w", "--residual-fraction=0.1", "--grade", "6"],
+     ["study", "tolerances", "w", "--method", "000", "--residual-fraction=0.1", "--grade", "6"],
+     ["analyze tolerance", "analyze tolerance --residual-fraction"]),
+    (["analyze", "tolerance", "w", "--fraction", "0.1"],
+     ["study", "tolerances", "w", "--method", "000", "--residual-fraction", "0.1"],
+     ["analyze tolerance", "analyze tolerance --fraction"]),
+    (["liquid", "simulate", "--omega", "1:2:3"], ["liquid", "simulate", "--speeds", "1:2:3"],
+     ["liquid simulate", "liquid simulate --omega"]),
+])
+def test_merged_commands_are_rewritten_to_the_command_now(argv, expect, said):
+    out, warnings = rewrite_deprecated(argv)
+    assert out == expect
+    assert [w.split(" is deprecated")[0] for w in warnings] == [f"warning: {x}" for x in said]
+
+
+def test_a_merged_command_that_is_still_a_command_is_caught():
+    """Self-test of the merged-command check: a planted group still holding its former
+    command, and a merge into a command that does not exist, are both reported."""
+    planted = typer.Typer()
+    group = typer.Typer()
+    planted.add_typer(group, name="analyze")
+
+    @group.command("response")
+    def response(json_: Annotated[bool, typer.Option("--json")] = False) -> None:
+        """Response."""
+
+    @group.command("bounds")
+    def bounds(json_: Annotated[bool, typer.Option("--json")] = False) -> None:
+        """Bounds."""
+
+    bad = inconsistencies(options(planted), VOCABULARY)
+    assert "analyze response: merged into response but still a command" in bad
+    assert "analyze response: said to be response, which is not a command" in bad
 
 
 def test_a_former_name_still_works_and_says_what_to_use(capsys):

@@ -311,7 +311,7 @@ def test_the_entry_point_shows_the_liquid_groups_refusals_as_written(capsys):
     from autobalance.cli import main
 
     with pytest.raises(SystemExit) as e:
-        main(["liquid", "simulate", "--set", "liquid.volume=-3 ml"])
+        main(["liquid", "stability", "--set", "liquid.volume=-3 ml"])
     assert e.value.code == 2
     assert_one_line_error(capsys.readouterr().err,
                           "liquid.volume = -3 ml (-3e-06 m^3): must be > 0")

@@ -283,8 +283,8 @@ def test_cli_three_chambers_end_to_end(tmp_path):
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert [f["fill_m3"] for f in d["fills"]] == pytest.approx([225e-6, 450e-6])
-    for args in (("liquid", "simulate", "leblanc_003_three", "--model", "lumped"),
-                 ("liquid", "simulate", "leblanc_003_three", "--set", "liquid.partitions=4"),
+    for args in (("response", "leblanc_003_three", "--model", "lumped"),
+                 ("response", "leblanc_003_three", "--set", "liquid.partitions=4"),
                  ("show", "leblanc_003_three", "--set", "liquid.inner_radius=[0, 0.05, 0.15]")):
         r = cli(*args)
         lines = r.stderr.strip().splitlines()

@@ -162,7 +162,7 @@ def test_simulate_run_up_on_a_horizontal_axis_is_the_machines_run():
     (["speeds", "--volume", "100 kg"], ConfigError),           # wrong unit
     (["kinetostatic", "--k", "-1"], ParameterError),
     (["simulate", "--liquid", "honey"], ConfigError),
-    (["simulate", "--placement", "magic"], ParameterError),
+    (["simulate", "--placement", "magic"], ConfigError),       # names the option
     (["simulate", "leblanc_washer", "--model", "lumped"], ParameterError),  # horizontal axis
     (["simulate", "vub_jeffcott_004"], ConfigError),                       # no [liquid]
     (["simulate", "--set", "liquid.partitions=4"], ParameterError),        # not in this model

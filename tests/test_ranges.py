@@ -192,8 +192,8 @@ PROBES = {
         _cli(lambda t: ["liquid", "kinetostatic", "--delta", t],
              lambda d: [math.radians(x) for x in d["delta_deg"]]),
         10, 60, 3, "deg", math.pi / 180),
-    ("liquid simulate", "--speeds"): (
-        _cli(lambda t: ["liquid", "simulate", "--speeds", t], lambda d: d["omega_rad_s"]),
+    ("liquid simulate", "--speeds"): (      # the deprecated command: response of a liquid
+        _cli(lambda t: ["response", "leblanc_003", "--speeds", t], lambda d: d["omega_rad_s"]),
         300, 600, 2, "rpm", RPM),
     ("liquid stability", "--speeds"): (
         _cli(lambda t: ["liquid", "stability", "--speeds", t], lambda d: d["omega_rad_s"]),

@@ -313,13 +313,29 @@ def test_analyze_bounds_three_balls_no_blow_up():
 
 
 @pytest.mark.slow
-def test_analyze_tolerance_text_and_json():
-    r = runner.invoke(app, ["tolerance", TOP, "--grade", "6.3", "--residual-fraction", "0.1"])
-    assert r.exit_code == 0, r.output
-    assert "G6.3 (ISO class G6.3)" in r.stdout and "000 method" in r.stdout
-    r = runner.invoke(app, ["tolerance", TOP, "--json"])
-    out = json.loads(r.stdout)
-    assert out["target_grade_G_mm_s"] == 16.0 and "design" in out
+def test_study_tolerances_text_and_json_and_the_former_analyze_tolerance(capsys):
+    """``study tolerances`` at a grade and by 000's method; ``analyze tolerance`` is the same
+    command for one version, its --residual-fraction the 000 method, with a warning."""
+    from conftest import run_main
+
+    code, out, err = run_main(capsys, ["study", "tolerances", TOP, "--grade", "6.3"])
+    assert code == 0, err
+    assert "target G6.3 (ISO 1940 class G6.3" in out and "800 rpm" in out
+    code, now, err = run_main(capsys, ["study", "tolerances", TOP, "--method", "000",
+                                       "--residual-fraction", "0.1", "--json"])
+    assert code == 0, err
+    d = json.loads(now)
+    assert d["method"] == "000" and d["target_unbalance_kg_m"] == pytest.approx(0.1 * 0.05)
+    code, was, err = run_main(capsys, ["analyze", "tolerance", TOP, "--residual-fraction", "0.1",
+                                       "--json"])
+    assert code == 0
+    assert err.splitlines() == [
+        "warning: analyze tolerance is deprecated: use study tolerances (the old name goes in "
+        "0.4.0)",
+        "warning: analyze tolerance --residual-fraction is deprecated: use --method 000 "
+        "--residual-fraction (the old name goes in 0.4.0)"]
+    drop = lambda r: {k: v for k, v in r.items() if k != "elapsed_s"}      # noqa: E731
+    assert drop(json.loads(was)) == drop(d)
 
 
 @pytest.mark.slow
@@ -384,11 +400,13 @@ def test_bad_input_one_line_error(fn, field):
 
 
 @pytest.mark.parametrize("args", [
-    ["tolerance", TOP, "--grade", "-3"],
-    ["tolerance", TOP, "--residual-fraction", "2"],
-    ["bounds", TOP, "--f-r", "2"],
+    ["study", "tolerances", TOP, "--grade", "-3"],
+    ["study", "tolerances", TOP, "--residual-fraction", "2"],
+    ["analyze", "bounds", TOP, "--f-r", "2"],
 ])
-def test_cli_bad_input_exit_2(args):
-    r = runner.invoke(app, args)
-    assert r.exit_code == 2
-    assert r.output.strip().startswith("error:") and len(r.output.strip().splitlines()) == 1
+def test_cli_bad_input_exit_2(args, capsys):
+    from conftest import run_main
+
+    code, out, err = run_main(capsys, args)
+    assert code == 2 and not out
+    assert err.strip().startswith("error:") and len(err.strip().splitlines()) == 1

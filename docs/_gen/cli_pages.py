@@ -5,7 +5,8 @@
 with its usage, its help (the docstring up to ``\\f``), its arguments and its options as
 ``--help`` prints them. :func:`vocabulary_page` gives every option name with its one meaning
 (:data:`autobalance.cli.vocabulary.VOCABULARY`), the commands that take it, the options every
-study takes (``STUDY_SHARED``) and the former names still accepted (``DEPRECATED``).
+study takes (``STUDY_SHARED``) and the former names and commands still accepted
+(``DEPRECATED``, ``DEPRECATED_COMMANDS``).
 """
 from __future__ import annotations
 
@@ -147,6 +148,11 @@ def vocabulary_page() -> str:
     for path, table in vocab.DEPRECATED.items():
         for a, b in table.items():
             out.append(f"| `{PROG} {' '.join(path)}` | `{a}` | `{b}` |")
+    out += ["", "## Former commands", "",
+            f"These commands are still accepted, with a warning that names what to use, until "
+            f"version {vocab.REMOVED_IN}:", "", "| former command | use |", "|---|---|"]
+    for path, (_now, use) in vocab.DEPRECATED_COMMANDS.items():
+        out.append(f"| `{PROG} {' '.join(path)}` | {_cell(use)} |")
     return "\n".join(out) + "\n"
 
 

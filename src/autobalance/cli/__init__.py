@@ -5,8 +5,8 @@ snake_case keys with unit suffixes; NaN and inf become ``null``). Input errors (
 value, unknown preset, unreadable file) print one line ``error: <message>`` on stderr and exit
 with code 2, never a traceback. A simulation whose status is not ``"ok"`` exits with code 1.
 
-One module per task: :mod:`.machine` (presets, show, demo), :mod:`.simulate`, :mod:`.response`
-(``response`` and ``analyze response``), :mod:`.sweep`, :mod:`.analyze`, :mod:`.liquid`,
+One module per task: :mod:`.machine` (presets, show, demo), :mod:`.simulate`, :mod:`.response`,
+:mod:`.sweep`, :mod:`.analyze`, :mod:`.liquid`,
 :mod:`.reproduce`; :mod:`.common` holds the options, the error guard, the JSON printer and the
 checks they share. The physics modules are imported inside the commands so that ``presets`` and
 ``show`` stay fast.
@@ -39,8 +39,8 @@ app.command()(response.response)
 app.command("sweep")(sweep.sweep_cmd)
 app.command()(machine.demo)
 app.add_typer(analyze.app, name="analyze",
-              help="Washer analysis (seed 000): response, vibratory forces, equilibria, error "
-                   "bounds, tolerance design, kinetic-static model, studies.")
+              help="Washer analysis (seed 000): vibratory forces, equilibria, error bounds, "
+                   "kinetic-static model, the washer's studies.")
 app.add_typer(study.app, name="study",
               help="Design studies of any machine: speed map, start positions, unbalance "
                    "range, TSR plateau, immobility, tolerances, sensitivity, run-up.")
@@ -48,7 +48,7 @@ app.command("design")(study_design.design)
 app.command("reproduce")(reproduce.reproduce)
 app.add_typer(liquid.app, name="liquid",
               help="Liquid (Leblanc) balancers (seeds 001, 003): free surface, motion modes, "
-                   "entrainment speeds, kinetostatics, run-up simulation.")
+                   "entrainment speeds, kinetostatics, spin-up, stability.")
 
 
 def main(argv: Optional[list[str]] = None) -> None:

@@ -1,7 +1,8 @@
 """``autobalance analyze ...``: the seed-000 washer analysis on the command line.
 
-Subcommands: response, forces, equilibria, bounds, tolerance, kinetic-static, washer-study
-(004's immobility is ``autobalance study immobility``, for any machine). Every one takes
+Subcommands: forces, equilibria, bounds, kinetic-static, washer-study (the drum's response
+at one speed is ``autobalance response --speed``, the tolerance design ``autobalance study
+tolerances``, 004's immobility ``autobalance study immobility``, for any machine). Every one takes
 ``--json`` (one JSON object, SI, unit-suffixed keys) and, where useful, ``--plot FILE.png``.
 Input errors print one line ``error: ...`` on stderr and exit with code 2.
 
@@ -9,7 +10,9 @@ The options of every analysis of a machine: ``source`` (``PRESET|CONFIG``) and `
 (``--set PATH=VALUE``) as in :mod:`autobalance.cli.common`; ``speed`` (``--speed``) the spin
 speed [rad/s] (a bare number, or with units: ``'1000 rpm'``), default the configuration's
 nominal speed; ``angles`` (``--angles``) one angle per ball [rad] (bare, or ``'120 deg,-120
-deg'``), default the initial ones; ``json_`` (``--json``) one JSON object instead of text.
+deg'``), default the initial ones; ``units`` (``--units``) the units of the text, default
+those written in the configuration (:data:`autobalance.cli.common.UnitsOpt`); ``json_``
+(``--json``) one JSON object instead of text (SI, whatever ``--units`` says).
 """
 from __future__ import annotations
 
@@ -19,16 +22,16 @@ from typing import Annotated, Optional
 import typer
 
 from ..config import ConfigError, parse_quantity
-from .common import (JsonOpt, PlotOpt, SetOpt, SourceArg, check_distinct, check_plot, echo_fields,
-                     fail, guard, load_machine, print_json)
-from .response import AnglesOpt, SpeedOpt, analyze_response, ball_angles, speed_at
+from ..config.display import display_units
+from .common import (JsonOpt, PlotOpt, SetOpt, SourceArg, UnitsOpt, check_distinct, check_plot,
+                     class_text, fail, guard, load_machine, print_json)
+from .response import AnglesOpt, SpeedOpt, ball_angles, speed_at
 
 app = typer.Typer(name="analyze", no_args_is_help=True, add_completion=False,
                   rich_markup_mode=None,     # help as written: no rich markup or :emoji: codes
                   pretty_exceptions_enable=False,
-                  help="Seed-000 analysis: harmonic response, vibratory forces, equilibria and "
-                       "stability, error bounds, tolerance design, kinetic-static model, studies.")
-app.command("response")(analyze_response)
+                  help="Seed-000 analysis: vibratory forces, equilibria and stability, error bounds, "
+                       "kinetic-static model, the washer's studies.")
 
 
 def _save(fig, path, what: str = "--plot") -> Optional[str]:
@@ -42,6 +45,14 @@ def _save(fig, path, what: str = "--plot") -> Optional[str]:
     return str(path)
 
 
+def _values(du, values, kind: Optional[str] = None) -> str:
+    """``"[v1, v2] unit"``: SI ``values`` in the display unit of ``kind`` (None: angles [rad])."""
+    from ..config.display import number_text
+
+    vals = [float(v) if kind is None else du.to(v, kind) for v in values]
+    return f"[{', '.join(number_text(v) for v in vals)}] {'rad' if kind is None else du.unit(kind)}"
+
+
 @app.command()
 def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angles: AnglesOpt = None,
            plot: PlotOpt = None,
@@ -49,14 +60,15 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
                "--damping-plot", metavar="FILE.png",
                help="Write 000 Fig. 7: the one-ball force for suspension damping x0.5/1/2, above "
                     "both and between the natural frequencies.")] = None,
-           json_: JsonOpt = False) -> None:
+           units: UnitsOpt = None, json_: JsonOpt = False) -> None:
     """Vibratory forces F_i on the balls and dF/dalpha (000 eq 8-12, 40-43); --plot: each ball's
     force against its angle with its rest band (this balancer); --damping-plot: Fig. 7.\f
 
     Parameters
     ----------
-    source, set_, speed, angles, json_
-        The options of every analysis (:mod:`autobalance.cli.analyze`); forces in [N], the Jacobian in [N/rad].
+    source, set_, speed, angles, units, json_
+        The options of every analysis (:mod:`autobalance.cli.analyze`); forces in [N], the
+        Jacobian in [N/rad] (JSON; the text in the display units).
     plot, damping_plot : str
         PNG files: the force on each of this balancer's balls against its own angle, the others
         at ``angles``, with the rest band +-f/r (000 eq 8, 21; Fig. 6 generalised); 000 Fig. 7.
@@ -67,6 +79,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
         check_plot(damping_plot, what="--damping-plot", inputs=config)
         check_distinct({"--plot": plot, "--damping-plot": damping_plot})
         cfg = load_machine(source, set_, balls="needed")
+        du = display_units(cfg, units)
         from ..physics.vibratory import force_jacobian, vibratory_components
 
         w = speed_at(cfg, speed)
@@ -76,7 +89,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
                **{f"{k}_n": v for k, v in comp.items()},
                "jacobian_n_per_rad": force_jacobian(cfg.system, w, a)}
         if plot is not None or damping_plot is not None:
-            from .washer_figures import plot_ball_forces, plot_vibratory_force_damping
+            from ..studies.washer_figures import plot_ball_forces, plot_vibratory_force_damping
 
             wx, wy = cfg.system.natural_frequencies
             speeds = [w, 0.5 * (wx + wy)]       # this speed and between the natural frequencies
@@ -88,7 +101,7 @@ def forces(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None, angle
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name} at {w:.4g} rad/s: F = {list(map(float, comp['F']))} N")
+    typer.echo(f"{cfg.name} at {du.fmt(w, 'speed')}: F = {_values(du, comp['F'], 'force')}")
 
 
 def _full_verdict(system, w: float, alpha, family: bool) -> dict:
@@ -110,7 +123,7 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
                full: Annotated[bool, typer.Option("--full-model", help="Also the linearised full model "
                                                   "(eigenvalues in a steady rotor frame, else "
                                                   "Floquet multipliers by shooting).")] = False,
-               json_: JsonOpt = False) -> None:
+               units: UnitsOpt = None, json_: JsonOpt = False) -> None:
     """All ball equilibria and their stability (000 eq 12, linearised KS and full model):
     isolated ones, and for 3 or more balls the continuous balanced families as families.\f
 
@@ -121,11 +134,12 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     ----------
     full : bool
         Also the linearised full model (for a family at each sample without ball overlap).
-    source, set_, speed, json_
+    source, set_, speed, units, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     """
     with guard():
         cfg = load_machine(source, set_, balls="needed")
+        du = display_units(cfg, units)
         from ..physics.equilibria import balancing_onset_speed, find_equilibrium_set
         from ..physics.vibratory import speed_regime
 
@@ -157,7 +171,7 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name} at {w:.4g} rad/s ({out['regime']}): {len(rows)} isolated "
+    typer.echo(f"{cfg.name} at {du.fmt(w, 'speed')} ({out['regime']}): {len(rows)} isolated "
                f"equilibri{'um' if len(rows) == 1 else 'a'}, {len(fams)} "
                f"famil{'y' if len(fams) == 1 else 'ies'} of balanced states")
     for d in rows:
@@ -171,8 +185,9 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         n_r = sum(reach)
         ks = sum(k and r for k, r in zip(d["ks_stable"], reach))
         text = (f"  family of dimension {d['dimension']}: {d['n_samples']} samples ({n_r} without "
-                f"ball overlap), residual {d['residual_unbalance_min_kg_m']:.4g}-"
-                f"{d['residual_unbalance_max_kg_m']:.4g} kg*m; ks_stable at {ks}/{n_r}")
+                f"ball overlap), residual {du.fmt(d['residual_unbalance_min_kg_m'], 'unbalance')}"
+                f" to {du.fmt(d['residual_unbalance_max_kg_m'], 'unbalance')}; ks_stable at "
+                f"{ks}/{n_r}")
         if "full_stable" in d:
             fs = sum(bool(x) for x in d["full_stable"])
             text += f", full_stable at {fs}/{n_r} ({d['full_method']}, neutral directions removed)"
@@ -181,62 +196,53 @@ def equilibria(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
         typer.echo(f"    e.g. alpha = {[round(v, 2) for v in a0]} deg")
 
 
-def _error_bounds(cfg, w: float, fr: float) -> dict:
-    """The position-error bounds of :func:`bounds` (000 eq 32, 45, 49, 54-55) at ``w`` [rad/s]
-    for a rolling resistance ``fr`` = f/r [-] of every ball, and the true worst case of the
-    residual unbalance of the balls at rest (:func:`autobalance.physics.worst_case.residual_bound`).
-    On a family of balanced states (N >= 3) the deviations are those across the family and
-    its neutral directions have frequency 0."""
-    import dataclasses
+def _bounds_text(out: dict, du) -> list:
+    """Lines of the text output of :func:`bounds`: angles [rad], the rest in the display units."""
+    def u(key):
+        return du.fmt(out[key], "unbalance")
 
-    from ..physics import error_bounds as eb
-    from ..physics.iso1940 import grade_class, grade_value
-    from ..physics.worst_case import residual_bound
-
-    s = cfg.system
-    b = s.balancer
-    e = s.rotor.unbalance / s.rotor.mass
-    ideal = dataclasses.replace(s, balancer=dataclasses.replace(b, eccentricity=0.0))
-    db = eb.rolling_deadband(ideal, w, fr)
-    ecc = eb.eccentricity_equilibrium(s, w)
-    sus = s.suspension
-    wb = residual_bound(s, w, rolling_resistance=fr)
-    g = float(grade_value(wb["worst_residual_kg_m"], s.total_mass, cfg.spin.nominal_speed))
-    return {
-        "name": cfg.name, "speed_rad_s": w, "f_r": fr, "n_balls": b.n_balls,
-        "rolling_single_ball_rad": eb.rolling_deadband_single(s, w, fr),
-        "rolling_eq32_rad": eb.symmetric_rolling_deviation(b.race_radius, e, fr),
-        "rolling_max_deviation_rad": db["max_deviation_rad"],
-        "rolling_max_residual_unbalance_kg_m": db["max_residual_unbalance_kg_m"],
-        "neutral_directions": db["neutral_directions"],
-        "eccentricity_deviation_rad": ecc["deviation_rad"],
-        "eccentricity_residual_unbalance_kg_m": ecc["residual_unbalance_kg_m"],
-        "eccentricity_eq45_single_rad": eb.eccentricity_deviation_single(
-            e, b.eccentricity, b.eccentricity_angle),
-        "friction_eq49_rad": eb.suspension_friction_deviation(
-            sus.dry_friction_force, sus.dry_friction_angle, s.rotor.unbalance, w),
-        "ball_frequency_eq54_rad_s": eb.ball_natural_frequency_single(s, w),
-        "ball_frequency_eq55_rad_s": eb.ball_natural_frequency_approx(w, e, b.race_radius),
-        "ball_frequencies_rad_s": eb.ball_natural_frequencies(ideal, w, db["alpha_eq_rad"]),
-        "worst_residual_kg_m": wb["worst_residual_kg_m"], "worst_grade_G_mm_s": g,
-        "worst_grade_class_G_mm_s": float(grade_class(g)),
-        "worst_rolling_kg_m": wb["rolling_kg_m"], "worst_eccentricity_kg_m": wb["eccentricity_kg_m"],
-        "worst_friction_kg_m": wb["friction_kg_m"], "worst_separated": wb["separated"],
-        "capacity_kg_m": wb["capacity_kg_m"],
-    }
+    family = out["neutral_directions"] > 0
+    lines = [
+        f"{out['name']} at {du.fmt(out['speed_rad_s'], 'speed')}, f/r = {out['f_r']:g}, "
+        f"{out['n_balls']} balls",
+        f"  rolling resistance: one ball (000 eq 24) {out['rolling_single_ball_rad']:.4g} rad, "
+        f"two balls at +-120 deg (eq 32) {out['rolling_eq32_rad']:.4g} rad",
+        f"    {out['n_balls']} balls (eq 27-31{', across the family' if family else ''}): "
+        f"deviation <= {_values(du, out['rolling_max_deviation_rad'])}, residual <= "
+        f"{u('rolling_max_residual_unbalance_kg_m')}"
+        + (f", neutral directions: {out['neutral_directions']}" if family else ""),
+        f"  race eccentricity (eq 46-47): deviation {_values(du, out['eccentricity_deviation_rad'])}, "
+        f"residual {u('eccentricity_residual_unbalance_kg_m')}; one ball (eq 45) "
+        f"{out['eccentricity_eq45_single_rad']:.4g} rad",
+        f"  suspension dry friction (eq 49): deviation {out['friction_eq49_rad']:.4g} rad",
+        f"  ball natural frequencies (eq 52): {_values(du, out['ball_frequencies_rad_s'], 'speed')}; "
+        f"one ball (eq 54) {du.fmt(out['ball_frequency_eq54_rad_s'], 'speed')}, "
+        f"(eq 55) {du.fmt(out['ball_frequency_eq55_rad_s'], 'speed')}"]
+    if out["worst_separated"]:
+        lines += [f"  worst case at rest (true bound): {u('worst_residual_kg_m')} = "
+                  f"G{out['worst_grade_G_mm_s']:.3g} (class {class_text(out['worst_grade_G_mm_s'])}) = "
+                  f"rolling {u('worst_rolling_kg_m')} + eccentricity {u('worst_eccentricity_kg_m')}"
+                  f" + friction {u('worst_friction_kg_m')}"]
+    else:
+        lines += [f"  worst case at rest: no bound below the trivial {u('worst_residual_kg_m')} = "
+                  f"G{out['worst_grade_G_mm_s']:.3g} (class {class_text(out['worst_grade_G_mm_s'])})"]
+    lines.append(f"  capacity sum m_i R: {u('capacity_kg_m')}")
+    return lines
 
 
 @app.command()
 def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
            f_r: Annotated[Optional[float], typer.Option("--f-r", help="f/r of every ball "
                                                         "(default: the machine's own).")] = None,
-           plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+           plot: PlotOpt = None, units: UnitsOpt = None, json_: JsonOpt = False) -> None:
     """Position-error bounds (rolling resistance, eccentricity, dry friction, ball frequencies)
     and the true worst-case residual of the balls at rest, for any number of balls.\f
 
+    The values are :func:`autobalance.physics.error_bounds.error_bound_summary`.
+
     Parameters
     ----------
-    source, set_, speed, json_
+    source, set_, speed, units, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     f_r : float
         Rolling-resistance coefficient f/r [-] in [0, 1] of every ball; default the machine's.
@@ -246,17 +252,21 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     with guard():
         check_plot(plot, inputs={"the input config file": source})
         cfg = load_machine(source, set_, balls="needed")
+        du = display_units(cfg, units)
         import numpy as np
+
+        from ..physics.error_bounds import error_bound_summary
 
         w = speed_at(cfg, speed)
         fr = float(cfg.system.balancer.stiction[0]) if f_r is None else f_r
         if not (math.isfinite(fr) and 0 <= fr <= 1):
             raise ConfigError(f"--f-r = {f_r!r}: must be within [0, 1]: the rolling-resistance "
                               "coefficient f/r [-] (steel balls typically 0.001-0.01)")
-        out = _error_bounds(cfg, w, fr)
+        out = {"name": cfg.name,
+               **error_bound_summary(cfg.system, w, fr, cfg.spin.nominal_speed)}
         if plot is not None:
             from ..physics.equilibria import balancing_onset_speed
-            from .washer_figures import plot_residual_bound
+            from ..studies.washer_figures import plot_residual_bound
 
             lo = 1.01 * balancing_onset_speed(cfg.system)
             speeds = np.geomspace(lo, max(2 * w, 1.5 * lo), 60)
@@ -264,113 +274,20 @@ def bounds(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name} at {w:.4g} rad/s, f/r = {fr:g}, {out['n_balls']} balls")
-    echo_fields(out, skip=("name", "speed_rad_s", "f_r", "n_balls"))
-
-
-def _tolerance_text(out: dict) -> list:
-    """Lines of the text output of :func:`tolerance`."""
-    from ..physics.iso1940 import grade_class
-
-    G = out["target_grade_G_mm_s"]
-    lines = [f"{out['name']} at {out['speed_rad_s']:.4g} rad/s ({out['speed_basis']}); target "
-             f"G{G:g} (ISO class G{grade_class(G):g}): residual <= "
-             f"{out['target_unbalance_kg_m']:.4g} kg*m"]
-    if not out["feasible"]:
-        lines.append(f"  not possible: {out['reason']}")
-    else:
-        lines += [f"  allowed (true worst case of the balanced region, each cause within its share, "
-                  f"together within {100 * (1 - out['split'].get('other', 0.0)):.0f} %):",
-                  f"    ring eccentricity      <= {out['max_eccentricity_m'] * 1e6:.4g} um",
-                  f"    rolling resistance f/r <= {out['max_rolling_resistance']:.4g}",
-                  f"    suspension friction F  <= {out['max_suspension_friction_N']:.4g} N per damper"]
-    own = out["own_rolling_resistance"]
-    fr = ", ".join(f"{v:g}" for v in sorted(set(own)))
-    worst, Gw = out["worst_residual_kg_m"], out["worst_grade_G_mm_s"]
-    rme = out["rme_worst"]
-    rme_txt = (f"RMe {100 * rme:.1f} %" if rme >= 0 else
-               f"{-100 * rme:.0f} % more than the rotor's own unbalance: balls at rest can add to it")
-    lines += [f"  this machine (f/r = {fr}, rho = {out['own_eccentricity_m'] * 1e6:.4g} um, "
-              f"F = {out['own_suspension_friction_N']:.4g} N):",
-              f"    worst case (true bound, balanced region) {worst:.4g} kg*m = G{Gw:.3g} (class "
-              f"G{out['worst_grade_class_G_mm_s']:g}); {rme_txt}",
-              f"    expected (000 credits)  {out['expected_residual_kg_m']:.4g} kg*m = "
-              f"G{out['expected_grade_G_mm_s']:.3g}",
-              f"    meets G{G:g}: {'yes' if out['meets_target'] else 'no'}"]
-    if "plateau_worst_residual_kg_m" in out:
-        lines.append(f"    at the TSR plateau {out['plateau_speed_rad_s']:.4g} rad/s: worst "
-                     f"{out['plateau_worst_residual_kg_m']:.4g} kg*m = G{out['plateau_worst_grade_G_mm_s']:.3g}")
-    col = [v for v in out.get("collinear_residuals_kg_m", []) if v > worst]
-    if col:
-        lines.append("    balls stopped at a collinear equilibrium instead (outside the balanced region) "
-                     "leave " + ", ".join(f"{v:.3g}" for v in col) + " kg*m")
-    lines += [f"  note: {w}" for w in out["warnings"] if w != out.get("reason")]
-    return lines
-
-
-@app.command()
-def tolerance(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
-              grade: Annotated[float, typer.Option("--grade", help="Target ISO 1940 grade G "
-                                                   "[mm/s] (default 16).")] = 16.0,
-              fraction: Annotated[Optional[float], typer.Option(
-                  "--residual-fraction", help="Also the 000 paper's method (one ball, mR = Me): required "
-                                     "residual / Me, e.g. 0.1.")] = None,
-              json_: JsonOpt = False) -> None:
-    """Tolerances for a target grade (000 eq 56-66 for any balancer, on the true worst-case
-    bound) and the worst case of the machine's own tolerances; --residual-fraction: the 000
-    method.\f
-
-    Parameters
-    ----------
-    source, set_, speed, json_
-        The options of every analysis (:mod:`autobalance.cli.analyze`).
-    grade : float
-        Target grade G [mm/s], > 0.
-    fraction : float
-        Required residual unbalance as a fraction of M e [-] for the 000 paper's one-ball
-        method (:func:`autobalance.physics.tolerance.design_tolerances`), in (0, 1].
-    """
-    with guard():
-        cfg = load_machine(source, set_, balls="needed")
-        from ..physics.tolerance import design_tolerances
-        from ..studies._tolerances import compute_tolerances
-
-        if not (math.isfinite(grade) and grade > 0):
-            raise ConfigError(f"--grade = {grade!r}: must be a grade G > 0 [mm/s], e.g. 16 (ISO 1940 G16)")
-        if fraction is not None and not (math.isfinite(fraction) and 0 < fraction <= 1):
-            raise ConfigError(f"--residual-fraction = {fraction!r}: must be within (0, 1]: the required "
-                              "residual / Me of the 000 method, e.g. 0.1")
-        s = cfg.system
-        w = speed_at(cfg, speed) if speed is not None else None
-        out = compute_tolerances(cfg, grade=grade, speed=w)
-        out["design"] = {k: out[k] for k in ("max_eccentricity_m", "max_rolling_resistance",
-                                             "max_suspension_friction_N", "budget_kg_m")}
-        if fraction is not None:
-            out["paper_000"] = design_tolerances(s.rotor.unbalance, s.rotor.mass, s.balancer.race_radius,
-                                                 out["speed_rad_s"], residual_fraction=fraction,
-                                                 friction_angle=s.suspension.dry_friction_angle)
-    if json_:
-        print_json(out)
-        return
-    for line in _tolerance_text(out):
+    for line in _bounds_text(out, du):
         typer.echo(line)
-    if fraction is not None:
-        d = out["paper_000"]
-        typer.echo(f"  000 method (one ball, mR = Me, residual <= {fraction:g} Me): rho_max = "
-                   f"{d['rho_max_m'] * 1e6:.3g} um, f/r max = {d['f_r_max']:.3g}, "
-                   f"F max = {d['friction_force_max_n']:.3g} N")
 
 
 @app.command("kinetic-static")
 def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = None,
                    angles: AnglesOpt = None,
                    duration: Annotated[str, typer.Option("--duration", help="Length, e.g. '6 s'.")] = "6 s",
-                   plot: PlotOpt = None, json_: JsonOpt = False) -> None:
+                   plot: PlotOpt = None, units: UnitsOpt = None, json_: JsonOpt = False) -> None:
     """Kinetic-static model (000 eq 13) vs the full model (Fig. 9 differences).\f
 
     Parameters
     ----------
-    source, set_, speed, angles, json_
+    source, set_, speed, angles, units, json_
         The options of every analysis (:mod:`autobalance.cli.analyze`).
     duration : str
         Simulated time [s or with units], in (0, 600] s.
@@ -380,6 +297,7 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
     with guard():
         check_plot(plot, inputs={"the input config file": source})
         cfg = load_machine(source, set_, balls="needed")
+        du = display_units(cfg, units)
         from ..simulate.kinetic_static import compare_with_full
 
         w = speed_at(cfg, speed)
@@ -397,9 +315,10 @@ def kinetic_static(source: SourceArg, set_: SetOpt = None, speed: SpeedOpt = Non
     if json_:
         print_json(out)
         return
-    typer.echo(f"{cfg.name}: max |D_x| = {out['max_D_x_m'] * 1e6:.3g} um, max |D_y| = "
-               f"{out['max_D_y_m'] * 1e6:.3g} um, max |D_alpha| = {out['max_D_alpha_rad']:.3g} rad; "
-               f"last second: {out['final_D_alpha_rad']:.2g} rad")
+    typer.echo(f"{cfg.name} at {du.fmt(w, 'speed')} for {du.fmt(dur, 'time')}: max |D_x| = "
+               f"{du.fmt(out['max_D_x_m'], 'length', 3)}, max |D_y| = "
+               f"{du.fmt(out['max_D_y_m'], 'length', 3)}, max |D_alpha| = "
+               f"{out['max_D_alpha_rad']:.3g} rad; last second: {out['final_D_alpha_rad']:.2g} rad")
 
 
 def _echo_rows(rows: list) -> None:

@@ -39,7 +39,7 @@ from ..models import ParameterError
 __all__ = ["DEFAULT_GRADE", "USER_ERRORS", "ExecutorOpt", "GradeOpt", "JsonOpt", "PlotOpt",
            "ProfileOpt", "as_options", "SchedulerOpt", "SetOpt", "SourceArg", "UnitsOpt",
            "WORKER_BYTES", "WorkersOpt", "check_distinct", "check_executor", "check_grade",
-           "check_output_file", "check_plot", "check_workers", "class_text", "echo_fields", "fail",
+           "check_output_file", "check_plot", "check_workers", "class_text", "fail",
            "grade_text", "guard", "load_machine", "one_line", "print_error", "print_json",
            "quiet_dask_logs"]
 
@@ -532,19 +532,3 @@ def quiet_dask_logs() -> None:
     for name in ["distributed", *logging.root.manager.loggerDict]:
         if name.startswith("distributed"):
             logging.getLogger(name).setLevel(logging.CRITICAL)
-
-
-def echo_fields(result: dict, skip: tuple = ()) -> None:
-    """Print ``key: value`` lines (indented by two spaces) for a text summary.
-
-    Parameters
-    ----------
-    result : dict
-        The values to show, in order.
-    skip : tuple of str
-        Keys not to show.
-    """
-    for key, value in result.items():
-        if key not in skip:
-            typer.echo(f"  {key}: {value}")
-

@@ -16,7 +16,6 @@ exits with code 2.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from typing import Annotated, Optional
 
 import numpy as np
@@ -46,21 +45,36 @@ PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 def _out(obj: dict, as_json: bool, units=None) -> None:
-    """One JSON object, or ``key  value`` lines (long lists cut to their first 8 values; with
-    ``units``, a DisplayUnits, unit-suffixed numbers in those units: :func:`.simulate.shown`)."""
+    """One JSON object, or ``key  value`` lines: with ``units``, a DisplayUnits, unit-suffixed
+    numbers and lists of numbers in those units (:func:`.simulate.shown`); numbers to 4-6
+    significant digits, long lists cut to their first 8 values."""
     if as_json:
         print_json(obj)
         return
     from .simulate import shown
 
     for k, v in to_jsonable(obj).items():
-        if units is not None and isinstance(v, (int, float)) and not isinstance(v, bool):
+        if units is not None and not isinstance(v, bool):
             k, v = shown(k, v, units)
-        if isinstance(v, list) and len(v) > 8:
-            v = f"[{', '.join(f'{x:.4g}' if isinstance(x, float) else str(x) for x in v[:8])}, ...]"
+        if isinstance(v, list):
+            items = [f"{x:.4g}" if isinstance(x, float) else str(x) for x in v[:8]]
+            v = f"[{', '.join(items)}{', ...' if len(v) > 8 else ''}]"
         elif isinstance(v, float):
             v = f"{v:.6g}"
         typer.echo(f"{k:<34} {v}")
+
+
+def _units(units: Optional[str], **written: str):
+    """The display units of a liquid command without a machine: ``--units``, else each kind in
+    the unit its option was written in (kind -> the option's text, e.g. ``speed="0:600
+    rpm:4"``), SI for the others (:func:`autobalance.config.display.display_units`)."""
+    from ..config.display import display_units
+
+    if units is None:
+        parts = [f"{kind}={u}" for kind, text in written.items()
+                 if text and (u := written_unit(text))]
+        units = ",".join(parts) or None
+    return display_units(None, units)
 
 
 def _q(value: str, kind: str, field: str) -> float:
@@ -110,7 +124,8 @@ def _liquid(name: str):
 def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
             omega: Annotated[str, typer.Option("--speeds", metavar=VALUES_METAVAR,
                                                help=OMEGA_HELP)] = "0, 0.6, 0.89, 10, 28, 60 rad/s",
-            g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False, plot: PlotOpt = None):
+            g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False, plot: PlotOpt = None,
+            units: UnitsOpt = None):
     """Free surface z(r) = z_* + omega^2 r^2/(2g) clipped to the chamber (003 eq 2-5).\f
 
     Parameters
@@ -119,6 +134,8 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
         The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` may list several speeds.
     plot : str
         Figure of the surfaces (.png, .pdf, .svg).
+    units : str
+        Units of the text: default the units the speeds and the radius were written in.
     """
     from ..liquid import free_surface, liquid_volume
 
@@ -137,11 +154,13 @@ def surface(volume: VolOpt = "100 ml", radius: ROpt = "0.2 m", height: HOpt = "0
         from ..liquid import surface_profiles
         from ..plotting.liquid import surface_figure
         save_plot(surface_figure(surface_profiles(ws, V, R, h, gg)), plot)
+    du = _units(units, speed=omega, length=radius)
     _out({"volume_m3": V, "radius_m": R, "height_m": h, "g_m_s2": gg, "surfaces": rows,
           "plot": plot} if as_json else
-         {f"omega={r['omega_rad_s']:.4g}": f"mode {r['mode']} regime {r['regime']} "
-          f"z*={r['z_star_m']:.4g} m wall={r['wall_height_m']:.4g} m "
-          f"r_dry={r['r_dry_m']:.4g} m" for r in rows}, as_json)
+         {f"omega={du.fmt(r['omega_rad_s'], 'speed')}": f"mode {r['mode']} regime "
+          f"{r['regime']} z*={du.fmt(r['z_star_m'], 'length')} wall="
+          f"{du.fmt(r['wall_height_m'], 'length')} r_dry={du.fmt(r['r_dry_m'], 'length')}"
+          for r in rows}, as_json)
 
 
 @app.command()
@@ -151,7 +170,7 @@ def speeds(volume: Annotated[str, typer.Option(
            radius: ROpt = "0.2 m", height: HOpt = "0.05 m", g: GOpt = "9.80665 m/s^2",
            gravity_fraction: Annotated[float, typer.Option(help="Mode-1 criterion f: centre "
                                                            "sunk by f*h0.")] = 0.25,
-           as_json: JsonOpt = False):
+           as_json: JsonOpt = False, units: UnitsOpt = None):
     """Mode-change speeds: bottom touch (003 eq 4), lid touch, entrainment omega_0 (003 eq 6).\f
 
     Parameters
@@ -160,6 +179,8 @@ def speeds(volume: Annotated[str, typer.Option(
         The liquid options (:mod:`autobalance.cli.liquid`); ``volume`` may list several volumes.
     gravity_fraction : float
         Mode-1 criterion f [-]: the centre of the surface sunk by f*h0.
+    units : str
+        Units of the text: default SI (rad/s).
     """
     from ..liquid import mode_speeds
 
@@ -167,23 +188,27 @@ def speeds(volume: Annotated[str, typer.Option(
         _q(g, "acceleration", "g")
     vols = _list(volume, "volume", "--volume")
     rows = [dict(volume_m3=V, **mode_speeds(V, R, h, gg, gravity_fraction)) for V in vols]
+    sp = _units(units).fmt
     _out({"radius_m": R, "height_m": h, "g_m_s2": gg, "speeds": rows} if as_json else
-         {f"V={r['volume_m3'] * 1e6:.4g} ml": f"omega_1={r['omega_1_rad_s']:.4g} "
-          f"omega_2={r['omega_2_rad_s']:.4g} bottom={r['bottom_touch_rad_s']:.4g} "
-          f"omega_0={r['omega_0_rad_s']:.4g} rad/s" for r in rows}, as_json)
+         {f"V={r['volume_m3'] * 1e6:.4g} ml": f"omega_1={sp(r['omega_1_rad_s'], 'speed')} "
+          f"omega_2={sp(r['omega_2_rad_s'], 'speed')} bottom="
+          f"{sp(r['bottom_touch_rad_s'], 'speed')} omega_0={sp(r['omega_0_rad_s'], 'speed')}"
+          for r in rows}, as_json)
 
 
 @app.command()
 def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.05 m",
           omega: Annotated[str, typer.Option("--speeds", metavar=VALUES_METAVAR,
                                                help=OMEGA_HELP)] = "0:60 rad/s:13",
-          g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False):
+          g: GOpt = "9.80665 m/s^2", as_json: JsonOpt = False, units: UnitsOpt = None):
     """003 motion mode (1..4) at each speed.\f
 
     Parameters
     ----------
     volume, radius, height, omega, g, as_json
         The liquid options (:mod:`autobalance.cli.liquid`); one mode per speed of ``omega``.
+    units : str
+        Units of the text: default the unit the speeds were written in.
     """
     from ..liquid import MODE_NAMES, mode_speeds, motion_mode
 
@@ -193,7 +218,8 @@ def modes(volume: VolOpt = "300 ml", radius: ROpt = "0.2 m", height: HOpt = "0.0
     ws = _list(omega, "speed", "--speeds")
     m = [motion_mode(w, V, R, h, gg) for w in ws]
     _out({"volume_m3": V, "omega_rad_s": ws, "mode": m,
-          "mode_name": [MODE_NAMES[i] for i in m], **mode_speeds(V, R, h, gg)}, as_json)
+          "mode_name": [MODE_NAMES[i] for i in m], **mode_speeds(V, R, h, gg)}, as_json,
+         None if as_json else _units(units, speed=omega))
 
 
 @app.command()
@@ -206,7 +232,7 @@ def kinetostatic(delta: Annotated[str, typer.Option(
                  omega: Annotated[str, typer.Option("--speed", help="Speed for beta.")] = (
                      "30 rad/s"),
                  arc: Annotated[str, typer.Option(help="Liquid arc xi (001 eq 5).")] = "180 deg",
-                 as_json: JsonOpt = False):
+                 as_json: JsonOpt = False, units: UnitsOpt = None):
     """Liquid angle alpha0 (001 eq 3), e_c/e, lambda0 (001 eq 4), friction angle beta (eq 6).\f
 
     Parameters
@@ -221,6 +247,8 @@ def kinetostatic(delta: Annotated[str, typer.Option(
         The liquid options (:mod:`autobalance.cli.liquid`); ``omega`` is the speed for beta.
     arc : str
         Liquid arc xi [rad or with units] (001 eq 5).
+    units : str
+        Units of the text: default the unit the speed was written in.
     """
     from ..liquid import (alpha0, alpha0_residual, balancing_efficiency, eccentricity_ratio,
                           friction_angle, friction_tan_bound, residual_lambda0)
@@ -242,18 +270,15 @@ def kinetostatic(delta: Annotated[str, typer.Option(
           "beta_deg": math.degrees(beta),
           "tan_beta_bound": float(friction_tan_bound(L.dynamic_viscosity, R, xi,
                                                      L.density * V, w)),
-          "efficiency_with_friction": balancing_efficiency(k, ds, beta)}, as_json)
+          "efficiency_with_friction": balancing_efficiency(k, ds, beta)}, as_json,
+         None if as_json else _units(units, speed=omega))
 
 
 def _machine(source, sets, radius, liquid, volume, unbalance):
-    """The machine of ``liquid simulate`` with its ``--set`` and the shortcut options: (config,
-    rotor, balancer, chambers). The shortcuts are overrides of the machine's own keys
-    (``--volume`` is ``liquid.volume``, ``--radius`` ``liquid.chamber_radius``, ``--unbalance``
-    ``rotor.unbalance``; ``--liquid`` sets 001's density and viscosity); the suspension keeps
-    its values. With several chambers the balancer is None (the lumped model takes one
-    chamber) and ``chambers`` lists each (R, h, r_i, V)."""
-    from ..liquid.simulate import film_rotor, liquid_parts, require_liquid_machine
-
+    """The machine of ``liquid simulate`` with its ``--set`` and the shortcut options: the
+    shortcuts are overrides of the machine's own keys (``--volume`` is ``liquid.volume``,
+    ``--radius`` ``liquid.chamber_radius``, ``--unbalance`` ``rotor.unbalance``; ``--liquid``
+    sets 001's density and viscosity); the suspension keeps its values."""
     sets = list(sets or [])
     for key, value in (("liquid.volume", volume), ("liquid.chamber_radius", radius),
                        ("rotor.unbalance", unbalance)):
@@ -263,21 +288,10 @@ def _machine(source, sets, radius, liquid, volume, unbalance):
         L = _liquid(liquid)
         sets += [f"liquid.density={L.density!r}",
                  f"liquid.kinematic_viscosity={L.kinematic_viscosity!r}"]
-    cfg = load_machine(source, sets, balls="liquid")
-    s = cfg.system
-    chambers = [(c.chamber_radius, c.chamber_height, c.inner_radius, c.volume)
-                for c in s.liquid.chambers]
-    if s.liquid.n_chambers > 1:
-        require_liquid_machine(s)
-        s.liquid.unpartitioned("liquid simulate")
-        return cfg, film_rotor(s), None, chambers
-    rot, bal = liquid_parts(s)
-    if liquid:
-        bal = replace(bal, liquid=replace(bal.liquid, name=liquid))
-    return cfg, rot, bal, chambers
+    return load_machine(source, sets, balls="liquid")
 
 
-@app.command()
+@app.command(hidden=True)
 def simulate(source: Annotated[str, typer.Argument(
                  metavar="PRESET|CONFIG", help="A machine with a [liquid] section (either "
                  "axis).")] = "leblanc_003",
@@ -305,7 +319,8 @@ def simulate(source: Annotated[str, typer.Argument(
                                  "couples the wall film and starts at omega_0) or lumped (the "
                                  "calibrated engagement of the first release).")] = "physical",
              as_json: JsonOpt = False, plot: PlotOpt = None, units: UnitsOpt = None):
-    """A machine's rotor + liquid balancer: steady amplitude vs speed (and run-up, fill sweep).\f
+    """Deprecated (goes in 0.4.0): use response (the steady response against speed, --fill-sweep
+    against fill) and simulate (the run-up through the profile).\f
 
     The machine is any config with a ``[liquid]`` section (default the ``leblanc_003``
     preset, 003's bench); ``autobalance simulate`` runs it through its own profile with the
@@ -340,80 +355,48 @@ def simulate(source: Annotated[str, typer.Argument(
         Units of the text (JSON stays SI): default as written in the machine's config.
     """
     from ..config.display import display_units
-    from ..liquid import LiquidModel, fill_sweep, run_up, steady_response
-    from ..liquid.steady import start_speed
-    from ..studies._fill_map import default_fills
+    from ..studies.liquid_response import liquid_response, liquid_run_up
 
     if model_kind not in ("lumped", "physical"):
         raise ConfigError(f"--model = {model_kind!r}: must be 'physical' or 'lumped'")
-    model = LiquidModel(**({"placement": placement} if placement else {}))
-    cfg, rot, bal, chambers = _machine(source, sets, radius, liquid, volume, unbalance)
+    cfg = _machine(source, sets, radius, liquid, volume, unbalance)
     _check_plot(plot, source)
     ws = _list(omega, "speed", "--speeds")
-    physical = model_kind == "physical"
-    L = cfg.system.liquid
-    if bal is None and not physical:
-        raise ParameterError("liquid.chamber_radius", list(L.chamber_radius), f"{L.n_chambers} "
-                             "concentric chambers: the lumped model takes one chamber (--model "
-                             "physical takes several)")
-    if not physical:                # the lumped model is 003's vertical bench
-        L.vertical("for --model lumped (003's bench); --model physical takes a horizontal axis")
-    # gravity: along a vertical axis (the entrainment), in the plane of a horizontal one (the
-    # film's start g/Omega^2 = R/10; the ring planar, docs/liquid/stability.md sec. 3k)
-    g = cfg.system.gravity.g if L.axis == "horizontal" else model.g
-    if physical:
-        from ..liquid.film import physical_run_up as run_up  # noqa: F811
-        from ..liquid.steady import chambers_fill_sweep, chambers_steady_response
-
+    if model_kind == "physical":
         _increasing(ws, omega, "the physical model needs increasing speeds > 0")
-        st = chambers_steady_response(rot, chambers, L.density, ws, g, L.axis)
-    else:
-        st = steady_response(rot, bal, ws, model)
-    w0s = [start_speed(V, R, h, g, axis=L.axis, inner_radius=ri) for R, h, ri, V in chambers]
-    w0 = max(w0s)                                   # every chamber's liquid a ring above it
-    wn = rot.natural_frequency(L.density * L.total_volume)
-    w_end, t_end = float(cfg.spin.nominal_speed), float(cfg.spin.duration)
-    capacity = L.density * sum(V * R for R, _, _, V in chambers)
-    out = {"machine": cfg.name, "model": model_kind, "axis": L.axis, "volume_m3": L.total_volume,
-           "radius_m": L.chamber_radius, "chambers": len(chambers),
-           "liquid": bal.liquid.name if bal is not None else (liquid or "liquid"),
-           "unbalance_kg_m": rot.unbalance,
-           "capacity_kg_m": capacity, "k": capacity / rot.unbalance
-           if rot.unbalance else None, "placement": None if physical else model.placement,
-           "omega_0_rad_s": w0, "omega_n_rad_s": wn, **st}
-    if len(chambers) > 1:
-        out["omega_0_per_chamber_rad_s"] = w0s
-    ru = sw = None
-    if run:
-        if bal is None or L.axis == "horizontal":       # the film model through the profile
-            from ..liquid.simulate import ramp_run_up
+    with as_options({"model": "--model", "model.placement": "--placement"}):
+        out = {"machine": cfg.name, **liquid_response(cfg.system, ws, model=model_kind,
+                                                      placement=placement, fill_sweep=fill)}
+        if liquid and out["chambers"] == 1:
+            out["liquid"] = liquid
+        if run:
+            out["run_up"] = liquid_run_up(cfg.system, float(cfg.spin.nominal_speed),
+                                          float(cfg.spin.duration), model=model_kind,
+                                          placement=placement)
+    _liquid_text_or_json(cfg, out, plot, as_json, units)
 
-            ru = ramp_run_up(cfg.system, w_end, t_end)
-        else:
-            ru = (run_up(rot, bal, w_end, t_end, model.g) if physical
-                  else run_up(rot, bal, model, w_end, t_end, n_out=1500))
+
+def _liquid_text_or_json(cfg, out: dict, plot: Optional[str], as_json: bool,
+                         units: Optional[str]) -> None:
+    """Print a liquid machine's steady response (:func:`autobalance.studies.liquid_response.
+    liquid_response`, with its run-up under ``run_up``) as JSON or as text in the config's
+    units (or ``units``), after writing its figure to ``plot``."""
+    from ..config.display import display_units
+    from ..studies.liquid_response import liquid_machine
+
+    ru = out.pop("run_up", None)
+    if ru is not None:
         out["run_up"] = ru.summary()
-    if fill:
-        from ..studies._fill_map import chamber_fills
-
-        vols = default_fills(L)
-        if physical:
-            per = [[c[:3] + (v,) for c, v in zip(chambers, chamber_fills(L, f))] for f in vols]
-            sw = [chambers_fill_sweep(rot, per, L.density, f * wn, g, L.axis)
-                  for f in (0.6, 0.8, 1.0, 1.2)]
-        else:
-            sw = [fill_sweep(rot, bal, vols, f * wn, model) for f in (0.6, 0.8, 1.0, 1.2)]
-        out["fill_sweep"] = [{"omega_rad_s": s["omega_rad_s"], "volume_m3": s["volume_m3"],
-                              "amplitude_m": s["amplitude_m"],
-                              "optimum_volume_m3": s["optimum_volume_m3"]} for s in sw]
     if plot:
-        plot_run(plot, st, w0, wn, ru, sw, L, out["liquid"], rot, model,
-                  "physical model" if physical else None)
+        m = liquid_machine(cfg.system, out["model"], out["placement"])
+        plot_run(plot, out, out["omega_0_rad_s"], out["omega_n_rad_s"], ru,
+                 out.get("fill_sweep"), cfg.system.liquid, out["liquid"], m.rotor, m.lumped,
+                 "physical model" if m.physical else None)
         out["plot"] = plot
     if not as_json:
         out = {k: v for k, v in out.items() if not isinstance(v, (np.ndarray, list, dict))} | {
-            "max_amplitude_m": float(np.nanmax(st["amplitude_m"])),
-            "max_amplitude_dry_m": float(np.max(st["amplitude_dry_m"]))}
+            "max_amplitude_m": float(np.nanmax(out["amplitude_m"])),
+            "max_amplitude_dry_m": float(np.max(out["amplitude_dry_m"]))}
     _out(out, as_json, None if as_json else display_units(cfg, units))
 
 

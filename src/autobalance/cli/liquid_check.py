@@ -55,7 +55,11 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
     from ..liquid.kinetostatic_check import kinetostatic_vs_physics
     from ..plotting.liquid_check import kinetostatic_check_figure
 
-    cfg, rot, bal, chambers = _machine(source, sets, None, liquid, None, None)
+    from ..studies.liquid_response import liquid_machine
+
+    cfg = _machine(source, sets, None, liquid, None, None)
+    m = liquid_machine(cfg.system)
+    rot, bal, chambers = m.rotor, m.balancer, m.chambers
     L = cfg.system.liquid
     if bal is None:
         raise ConfigError(f"liquid.chamber_radius = {list(L.chamber_radius)}: 001's laws take "
@@ -69,7 +73,7 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
         raise ConfigError(f"--settle = {settle!r}: must be 0-60 s")
     res = kinetostatic_vs_physics(rot, chambers[0], L.density, L.kinematic_viscosity, ws,
                                   arc=bal.arc, settle_time=t)
-    out = {"machine": cfg.name, "liquid": bal.liquid.name, "density_kg_m3": L.density,
+    out = {"machine": cfg.name, "liquid": liquid or bal.liquid.name, "density_kg_m3": L.density,
            "kinematic_viscosity_m2_s": L.kinematic_viscosity, "arc_rad": bal.arc,
            "settle_s": t, **res}
     if plot:

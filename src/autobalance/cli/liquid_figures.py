@@ -1,4 +1,4 @@
-"""The figures of ``autobalance liquid simulate`` (:mod:`autobalance.cli.liquid`) and the one
+"""The figures of ``autobalance response`` of a liquid machine (:mod:`autobalance.cli.response`) and the one
 way the liquid commands save their ``--plot`` (:func:`save_plot`)."""
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ def save_plot(fig: Figure, plot: str) -> None:
 def plot_run(plot: str, st: dict, w0: float, wn: float, ru: RunUp | None, sw: list | None,
              device: LiquidDevice, name: str, rot: VerticalRotor, model: LiquidModel,
              label: str | None = None) -> None:
-    """The figure of ``liquid simulate``: the steady response (with the run-up) or, with a fill
+    """The figure of a liquid machine's ``response``: the steady response (with the run-up) or, with a fill
     sweep, the amplitude vs fill.
 
     Parameters

@@ -53,6 +53,10 @@ SUFFIX_KINDS = (("_rad_s", "speed"), ("_kg_m", "unbalance"), ("_mm_s", "grade"),
                 ("_kg", "mass"), ("_N", "force"), ("_m", "length"), ("_s", "time"))
 
 
+#: Unit suffixes of other kinds that end like one of :data:`SUFFIX_KINDS` (shown unchanged).
+COMPOUND_SUFFIXES = ("_1_s", "_m2_s", "_m_s2", "_N_m", "_n_m", "_s_m", "_kg_m2", "_m_s")
+
+
 def _number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
@@ -81,6 +85,8 @@ def shown(key: str, value: Any, units: DisplayUnits,
     tuple
         (shown key, shown value).
     """
+    if key.endswith(COMPOUND_SUFFIXES):
+        return key, value
     for suffix, kind in SUFFIX_KINDS:
         if not key.endswith(suffix) or len(key) == len(suffix):
             continue

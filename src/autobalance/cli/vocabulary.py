@@ -4,12 +4,14 @@
 ``tests/test_cli_vocabulary.py`` checks every command against it (each option is in it, a name
 takes the same kind of value everywhere, each study takes the shared study options) and the
 documentation's reference of the options is generated from it. :data:`DEPRECATED` holds the
-names an option had before, per command: :func:`rewrite_deprecated` still accepts them for one
-version and says what to use instead.
+names an option had before, per command, and :data:`DEPRECATED_COMMANDS` the commands merged
+into another: :func:`rewrite_deprecated` still accepts them for one version and says what to
+use instead.
 """
 from __future__ import annotations
 
-__all__ = ["DEPRECATED", "REMOVED_IN", "STUDY_SHARED", "VOCABULARY", "rewrite_deprecated"]
+__all__ = ["DEPRECATED", "DEPRECATED_COMMANDS", "REMOVED_IN", "STUDY_SHARED", "VOCABULARY",
+           "rewrite_deprecated"]
 
 #: Option name -> its meaning, the same in every command that takes it.
 VOCABULARY: dict[str, str] = {
@@ -107,7 +109,9 @@ DEPRECATED: dict[tuple[str, ...], dict[str, str]] = {
     ("study", "speed-map"): {"--damping": "--c-r"},
     ("study", "runup"): {"--fraction": "--threshold"},
     ("design",): {"--starts": "--random"},
-    ("analyze", "tolerance"): {"--fraction": "--residual-fraction"},
+    # the 000 method of `study tolerances` (`analyze tolerance` gave it beside the bound)
+    ("analyze", "tolerance"): {"--fraction": "--method 000 --residual-fraction",
+                               "--residual-fraction": "--method 000 --residual-fraction"},
     ("analyze", "equilibria"): {"--full": "--full-model"},
     ("reproduce",): {"--out": "--out-dir"}, ("demo",): {"--out": "--out-dir"},
     ("liquid", "surface"): {**_LIQUID_SPEEDS, "--g": "--gravity"},
@@ -118,12 +122,23 @@ DEPRECATED: dict[tuple[str, ...], dict[str, str]] = {
     ("liquid", "kinetostatic"): {"--omega": "--speed"},
 }
 
+#: Former command -> (the command it is now, or None where it still runs itself; what to use,
+#: for the warning), accepted until :data:`REMOVED_IN`.
+DEPRECATED_COMMANDS: dict[tuple[str, ...], tuple[tuple[str, ...] | None, str]] = {
+    ("analyze", "response"): (("response",), "response --speed S [--angles A]"),
+    ("analyze", "tolerance"): (("study", "tolerances"), "study tolerances"),
+    ("liquid", "simulate"): (None, "response (the steady response against speed), simulate "
+                                   "(the run-up through the profile) or study fill-map (the "
+                                   "response against fill)"),
+}
+
 #: The command groups (their subcommand is part of the command's name).
 GROUPS = ("study", "analyze", "liquid")
 
 
 def rewrite_deprecated(argv: list[str]) -> tuple[list[str], list[str]]:
-    """The arguments with every former option name of their command replaced by its name now
+    """The arguments with a former command (:data:`DEPRECATED_COMMANDS`) replaced by the one it
+    is now and every former option name of their command replaced by its name now
     (:data:`DEPRECATED`), and one warning per name replaced.
 
     Parameters
@@ -137,19 +152,27 @@ def rewrite_deprecated(argv: list[str]) -> tuple[list[str], list[str]]:
         The arguments to parse; the lines to print on stderr.
     """
     n = 2 if argv and argv[0] in GROUPS else 1
-    table = DEPRECATED.get(tuple(argv[:n]))
-    if not table:
+    command = tuple(argv[:n])
+    table = DEPRECATED.get(command, {})
+    said: dict[str, str] = {}
+    head = list(command)
+    if command in DEPRECATED_COMMANDS:
+        now, use = DEPRECATED_COMMANDS[command]
+        said[" ".join(command)] = use
+        head = list(now) if now is not None else head
+    if not table and not said:
         return list(argv), []
-    out, said = list(argv[:n]), {}
+    out = head
     for k, tok in enumerate(argv[n:], n):
         if tok == "--":                       # the rest are values
             out += argv[k:]
             break
         name, eq, value = tok.partition("=")
         if name in table:
-            said[name] = table[name]
-            tok = table[name] + eq + value
+            said[f"{' '.join(command)} {name}"] = table[name]
+            *extra, name = table[name].split()
+            out += extra
+            tok = name + eq + value
         out.append(tok)
-    command = " ".join(argv[:n])
-    return out, [f"warning: {command} {old} is deprecated: use {new} (the old name goes in "
-                 f"{REMOVED_IN})" for old, new in said.items()]
+    return out, [f"warning: {old} is deprecated: use {new} (the old name goes in {REMOVED_IN})"
+                 for old, new in said.items()]

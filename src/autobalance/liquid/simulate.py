@@ -541,7 +541,7 @@ def ramp_run_up(system: System, omega_end: float, duration: float, *,
     """A machine's linear run-up from rest to ``omega_end`` in ``duration`` through the film
     model (:func:`simulate_liquid`: the film starts where the spin-up says, every chamber's
     film coupled with the rotor), as the lumped model's :class:`autobalance.liquid.RunUp`, for
-    ``liquid simulate --run-up`` with several chambers or on a horizontal axis (one chamber on
+    the liquid models' linear run-up with several chambers or on a horizontal axis (one chamber on
     a vertical axis keeps :func:`autobalance.liquid.film.physical_run_up`, which starts the film
     at 003 eq 6's speed).
 

@@ -151,7 +151,7 @@ class LiquidDevice:
             return self
         raise ParameterError("liquid.chamber_radius", list(self.chamber_radius),
                              f"{self.n_chambers} concentric chambers: {what} takes one chamber "
-                             "(simulate, sweep, study fill-map and liquid simulate's physical model take "
+                             "(simulate, sweep, study fill-map and response's physical model take "
                              "several; docs/liquid/machine.md sec. 3g)")
 
     def vertical(self, why: str) -> LiquidDevice:

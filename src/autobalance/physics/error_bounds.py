@@ -4,6 +4,8 @@
 * Race eccentricity, 000 eq (44)-(47): the equilibrium itself moves.
 * Suspension dry friction, 000 eq (48)-(49): a small residual force cannot move the tub.
 * Ball natural frequency about its equilibrium, 000 eq (52)-(55).
+* All of them at one speed, with the true worst case of the balls at rest:
+  :func:`error_bound_summary`.
 
 Pure functions of SI floats/arrays (angles [rad], speeds [rad/s], lengths [m], forces [N],
 unbalances [kg*m]); a System is passed where the harmonic response is needed.
@@ -23,8 +25,10 @@ from ..models._validate import finite as _finite
 from ..models._validate import nonneg as _nonneg
 from ..models._validate import positive as _positive
 from .equilibria import find_equilibria
+from .iso1940 import grade_class, grade_value
 from .unbalance import residual_unbalance
 from .vibratory import _speed, force_jacobian, gain_phase
+from .worst_case import residual_bound
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -33,7 +37,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ball_natural_frequencies", "ball_natural_frequency_approx", "ball_natural_frequency_single",
-    "eccentricity_deviation_exact", "eccentricity_deviation_single", "eccentricity_equilibrium", "eccentricity_residual_linear",
+    "eccentricity_deviation_exact", "error_bound_summary", "eccentricity_deviation_single", "eccentricity_equilibrium", "eccentricity_residual_linear",
     "friction_force_for_deviation", "rolling_deadband", "rolling_deadband_single",
     "rolling_resistance_force", "symmetric_rolling_deviation", "suspension_friction_deviation",
     "suspension_is_stuck",
@@ -476,3 +480,75 @@ def ball_natural_frequencies(system: System, speed: float, alpha: npt.ArrayLike)
     freq = np.abs(np.sqrt(lam.astype(complex)).imag)
     out = np.where(neutral, 0.0, np.where(lam.real < 0, freq, np.nan))
     return np.sort(out)
+
+
+# -- every bound at one speed ------------------------------------------------------------------
+def error_bound_summary(system: System, speed: float, rolling_resistance: float,
+                        nominal_speed: float) -> dict:
+    """Every position-error bound of the balls at one speed, and the true worst-case residual
+    unbalance of the balls at rest: rolling resistance (000 eq 24, 27-32), race eccentricity
+    (eq 44-47), suspension dry friction (eq 48-49), the balls' natural frequencies (eq 52-55)
+    and :func:`autobalance.physics.worst_case.residual_bound` with its ISO 1940 grade.
+
+    The N-ball bands and frequencies are taken about the balanced state of the balancer with
+    its race eccentricity set to 0 (the rolling dead band of the ideal race); on a family of
+    balanced states (N >= 3) the deviations are those across the family and its neutral
+    directions have frequency 0.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (N >= 1 balls); its race eccentricity, damper friction and geometry.
+    speed : float
+        Spin speed w [rad/s], > 0, above the balancing onset (000 eq 12).
+    rolling_resistance : float
+        Rolling-resistance coefficient f/r of every ball [-], >= 0.
+    nominal_speed : float
+        Highest nominal operating speed Omega [rad/s] of the ISO 1940 grade.
+
+    Returns
+    -------
+    dict
+        ``speed_rad_s``, ``f_r``, ``n_balls``; rolling resistance: ``rolling_single_ball_rad``
+        (eq 24), ``rolling_eq32_rad`` (eq 32), ``rolling_max_deviation_rad`` (N,) and
+        ``rolling_max_residual_unbalance_kg_m`` (eq 27-31, 22), ``neutral_directions``;
+        eccentricity: ``eccentricity_deviation_rad`` (N,), ``eccentricity_residual_unbalance_kg_m``
+        (eq 46-47), ``eccentricity_eq45_single_rad`` (eq 45); ``friction_eq49_rad``
+        (eq 49); ball frequencies: ``ball_frequency_eq54_rad_s``, ``ball_frequency_eq55_rad_s``,
+        ``ball_frequencies_rad_s`` (N,) (eq 52); the worst case at rest: ``worst_residual_kg_m``,
+        ``worst_grade_G_mm_s``, ``worst_grade_class_G_mm_s``, ``worst_rolling_kg_m``,
+        ``worst_eccentricity_kg_m``, ``worst_friction_kg_m``, ``worst_separated``,
+        ``capacity_kg_m``. Angles [rad], frequencies [rad/s], unbalances [kg*m], grades [mm/s].
+    """
+    w = _speed(speed)
+    fr = _nonneg("rolling_resistance", rolling_resistance)
+    omega = _positive("nominal_speed", nominal_speed)
+    s, b, sus = system, system.balancer, system.suspension
+    e = s.rotor.unbalance / s.rotor.mass
+    ideal = dataclasses.replace(s, balancer=dataclasses.replace(b, eccentricity=0.0))
+    db = rolling_deadband(ideal, w, fr)
+    ecc = eccentricity_equilibrium(s, w)
+    wb = residual_bound(s, w, rolling_resistance=fr)
+    g = float(grade_value(wb["worst_residual_kg_m"], s.total_mass, omega))
+    return {
+        "speed_rad_s": w, "f_r": fr, "n_balls": b.n_balls,
+        "rolling_single_ball_rad": rolling_deadband_single(s, w, fr),
+        "rolling_eq32_rad": symmetric_rolling_deviation(b.race_radius, e, fr),
+        "rolling_max_deviation_rad": db["max_deviation_rad"],
+        "rolling_max_residual_unbalance_kg_m": db["max_residual_unbalance_kg_m"],
+        "neutral_directions": db["neutral_directions"],
+        "eccentricity_deviation_rad": ecc["deviation_rad"],
+        "eccentricity_residual_unbalance_kg_m": ecc["residual_unbalance_kg_m"],
+        "eccentricity_eq45_single_rad": eccentricity_deviation_single(
+            e, b.eccentricity, b.eccentricity_angle),
+        "friction_eq49_rad": suspension_friction_deviation(
+            sus.dry_friction_force, sus.dry_friction_angle, s.rotor.unbalance, w),
+        "ball_frequency_eq54_rad_s": ball_natural_frequency_single(s, w),
+        "ball_frequency_eq55_rad_s": ball_natural_frequency_approx(w, e, b.race_radius),
+        "ball_frequencies_rad_s": ball_natural_frequencies(ideal, w, db["alpha_eq_rad"]),
+        "worst_residual_kg_m": wb["worst_residual_kg_m"], "worst_grade_G_mm_s": g,
+        "worst_grade_class_G_mm_s": float(grade_class(g)),
+        "worst_rolling_kg_m": wb["rolling_kg_m"], "worst_eccentricity_kg_m": wb["eccentricity_kg_m"],
+        "worst_friction_kg_m": wb["friction_kg_m"], "worst_separated": wb["separated"],
+        "capacity_kg_m": wb["capacity_kg_m"],
+    }

@@ -288,7 +288,7 @@ def _draw_cog(ax_cog, grade, ang, idx, n, grade_limit, label):
 
 
 # -- response figure ---------------------------------------------------------------------------
-def plot_response(table: dict, *, log_amplitude: bool = False,
+def plot_response(table: dict, *, log_amplitude: bool = False, speed_unit: str = "rad/s",
                   figsize: tuple[float, float] = (10.0, 7.0)) -> Figure:
     """Amplitude and phase lag of the unbalance response versus spin speed, per axis.
 
@@ -300,6 +300,8 @@ def plot_response(table: dict, *, log_amplitude: bool = False,
         "natural_frequencies_rad_s" [rad/s] (None entries are drawn as gaps).
     log_amplitude : bool
         Logarithmic amplitude axis.
+    speed_unit : str
+        Unit of the speed axis: rad/s, rpm or Hz.
     figsize : tuple of float
         Figure size [inch].
 
@@ -307,10 +309,14 @@ def plot_response(table: dict, *, log_amplitude: bool = False,
     -------
     matplotlib.figure.Figure
     """
+    f = _SPEED_UNITS.get(speed_unit)
+    if f is None:
+        raise ValueError(f"speed_unit = {speed_unit!r}: must be one of {', '.join(_SPEED_UNITS)}")
+
     def arr(key):
         return np.asarray([np.nan if v is None else v for v in table.get(key, [])], dtype=float)
 
-    w = arr("speed_rad_s")
+    w = f * arr("speed_rad_s")
     fig = _new_figure(figsize)
     fig.suptitle(table.get("title", "Unbalance response (balls fixed)"), fontsize=12)
     ax_a = fig.add_subplot(2, 1, 1)
@@ -325,9 +331,10 @@ def plot_response(table: dict, *, log_amplitude: bool = False,
     for axis, colour, v in zip(("x", "y"), ("tab:blue", "tab:orange"), wn):
         if np.isfinite(v):
             for ax in (ax_a, ax_p):
-                ax.axvline(v, color=colour, ls=":", lw=1.0)
-            ax_p.annotate(f"$\\omega_{axis}$ = {v:.4g} rad/s\n({v / (2 * math.pi):.4g} Hz)",
-                          xy=(v, 0.03), xycoords=("data", "axes fraction"), xytext=(3, 0),
+                ax.axvline(f * v, color=colour, ls=":", lw=1.0)
+            ax_p.annotate(f"$\\omega_{axis}$ = {f * v:.4g} {speed_unit}\n"
+                          f"({v / (2 * math.pi):.4g} Hz)",
+                          xy=(f * v, 0.03), xycoords=("data", "axes fraction"), xytext=(3, 0),
                           textcoords="offset points", ha="left", va="bottom", fontsize=8,
                           color=colour, bbox=dict(fc="white", ec="none", alpha=0.8, pad=1))
     if log_amplitude:
@@ -338,9 +345,9 @@ def plot_response(table: dict, *, log_amplitude: bool = False,
     ax_p.set_ylabel(r"phase lag $\varphi$ [deg]")
     ax_p.set_ylim(0.0, 180.0)
     ax_p.set_yticks([0, 45, 90, 135, 180])
-    ax_p.set_xlabel(r"spin speed $\omega$ [rad/s]")
-    top = ax_a.secondary_xaxis("top", functions=(lambda x: x / (2 * math.pi),
-                                                 lambda f: f * 2 * math.pi))
+    ax_p.set_xlabel(rf"spin speed $\omega$ [{speed_unit}]")
+    top = ax_a.secondary_xaxis("top", functions=(lambda x: x / f / (2 * math.pi),
+                                                 lambda hz: hz * 2 * math.pi * f))
     top.set_xlabel("spin speed [Hz]")
     for ax in (ax_a, ax_p):
         ax.grid(True, alpha=0.3)

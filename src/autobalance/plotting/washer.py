@@ -276,7 +276,7 @@ def force_extreme_ratio_figure(speeds: ArrayLike, ratio: ArrayLike,
 
 
 # -- figures of data computed elsewhere (the closed-form curves of any machine are evaluated in
-# -- autobalance.cli.washer_figures and drawn by the *_figure functions above)
+# -- autobalance.studies.washer_figures and drawn by the *_figure functions above)
 
 
 def speed_title(speed: float, regime: str) -> str:

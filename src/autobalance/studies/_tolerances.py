@@ -169,12 +169,12 @@ def compute_tolerances(base: str | Path | Config, *, grade: float = 16.0,
         warnings.append(d["reason"])
     unreachable = unreachable_tolerances(d) if d["feasible"] else []
     if p["balancing"] and not p["separated"]:
-        warnings.append(f"at {w:.4g} rad/s the balls can rest almost anywhere with the machine's "
-                        "own tolerances (no dead-band gap): the worst case is the trivial bound "
+        warnings.append("at the speed of the bound the balls can rest almost anywhere with the "
+                        "machine's own tolerances (no dead-band gap): the worst case is the trivial bound "
                         "U + M_b rho + sum m_i R; it depends on where they last moved")
     if not p.get("liquid_linear", True):
-        warnings.append(f"at {w:.4g} rad/s the balls' rest states reach whirls beyond the "
-                        f"liquid's linear range ({p['liquid_linear_range_m']:.3g} m: its rings "
+        warnings.append("at the speed of the bound the balls' rest states reach whirls beyond "
+                        f"the liquid's linear range ({p['liquid_linear_range_m']:.3g} m: its rings "
                         "break): no bound beside this liquid; the worst case is the trivial "
                         "bound")
     if p["rme_worst"] < 0:

@@ -1,7 +1,7 @@
 """Figures of the washer analysis (000) for any machine: evaluate the closed forms of
 :mod:`autobalance.physics` and draw them with :mod:`autobalance.plotting.washer` (which only
-draws). Used by ``autobalance analyze``; the seed-000 targets compute their data in
-:mod:`autobalance.papers.p000` and call the same ``*_figure`` functions."""
+draws). ``autobalance analyze`` draws its ``--plot`` figures with these; the seed-000 targets
+compute their data in :mod:`autobalance.papers.p000` and call the same ``*_figure`` functions."""
 from __future__ import annotations
 
 import math
@@ -34,11 +34,24 @@ def _titles(system, speeds) -> list:
     return [speed_title(w, speed_regime(system, w)) for w in speeds]
 
 
-
 def plot_vibratory_force(system: System, speeds: npt.ArrayLike,
                          labels: Sequence[str] | None = None) -> Figure:
-    """:func:`vibratory_force_figure` of ``system`` at ``speeds`` [rad/s] (one ball, mR = Me);
-    ``labels`` replace the panel titles."""
+    """:func:`~autobalance.plotting.washer.vibratory_force_figure`: the normalised vibratory
+    force on one ball (mR = Me) against its angle, 000 eq (11), Fig. 6.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (its drum, suspension and race radius).
+    speeds : float or array_like
+        Spin speeds w [rad/s], > 0: one panel each.
+    labels : sequence of str, optional
+        Panel titles (default the speed and its regime).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.vibratory import single_ball_force
 
     speeds = list(np.atleast_1d(speeds))
@@ -46,11 +59,24 @@ def plot_vibratory_force(system: System, speeds: npt.ArrayLike,
                                   labels or _titles(system, speeds))
 
 
-
 def plot_ball_forces(system: System, speeds: npt.ArrayLike, angles: npt.ArrayLike) -> Figure:
-    """:func:`ball_forces_figure` of the machine's own balancer at ``speeds`` [rad/s]: each
-    ball's vibratory force (000 eq 8, 39-42: its masses, R, rho, beta) against its own angle
-    with the others at ``angles`` [rad], and its rest band +-f/r (its stiction)."""
+    """:func:`~autobalance.plotting.washer.ball_forces_figure` of the machine's own balancer:
+    each ball's vibratory force (000 eq 8, 39-42: its masses, R, rho, beta) against its own
+    angle with the others held, and its rest band +-f/r (its stiction; eq 21).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (N >= 1 balls).
+    speeds : float or array_like
+        Spin speeds w [rad/s], > 0: one panel each.
+    angles : array_like (N,)
+        The balls' angles [rad] at which the others are held.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.vibratory import vibratory_forces
 
     b = system.balancer
@@ -71,10 +97,25 @@ def plot_ball_forces(system: System, speeds: npt.ArrayLike, angles: npt.ArrayLik
 
 def plot_residual_bound(system: System, speeds: npt.ArrayLike,
                         f_r: float | npt.ArrayLike | None = None) -> Figure:
-    """:func:`residual_bound_figure` of the machine's own balancer: the true worst-case residual
-    of its balls at rest (:func:`autobalance.physics.worst_case.residual_bound`, with its
-    f/r or ``f_r`` [-], its rho, beta and damper friction) against ``speeds`` [rad/s], and each
-    cause alone; blank below the balancing onset."""
+    """:func:`~autobalance.plotting.washer.residual_bound_figure` of the machine's own
+    balancer: the true worst-case residual of its balls at rest
+    (:func:`autobalance.physics.worst_case.residual_bound`; 000 eq 20-22, 46-49) with its rho,
+    beta and damper friction against speed, and each cause alone; blank below the balancing
+    onset (000 eq 12).
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine (N >= 1 balls).
+    speeds : array_like
+        Spin speeds w [rad/s], > 0.
+    f_r : float or array_like, optional
+        Rolling-resistance coefficient f/r [-], one or one per ball (default its stiction).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.worst_case import residual_bound
 
     w = np.asarray(speeds, float)
@@ -100,8 +141,22 @@ def plot_residual_bound(system: System, speeds: npt.ArrayLike,
 
 def plot_vibratory_force_damping(system: System, speeds: npt.ArrayLike,
                                  damping_scales: Sequence[float] = (0.5, 1.0, 2.0)) -> Figure:
-    """:func:`vibratory_force_damping_figure` of ``system`` at ``speeds`` [rad/s] for the
-    suspension damping factors ``damping_scales`` [-]."""
+    """:func:`~autobalance.plotting.washer.vibratory_force_damping_figure`: the one-ball
+    vibratory force (000 eq 11) for scaled suspension damping, 000 Fig. 7.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    speeds : float or array_like
+        Spin speeds w [rad/s], > 0: one panel each.
+    damping_scales : sequence of float
+        Factors on the suspension damping c_x, c_y [-].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.vibratory import single_ball_force
 
     speeds = list(np.atleast_1d(speeds))
@@ -111,11 +166,24 @@ def plot_vibratory_force_damping(system: System, speeds: npt.ArrayLike,
         _titles(system, speeds))
 
 
-
 def plot_rolling_deviation(system: System, speeds: npt.ArrayLike,
                            f_r_values: Sequence[float] = (1e-3, 2e-3)) -> Figure:
-    """:func:`rolling_deviation_figure` of ``system`` (eq 24) at ``speeds`` [rad/s] for the
-    rolling resistances ``f_r_values`` [-]."""
+    """:func:`~autobalance.plotting.washer.rolling_deviation_figure`: the largest position
+    error of one ball from rolling resistance against speed, 000 eq (24), Fig. 12.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    speeds : array_like
+        Spin speeds w [rad/s], > 0.
+    f_r_values : sequence of float
+        Rolling-resistance coefficients f/r [-]: one curve each.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.error_bounds import rolling_deadband_single
 
     w = np.asarray(speeds, float)
@@ -123,13 +191,30 @@ def plot_rolling_deviation(system: System, speeds: npt.ArrayLike,
                                         for fr in f_r_values}, system.natural_frequencies)
 
 
-
 def plot_eccentricity_deviation(eccentricity: float, rhos: Sequence[float],
                                 betas: npt.ArrayLike | None = None, system: System | None = None,
                                 speed: float | None = None) -> Figure:
-    """:func:`eccentricity_deviation_figure` of eq 45 for the eccentricity e [m] and ring
-    eccentricities ``rhos`` [m] over ``betas`` [rad]; with ``system`` and ``speed`` [rad/s] also
-    the exact root of eq 44 on every tenth beta."""
+    """:func:`~autobalance.plotting.washer.eccentricity_deviation_figure`: the one-ball error
+    from a race eccentricity, 000 eq (45), and with ``system`` and ``speed`` also the exact
+    root of eq (44) on every tenth beta.
+
+    Parameters
+    ----------
+    eccentricity : float
+        Rotor eccentricity e = Me/M [m], > 0.
+    rhos : sequence of float
+        Race eccentricities rho [m]: one curve each.
+    betas : array_like, optional
+        Race eccentricity angles beta [rad] (default 0 to 2 pi, 181 points).
+    system : autobalance.models.System, optional
+        The machine of the exact root.
+    speed : float, optional
+        Spin speed w [rad/s] of the exact root, > 0.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.error_bounds import eccentricity_deviation_exact, eccentricity_deviation_single
 
     b = np.linspace(0, 2 * math.pi, 181) if betas is None else np.asarray(betas, float)
@@ -141,10 +226,24 @@ def plot_eccentricity_deviation(eccentricity: float, rhos: Sequence[float],
         b, {rho: eccentricity_deviation_single(eccentricity, rho, b) for rho in rhos}, exact)
 
 
-
 def plot_force_extreme_ratio(system: System, speeds: npt.ArrayLike,
                              published: float | None = None) -> Figure:
-    """:func:`force_extreme_ratio_figure` of ``system`` at ``speeds`` [rad/s]."""
+    """:func:`~autobalance.plotting.washer.force_extreme_ratio_figure`: the ratio of the
+    negative to the positive extreme of the one-ball vibratory force, 000 eq (11), Fig. 6.
+
+    Parameters
+    ----------
+    system : autobalance.models.System
+        The machine.
+    speeds : array_like
+        Spin speeds w [rad/s], > 0.
+    published : float, optional
+        The published ratio [-], drawn as a line.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from ..physics.vibratory import force_extreme_ratio
 
     w = np.asarray(speeds, float)
