@@ -118,3 +118,26 @@ def test_bad_input_one_line(args, start, capsys, tmp_path, monkeypatch):
     code, out, err = run_main(capsys, args)
     assert code == 2 and not out
     assert err.startswith(start) and len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.slow
+def test_liquid_commands_default_to_the_machines_own_speeds(capsys):
+    """Without --speeds, liquid stability and kinetostatic-check take the machine's range
+    (machine_speeds): on 003's bench (omega_n 54 rad/s, nominal 100 rad/s) 10.8-120 rad/s and
+    40.5-100 rad/s; on the top-loader's ring (omega_n 16.7 rad/s, 800 rpm) other speeds."""
+    from autobalance.studies.liquid_response import machine_speeds, natural_frequency
+
+    code, out, err = run_main(capsys, ["liquid", "stability", "leblanc_003", "--json"])
+    assert code == 0, err
+    w = json.loads(out)["omega_rad_s"]
+    assert len(w) == 45 and w[0] == pytest.approx(0.2 * 54.0) and w[-1] == pytest.approx(120.0)
+    code, out, err = run_main(capsys, ["liquid", "kinetostatic-check", "leblanc_003",
+                                       "--settle", "0 s", "--json"])
+    assert code == 0, err
+    w = json.loads(out)["omega_rad_s"]
+    assert len(w) == 13 and w[0] == pytest.approx(40.5) and w[-1] == pytest.approx(100.0)
+    ring = load_config("examples/toploader-ring.toml")
+    wn = natural_frequency(ring.system)
+    g = machine_speeds(ring.system, ring.spin.nominal_speed, 45, low=0.2, high=2.2,
+                       high_nominal=1.2)
+    assert g[0] == pytest.approx(0.2 * wn) and g[-1] == pytest.approx(1.2 * 800 * RPM)

@@ -496,9 +496,10 @@ def stability(source: Annotated[str, typer.Argument(
                   metavar="PRESET|CONFIG", help="A machine with a [liquid] section (a vertical "
                   "or horizontal axis), alone or beside balls.")] = "leblanc_003",
               sets: SetOpt = None,
-              omega: Annotated[str, typer.Option(
+              omega: Annotated[Optional[str], typer.Option(
                   "--speeds", metavar=VALUES_METAVAR, help=grammar_help(
-                  "Speeds", "10:120 rad/s:45", tail="increasing"))] = "10:120 rad/s:45",
+                  "Speeds", "10:120 rad/s:45", tail="increasing; default 45 speeds from 0.2 "
+                  "omega_n to 2.2 omega_n or 1.2x the nominal speed"))] = None,
               cells: Annotated[int, typer.Option(
                   "--cells", help="Cells around each wall.")] = 64,
               plot: PlotOpt = None, as_json: JsonOpt = False):
@@ -515,8 +516,10 @@ def stability(source: Annotated[str, typer.Argument(
         a horizontal axis one or two balls).
     sets : list of str
         ``--set`` overrides.
-    omega : str
-        Speeds [rad/s] (with units), increasing.
+    omega : str or None
+        Speeds [rad/s] (with units), increasing; None: 45 from 0.2 omega_n to the larger of 2.2
+        omega_n and 1.2 times the nominal speed (:func:`autobalance.studies.liquid_response.
+        machine_speeds`).
     cells : int
         Cells around each wall [-] (first order: the growth rates converge as 1/cells).
     plot : str or None
@@ -529,7 +532,13 @@ def stability(source: Annotated[str, typer.Argument(
 
     _check_plot(plot, source)
     cfg = load_machine(source, sets, balls="liquid")
-    ws = _list(omega, "speed", "--speeds")
+    if omega is None:
+        from ..studies.liquid_response import machine_speeds
+
+        ws = [float(w) for w in machine_speeds(cfg.system, cfg.spin.nominal_speed, 45,
+                                               low=0.2, high=2.2, high_nominal=1.2)]
+    else:
+        ws = _list(omega, "speed", "--speeds")
     balls = cfg.system.balancer.n_balls > 0
     with as_options({"n_cells": "--cells"}):
         res = (balanced_machine_stability(cfg.system, ws, cells) if balls
@@ -553,7 +562,7 @@ def stability(source: Annotated[str, typer.Argument(
         from ..config.display import display_units
 
         # speeds in the unit --speeds was written in (e.g. rpm), else as the config writes them
-        unit = written_unit(omega)
+        unit = written_unit(omega or "")
         du = display_units(cfg, f"speed={unit}" if unit else None)
         sp = lambda x: du.fmt(x, "speed")       # noqa: E731
         rng = ", ".join(f"{sp(lo)} - {sp(hi)}" for lo, hi in res["unstable_ranges_rad_s"])

@@ -21,9 +21,10 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
                        sets: SetOpt = None,
                        liquid: Annotated[Optional[str], typer.Option(
                            help="One of 001's liquids (sets density and viscosity).")] = None,
-                       omega: Annotated[str, typer.Option(
+                       omega: Annotated[Optional[str], typer.Option(
                            "--speeds", metavar=VALUES_METAVAR, help=grammar_help(
-                           "Speeds", "40:100 rad/s:13", tail="increasing"))] = "40:100 rad/s:13",
+                           "Speeds", "40:100 rad/s:13", tail="increasing; default 13 speeds "
+                           "from 0.75 omega_n to 1.85 omega_n or the nominal speed"))] = None,
                        settle: Annotated[str, typer.Option(
                            help="Also run the coupled film this long at each speed ('0 s': "
                                 "the quasi-static liquid only).")] = "4 s",
@@ -40,8 +41,10 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
         ``PATH=VALUE`` overrides (``--set``).
     liquid : str
         One of 001's liquids (density and viscosity); default the machine's.
-    omega : str
-        Increasing speeds [rad/s, or with units].
+    omega : str or None
+        Increasing speeds [rad/s, or with units]; None: 13 from 0.75 omega_n to the larger of
+        1.85 omega_n and the nominal speed (:func:`autobalance.studies.liquid_response.
+        machine_speeds`).
     settle : str
         Time of each coupled-film run [s, or with units]; 0: none.
     as_json : bool
@@ -66,8 +69,14 @@ def kinetostatic_check(source: Annotated[str, typer.Argument(
                           "one chamber")
     L.vertical("for 001's kinetostatic laws (a vertical rotor)")
     _check_plot(plot, source)
-    ws = _list(omega, "speed", "--speeds")
-    _increasing(ws, omega, "must be increasing speeds > 0")
+    if omega is None:
+        from ..studies.liquid_response import machine_speeds
+
+        ws = [float(w) for w in machine_speeds(cfg.system, cfg.spin.nominal_speed, 13,
+                                               low=0.75, high=1.85, high_nominal=1.0)]
+    else:
+        ws = _list(omega, "speed", "--speeds")
+        _increasing(ws, omega, "must be increasing speeds > 0")
     t = _q(settle, "time", "settle")
     if not 0 <= t <= 60:
         raise ConfigError(f"--settle = {settle!r}: must be 0-60 s")

@@ -31,8 +31,9 @@ if TYPE_CHECKING:
     from ..liquid import LiquidBalancer, LiquidModel, RunUp, VerticalRotor
     from ..models import System
 
-__all__ = ["LIQUID_MODELS", "FILL_SPEED_RATIOS", "LiquidMachine", "liquid_machine",
-           "liquid_response", "liquid_run_up"]
+__all__ = ["LIQUID_MODELS", "FILL_SPEED_RATIOS", "LiquidMachine", "default_speeds",
+           "liquid_machine", "liquid_response", "liquid_run_up", "machine_speeds",
+           "natural_frequency"]
 
 #: The liquid models of :func:`liquid_response`.
 LIQUID_MODELS = ("physical", "lumped")
@@ -236,9 +237,51 @@ def liquid_run_up(system: System, omega_end: float, duration: float, *,
     return physical_run_up(m.rotor, m.balancer, omega_end, duration, m.lumped.g)
 
 
+def natural_frequency(system: System) -> float:
+    """The natural frequency of a liquid machine's rotor with the liquid's mass [rad/s]
+    (:meth:`autobalance.liquid.VerticalRotor.natural_frequency`).
+
+    Parameters
+    ----------
+    system : System
+        A machine with a ``[liquid]`` section.
+    """
+    from ..liquid.simulate import film_rotor
+
+    L = system.liquid
+    return float(film_rotor(system).natural_frequency(L.density * L.total_volume))
+
+
+def machine_speeds(system: System, nominal_speed: float, n: int, *, low: float = 0.0,
+                   high: float = 1.5, high_nominal: float = 2.0) -> np.ndarray:
+    """A liquid machine's own speed grid: ``n`` speeds from ``low`` times its natural frequency
+    with the liquid omega_n (or, for ``low`` = 0, 1/``n`` of the top) up to the larger of
+    ``high`` omega_n and ``high_nominal`` times the nominal speed.
+
+    Parameters
+    ----------
+    system : System
+        A machine with a ``[liquid]`` section.
+    nominal_speed : float
+        The profile's nominal speed [rad/s].
+    n : int
+        Number of speeds [-], >= 2.
+    low, high, high_nominal : float
+        Ratios [-] to omega_n and to the nominal speed.
+
+    Returns
+    -------
+    ndarray
+        Speeds [rad/s], increasing and > 0.
+    """
+    wn = natural_frequency(system)
+    top = max(high * wn, high_nominal * float(nominal_speed))
+    return np.linspace(low * wn if low > 0 else top / n, top, n)
+
+
 def default_speeds(system: System, nominal_speed: float, n: int = 200) -> np.ndarray:
-    """The default speeds of :func:`liquid_response`: ``n`` speeds from 1/``n`` of the larger of
-    twice the nominal speed and 1.5 times the natural frequency with the liquid, up to it.
+    """The default speeds of :func:`liquid_response`: ``n`` speeds up to the larger of twice the
+    nominal speed and 1.5 times the natural frequency with the liquid (:func:`machine_speeds`).
 
     Parameters
     ----------
@@ -254,9 +297,4 @@ def default_speeds(system: System, nominal_speed: float, n: int = 200) -> np.nda
     ndarray
         Speeds [rad/s], increasing and > 0.
     """
-    from ..liquid.simulate import film_rotor
-
-    L = system.liquid
-    wn = film_rotor(system).natural_frequency(L.density * L.total_volume)
-    top = max(2.0 * float(nominal_speed), 1.5 * wn)
-    return np.linspace(top / n, top, n)
+    return machine_speeds(system, nominal_speed, n)
