@@ -25,7 +25,7 @@ import numpy as np
 def _setup(mu_r: float, grade: float, k: int):
     from autobalance.models import InitialState
     from autobalance.physics.iso1940 import unbalance_value
-    from autobalance.simulate.run import run_inputs
+    from autobalance.simulate.pack import run_inputs
     from autobalance.studies.common import case_sets, load
     base = load("vub_jeffcott_004")
     sets = case_sets(base, mu_r, 1.0)

@@ -224,6 +224,17 @@ def cycles(graph: dict, mods: dict, root: str = ROOT) -> set:
     return found
 
 
+def module_cycles(src: Path = SRC, root: str = ROOT) -> set:
+    """"module cycle: a, b" for every cycle between modules (imports inside functions
+    included), a package's __init__ left out (it imports its modules to re-export them)."""
+    mods = module_files(src, root)
+    pkgs = {m for m, (_, is_pkg) in mods.items() if is_pkg}
+    edges = {m: {t for t in ts if t not in pkgs} for m, ts in import_graph(src, root).items()
+             if m not in pkgs}
+    return {"module cycle: " + ", ".join(_short(x, root) for x in c)
+            for c in strongly_connected(set(edges), edges)}
+
+
 def layer_of(layers) -> dict:
     return {u: i for i, group in enumerate(layers) for u in group}
 
@@ -279,6 +290,23 @@ def _tree(tmp_path, files: dict) -> Path:
         p.parent.mkdir(parents=True, exist_ok=True)
         p.write_text(text)
     return tmp_path
+
+
+def test_no_import_cycle_between_modules():
+    found = sorted(module_cycles())
+    assert not found, "break these cycles (a shared helper in a module of its own):\n  " + \
+        "\n  ".join(found)
+
+
+def test_module_cycle_check_finds_a_cycle_inside_a_package(tmp_path):
+    src = _tree(tmp_path, {
+        "__init__.py": "from .sim.run import go\n",
+        "sim/__init__.py": "from .run import go\nfrom .hybrid import mix\n",
+        "sim/run.py": "def go():\n    from .hybrid import mix\n",       # inside a function
+        "sim/hybrid.py": "from .run import go\ndef mix():\n    pass\n",
+        "sim/pack.py": "from . import run\n",                       # via the package: no cycle
+    })
+    assert module_cycles(src, "pkg") == {"module cycle: sim.hybrid, sim.run"}
 
 
 def test_checker_finds_upward_imports_and_cycles(tmp_path):

@@ -14,7 +14,8 @@ from autobalance.core.layout import C_EVI, C_WHERE, N_S, S_STATUS, RunStatus, ca
 from autobalance.models import InitialState, MotorDrive
 from autobalance.simulate import simulate_batch, simulate_branches
 from autobalance.simulate.pack import atol_vector, initial_vector, pack_params, spin_arrays
-from autobalance.simulate.run import _h_max, branch_knot
+from autobalance.simulate.pack import _h_max
+from autobalance.simulate.run import branch_knot
 from autobalance.sweep import make_plan, sweep
 from autobalance.sweep.plan import BranchTask
 

@@ -65,7 +65,7 @@ def test_phi_functions_of_zero_are_the_inverse_factorials():
 def _rig(mu_r, grade, seed):
     from autobalance.models import InitialState
     from autobalance.physics.iso1940 import unbalance_value
-    from autobalance.simulate.run import run_inputs
+    from autobalance.simulate.pack import run_inputs
     from autobalance.studies.common import case_sets, load
     base = load("vub_jeffcott_004")
     U = unbalance_value(grade, base.system.total_mass, base.spin.nominal_speed)

@@ -16,7 +16,7 @@ from autobalance.liquid.film import films_state
 from autobalance.liquid.simulate import run_seconds_estimate
 from autobalance.models import InitialState, ParameterError, SimOptions
 from autobalance.simulate import simulate
-from autobalance.simulate.run import run_inputs
+from autobalance.simulate.pack import run_inputs
 
 #: Two 80 g balls locked opposite each other (stiction 1) on a rotor without unbalance: the
 #: rotor does not whirl, and the spin is all there is (003's chamber, 150 ml).

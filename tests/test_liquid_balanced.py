@@ -17,7 +17,7 @@ from autobalance.liquid.start import pool_machine
 from autobalance.liquid.stability import ring_stability
 from autobalance.models import InitialState, ParameterError, SimOptions, SpeedProfile
 from autobalance.physics.equilibria import find_equilibrium_set
-from autobalance.simulate.run import run_inputs
+from autobalance.simulate.pack import run_inputs
 from autobalance.studies.equilibria import linearised_full
 from autobalance.studies.liquid_balanced import balanced_stability
 

@@ -26,7 +26,7 @@ from autobalance.liquid.stability import (NoPeriodicFilm, _step_map, compartment
                                           machine_stability, ring_stability)
 from autobalance.liquid.start import pool_machine
 from autobalance.models import InitialState, ParameterError, SimOptions, SpeedProfile
-from autobalance.simulate.run import run_inputs
+from autobalance.simulate.pack import run_inputs
 from autobalance.studies.equilibria import floquet_full
 from autobalance.studies.liquid_balanced import (_balanced_states, balanced_machine_stability,
                                                  balanced_stability)

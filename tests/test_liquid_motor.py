@@ -159,7 +159,7 @@ def test_refusals_of_a_motor_with_a_liquid():
     cfg = machine()
     with pytest.raises(ParameterError) as e:
         simulate_liquid(cfg.system, cfg.spin)
-    assert e.value.field == "profile.kind" and "liquid_run" in str(e.value)
+    assert e.value.field == "profile.kind" and "autobalance.simulate.simulate" in str(e.value)
 
 
 @pytest.mark.slow

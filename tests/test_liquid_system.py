@@ -185,11 +185,18 @@ def test_profile_dipping_below_omega_0_and_motor_refused():
         simulate_liquid(cfg.system, MotorDrive("constant", 10.0, 50.0, 5.0))
 
 
-def test_ball_paths_refuse_a_liquid():
-    """The ball kernel and the ball studies would take the liquid as a rigid mass: refused."""
+def test_simulate_runs_a_liquid_alone_and_the_ball_paths_refuse_it():
+    """``simulate`` runs a liquid alone with the film model (the same run as simulate_liquid);
+    the ball kernel's batch and the ball studies would take the liquid as a rigid mass:
+    refused."""
+    from autobalance.simulate import simulate_batch
+
     cfg = bench()
+    run, ref = simulate(cfg.system, cfg.spin), simulate_liquid(cfg.system, cfg.spin)
+    assert type(run) is type(ref) and run.status == "ok" and run.note is None
+    np.testing.assert_array_equal(run.grade, ref.grade)
     with pytest.raises(ParameterError, match="^liquid = .*no liquid model"):
-        simulate(cfg.system, cfg.spin)
+        simulate_batch([cfg.system], cfg.spin)
     from autobalance.studies.common import load
     with pytest.raises(ParameterError, match="^liquid = .*ball balancers"):
         load("leblanc_003")

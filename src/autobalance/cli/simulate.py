@@ -155,14 +155,9 @@ def run_config(cfg: Config) -> tuple[Simulation | LiquidSimulation, float]:
     wall : float
         Wall time of the run [s].
     """
-    t0 = time.perf_counter()
-    if cfg.system.liquid is not None and not cfg.system.balancer.n_balls:
-        from ..simulate.hybrid import liquid_run
-
-        sim = liquid_run(cfg.system, cfg.spin)
-        return sim, time.perf_counter() - t0
     from ..simulate import simulate
 
+    t0 = time.perf_counter()
     sim = simulate(cfg.system, cfg.spin, initial=cfg.initial, options=cfg.options, throw=False)
     return sim, time.perf_counter() - t0
 
@@ -216,17 +211,11 @@ def write_outputs(sim: Simulation | LiquidSimulation, out: Optional[Path],
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
-        from ..plotting import plot_simulation
+        from ..plotting import plot_run
 
         speed = {} if units is None else {"speed_unit": units.unit("speed"),
                                           "speed_factor": units.factor("speed")}
-        if hasattr(sim, "liquid_unbalance"):
-            from ..plotting.liquid import liquid_run_figure
-
-            fig = liquid_run_figure(sim, grade, grade_text(grade))
-        else:
-            fig = plot_simulation(sim, grade_limit=grade, grade_label=grade_text(grade), **speed)
-        fig = fig[0] if isinstance(fig, tuple) else fig
+        fig = plot_run(sim, grade_limit=grade, grade_label=grade_text(grade), **speed)
         save_figure(fig, plot, what[1], dpi=120)
         plt.close(fig)
         files["plot"] = str(plot)
@@ -279,8 +268,8 @@ def simulate_cmd(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = N
         print_json(result)
     else:
         typer.echo(f"{cfg.name}: status {sim.status} ({wall:.1f} s wall)")
-        if ok and hasattr(sim, "film_start") and sim.message:   # a liquid's run: its note,
-            typer.echo(f"  note: {sim.message}")                 # e.g. it stayed a pool
+        if ok and sim.note:                 # e.g. a liquid that stayed a pool
+            typer.echo(f"  note: {sim.note}")
         typer.echo(f"  {'target grade':<32} {grade_text(grade)}")
         for key, value in result.items():
             if key not in ("name", "config", "status", "files", "wall_time_s", "message",

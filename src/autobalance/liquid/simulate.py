@@ -115,6 +115,12 @@ class LiquidSimulation:
     time_to_final_speed: float | None = None
 
     @property
+    def note(self) -> str | None:
+        """What a finished run has to say beside its numbers, e.g. that the liquid stayed a
+        pool (None: nothing); a run that did not finish says why in ``message``."""
+        return self.message if self.status == "ok" and self.message else None
+
+    @property
     def amplitude(self) -> np.ndarray:
         """Whirl amplitude |w| [m]."""
         return np.abs(self.deflection)
@@ -351,7 +357,7 @@ def _check(system: System, spin: SpeedProfile | MotorDrive) -> None:
     if isinstance(spin, MotorDrive) or not isinstance(spin, SpeedProfile):
         raise ParameterError("profile.kind", "motor", "simulate_liquid needs a prescribed "
                              "speed profile (constant, ramp, table, std or tsr); a motor drive "
-                             "runs with autobalance.simulate.hybrid.liquid_run")
+                             "runs with autobalance.simulate.simulate")
 
 
 def check_liquid_run(system: System, spin: SpeedProfile, g_axial: float = G_STANDARD) -> float:

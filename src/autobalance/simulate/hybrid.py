@@ -30,6 +30,7 @@ from ..liquid.simulate import (LiquidSimulation, chamber_films, check_liquid_run
 from ..liquid.spinup import PoolSpin, within_spinup
 from ..liquid.start import FilmStart, _film_table, film_start, film_start_speed
 from ..models import InitialState, MotorDrive, ParameterError, SimOptions, SpeedProfile, System
+from .pack import run_inputs
 from .result import Simulation, SimulationError
 
 #: Coupling step of a pool's spin-up beside a motor-driven spin (:func:`_pool_phase`) [s]: the
@@ -241,7 +242,6 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
         The ball run's histories with ``liquid`` (:class:`LiquidPart`); its residual unbalance
         and grade include the liquid's synchronous moment.
     """
-    from .run import run_inputs
 
     initial = initial or InitialState()
     options = options or SimOptions()
@@ -402,8 +402,8 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
 def liquid_run(system: System, spin: SpeedProfile | MotorDrive, *,
                n_cells: int = 256) -> LiquidSimulation:
     """A run of a liquid alone (no balls): :func:`autobalance.liquid.simulate.simulate_liquid`
-    through a prescribed profile, :func:`simulate_liquid_motor` under a motor drive. The one
-    dispatch of the CLI's ``simulate``, the sweeps and the studies.
+    through a prescribed profile, :func:`simulate_liquid_motor` under a motor drive
+    (:func:`autobalance.simulate.simulate` runs a liquid alone with it).
 
     Parameters
     ----------

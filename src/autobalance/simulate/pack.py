@@ -3,10 +3,12 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import NamedTuple
 
 import numpy as np
 
-from ..core.layout import n_q, psi_index, speed_index
+from ..core.layout import N_S, n_q, psi_index, speed_index
+from ..limits import check_memory
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..physics.response import steady_orbit_start
 from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
@@ -154,9 +156,9 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     if system.liquid is not None and not liquid_ok:
         from ..models import ParameterError
         raise ParameterError("liquid", "a [liquid] section",
-                             "the ball kernel alone has no liquid model: a liquid balancer alone "
-                             "runs with autobalance.liquid.simulate_liquid, balls beside a liquid "
-                             "with autobalance.simulate (`autobalance simulate` chooses)")
+                             "the ball kernel alone has no liquid model: a liquid balancer, "
+                             "alone or beside balls, runs with autobalance.simulate.simulate "
+                             "(and `autobalance simulate`)")
     r, s, b, g = system.rotor, system.suspension, system.balancer, system.gravity
     P = np.zeros(N_P)
     P[P_MT] = system.total_mass
@@ -302,3 +304,101 @@ def atol_vector(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     a[nq:nq + 2] = L * W
     a[nq + 2:] = W
     return options.atol_scale * a
+
+
+#: Floats per output sample held while a run's history is in memory, beyond 3 per state
+#: component (the stored state, its unpacked copy in :class:`Simulation` and the NetCDF's):
+#: the series derived from it (fixed-frame whirl, amplitude, residual unbalance as a complex
+#: number, its modulus and angle, grade, their temporaries and their copies in the dataset).
+DERIVED_SERIES = 24
+
+
+def history_bytes(n_samples: float, n_state: int) -> float:
+    """Memory of a run's time history with everything derived from it [B].
+
+    Parameters
+    ----------
+    n_samples : float
+        Output samples [-].
+    n_state : int
+        State components per sample [-].
+    """
+    return float(n_samples) * 8.0 * (3 * max(n_state, 1) + DERIVED_SERIES)
+
+
+def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
+    """Output times [s]; refuses (ResourceError naming ``options.save_dt``) a grid whose
+    history with what is derived from it (:func:`history_bytes`) exceeds the memory limit,
+    before allocating it."""
+    t_end = spin.duration
+    cps = np.asarray(spin.checkpoints, float)
+    if options.save_dt < 0:
+        return np.unique(np.concatenate([[0.0], cps, [t_end]]))
+    dt = options.save_dt
+    if dt == 0.0:
+        dt = 2 * np.pi / max(spin.nominal_speed, 1e-9) / 20.0
+        dt = max(dt, t_end / 200_000)
+    n_est = t_end / dt + 2.0 + cps.size   # float: t_end / dt may overflow an int
+    check_memory("options.save_dt", f"{dt:g} s", history_bytes(n_est, n_state),
+                 f"time history and what is derived from it ({n_est:.3g} samples)")
+    n = int(np.floor(t_end / dt + 1e-9)) + 1
+    grid = np.arange(n) * dt
+    t = np.sort(np.concatenate([grid[grid < t_end], cps, [t_end]]))
+    keep = np.concatenate([[True], np.diff(t) > 1e-9 * max(t_end, 1.0)])
+    return t[keep]
+
+
+def _h_max(spin, options: SimOptions) -> float:
+    if options.max_step > 0:
+        return options.max_step
+    return min(0.05, spin.duration / 20.0)
+
+
+class RunInputs(NamedTuple):
+    """The kernel's inputs of one run (:func:`run_inputs`): P, B (pack_params), the initial
+    state y0 and the balls' order, the profile's knots [s], [rad/s] and end [s], the unbalance
+    table [s], [kg*m], the output times [s] with their empty history and statistics, atol per
+    state component and the largest step [s]."""
+
+    P: np.ndarray
+    B: np.ndarray
+    y0: np.ndarray
+    order: np.ndarray
+    prof_t: np.ndarray
+    prof_w: np.ndarray
+    t_end: float
+    unb_t: np.ndarray
+    unb_u: np.ndarray
+    out_t: np.ndarray
+    out_y: np.ndarray
+    stats: np.ndarray
+    atol: np.ndarray
+    h_max: float
+
+
+def run_inputs(system: System, spin: SpeedProfile | MotorDrive, initial: InitialState,
+               options: SimOptions, liquid_ok: bool = False) -> RunInputs:
+    """The kernel's inputs of one run of :func:`simulate` (and of balls beside a liquid,
+    ``liquid_ok``: :mod:`.hybrid`), packed once here.
+
+    Parameters
+    ----------
+    system : System
+        The machine (SI dataclasses) [-].
+    spin : SpeedProfile or MotorDrive
+        The spin: speed [rad/s] over time [s], or a motor torque law [-].
+    initial : InitialState
+        Ball angles [rad] and rotor state at t = 0 [-].
+    options : SimOptions
+        Friction law, tolerances, output spacing [-].
+    liquid_ok : bool
+        As :func:`.pack.pack_params` [-].
+    """
+    P, B = pack_params(system, spin, options, liquid_ok)
+    y0, order = initial_vector(system, spin, initial)
+    prof_t, prof_w, t_end = spin_arrays(spin)
+    unb_t, unb_u = system.rotor.unbalance_table()
+    out_t = _time_grid(spin, options, y0.size)
+    return RunInputs(P, B, y0, order, prof_t, prof_w, t_end, unb_t, unb_u, out_t,
+                     np.zeros((out_t.size, y0.size)), np.zeros(N_S),
+                     atol_vector(system, spin, options), _h_max(spin, options))

@@ -115,6 +115,12 @@ class Simulation:
 
     # -- derived scalars -------------------------------------------------------------------
     @property
+    def note(self) -> str | None:
+        """What a finished run has to say beside its numbers (None: nothing); a run that did not
+        finish says why in ``message``."""
+        return None
+
+    @property
     def n_balls(self) -> int:
         """Number of balls N of the run's balancer."""
         return self.system.balancer.n_balls

@@ -1,132 +1,48 @@
-"""One entry point for a single run and one for many runs: ``simulate`` and ``simulate_batch``.
+"""One entry point for a single run of any machine and one for many runs of balls: ``simulate``
+and ``simulate_batch``.
 
 Both refuse, before allocating or integrating, a run that cannot fit the limits of
 :mod:`autobalance.limits` (one-line :class:`~autobalance.limits.ResourceError`).
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..core.batch import integrate_batch, integrate_branches
 from ..core.integrate import integrate
 from ..core.layout import N_S, S_STATUS, RunStatus
-from .pack import atol_vector, initial_vector, pack_params, spin_arrays
-from ..limits import check_memory, check_run
+from ..limits import check_run
+from .pack import _h_max, atol_vector, initial_vector, pack_params, run_inputs, spin_arrays
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
 
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-
-#: Floats per output sample held while a run's history is in memory, beyond 3 per state
-#: component (the stored state, its unpacked copy in :class:`Simulation` and the NetCDF's):
-#: the series derived from it (fixed-frame whirl, amplitude, residual unbalance as a complex
-#: number, its modulus and angle, grade, their temporaries and their copies in the dataset).
-DERIVED_SERIES = 24
-
-
-def history_bytes(n_samples: float, n_state: int) -> float:
-    """Memory of a run's time history with everything derived from it [B].
-
-    Parameters
-    ----------
-    n_samples : float
-        Output samples [-].
-    n_state : int
-        State components per sample [-].
-    """
-    return float(n_samples) * 8.0 * (3 * max(n_state, 1) + DERIVED_SERIES)
-
-
-def _time_grid(spin, options: SimOptions, n_state: int = 1) -> np.ndarray:
-    """Output times [s]; refuses (ResourceError naming ``options.save_dt``) a grid whose
-    history with what is derived from it (:func:`history_bytes`) exceeds the memory limit,
-    before allocating it."""
-    t_end = spin.duration
-    cps = np.asarray(spin.checkpoints, float)
-    if options.save_dt < 0:
-        return np.unique(np.concatenate([[0.0], cps, [t_end]]))
-    dt = options.save_dt
-    if dt == 0.0:
-        dt = 2 * np.pi / max(spin.nominal_speed, 1e-9) / 20.0
-        dt = max(dt, t_end / 200_000)
-    n_est = t_end / dt + 2.0 + cps.size   # float: t_end / dt may overflow an int
-    check_memory("options.save_dt", f"{dt:g} s", history_bytes(n_est, n_state),
-                 f"time history and what is derived from it ({n_est:.3g} samples)")
-    n = int(np.floor(t_end / dt + 1e-9)) + 1
-    grid = np.arange(n) * dt
-    t = np.sort(np.concatenate([grid[grid < t_end], cps, [t_end]]))
-    keep = np.concatenate([[True], np.diff(t) > 1e-9 * max(t_end, 1.0)])
-    return t[keep]
-
-
-def _h_max(spin, options: SimOptions) -> float:
-    if options.max_step > 0:
-        return options.max_step
-    return min(0.05, spin.duration / 20.0)
-
-
-class RunInputs(NamedTuple):
-    """The kernel's inputs of one run (:func:`run_inputs`): P, B (pack_params), the initial
-    state y0 and the balls' order, the profile's knots [s], [rad/s] and end [s], the unbalance
-    table [s], [kg*m], the output times [s] with their empty history and statistics, atol per
-    state component and the largest step [s]."""
-
-    P: np.ndarray
-    B: np.ndarray
-    y0: np.ndarray
-    order: np.ndarray
-    prof_t: np.ndarray
-    prof_w: np.ndarray
-    t_end: float
-    unb_t: np.ndarray
-    unb_u: np.ndarray
-    out_t: np.ndarray
-    out_y: np.ndarray
-    stats: np.ndarray
-    atol: np.ndarray
-    h_max: float
-
-
-def run_inputs(system: System, spin: SpeedProfile | MotorDrive, initial: InitialState,
-               options: SimOptions, liquid_ok: bool = False) -> RunInputs:
-    """The kernel's inputs of one run of :func:`simulate` (and of balls beside a liquid,
-    ``liquid_ok``: :mod:`.hybrid`), packed once here.
-
-    Parameters
-    ----------
-    system : System
-        The machine (SI dataclasses) [-].
-    spin : SpeedProfile or MotorDrive
-        The spin: speed [rad/s] over time [s], or a motor torque law [-].
-    initial : InitialState
-        Ball angles [rad] and rotor state at t = 0 [-].
-    options : SimOptions
-        Friction law, tolerances, output spacing [-].
-    liquid_ok : bool
-        As :func:`.pack.pack_params` [-].
-    """
-    P, B = pack_params(system, spin, options, liquid_ok)
-    y0, order = initial_vector(system, spin, initial)
-    prof_t, prof_w, t_end = spin_arrays(spin)
-    unb_t, unb_u = system.rotor.unbalance_table()
-    out_t = _time_grid(spin, options, y0.size)
-    return RunInputs(P, B, y0, order, prof_t, prof_w, t_end, unb_t, unb_u, out_t,
-                     np.zeros((out_t.size, y0.size)), np.zeros(N_S),
-                     atol_vector(system, spin, options), _h_max(spin, options))
+    from ..liquid.simulate import LiquidSimulation
 
 
 def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: InitialState | None = None,
-             options: SimOptions | None = None, throw: bool = True) -> Simulation:
-    """Simulate the rotor with its ball balancer through a speed profile or a motor run-up.
+             options: SimOptions | None = None, throw: bool = True,
+             n_cells: int = 256) -> Simulation | LiquidSimulation:
+    """Simulate one run of any machine the configuration accepts: the rotor with its ball
+    balancer, a liquid balancer, or balls beside a liquid, through a speed profile or a motor
+    run-up. The one place that chooses the kernel:
+
+    * balls (or a bare rotor): the compiled DOPRI5 kernel (:func:`autobalance.core.integrate.
+      integrate`);
+    * a liquid alone: the wall-film model (:func:`autobalance.simulate.hybrid.liquid_run`;
+      ``initial`` and ``options`` do not apply, the film starts where the liquid's spin-up puts
+      it);
+    * balls beside a liquid: the kernel with the films (:func:`autobalance.simulate.hybrid.
+      simulate_hybrid`).
 
     Parameters
     ----------
     system : System
-        Rotor, suspension, balancer and gravity (SI dataclasses).
+        Rotor, suspension, balancer (or ``[liquid]``) and gravity (SI dataclasses).
     spin : SpeedProfile or MotorDrive
         Prescribed spin speed [rad/s] vs time [s], or a motor torque law (spin as a DOF).
     initial : InitialState, optional
@@ -135,13 +51,17 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
     options : SimOptions, optional
         Friction law, tolerances, output spacing.
     throw : bool
-        If True a numerical failure raises SimulationError; if False it is reported in
-        ``Simulation.status`` / ``.message`` and the partial history is returned.
+        If True a numerical failure (or a liquid leaving its model) raises SimulationError; if
+        False it is reported in the result's ``status`` / ``message`` and the partial history
+        is returned.
+    n_cells : int
+        Film cells around each wall of a liquid [-].
 
     Returns
     -------
-    Simulation
-        Time histories and derived quantities (residual unbalance, ISO grade G, ...).
+    Simulation or LiquidSimulation
+        The run (:class:`autobalance.simulate.result.Run`: ``status``, ``message``, ``note``,
+        ``summary()``, ``to_xarray()``, ``to_netcdf(path)``, ``figure()``).
 
     Raises
     ------
@@ -152,9 +72,15 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
     """
     initial = initial or InitialState()
     options = options or SimOptions()
-    if system.liquid is not None and system.balancer.n_balls:
-        from .hybrid import simulate_hybrid        # balls beside a liquid
-        return simulate_hybrid(system, spin, initial=initial, options=options, throw=throw)
+    if system.liquid is not None:
+        from .hybrid import liquid_run, simulate_hybrid     # the liquid models load on demand
+
+        if system.balancer.n_balls:                # balls beside a liquid
+            return simulate_hybrid(system, spin, initial=initial, options=options, throw=throw)
+        run = liquid_run(system, spin, n_cells=n_cells)
+        if throw and run.status != "ok":
+            raise SimulationError(run.message)
+        return run
     check_run(system, spin, options)
     r = run_inputs(system, spin, initial, options)
     integrate(r.P, r.B, system.balancer.n_balls, r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0,

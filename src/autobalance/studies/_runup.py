@@ -103,14 +103,14 @@ def _cases(cfg, laws):
 
 def _liquid_case(s, spin, tg, ecc, fraction):
     """One case of a liquid balancer alone (no balls): the film model
-    (:func:`autobalance.simulate.hybrid.liquid_run`: a prescribed profile or a motor), its whirl
+    (:func:`autobalance.simulate.simulate` of a liquid alone: a prescribed profile or a motor), its whirl
     read on ``tg`` [s]; before the film starts the liquid is a centred pool (quasi-steady, as
     ``LiquidSimulation.max_amplitude_before_film``). (row, histories) as compute_runup's."""
     from ..liquid.simulate import film_rotor, spin_angle
     from ..liquid.steady import pool_response
-    from ..simulate.hybrid import liquid_run
+    from ..simulate import simulate
 
-    sim = liquid_run(s, spin)
+    sim = simulate(s, spin, throw=False)
     if sim.status != "ok":
         raise ParameterError("liquid", "the run-up", sim.message)
     S = sim.summary()

@@ -44,7 +44,7 @@ def load(base: str | Path | Config, sets: Sequence[str] = (),
     liquid_alone : bool
         With ``allow_liquid``, accept a liquid balancer without balls too (a study that only
         simulates and needs no ball starts: the film model of
-        :func:`autobalance.simulate.hybrid.liquid_run`, a profile or a motor).
+        :func:`autobalance.simulate.simulate` of a liquid alone, a profile or a motor).
 
     Returns
     -------

@@ -35,6 +35,8 @@ import numpy as np
 from ..liquid.stability import DT_FRACTION, RingStability, linear_modes
 from ..models import ParameterError
 from ..models._validate import positive
+from .ball_propagator import ball_propagator as _ball_propagator
+from .ball_propagator import flat as _flat
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -115,52 +117,6 @@ def require_balanced_liquid(system: System) -> System:
                              "for the balanced state beside a liquid (a fixed point of the "
                              "rotor frame)")
     return _ideal(pool)
-
-
-def _flat(pool):
-    """The machine without in-plane gravity (its rotor frame's steadiness and its balanced
-    angles are those of the machine without gravity)."""
-    import dataclasses
-
-    return dataclasses.replace(pool, gravity=dataclasses.replace(pool.gravity, g=0.0))
-
-
-def _ball_propagator(pool, W, alpha, dt, L, phase=None):
-    """(Phi, Gamma, c, res): the ideal pool machine's rotor and balls over dt [s] at W [rad/s],
-    linear about the balanced angles alpha [rad], z -> z_ref + Phi (z - z_ref) + Gamma (U, U')
-    (real pairs) + c, and the balanced state's scaled residual. With the spin angle ``phase``
-    [rad] (a horizontal axis) the right-hand side is taken there, frozen over the step (the
-    exponential midpoint rule when ``phase`` is the step's middle), and c is the drift of
-    gravity's pull on the balls (the affine term; 0 without a phase)."""
-    from scipy.linalg import expm
-
-    from ..simulate.probe import rotor_frame_derivative
-
-    ps = 0.0 if phase is None else float(phase)
-    n = alpha.size
-    z0 = np.concatenate([[0.0, 0.0], alpha, np.zeros(n + 2)])
-    h = np.concatenate([[1e-4 * L] * 2, [1e-5] * n, [1e-4 * L * W] * 2, [1e-7 * W] * n])
-    F = rotor_frame_derivative(pool, W, np.concatenate([z0 + np.diag(h), z0 - np.diag(h)]),
-                               phase=ps)
-    m = z0.size
-    A = ((F[:m] - F[m:]) / (2 * h)[:, None]).T
-    fscale = np.concatenate([[L * W] * 2, [W] * n, [L * W * W] * 2, [W * W] * n])
-    f0 = rotor_frame_derivative(pool, W, z0, phase=ps)
-    res = float(np.max(np.abs(f0 / fscale)))
-    Bm = np.empty((m, 4))
-    u = pool.total_mass * L              # the held moment's scale [kg*m]
-    for j, (U, Ud) in enumerate([(u, 0j), (1j * u, 0j), (0j, u * W), (0j, 1j * u * W)]):
-        d = abs(U) + abs(Ud)
-        Bm[:, j] = (rotor_frame_derivative(pool, W, z0, (U, Ud), phase=ps)
-                    - rotor_frame_derivative(pool, W, z0, (-U, -Ud), phase=ps)) / (2 * d)
-    k = m + 4 if phase is None else m + 5
-    aug = np.zeros((k, k))
-    aug[:m, :m] = A
-    aug[:m, m:m + 4] = Bm
-    if phase is not None:
-        aug[:m, m + 4] = f0
-    E = expm(aug * dt)
-    return E[:m, :m], E[:m, m:m + 4], (E[:m, m + 4] if phase is not None else np.zeros(m)), res
 
 
 def balanced_stability(system: System, speed: float, alpha: npt.ArrayLike, *,

@@ -12,7 +12,7 @@ Method (our choice): sec. 3k's step map of the coupling the run of balls beside 
 2. the rotor and the balls advance over dt with the films' moment held, by the exact
    propagator of the kernel's right-hand side linearised about the balanced state at the
    step's middle angle (A, B and gravity's pull c on the balls: the exponential midpoint rule;
-   :func:`autobalance.studies.liquid_balanced._ball_propagator`);
+   :func:`autobalance.studies.ball_propagator.ball_propagator`);
 3. the films' new moment is taken up by the chamber, Z and Z' kept (as sec. 3k).
 
 The balls are linear about the balanced angles of the machine without gravity, so gravity's
@@ -42,7 +42,7 @@ def _period_map(system, pool, st, W: float, alpha, m: int):
     the static equilibrium; also the thinnest film [m] of its last evaluation. A state whose
     CFL step is shorter than T / m: ValueError."""
     from ..core.shallow_water import films_dt, films_moment, films_step, gravity_offset
-    from .liquid_balanced import _ball_propagator
+    from .ball_propagator import ball_propagator
 
     N = alpha.size
     T = 2.0 * math.pi / W
@@ -51,7 +51,7 @@ def _period_map(system, pool, st, W: float, alpha, m: int):
     Mt = pool.total_mass
     sag = Mt * gp / pool.suspension.kx * complex(math.cos(gdir), math.sin(gdir))
     L = max(pool.rotor.unbalance, pool.balancer.capacity) / Mt
-    props = [_ball_propagator(pool, W, alpha, dt, L, phase=(k + 0.5) * W * dt)[:3]
+    props = [ball_propagator(pool, W, alpha, dt, L, phase=(k + 0.5) * W * dt)[:3]
              for k in range(m)]
     z_ref = np.concatenate([[0.0, 0.0], alpha, np.zeros(N + 2)])
     mz, r, nc = z_ref.size, N + 2, st.h.size

@@ -11,12 +11,12 @@ import numpy as np
 
 def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
     """:func:`autobalance.sweep.task.run_task` for liquid balancers: one wall-film run per system
-    (:func:`autobalance.simulate.hybrid.liquid_run`: a prescribed profile or a motor), read at
+    (:func:`autobalance.simulate.simulate` of a liquid alone: a prescribed profile or a motor), read at
     the checkpoints and history times as the ball runs are; no balls (``ball_angle`` all NaN),
     no stick-slip events."""
     from ..core.layout import RunStatus
     from ..physics.iso1940 import grade_value
-    from ..simulate.hybrid import liquid_run
+    from ..simulate import simulate
 
     spin, systems = payload["spin"], payload["systems"]
     n, n_cp = len(systems), cps.size
@@ -31,7 +31,7 @@ def run_liquid_task(payload: dict, cps: np.ndarray, hist: np.ndarray) -> dict:
         for name in ("grade_G_history", "amplitude_history", "speed_history"):
             out[name] = np.full((n, hist.size), np.nan)
     for i, s in enumerate(systems):
-        sim = liquid_run(s, spin)
+        sim = simulate(s, spin, throw=False)
         at = sim.at(cps)
         out["grade_G"][i], out["residual_unbalance"][i] = at["grade_G"], at["residual_unbalance"]
         out["max_amplitude"][i] = max(float(np.max(sim.amplitude)), sim.max_amplitude_before_film)
