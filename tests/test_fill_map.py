@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 
 from autobalance.config import load_config
-from autobalance.liquid.models import VerticalRotor
+from autobalance.models.liquid_balancer import VerticalRotor
 from autobalance.liquid.steady import pool_response, ring_response
 from autobalance.models import ParameterError
 from autobalance.studies._fill_map import compute_fill_map, fill_map_summary

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from autobalance.config import load_config
-from autobalance.liquid.models import VerticalRotor
+from autobalance.models.liquid_balancer import VerticalRotor
 from autobalance.liquid.start import film_start_speed, pool_machine
 from autobalance.liquid.steady import chambers_steady_response, steady_amplitude
 from autobalance.liquid.synchronous import synchronous_liquid

@@ -231,7 +231,7 @@ def test_immobility_beside_a_liquid():
     the table's interpolation is exact); the response at a tabulated magnitude is
     chambers_steady_response's, turned to U_t's angle; G* is NaN."""
     from autobalance.config import from_models
-    from autobalance.liquid.models import VerticalRotor
+    from autobalance.models.liquid_balancer import VerticalRotor
     from autobalance.liquid.start import film_start_speed
     from autobalance.liquid.steady import chambers_steady_response
     from autobalance.studies._immobility import compute_immobility, liquid_response

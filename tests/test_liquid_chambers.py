@@ -13,7 +13,7 @@ import xarray as xr
 
 from autobalance.config import ConfigError, describe, from_dict, from_models, load_config
 from autobalance.liquid.film import coupled_run, film_equilibrium, film_unbalance
-from autobalance.liquid.models import LiquidBalancer, VerticalRotor
+from autobalance.models.liquid_balancer import LiquidBalancer, VerticalRotor
 from autobalance.liquid.simulate import simulate_liquid
 from autobalance.models import LiquidDevice, ParameterError
 

@@ -137,7 +137,7 @@ def test_bad_input_is_one_line(kw, field):
 
 # -- the film coupled with the rotor --------------------------------------------------------------
 from autobalance.liquid.film import coupled_run                                     # noqa: E402
-from autobalance.liquid.models import VerticalRotor                                 # noqa: E402
+from autobalance.models.liquid_balancer import VerticalRotor                                 # noqa: E402
 from autobalance.liquid.steady import synchronous_deflection                        # noqa: E402
 
 _K = (25.0 + RHO * V) * 54.0 ** 2

@@ -15,7 +15,7 @@ import pytest
 
 from autobalance.config import load_config
 from autobalance.liquid.film import coupled_run
-from autobalance.liquid.models import VerticalRotor
+from autobalance.models.liquid_balancer import VerticalRotor
 from autobalance.liquid.simulate import film_rotor
 from autobalance.liquid.stability import ring_stability
 from autobalance.models import ParameterError

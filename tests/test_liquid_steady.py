@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from autobalance.liquid.models import VerticalRotor
+from autobalance.models.liquid_balancer import VerticalRotor
 from autobalance.liquid.quasistatic import quasi_static
 from autobalance.liquid.steady import response_curve, ring_response, synchronous_deflection
 from autobalance.models import ParameterError

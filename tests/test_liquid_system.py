@@ -15,7 +15,7 @@ import xarray as xr
 from autobalance.config import ConfigError, describe, from_dict, from_models, load_config, \
     replace_values
 from autobalance.liquid.free_surface import entrainment_speed
-from autobalance.liquid.models import VerticalRotor
+from autobalance.models.liquid_balancer import VerticalRotor
 from autobalance.liquid.film import film_run
 from autobalance.liquid.simulate import revolution_average, simulate_liquid
 from autobalance.liquid.steady import synchronous_deflection

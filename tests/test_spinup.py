@@ -14,7 +14,7 @@ import pytest
 
 from autobalance.config import load_config
 from autobalance.liquid.free_surface import entrainment_speed
-from autobalance.liquid.models import G_STANDARD
+from autobalance.models.liquid_balancer import G_STANDARD
 from autobalance.liquid.spinup import spinup_of, spinup_run
 from autobalance.models import MotorDrive, ParameterError
 

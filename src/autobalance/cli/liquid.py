@@ -429,7 +429,7 @@ def spinup(source: Annotated[str, typer.Argument(
         One JSON object.
     """
     from ..liquid import mode_speeds
-    from ..liquid.models import G_STANDARD
+    from ..models.liquid_balancer import G_STANDARD
     from ..liquid.spinup import spinup_of
     from ..liquid.steady import start_speed
 

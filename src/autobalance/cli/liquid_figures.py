@@ -10,7 +10,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from ..liquid import LiquidModel, RunUp
-    from ..liquid.models import VerticalRotor
+    from ..models.liquid_balancer import VerticalRotor
     from ..models import LiquidDevice
 
 

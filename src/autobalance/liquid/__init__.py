@@ -13,8 +13,9 @@ from .film import (CoupledRun, FilmRun, coupled_run, film_equilibrium, film_run,
                    film_wave_speed)
 from .steady import response_curve, ring_response, synchronous_deflection
 from .quasistatic import QuasiStatic, intact_ring_unbalance, lens, quasi_static
-from .models import (G_STANDARD, PLACEMENT_LAWS, WATER, Chamber, Liquid, LiquidBalancer,
-                     LiquidModel, VerticalRotor, sufficient_volume)
+from ..models.liquid_balancer import (G_STANDARD, PLACEMENT_LAWS, WATER, Chamber, Liquid,
+                                      LiquidBalancer, LiquidModel, VerticalRotor,
+                                      sufficient_volume)
 
 __all__ = [
     "Chamber", "CoupledRun", "FilmRun", "FreeSurface", "G_STANDARD", "Liquid", "LiquidBalancer",

@@ -25,7 +25,7 @@ from scipy.integrate import solve_ivp
 from ..models._validate import ParameterError, nonneg, positive
 from .free_surface import entrainment_speed
 from .kinetostatic import liquid_angle_scalar
-from .models import LiquidBalancer, LiquidModel, VerticalRotor
+from ..models.liquid_balancer import LiquidBalancer, LiquidModel, VerticalRotor
 
 if TYPE_CHECKING:
     import numpy.typing as npt

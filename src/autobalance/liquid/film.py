@@ -19,7 +19,7 @@ import numpy as np
 
 from ..core.shallow_water import sw_integrate, wall_height
 from ..models._validate import ParameterError, finite, nonneg, positive
-from .models import G_STANDARD, LiquidBalancer, VerticalRotor
+from ..models.liquid_balancer import G_STANDARD, LiquidBalancer, VerticalRotor
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

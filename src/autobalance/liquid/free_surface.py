@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..models._validate import ParameterError, finite, nonneg, positive
-from .models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

@@ -21,13 +21,13 @@ import numpy as np
 
 from ..models._validate import ParameterError
 from .kinetostatic import alpha0, eccentricity_ratio, friction_angle
-from .models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 from .steady import chambers_steady_response
 
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-    from .models import VerticalRotor  # noqa: F401
+    from ..models.liquid_balancer import VerticalRotor  # noqa: F401
 
 __all__ = ["kinetostatic_vs_physics"]
 

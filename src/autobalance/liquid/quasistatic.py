@@ -42,7 +42,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from ..models._validate import ParameterError, nonneg, positive
-from .models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 
 __all__ = ["QuasiStatic", "intact_ring_unbalance", "layer", "lens", "quasi_static",
            "segment_area"]

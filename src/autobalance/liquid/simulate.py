@@ -28,7 +28,7 @@ from ..models._validate import positive
 from ..physics.iso1940 import grade_value
 from .dynamics import RunUp
 from .film import FilmsState, coupled_run, films_state
-from .models import G_STANDARD, LiquidBalancer, VerticalRotor
+from ..models.liquid_balancer import G_STANDARD, LiquidBalancer, VerticalRotor
 from .start import FilmStart, _film_table, film_start, film_start_speed
 from .series import film_samples, revolution_average, spin_angle
 from .steady import pool_response

@@ -18,7 +18,7 @@ import numpy as np
 from ..core.spinup import spinup_integrate
 from ..models import MotorDrive, SpeedProfile, System
 from ..models._validate import ParameterError, nonneg, positive
-from .models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

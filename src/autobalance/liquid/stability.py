@@ -27,7 +27,7 @@ from ..models._validate import ParameterError, positive
 from .film import FilmsState, films_state
 from .maps import (SHOOT_TOL, FinerGrid, compartments, jacobian, linear_modes,
                    multiplier_modes, periodic_state)
-from .models import VerticalRotor
+from ..models.liquid_balancer import VerticalRotor
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

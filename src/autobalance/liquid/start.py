@@ -12,7 +12,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..models import LiquidDevice, ParameterError, SpeedProfile, System
-from .models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 from .spinup import chamber_spinup, within_spinup
 from .steady import start_speed
 

@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import fsolve
 
 from ..models._validate import ParameterError, positive
-from .models import G_STANDARD, LiquidBalancer, VerticalRotor
+from ..models.liquid_balancer import G_STANDARD, LiquidBalancer, VerticalRotor
 from .quasistatic import quasi_static
 
 if TYPE_CHECKING:

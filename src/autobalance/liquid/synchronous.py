@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING
 
 from ..models._validate import ParameterError, positive
 from ..physics.worst_case import SyncLiquid
-from .models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 from .quasistatic import intact_ring_unbalance, quasi_static
 from .steady import start_speed
 

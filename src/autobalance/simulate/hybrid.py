@@ -22,7 +22,7 @@ from ..core.integrate import integrate_span
 from ..core.layout import P_LQI, P_LQT, S_STATUS, RunStatus, carry_size
 from ..limits import check_run
 from ..liquid.film import FilmRun
-from ..liquid.models import G_STANDARD
+from ..models.liquid_balancer import G_STANDARD
 from ..liquid.simulate import (LiquidSimulation, chamber_films, check_liquid_run, film_samples,
                                inner_wall_status,
                                require_axis_gravity, require_liquid_machine, revolution_average,

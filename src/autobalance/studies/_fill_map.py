@@ -102,7 +102,7 @@ def compute_fill_map(base: str | Path | Config, *, fills: Sequence[float] | None
 
     from ..config import Config, load_config, replace_values
     from ..config.overrides import parse_override
-    from ..liquid.models import G_STANDARD, LiquidBalancer
+    from ..models.liquid_balancer import G_STANDARD, LiquidBalancer
     from ..liquid.simulate import film_rotor, require_liquid_machine
     from ..liquid.steady import pool_response, start_speed, steady_amplitude
 

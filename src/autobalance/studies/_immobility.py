@@ -59,7 +59,7 @@ def liquid_response(system: System, speeds: npt.ArrayLike, n_mag: int = LIQUID_M
     callable
         (speed [rad/s], one of ``speeds``; U_t [kg*m], complex array) -> w [m] (rotor frame).
     """
-    from ..liquid.models import G_STANDARD, VerticalRotor
+    from ..models.liquid_balancer import G_STANDARD, VerticalRotor
     from ..liquid.steady import chambers_steady_response
 
     W = np.asarray(speeds, float)

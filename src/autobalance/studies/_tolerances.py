@@ -61,7 +61,7 @@ def liquid_at(system: System):
     """
     if system.liquid is None:
         return lambda speed: None
-    from ..liquid.models import G_STANDARD
+    from ..models.liquid_balancer import G_STANDARD
     from ..liquid.synchronous import check_synchronous, synchronous_liquid
 
     sus = system.suspension

@@ -8,7 +8,7 @@ import tomllib
 from importlib import resources
 
 from ...config import parse_quantity
-from ...liquid.models import Liquid
+from ...models.liquid_balancer import Liquid
 
 __all__ = ["liquids_001"]
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 
 from ...config import load_config
 from ...models import ParameterError
-from ...liquid.models import G_STANDARD, Chamber, Liquid, LiquidBalancer, VerticalRotor
+from ...models.liquid_balancer import G_STANDARD, Chamber, Liquid, LiquidBalancer, VerticalRotor
 from ...liquid.simulate import liquid_parts
 from ...validation.target import Context
 

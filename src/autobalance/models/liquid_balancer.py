@@ -11,12 +11,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..models._validate import ParameterError, finite, nonneg, positive
+from ._validate import ParameterError, finite, nonneg, positive
 
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-    from ..models.liquid import LiquidDevice
+    from .liquid import LiquidDevice
 
 #: Standard gravity [m/s^2] (CGPM 1901). 003's printed speeds follow from g = 10 m/s^2.
 G_STANDARD = 9.80665
