@@ -334,9 +334,10 @@ def test_checker_finds_upward_imports_and_cycles(tmp_path):
 
 
 # -- size: no module over 600 lines, no function body over 100 --------------------------------
-#: The compiled integrator loop: one numba function, kept whole because a call between numba
-#: functions passes every array as its exploded struct (core/jit.py) and the loop's locals are
-#: its state (core/integrate.py says why). The right-hand side is split into inlined parts.
+#: Functions allowed over the function cap (never a module over its cap): the compiled
+#: integrator loop, one numba function kept whole because a call between numba functions passes
+#: every array as its exploded struct (core/jit.py) and the loop's locals are its state
+#: (core/integrate.py says why). The right-hand side is split into inlined parts.
 SIZE_EXCEPTIONS = {"autobalance/core/integrate.py": ("_integrate",)}
 MAX_MODULE_LINES, MAX_FUNCTION_LINES = 600, 100
 
@@ -357,7 +358,7 @@ def test_no_module_over_600_lines_and_no_function_body_over_100():
         rel = path.relative_to(SRC).as_posix()
         text = path.read_text()
         allowed = SIZE_EXCEPTIONS.get(rel, ())
-        if text.count("\n") > MAX_MODULE_LINES and not allowed:
+        if text.count("\n") > MAX_MODULE_LINES:
             too_long.append(f"{rel}: {text.count(chr(10))} lines")
         for name, n in _function_sizes(ast.parse(text)):
             if n > MAX_FUNCTION_LINES and name not in allowed:

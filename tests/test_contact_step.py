@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from autobalance.core import integrate as K
+from autobalance.core import step as K
 from autobalance.core.layout import P_HC, S_STEPS
 from autobalance.models import InitialState
 from autobalance.simulate import simulate

@@ -1,5 +1,5 @@
 """The state at a located stick-slip event from DOPRI5's continuous extension
-(``options.dense_events``, core/integrate.py ``_dense``; docs/numerics/index.md): the extension's order
+(``options.dense_events``, core/step.py ``_dense``; docs/numerics/index.md): the extension's order
 on a closed-form solution, the kernel's runs with it against the runs that redo the step to the
 event (grades within the Monte Carlo's 0.02 mm/s, fewer RHS evaluations), and the option's
 one-line error."""
@@ -10,7 +10,7 @@ import pytest
 
 import autobalance as ab
 from autobalance.config import ConfigError, load_config
-from autobalance.core import integrate as K
+from autobalance.core import step as K
 from autobalance.sweep.plan import separate, start_grid
 
 
