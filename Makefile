@@ -40,9 +40,13 @@ FAST := not slow and not report and not chromium and not dask
 test-fast: setup
 	$(BIN)/python -m pytest -q -m "$(FAST)"
 
+# A dpkg run that an earlier install left interrupted is finished first (`dpkg --configure -a`
+# does nothing on a clean system); apt waits up to 10 min for another apt's lock.
+APT := DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get -o DPkg::Lock::Timeout=600
 browser:
-	@command -v chromium >/dev/null 2>&1 || { $(SUDO) apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq chromium >/dev/null; }
+	@command -v chromium >/dev/null 2>&1 || { \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) dpkg --configure -a && \
+	  $(APT) update -qq && $(APT) install -y -qq chromium >/dev/null; }
 
 # docs/VALIDATION.md is generated from the quick report's rows (tests/test_report.py checks it).
 validation: run
