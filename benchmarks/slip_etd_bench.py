@@ -10,16 +10,22 @@ slipping or one of them stuck), side by side in one process:
 * their times: the kernel's window as the difference of the runs to its end and to its start,
   best of 7; ETDRK4-B's window, best of 7.
 
-Then whole runs of 004's profile with and without the slip jumps in the kernel
-(``options.exponential_slip``, on by default), side by side: ``whole_runs``.
+Then whole runs of 004's profile with and without the slip jumps in the kernel (without: the
+tests' oracle, tests/oracles.py, DOPRI5 stepping every slipping phase), side by side:
+``whole_runs``.
 
 Part of ``make bench`` (about 4 minutes; docs/numerics/index.md).
 """
 from __future__ import annotations
 
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from oracles import stepped  # noqa: E402  (the kernel with fast paths stepped: tests' oracle)
 
 
 def _setup(mu_r: float, grade: float, k: int):
@@ -109,17 +115,15 @@ RUN_CASES = [(1.0, -1.0, 30), (0.5, 20.0, 30), (0.25, 30.0, 30), (0.25, 50.0, 15
 
 
 def whole_runs() -> None:
-    """004's 90 s profile, one start at a time, with and without options.exponential_slip
-    (the slip jumps in the kernel), alternated start by start: wall time of simulate (checkpoints
+    """004's 90 s profile, one start at a time, with and without the slip jumps in the
+    kernel, alternated start by start: wall time of simulate (checkpoints
     only, best of 3), DOPRI5 steps, right-hand-side evaluations, and the largest change of the
     STD and TSR grades (18 s, 90 s) against the bound of 0.02 mm/s."""
     import dataclasses
 
     from autobalance.core.layout import S_RHS, S_STEPS
     from autobalance.models import InitialState
-    from autobalance.simulate import simulate
-    print("\nwhole runs, 004's 90 s profile, with the slip jumps (options.exponential_slip) "
-          "against without")
+    print("\nwhole runs, 004's 90 s profile, with the slip jumps against without")
     print("case                  starts | time: off      on    ratio | steps: off    on    | "
           "RHS ratio | max |dG| [mm/s]")
     for mu_r, grade, n in RUN_CASES:
@@ -130,11 +134,11 @@ def whole_runs() -> None:
         grades = {False: [], True: []}
         for a in starts:
             for slip in (False, True):
-                o = dataclasses.replace(cfg.options, save_dt=-1.0, exponential_slip=slip)
+                o = dataclasses.replace(cfg.options, save_dt=-1.0)
                 ini = InitialState(ball_angles=a)
-                sim = simulate(cfg.system, cfg.spin, initial=ini, options=o)
-                tot[slip][0] += _best(lambda: simulate(cfg.system, cfg.spin, initial=ini,
-                                                       options=o), 3)
+                sim = stepped(cfg.system, cfg.spin, initial=ini, options=o, slip_jumps=slip)
+                tot[slip][0] += _best(lambda: stepped(cfg.system, cfg.spin, initial=ini,
+                                                      options=o, slip_jumps=slip), 3)
                 tot[slip][1] += int(sim.stats[S_STEPS])
                 tot[slip][2] += int(sim.stats[S_RHS])
                 grades[slip].append(sim.grade_G[1:3])

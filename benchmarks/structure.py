@@ -16,6 +16,8 @@ import sys
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "autobalance"
+sys.path.insert(0, str(SRC.parents[1] / "tests"))
+from test_architecture import module_cycles  # noqa: E402  (one count of the cycles)
 LONG_FUNCTION, MANY_PARAMETERS, LONG_MODULE = 60, 10, 600
 LIQUID_NONE = re.compile(r"\bliquid\s+is\s+(not\s+)?None\b")
 
@@ -35,74 +37,14 @@ def _parameters(n: ast.FunctionDef) -> int:
     return len([x for x in names if x not in ("self", "cls")])
 
 
-def _module(path: Path, src: Path = SRC) -> str:
-    rel = path.relative_to(src.parent).with_suffix("")
-    parts = list(rel.parts)
-    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
-
-
-def _imports(tree: ast.Module, mod: str, is_pkg: bool, known: set) -> set:
-    """The package's modules that ``mod`` imports anywhere (inside functions too)."""
-    out = set()
-    pkg = mod if is_pkg else mod.rpartition(".")[0]
-    for n in ast.walk(tree):
-        if isinstance(n, ast.ImportFrom):
-            base = n.module or ""
-            if n.level:
-                up = pkg.split(".")[: len(pkg.split(".")) - (n.level - 1)]
-                base = ".".join(up + ([base] if base else []))
-            for a in n.names:
-                full = f"{base}.{a.name}"
-                out.add(full if full in known else base)
-        elif isinstance(n, ast.Import):
-            out |= {a.name for a in n.names}
-    return {m for m in out if m in known and m != mod}
-
-
-def _cycles(graph: dict) -> list:
-    """Strongly connected components of more than one module (Tarjan)."""
-    index, low, stack, on, comps, counter = {}, {}, [], set(), [], [0]
-
-    def visit(v):
-        index[v] = low[v] = counter[0]
-        counter[0] += 1
-        stack.append(v)
-        on.add(v)
-        for w in graph.get(v, ()):
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            comp = []
-            while True:
-                w = stack.pop()
-                on.discard(w)
-                comp.append(w)
-                if w == v:
-                    break
-            if len(comp) > 1:
-                comps.append(sorted(comp))
-
-    sys.setrecursionlimit(10_000)
-    for v in sorted(graph):
-        if v not in index:
-            visit(v)
-    return sorted(comps)
-
-
 def counts(src: Path = SRC) -> dict:
     """Every count of this module's docstring, with the places counted."""
     files = sorted(src.rglob("*.py"))
-    known = {_module(p, src) for p in files}
-    long_f, many_p, liquid, long_m, graph = [], [], [], [], {}
+    long_f, many_p, liquid, long_m = [], [], [], []
     for p in files:
         text = p.read_text()
         tree = ast.parse(text)
         rel = p.relative_to(src.parent).as_posix()
-        mod = _module(p, src)
-        graph[mod] = _imports(tree, mod, p.name == "__init__.py", known)
         if text.count("\n") > LONG_MODULE:
             long_m.append(f"{rel}: {text.count(chr(10))} lines")
         for n in ast.walk(tree):
@@ -114,13 +56,11 @@ def counts(src: Path = SRC) -> dict:
         for i, line in enumerate(text.splitlines(), 1):
             code = line.split("#", 1)[0]
             liquid += [f"{rel}:{i}"] * len(LIQUID_NONE.findall(code))
-    # cycles between modules: a package's __init__ (which imports its modules to re-export
-    # them) is left out of the graph
-    pkgs = {_module(p, src) for p in files if p.name == "__init__.py"}
-    graph = {m: {d for d in deps if d not in pkgs} for m, deps in graph.items() if m not in pkgs}
+    # cycles between modules: the architecture test's own count (tests/test_architecture.py)
+    cycles = sorted(c.removeprefix("module cycle: ") for c in module_cycles(src.parent))
     return {"functions_over_60_lines": long_f, "functions_over_10_parameters": many_p,
             "liquid_is_none_branches": liquid, "modules_over_600_lines": long_m,
-            "module_import_cycles": [", ".join(c) for c in _cycles(graph)]}
+            "module_import_cycles": cycles}
 
 
 def main(argv: list[str] | None = None) -> None:

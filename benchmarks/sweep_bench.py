@@ -1,11 +1,10 @@
 """Sweep benchmark (make bench): the 004 start-position Monte Carlo, 1275 runs of 90 s TSR.
 
 Prints wall time and runs/s on this machine with the default executor (local processes, all
-cores), side by side in one run: the default kernel (the slip jumps of core/expo.py on), the
-kernel without them (``exponential_slip = false``: every phase stepped by DOPRI5), the one also
-without dense events (``dense_events = false``: the step redone to every located stick-slip
-event) and the default one with its steps capped at 0.75 ms (half DOPRI5's mean step; the
-exponential jumps' 10-50 ms steps are cut far more); the 5/50/95 % of G after STD
+cores), side by side in one run: the kernel and the kernel with its steps capped at 0.75 ms
+(half DOPRI5's mean step; the exponential jumps' 10-50 ms steps are cut far more; the kernel
+without its slip jumps is timed per run in benchmarks/run.py, case C, and
+benchmarks/slip_etd_bench.py); the 5/50/95 % of G after STD
 (20 %) and after TSR (100 %) for each; and a profile of where the time goes (planning, the
 kernel, process start-up and writing, and the kernel's time by kind of run), from timed phases.
 """
@@ -104,10 +103,6 @@ def main() -> dict:
         spec_from_dict(SPEC, "bench")).tasks[0]))   # compile here: the workers load the cache
     try:
         s1, w1, e1, ds1 = run(None, "default", work)
-        s0, w0, e0, ds0 = run(SimOptions(exponential_slip=False), "previous", work)
-        dG0 = np.abs(ds1["grade_G"].values - ds0["grade_G"].values)
-        s3, w3, e3, ds3 = run(SimOptions(exponential_slip=False, dense_events=False), "older",
-                              work)
         # DOPRI5's phases run at ~1.5 ms steps (stability-bound, docs/numerics/index.md): capping the
         # step at 0.75 ms halves them, and cuts the slip jumps' steps (10-50 ms) far more
         h = 0.75e-3
@@ -124,25 +119,17 @@ def main() -> dict:
         f"004 start-position Monte Carlo: {n} runs x 90 s TSR, {cores} cores, local processes",
         f"  default      : {w1:6.1f} s wall, {n / w1:6.1f} runs/s, {e1['mean_steps']:.0f} DOPRI5 "
         f"steps and {e1['mean_events']:.0f} stick-slip events per run, {s1['failed_runs']} failed",
-        f"  no slip jumps (DOPRI5 steps every phase): {w0:6.1f} s wall, "
-        f"{n / w0:6.1f} runs/s, {e0['mean_steps']:.0f} steps and {e0['mean_events']:.0f} events "
-        f"per run: the default is {w0 / w1:.2f}x faster",
-        f"  also steps redone to the events: {w3:6.1f} s wall, "
-        f"{n / w3:6.1f} runs/s, {e3['mean_steps']:.0f} steps per run: the default is "
-        f"{w3 / w1:.2f}x faster",
         f"  steps <= {h * 1e3:.2f} ms: {w2:6.1f} s wall, {n / w2:6.1f} runs/s (max_step = {h * 1e3:.3f} ms, "
         f"{e2['mean_steps']:.0f} steps per run), {s2['failed_runs']} failed",
         "  G [mm/s]         p5      p50      p95   share <= G16",
     ]
-    for lab, s in (("default", s1), ("no jumps", s0), ("no dense", s3), ("<= 0.75 ms", s2)):
+    for lab, s in (("default", s1), ("<= 0.75 ms", s2)):
         for c in s["checkpoints"]:
             tag = "STD (20 %)" if c["time_s"] < 89 else "TSR (100 %)"
             lines.append(f"  {lab:9s} {tag:11s} {c['grade_G_p5_mm_s']:6.2f} {c['grade_G_p50_mm_s']:8.2f} "
                          f"{c['grade_G_p95_mm_s']:8.2f}   {100 * c['share_below_limit']:5.1f} %")
     lines.append(f"  per run, default vs steps <= {h * 1e3:.2f} ms: max |dG| = {np.nanmax(dG):.3g} mm/s; runs with |dG| "
                  f"> 0.1 mm/s at 100 %: {int((dG[..., -1] > 0.1).sum())} of {n}")
-    lines.append(f"  per run, default vs no slip jumps: max |dG| = {np.nanmax(dG0):.3g} mm/s, median "
-                 f"{np.nanmedian(dG0):.1e}; runs with |dG| > 0.02 mm/s: {int((dG0 > 0.02).any(-1).sum())}")
     lines.append(f"  profile: plan {prof['plan_s']:.2f} s; per run {prof['task_s_per_run'] * 1e3:.1f} ms in the "
                  f"kernel task, {prof['payload_s_per_run'] * 1e3:.2f} ms building its input; the kernel "
                  f"accounts for ~{100 * min(kernel_share, 1):.0f} % of the wall time")
@@ -153,10 +140,7 @@ def main() -> dict:
                      f"{100 * k['share_time']:.0f} % of the time")
     lines.append("  targets: <= 60 s for the 1275 runs; <= 10 s with the default kernel")
     print("\n".join(lines))
-    res = {"runs": n, "max_abs_dG_mm_s": float(np.nanmax(dG)), "wall_previous_s": w0,
-           "wall_older_s": w3, "summary_older": s3, "per_run_previous": e0, "per_run_older": e3,
-           "previous_vs_today_max_abs_dG_mm_s": float(np.nanmax(dG0)), "summary_previous": s0,
-           "run_kinds": kinds,
+    res = {"runs": n, "max_abs_dG_mm_s": float(np.nanmax(dG)), "run_kinds": kinds,
            "runs_dG_gt_0.1": int((dG[..., -1] > 0.1).sum()), "wall_default_s": w1, "wall_half_step_s": w2, "summary_default": s1,
            "summary_half_step": s2, "per_run_default": e1, "per_run_half": e2, "profile": prof}
     os.makedirs("out", exist_ok=True)

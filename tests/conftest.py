@@ -72,14 +72,14 @@ kind = "start_grid"
 n = 4
 """
 
-# 55 runs in 28 tasks of 2 (~0.1 s each): long enough to interrupt in the middle. The stuck
-# phases are stepped (options.exact_ramps = false, the slower kernel) so that the runs keep
+# 55 runs in 28 tasks of 2: long enough to interrupt in the middle. The stuck ramps are
+# stepped (the creep law: its holds are closed forms, its ramps are not) so that the runs keep
 # this length: the fault tests need a sweep that is still running, not a fast one.
 LONG_SWEEP = """
 [sweep]
 name = "resumable"
 base = "vub_jeffcott_004"
-set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s", "options.exact_ramps=false"]
+set = ["profile.duration=30 s", "profile.runup_fraction=0.4", "profile.down_time=4 s", "profile.plateau_time=5 s", "profile.up_time=4 s", "options.friction_law=creep"]
 batch_size = 2
 
 [monte_carlo]

@@ -20,6 +20,7 @@ from autobalance.sweep import make_plan, sweep
 from autobalance.sweep.plan import BranchTask
 
 from conftest import assert_bit_identical, spec_of
+from oracles import paths_off
 
 #: 004's machine on a 12 s profile: run-up to 167 Hz in 6 s, down in 1 s, plateau 2 s, up 1 s
 SHORT = ["profile.duration=12 s", "profile.runup_fraction=0.5", "profile.down_time=1 s",
@@ -31,19 +32,21 @@ def _starts(n: int, seed: int = 1) -> list:
     return [(a, a + rng.uniform(0.5, 5.7)) for a in rng.uniform(0.0, 2 * np.pi, n)]
 
 
-def _kernel_args(cfg, angles):
+def _kernel_args(cfg, angles, off=None):
     s, spin, o = cfg.system, cfg.spin, cfg.options
     P, B = pack_params(s, spin, o)
+    paths_off(P, **(off or {}))
     y0, _ = initial_vector(s, spin, InitialState(ball_angles=angles))
     unb_t, unb_u = s.rotor.unbalance_table()
     return P, B, s.balancer.n_balls, unb_t, unb_u, y0, atol_vector(s, spin, o), _h_max(spin, o)
 
 
-def _pause_and_continue(cfg, angles, t_pause, prof_w_after=None):
+def _pause_and_continue(cfg, angles, t_pause, prof_w_after=None, off=None):
     """(whole run, paused then continued) of one start: (y, out_y, stats) each, and where the
     run paused (layout.C_WHERE; 5: at the end of a hold with its breakaway). ``prof_w_after``:
-    the speeds the continuation uses (any after the knot)."""
-    P, B, N, unb_t, unb_u, y0, atol, h_max = _kernel_args(cfg, angles)
+    the speeds the continuation uses (any after the knot); ``off``: the fast paths stepped
+    instead (oracles.paths_off)."""
+    P, B, N, unb_t, unb_u, y0, atol, h_max = _kernel_args(cfg, angles, off)
     prof_t, prof_w, t_end = spin_arrays(cfg.spin)
     w_after = prof_w if prof_w_after is None else prof_w_after
     o = cfg.options
@@ -90,25 +93,25 @@ def test_continuation_under_another_profile_is_that_profile_s_run():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("sets, arrivals", [([], {1, 2, 3, 4}),
-                                            (["options.exact_ramps=false"], {2, 4}),
-                                            (["options.exact_holds=false"], {4})],
+@pytest.mark.parametrize("off, arrivals", [({}, {1, 2, 3, 4}),
+                                           ({"ramps": False}, {2, 4}),
+                                           ({"holds": False}, {4})],
                          ids=["jumps", "stepped-ramps", "stepped-holds"])
-def test_pause_on_every_kind_of_arrival(sets, arrivals):
+def test_pause_on_every_kind_of_arrival(off, arrivals):
     """004's 90 s profile, 12 starts, every interior knot: the knot is reached by a ramp jump
     (1), a closed-form hold (2), a hold until its breakaway (3) or a step (4); each continues
     bit for bit, also under another plateau."""
-    cfg = load_config("vub_jeffcott_004", sets)
+    cfg = load_config("vub_jeffcott_004")
     prof_t, prof_w, _ = spin_arrays(cfg.spin)
     other = prof_w.copy()
     other[2:4] *= 1.03
     seen = set()
     for angles in _starts(12):
         for t_pause in prof_t[1:-1]:
-            whole, cont, where = _pause_and_continue(cfg, angles, t_pause)
+            whole, cont, where = _pause_and_continue(cfg, angles, t_pause, off=off)
             seen.add(where)
             assert _same(whole, cont), (angles, t_pause, where)
-        assert _same(*_pause_and_continue(cfg, angles, prof_t[1], other)[:2])
+        assert _same(*_pause_and_continue(cfg, angles, prof_t[1], other, off=off)[:2])
     assert seen == arrivals
 
 
@@ -119,11 +122,12 @@ def test_pause_anywhere_continues_bit_for_bit():
     continues bit for bit, with the slip jumps and without (DOPRI5 alone reaches the hold's
     end with a breakaway, kind 5, in these starts)."""
     seen = set()
-    for slip in ("false", "true"):
-        cfg = load_config("vub_jeffcott_004", [f"options.exponential_slip={slip}"])
+    cfg = load_config("vub_jeffcott_004")
+    for slip in (False, True):
         for angles in _starts(6, seed=5):
             for t_pause in (12.3, 20.7, 28.9, 33.1, 41.2, 52.5):
-                whole, cont, where = _pause_and_continue(cfg, angles, t_pause)
+                whole, cont, where = _pause_and_continue(cfg, angles, t_pause,
+                                                         off={"slip_jumps": slip})
                 seen.add(where)
                 assert _same(whole, cont), (slip, angles, t_pause, where)
     assert 5 in seen

@@ -139,17 +139,18 @@ def test_etd_converges_at_fourth_order_on_a_slipping_window_the_kernel_steps_fin
     assert errs[0] < np.abs(y1[7:9] - ref[7:9]).max()
 
 
-# -- the slip jumps in the kernel (options.exponential_slip) ----------------------------------
+# -- the slip jumps in the kernel (P[P_ETD], pack.fast_paths) ----------------------------------
 def _grades(cfg, starts, slip, max_step=0.0):
     import dataclasses
 
     from autobalance.core.layout import S_RHS, S_STEPS
     from autobalance.models import InitialState
-    from autobalance.simulate import simulate
-    o = dataclasses.replace(cfg.options, save_dt=-1.0, exponential_slip=slip, max_step=max_step)
+    from oracles import stepped
+    o = dataclasses.replace(cfg.options, save_dt=-1.0, max_step=max_step)
     out = []
     for a in starts:
-        s = simulate(cfg.system, cfg.spin, initial=InitialState(ball_angles=a), options=o)
+        s = stepped(cfg.system, cfg.spin, initial=InitialState(ball_angles=a), options=o,
+                    slip_jumps=slip)
         out.append((s.grade_G[1], s.grade_G[2], s.stats[S_STEPS], s.stats[S_RHS]))
     return np.array(out)
 
@@ -200,9 +201,8 @@ def test_slip_jumps_pause_at_a_knot_and_continue_bit_for_bit():
 
 
 def test_slip_jumps_only_where_the_ramp_jumps_apply():
-    """The option is on by default, off on request, and active only under the
-    conditions of the stuck ramps' jumps (pack.fast_paths): not under gravity, nor with the
-    creep law."""
+    """The jumps are taken under the conditions of the stuck ramps' jumps only
+    (pack.fast_paths): not under gravity, nor with the creep law."""
     import dataclasses
 
     import autobalance as ab
@@ -210,18 +210,8 @@ def test_slip_jumps_only_where_the_ramp_jumps_apply():
     from autobalance.simulate.pack import pack_params
     cfg, _ = _rig(1.0, 20.0, 0)
     s, spin, o = cfg.system, cfg.spin, cfg.options
-    assert o.exponential_slip is True and pack_params(s, spin, o)[0][P_ETD] == 1.0
-    off = dataclasses.replace(o, exponential_slip=False)
-    assert pack_params(s, spin, off)[0][P_ETD] == 0.0
-    on = dataclasses.replace(o, exponential_slip=True)
-    assert pack_params(s, spin, on)[0][P_ETD] == 1.0
+    assert pack_params(s, spin, o)[0][P_ETD] == 1.0
     grav = dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0))
-    assert pack_params(grav, spin, on)[0][P_ETD] == 0.0
-    creep = dataclasses.replace(on, friction_law="creep")
+    assert pack_params(grav, spin, o)[0][P_ETD] == 0.0
+    creep = dataclasses.replace(o, friction_law="creep")
     assert pack_params(s, spin, creep)[0][P_ETD] == 0.0
-
-
-def test_slip_jump_option_is_checked():
-    from autobalance.config import ConfigError, load_config
-    with pytest.raises(ConfigError, match="options.exponential_slip"):
-        load_config("vub_jeffcott_004", ["options.exponential_slip=2"])

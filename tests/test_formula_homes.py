@@ -66,28 +66,29 @@ def test_steady_deflection_is_the_synchronous_orbit():
 
 
 @pytest.mark.parametrize("change, expected", [
-    (lambda s, o: (s, o), (True, True, True, True)),
-    (lambda s, o: (dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0)), o), (False, False, True, False)),
+    (lambda s, o: (s, o), (True, True, True, True, True)),
+    (lambda s, o: (dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0)), o),
+     (False, False, False, True, False)),
     (lambda s, o: (dataclasses.replace(s, suspension=dataclasses.replace(s.suspension, ky=6e6)), o),
-     (False, False, False, False)),
+     (False, False, False, False, False)),
     (lambda s, o: (dataclasses.replace(s, suspension=dataclasses.replace(s.suspension, dry_friction_force=1.0)), o),
-     (False, False, False, False)),
-    (lambda s, o: (s, dataclasses.replace(o, friction_law="tanh")), (False, False, True, True)),
-    (lambda s, o: (s, dataclasses.replace(o, friction_law="creep")), (True, False, True, True)),
-    (lambda s, o: (s, dataclasses.replace(o, exact_holds=False)), (False, False, True, True)),
-    (lambda s, o: (s, dataclasses.replace(o, exact_ramps=False)), (True, False, True, True)),
+     (False, False, False, False, False)),
+    (lambda s, o: (s, dataclasses.replace(o, friction_law="tanh")), (False, False, False, True, True)),
+    (lambda s, o: (s, dataclasses.replace(o, friction_law="creep")), (True, False, False, True, True)),
     (lambda s, o: (dataclasses.replace(s, rotor=dataclasses.replace(
-        s.rotor, unbalance_schedule=((0.0, 3e-4), (1.0, 2e-4)))), o), (False, False, True, True)),
+        s.rotor, unbalance_schedule=((0.0, 3e-4), (1.0, 2e-4)))), o),
+     (False, False, False, True, True)),
 ])
 def test_fast_paths_derived_once(change, expected):
-    """holds / ramps / isotropic / symmetric from the model; the kernels only read P."""
-    from autobalance.core.layout import P_HOLDS, P_ISO, P_RAMPS, P_SYM
+    """holds / ramps / slip jumps / isotropic / symmetric from the model; the kernels only read
+    P."""
+    from autobalance.core.layout import P_ETD, P_HOLDS, P_ISO, P_RAMPS, P_SYM
 
     s, o = change(vub_004(), ab.SimOptions())
     spin = ab.SpeedProfile.constant(600.0, 1.0)
     assert fast_paths(s, spin, o) == expected
     P, _ = pack_params(s, spin, o)
-    assert tuple(bool(P[i]) for i in (P_HOLDS, P_RAMPS, P_ISO, P_SYM)) == expected
+    assert tuple(bool(P[i]) for i in (P_HOLDS, P_RAMPS, P_ETD, P_ISO, P_SYM)) == expected
 
 
 def test_fast_paths_motor_drive_never_holds():

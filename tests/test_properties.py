@@ -18,6 +18,7 @@ import autobalance as ab
 from autobalance.simulate import simulate, simulate_batch
 
 from conftest import vub_004
+from oracles import stepped
 
 
 def energy(system, sim, torque):
@@ -125,12 +126,13 @@ def test_failure_is_a_status_not_an_exception():
     finish this one in a few steps)."""
     s = vub_004()
     prof = ab.SpeedProfile.constant(2 * np.pi * 100, 1.0)
-    o = ab.SimOptions(max_steps=20, exact_holds=False)
-    sim = simulate(s, prof, options=o, throw=False)
+    o = ab.SimOptions(max_steps=20)
+    sim = stepped(s, prof, options=o, holds=False, throw=False)
     assert sim.status == "max_steps"
     assert "max_steps" in sim.message and sim.t.size > 0
     with pytest.raises(Exception, match="step budget"):
-        simulate(s, prof, options=o, throw=True)
+        stepped(s, prof, options=o, holds=False, throw=True)
+    o = ab.SimOptions(max_steps=20, friction_law="tanh")      # no closed-form holds
     b = simulate_batch([s, s], prof, options=o)
     assert b.status == ["max_steps", "max_steps"]
 
@@ -146,9 +148,8 @@ def test_exact_hold_equals_integrated_hold(mu, angles):
     ini = ab.InitialState(ball_angles=angles)
     exact = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
                                                                   atol_scale=1e-10))
-    integ = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
-                                                                  atol_scale=1e-10, exact_holds=False,
-                                                                  exact_ramps=False))
+    integ = stepped(s, prof, initial=ini, options=ab.SimOptions(save_dt=0.05, rtol=1e-10,
+                                                                 atol_scale=1e-10), holds=False)
     assert exact.summary()["solver"]["exact_holds"] >= 1
     assert integ.summary()["solver"]["exact_holds"] == 0
     scale = max(np.abs(integ.u).max(), np.abs(integ.v).max())

@@ -20,12 +20,12 @@ from autobalance.config import ConfigError, load_config
 from autobalance.core.hold import hold_roots
 from autobalance.core.layout import P_CX, P_KX, P_MT
 from autobalance.core.ramp import RAMP_TAYLOR, RAMP_TERMS, ramp_series
-from autobalance.models._validate import ParameterError
 from autobalance.simulate import simulate
 from autobalance.simulate.result import SimulationError
 from autobalance.simulate.pack import pack_params
 
 from conftest import vub_004
+from oracles import stepped
 
 W = 2 * np.pi
 
@@ -118,11 +118,11 @@ def _pair(system, prof, initial):
     amplitude)."""
     out = []
     for ramps, tol in ((True, 1e-10), (False, 1e-10), (False, 1e-11)):
-        o = ab.SimOptions(save_dt=0.05, rtol=tol, atol_scale=tol, exact_ramps=ramps,
-                          exponential_slip=False)
-        out.append(simulate(system, prof, initial=initial, options=o))
-    o = ab.SimOptions(save_dt=2e-5, rtol=1e-10, atol_scale=1e-10, exact_ramps=False)
-    dense = simulate(system, prof, initial=initial, options=o)
+        o = ab.SimOptions(save_dt=0.05, rtol=tol, atol_scale=tol)
+        out.append(stepped(system, prof, initial=initial, options=o, ramps=ramps,
+                           slip_jumps=False))
+    o = ab.SimOptions(save_dt=2e-5, rtol=1e-10, atol_scale=1e-10)
+    dense = stepped(system, prof, initial=initial, options=o, ramps=False)
     out.append(np.abs(dense.u + 1j * dense.v).max())
     return out
 
@@ -217,27 +217,47 @@ def test_exact_ramps_equal_integrated_ramps_property(mu, f0, f1, a1, gap, c):
 
 
 def test_exact_ramps_follow_the_fast_path_conditions():
-    """The jump is an option of the exact stick law only (the creep law keeps stepping ramps),
-    and is off wherever the closed-form hold is (pack.fast_paths)."""
+    """The jump is taken with the exact stick law only (the creep law keeps stepping ramps),
+    and nowhere the closed-form hold is not (pack.fast_paths)."""
     s = vub_004(mu=0.05)
     prof = ab.SpeedProfile((0.0, 0.5, 3.0), (0.0, W * 30, W * 150))
     ini = ab.InitialState(ball_angles=(0.8, 2.4))
-    for opts in (ab.SimOptions(friction_law="creep"), ab.SimOptions(exact_holds=False),
-                 ab.SimOptions(exact_ramps=False)):
-        sim = simulate(s, prof, initial=ini, options=dataclasses.replace(opts, save_dt=-1.0))
+    sim = simulate(s, prof, initial=ini, options=ab.SimOptions(save_dt=-1.0))
+    assert sim.summary()["solver"]["exact_ramps"] >= 1
+    sim = simulate(s, prof, initial=ini, options=ab.SimOptions(friction_law="creep", save_dt=-1.0))
+    assert sim.summary()["solver"]["exact_ramps"] == 0
+    for kw in ({"holds": False}, {"ramps": False}):
+        sim = stepped(s, prof, initial=ini, options=ab.SimOptions(save_dt=-1.0), **kw)
         assert sim.summary()["solver"]["exact_ramps"] == 0
     grav = dataclasses.replace(s, gravity=ab.Gravity(9.81, 0.0))
     sim = simulate(grav, prof, initial=ini, options=ab.SimOptions(save_dt=-1.0))
     assert sim.summary()["solver"]["exact_ramps"] == 0
 
 
-def test_exact_ramps_option_bad_input():
-    with pytest.raises(ParameterError, match=r"options.exact_ramps .*true or false"):
-        ab.SimOptions(exact_ramps="yes")
-    cfg = load_config("vub_jeffcott_004", ["options.exact_ramps=false"])
-    assert cfg.options.exact_ramps is False
-    with pytest.raises(ConfigError, match="options.exact_ramps"):
-        load_config("vub_jeffcott_004", ["options.exact_ramps=maybe"])
+@pytest.mark.parametrize("key", ["exact_holds", "exact_ramps", "dense_events",
+                                 "exponential_slip"])
+def test_retired_kernel_switches_are_refused_in_one_line(key, tmp_path):
+    """The former switches of the fast paths: in --set and in a file, one line naming the key
+    as written and what to do; not an option of SimOptions."""
+    for make in (lambda: load_config("vub_jeffcott_004", [f"options.{key}=false"]),
+                 lambda: load_config(_file_with(tmp_path, key))):
+        with pytest.raises(ConfigError) as e:
+            make()
+        msg = str(e.value)
+        assert f"options.{key}" in msg and "retired" in msg and "remove the key" in msg
+        assert "\n" not in msg
+    with pytest.raises(TypeError):
+        ab.SimOptions(**{key: False})
+
+
+def _file_with(tmp_path, key):
+    """004's preset with ``key = false`` in its [options] table."""
+    from autobalance.config.presets import preset_path
+
+    p = tmp_path / "m.toml"
+    p.write_text(preset_path("vub_jeffcott_004").read_text().replace(
+        "[options]", f"[options]\n{key} = false", 1))
+    return p
 
 
 # -- holds that end in a breakaway (ramp.py R5) --------------------------------------------------
@@ -254,10 +274,10 @@ def test_hold_until_breakaway_equals_integrated_hold():
     assert se["exact_holds"] == 1 and si["exact_holds"] == 0
     assert se["events"] == si["events"] == 1
     _assert_same(exact, integ, fine, amax)
-    o = [ab.SimOptions(save_dt=1e-4, rtol=1e-10, atol_scale=1e-10, exact_ramps=r,
-                       exponential_slip=False) for r in (True, False)]
+    o = ab.SimOptions(save_dt=1e-4, rtol=1e-10, atol_scale=1e-10)
     starts = [x.t[np.abs(x.alpha_dot).max(axis=1) > 0][0]
-              for x in (simulate(vub_004(), prof, initial=ini, options=oo) for oo in o)]
+              for x in (stepped(vub_004(), prof, initial=ini, options=o, ramps=r,
+                                slip_jumps=False) for r in (True, False))]
     assert starts[0] == starts[1]
 
 
@@ -270,9 +290,9 @@ def test_plateau_ratchet_with_closed_form_holds():
     ini = ab.InitialState(ball_angles=(0.25744424357926954, 0.8447628047660137))
     runs = {}
     for key, ramps, tol in (("jump", True, 1e-6), ("step", False, 1e-6), ("fine", False, 1e-9)):
-        o = dataclasses.replace(cfg.options, save_dt=0.5, exact_ramps=ramps, rtol=tol,
-                                atol_scale=tol, exponential_slip=False)
-        runs[key] = simulate(cfg.system, cfg.spin, initial=ini, options=o)
+        o = dataclasses.replace(cfg.options, save_dt=0.5, rtol=tol, atol_scale=tol)
+        runs[key] = stepped(cfg.system, cfg.spin, initial=ini, options=o, ramps=ramps,
+                            slip_jumps=False)
     assert runs["jump"].summary()["solver"]["exact_holds"] > 500
     assert runs["step"].summary()["solver"]["events"] > 1000
     for get, floor in ((lambda x: x.alpha, 1e-7), (lambda x: x.grade_G, 1e-5)):

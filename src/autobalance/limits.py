@@ -16,8 +16,8 @@ Steps of one run. DOPRI5's stability region reaches about 3.3 along the imaginar
 the rotor-frame eigenvalues reach Omega + omega_n, so a run integrated step by step takes
 about ``int (Omega(t) + omega_max) / 3.3 dt`` steps (the *estimate*: 38.1k for 004's 90 s TSR
 run, which takes 35.8k with its 167 Hz hold in closed form; 4.6k for a 12 s TSR run that takes
-5.6k). A hold at constant speed may be solved in closed form (``options.exact_holds``) and cost
-nothing, so the *lower bound* counts the speed ramps only, with a safety factor of 2. A run
+5.6k). A hold at constant speed may be solved in closed form (``simulate.pack.fast_paths``) and
+cost nothing, so the *lower bound* counts the speed ramps only, with a safety factor of 2. A run
 whose lower bound exceeds ``options.max_steps`` cannot finish and is refused before it starts;
 a run whose estimated time (estimate x the measured cost of a step) exceeds the run-time limit
 is refused too (a ``duration = "1e12 s"``).

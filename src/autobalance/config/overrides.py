@@ -8,7 +8,7 @@ from typing import Any
 
 from ..limits import max_nesting
 from .reader import bracket_depth, check_nesting
-from .schema import PROFILE_KINDS, SECTIONS, TOP_LEVEL
+from .schema import PROFILE_KINDS, RETIRED, SECTIONS, TOP_LEVEL
 from .units import ConfigError
 
 #: Every key a ``[profile]`` table may hold (over all kinds).
@@ -46,6 +46,8 @@ def split_path(path: str, prefix: str = "") -> tuple[str, str]:
         raise ConfigError(f"{prefix}{path}: unknown path; sections: {', '.join(TOP_LEVEL[2:])}")
     section, key = parts
     allowed = PROFILE_KEYS if section == "profile" else list(SECTIONS[section])
+    if (section, key) in RETIRED:
+        raise ConfigError(f"{prefix}{path}: {RETIRED[section, key]}")
     if key not in allowed:
         raise ConfigError(f"{prefix}{path}: unknown key; allowed: {', '.join(allowed)}")
     return section, key

@@ -99,10 +99,15 @@ SECTIONS: dict[str, dict[str, F]] = {
     "options": _fields_of(
         SimOptions, friction_law=F("text", choices=FRICTION_LAWS), v_sat=F("speed"),
         normal_force=F("text", choices=NORMAL_FORCES), rtol=F("ratio"), atol_scale=F("ratio"),
-        max_step=F("time"), save_dt=F("time"), max_steps=F("int"), exact_holds=F("bool"),
-        exact_ramps=F("bool"), dense_events=F("bool"),
-        exponential_slip=F("bool")),
+        max_step=F("time"), save_dt=F("time"), max_steps=F("int")),
 }
+
+# Keys a section no longer has, with what to do instead (one line, the key as written).
+RETIRED = {
+    ("options", k): "retired: the kernel takes its closed forms (holds, stuck ramps, slip "
+                    "jumps) and its continuous extension at events wherever they apply; "
+                    "remove the key"
+    for k in ("exact_holds", "exact_ramps", "dense_events", "exponential_slip")}
 
 # nominal is required in a file: without it a std/tsr profile would silently run at 004's
 # 167 Hz (the Python constructors keep that default for callers who mean 004)
@@ -233,6 +238,8 @@ def _section(section: str, data: Any, fields: dict[str, F], model, extra: str = 
         err = next((e for e in errs if e["type"] == "extra_forbidden"), errs[0])
         path = ".".join([section, *map(str, err["loc"])])
         key = str(err["loc"][0]) if err["loc"] else ""
+        if err["type"] == "extra_forbidden" and (section, key) in RETIRED:
+            raise ConfigError(f"{path}: {RETIRED[section, key]}") from None
         if err["type"] == "extra_forbidden":
             raise ConfigError(f"{path}: unknown key{extra}; allowed: {', '.join(fields)}") from None
         if err["type"] == "missing":

@@ -1,8 +1,8 @@
 """Exponential integration of slipping phases (docs/numerics/exponential-slip.md, "An
 exponential integrator for the slipping phases").
 
-Used by ``integrate`` as the slip jump (``slip_window``, ``options.exponential_slip``, on by
-default); ``etd_window`` takes constant steps over an event-free window of a run, for
+Used by ``integrate`` as the slip jump (``slip_window``, under the conditions of
+``simulate.pack.fast_paths``); ``etd_window`` takes constant steps over an event-free window of a run, for
 ``benchmarks/slip_etd_bench.py``.
 
 The stiffness of 004's rig in the rotor frame lives in the coupled rotor-ball dynamics (rotor
@@ -405,7 +405,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
                 stick_tol: float,
                 h_max: float) -> tuple[bool, int, float, float, float, float, float]:
     """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
-    (integrate.py, ``options.exponential_slip``; docs/numerics/exponential-slip.md).
+    (integrate.py, ``P[P_ETD]``; docs/numerics/exponential-slip.md).
 
     The window is run with K and with 2K equal steps (K from the last window's step h_etd
     [s], the steps no longer than the run's largest step h_max [s]); Richardson's estimate

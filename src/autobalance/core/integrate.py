@@ -7,7 +7,8 @@ switching functions are checked:
   * stuck ball i:    g = mu_s N_i R - |lambda_i| < 0        -> the ball breaks away;
   * motor-driven spin: psi_dot reaches the hold speed      -> the controller takes over.
 The earliest crossing is located on the cubic Hermite interpolant of the step (Illinois method),
-the step is redone up to that instant, and the modes are re-resolved: stuck balls are released one
+the state there is taken from DOPRI5's continuous extension of the step (core/step.py
+``_dense``), and the modes are re-resolved: stuck balls are released one
 at a time, largest |lambda|/limit first, until every stuck ball's required friction is within its
 static limit (coupled stuck balls are solved together because lambda comes from the full
 constrained system). References: Leine, van Campen, van de Vrande, Nonlinear Dyn. 16 (1998)
@@ -28,7 +29,7 @@ import math
 import numpy as np
 
 from .jit import kernel
-from .layout import (B_KC, B_MUS, C_WHERE, carry_size, N_S, P_BETA, P_DELTA, P_DENSE, P_ETD,
+from .layout import (B_KC, B_MUS, C_WHERE, carry_size, N_S, P_BETA, P_DELTA, P_ETD,
                      P_FLAW, P_HC, P_HOLDS, P_R, P_RAMPS, P_RHO, P_SPIN, P_SYM, P_WHOLD, S_AMAX,
                      S_EVENTS, S_HOLDS, S_IMPACTS, S_RAMPS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
                      S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX)
@@ -111,7 +112,6 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     # static conditions of a closed-form hold, derived from the model by simulate/pack.fast_paths
     can_hold = P[P_HOLDS] == 1.0
     can_ramp = P[P_RAMPS] == 1.0
-    dense = P[P_DENSE] == 1.0
     # slip jumps: the stuck ramps' conditions (pack.py), the exact law without creep
     can_etd = P[P_ETD] == 1.0 and exact and not creep
     where = int(carry[C_WHERE])
@@ -467,7 +467,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 stall = 0
             if th_ev < 1.0:
                 h_ev = th_ev * h
-                if h_ev > 1e-15 * max(1.0, t) and dense:
+                if h_ev > 1e-15 * max(1.0, t):
                     # the state at the event from the accepted step's continuous extension,
                     # and its derivative with the modes before the event (for lam and outputs)
                     _dense(y, f0, y1, f1, K, h, th_ev, ytmp)
@@ -476,11 +476,6 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     rhs(t + h_ev, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
                         spin, f1, lam, Mm, fv, A, bb, idx, trig)
                     nrhs += 1
-                elif h_ev > 1e-15 * max(1.0, t):          # the step redone to the event
-                    _dopri_step(t, y, f0, h_ev, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                stuck, sgn, spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx,
-                                trig)
-                    nrhs += 6
                 else:
                     for j in range(n):
                         y1[j] = y[j]

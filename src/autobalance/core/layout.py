@@ -47,17 +47,16 @@ P_HOLDS = 31      # 1: stuck constant-speed holds may be solved in closed form (
 P_ISO = 32        # 1: isotropic linear suspension force in the rotor frame (rhs.py)
 P_SYM = 33        # 1: rotationally symmetric: max|x| = max|y| = max|w| (integrate.py)
 P_RAMPS = 34      # 1: stuck linear speed ramps may be solved without stepping (ramp.py)
-P_DENSE = 35      # 1: the state at a located event from DOPRI5's continuous extension (integrate.py)
-P_LQX = 36        # a liquid beside the balls (core/hybrid.py): its first moment U about the
-P_LQY = 37        #   chamber centre, rotor frame [kg*m], and its rate U' [kg*m/s], frozen over
-P_LQDX = 38       #   a coupling step; all 0 without a liquid
-P_LQDY = 39
-P_LQI = 40        #   with a motor-driven spin: the films' second moment about the chamber
-P_LQT = 41        #   centre [kg*m^2] and their torque on the spin [N*m], held likewise
-P_ETD = 42        # 1: phases where a ball slips may be jumped by ETDRK4-B (core/expo.py)
-P_HC = 43         # largest DOPRI5 step while two balls touch [s] (0: none): pack.contact_step / w_c
-N_P = 44
-# P_HOLDS, P_RAMPS, P_ISO and P_SYM are derived from the model in one place only:
+P_LQX = 35        # a liquid beside the balls (core/hybrid.py): its first moment U about the
+P_LQY = 36        #   chamber centre, rotor frame [kg*m], and its rate U' [kg*m/s], frozen over
+P_LQDX = 37       #   a coupling step; all 0 without a liquid
+P_LQDY = 38
+P_LQI = 39        #   with a motor-driven spin: the films' second moment about the chamber
+P_LQT = 40        #   centre [kg*m^2] and their torque on the spin [N*m], held likewise
+P_ETD = 41        # 1: phases where a ball slips may be jumped by ETDRK4-B (core/expo.py)
+P_HC = 42         # largest DOPRI5 step while two balls touch [s] (0: none): pack.contact_step / w_c
+N_P = 43
+# P_HOLDS, P_RAMPS, P_ETD, P_ISO and P_SYM are derived from the model in one place only:
 # autobalance.simulate.pack.fast_paths. The kernels read them and decide nothing themselves.
 
 # --- per-ball table B ---------------------------------------------------------------------

@@ -13,7 +13,7 @@ import numpy as np
 from .jit import inline_kernel, kernel
 from .layout import (B_MUS, C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C_NETD,
                      C_NEV, C_NEXT, C_NHOLD, C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1,
-                     C_STALL, C_T, C_WHERE, N_C, P_DENSE, P_WHOLD, RunStatus, S_THOLD)
+                     C_STALL, C_T, C_WHERE, N_C, P_WHOLD, RunStatus, S_THOLD)
 from .rhs import rhs
 
 
@@ -205,13 +205,11 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
     change, the balls that stopped within round-off, the constrained solve (f0, lam, stick
     margins gs). Returns the RHS evaluations it made."""
     nq = N + 3
-    twin = 0
     v_ev = 0.0
     if ev_kind == 0:
-        # the stop is located on the Hermite interpolant; with dense events the state comes from
-        # the continuous extension, where the stopping ball's speed is zero to its accuracy, not
-        # exactly: a ball in exactly its state (coincident balls) stops with it
-        twin = 1 if P[P_DENSE] == 1.0 else 0
+        # the stop is located on the Hermite interpolant and the state comes from the continuous
+        # extension, where the stopping ball's speed is zero to its accuracy, not exactly: a
+        # ball in exactly its state (coincident balls) stops with it
         v_ev = y[nq + 2 + ev_i]
         y[nq + 2 + ev_i] = 0.0
         stuck[ev_i] = 1
@@ -227,7 +225,7 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
         for i in range(N):
             if stuck[i] == 0 and B[i, B_MUS] > 0.0 and (
                     sgn[i] * y[nq + 2 + i] <= 0.0
-                    or (twin == 1 and y[nq + 2 + i] == v_ev and sgn[i] == sgn[ev_i])):
+                    or (y[nq + 2 + i] == v_ev and sgn[i] == sgn[ev_i])):
                 y[nq + 2 + i] = 0.0
                 stuck[i] = 1
         if ev_kind == 1:

@@ -188,6 +188,10 @@ class InitialState:
 class SimOptions:
     """Numerical options of one run.
 
+    The kernel takes its fast paths wherever their conditions hold (closed-form holds, stuck
+    ramps without stepping, slip jumps; ``autobalance.simulate.pack.fast_paths``) and steps
+    everything else by DOPRI5; neither is an option (docs/numerics/stuck-phases.md).
+
     Parameters
     ----------
     friction_law : str
@@ -213,23 +217,6 @@ class SimOptions:
         the nominal speed, at most 200 000 samples); < 0 = store only the checkpoints.
     max_steps : int
         Step budget; exceeding it ends the run with status "max_steps".
-    exact_holds : bool
-        Solve constant-speed holds with every ball stuck in closed form (isotropic rotor without
-        gravity, base motion or dry friction; docs/numerics/speed.md). False integrates them.
-    exact_ramps : bool
-        Solve linear speed ramps with every ball stuck without stepping, under the same
-        conditions and the exact stick-slip law (core/ramp.py; docs/numerics/stuck-phases.md). False
-        integrates them.
-    dense_events : bool
-        Take the state at a located stick-slip event from DOPRI5's continuous extension of the
-        accepted step (order 4, no re-stepping; docs/numerics/stuck-phases.md). False redoes the
-        step to the event.
-    exponential_slip : bool
-        Where a ball slips, jump ahead by the exponential integrator ETDRK4-B with Richardson's
-        error estimate (core/expo.py; docs/numerics/exponential-slip.md), under the conditions of
-        ``exact_ramps``; DOPRI5 locates the events. On by default: 1.2-1.7x faster on
-        004's sweeps than stepping every phase, the grades within 0.0015 mm/s of converged
-        runs. False steps every phase with DOPRI5.
     """
 
     friction_law: str = "stick"
@@ -240,10 +227,6 @@ class SimOptions:
     max_step: float = 0.0
     save_dt: float = 0.0
     max_steps: int = DEFAULT_MAX_STEPS
-    exact_holds: bool = True
-    exact_ramps: bool = True
-    dense_events: bool = True
-    exponential_slip: bool = True
 
     def __post_init__(self):
         if self.friction_law not in FRICTION_LAWS:
@@ -255,13 +238,4 @@ class SimOptions:
         positive("options.atol_scale", self.atol_scale)
         nonneg("options.max_step", self.max_step)
         finite("options.save_dt", self.save_dt)
-        if not isinstance(self.exact_holds, bool):
-            raise ParameterError("options.exact_holds", self.exact_holds, "must be true or false")
-        if not isinstance(self.exact_ramps, bool):
-            raise ParameterError("options.exact_ramps", self.exact_ramps, "must be true or false")
-        if not isinstance(self.dense_events, bool):
-            raise ParameterError("options.dense_events", self.dense_events, "must be true or false")
-        if not isinstance(self.exponential_slip, bool):
-            raise ParameterError("options.exponential_slip", self.exponential_slip,
-                                 "must be true or false")
         count("options.max_steps", self.max_steps, 1)  # inf/NaN: one line, not OverflowError

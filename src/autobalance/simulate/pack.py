@@ -12,7 +12,7 @@ from ..limits import check_memory
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..physics.response import steady_orbit_start
 from ..core.layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, N_B, N_P, P_BAX, P_BAY,
-                     P_BETA, P_DENSE, P_ETD, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
+                     P_BETA, P_ETD, P_BPX, P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY,
                      P_FLAW, P_G, P_GDIR, P_GDRY, P_HC, P_HOLDS, P_ISO, P_SYM, P_KX, P_KY, P_LAW, P_MROT, P_MT, P_NMODEL,
                      P_R, P_RAMPS, P_RHO, P_SPIN, P_T0, P_VDRY, P_VSAT, P_WF, P_WHOLD, P_WNOM)
 
@@ -80,7 +80,7 @@ def spin_arrays(spin: SpeedProfile | MotorDrive) -> tuple[np.ndarray, np.ndarray
 
 
 def fast_paths(system: System, spin: SpeedProfile | MotorDrive,
-               options: SimOptions) -> tuple[bool, bool, bool, bool]:
+               options: SimOptions) -> tuple[bool, bool, bool, bool, bool]:
     """The kernels' fast paths, derived from the model here and nowhere else.
 
     Parameters
@@ -90,31 +90,34 @@ def fast_paths(system: System, spin: SpeedProfile | MotorDrive,
     spin : SpeedProfile or MotorDrive
         The spin (a motor drive has no closed-form holds).
     options : SimOptions
-        Friction law and ``exact_holds``.
+        The friction law.
 
     Returns
     -------
-    (holds, ramps, isotropic, symmetric) : tuple of bool
+    (holds, ramps, slip_jumps, isotropic, symmetric) : tuple of bool
         ``isotropic``: kx = ky, cx = cy, no base motion, no suspension dry friction, so the
         suspension force is -k w - c (w' + i psi' w) in the rotor frame (004 eq 8-9; rhs.py).
         ``symmetric``: isotropic and no gravity, so max|x| = max|y| = max|w| (integrate.py).
         ``holds``: symmetric, exact stick-slip law (with or without creep), prescribed spin,
-        constant unbalance, no liquid beside the balls (its moment is not in the closed forms)
-        and
-        ``options.exact_holds``: stuck constant-speed holds may be solved in closed form
-        (core/hold.py). A new effect that breaks a closed form must be added here.
-        ``ramps``: holds, the exact stick-slip law without creep and ``options.exact_ramps``:
-        stuck linear speed ramps may be solved without stepping (core/ramp.py).
+        constant unbalance, no liquid beside the balls (its moment is not in the closed
+        forms): stuck constant-speed holds are solved in closed form (core/hold.py). A new
+        effect that breaks a closed form must be added here.
+        ``ramps``: holds and the exact stick-slip law without creep: stuck linear speed ramps
+        are solved without stepping (core/ramp.py).
+        ``slip_jumps``: under the ramps' conditions, phases where a ball slips are jumped by
+        ETDRK4-B (core/expo.py).
+        Where a flag is False the kernel steps that phase by DOPRI5 (the general path, exact
+        to the tolerances; docs/numerics/stuck-phases.md).
     """
     s, g = system.suspension, system.gravity
     isotropic = (s.kx == s.ky and s.cx == s.cy and s.base_frequency == 0.0
                  and s.dry_friction_force == 0.0)
     symmetric = isotropic and g.g == 0.0
-    holds = (symmetric and bool(options.exact_holds) and options.friction_law in ("stick", "creep")
+    holds = (symmetric and options.friction_law in ("stick", "creep")
              and not isinstance(spin, MotorDrive) and system.rotor.unbalance_table()[0].size == 1
              and system.liquid is None)
-    ramps = holds and options.friction_law == "stick" and bool(options.exact_ramps)
-    return holds, ramps, isotropic, symmetric
+    ramps = holds and options.friction_law == "stick"
+    return holds, ramps, ramps, isotropic, symmetric
 
 
 def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOptions,
@@ -191,11 +194,8 @@ def pack_params(system: System, spin: SpeedProfile | MotorDrive, options: SimOpt
     P[P_VSAT] = options.v_sat
     P[P_NMODEL] = 0.0 if options.normal_force == "ball" else 1.0
     P[P_DELTA] = b.contact_angle
-    P[P_HOLDS], P[P_RAMPS], P[P_ISO], P[P_SYM] = (1.0 if f else 0.0
-                                                  for f in fast_paths(system, spin, options))
-    P[P_DENSE] = 1.0 if options.dense_events else 0.0
-    # slip jumps (core/expo.py): under the conditions of the stuck ramps' jumps
-    P[P_ETD] = 1.0 if options.exponential_slip and P[P_RAMPS] == 1.0 else 0.0
+    P[P_HOLDS], P[P_RAMPS], P[P_ETD], P[P_ISO], P[P_SYM] = (
+        1.0 if f else 0.0 for f in fast_paths(system, spin, options))
     n = b.n_balls
     B = np.zeros((n, N_B))
     if n:

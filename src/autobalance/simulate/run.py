@@ -14,7 +14,7 @@ from ..core.batch import integrate_batch, integrate_branches
 from ..core.integrate import integrate
 from ..core.layout import N_S, S_STATUS, RunStatus
 from ..limits import check_run
-from .pack import _h_max, atol_vector, initial_vector, pack_params, run_inputs, spin_arrays
+from .pack import RunInputs, _h_max, atol_vector, initial_vector, pack_params, run_inputs, spin_arrays
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
 
@@ -82,7 +82,34 @@ def simulate(system: System, spin: SpeedProfile | MotorDrive, *, initial: Initia
             raise SimulationError(run.message)
         return run
     check_run(system, spin, options)
-    r = run_inputs(system, spin, initial, options)
+    return run_packed(system, spin, initial, options,
+                      run_inputs(system, spin, initial, options), throw)
+
+
+def run_packed(system: System, spin: SpeedProfile | MotorDrive, initial: InitialState,
+               options: SimOptions, r: RunInputs, throw: bool = True) -> Simulation:
+    """The balls' kernel on the inputs :func:`~.pack.run_inputs` packed for this run (``r``;
+    :func:`simulate` checks the run against the limits first).
+
+    Parameters
+    ----------
+    system : System
+        The machine (SI dataclasses; the result keeps it).
+    spin : SpeedProfile or MotorDrive
+        Prescribed spin speed [rad/s] vs time [s], or a motor torque law.
+    initial : InitialState
+        Ball angles [rad], rotor displacement [m] and velocity [m/s] at the start.
+    options : SimOptions
+        Tolerances, step budget, output spacing.
+    r : RunInputs
+        The kernel's inputs; its history and statistics arrays are filled.
+    throw : bool
+        Raise SimulationError on a numerical failure, else report it in ``status``.
+
+    Returns
+    -------
+    Simulation
+    """
     integrate(r.P, r.B, system.balancer.n_balls, r.prof_t, r.prof_w, r.unb_t, r.unb_u, r.y0,
               r.t_end, options.rtol, r.atol, r.h_max, int(options.max_steps), r.out_t, r.out_y,
               r.stats)

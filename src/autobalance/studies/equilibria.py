@@ -95,7 +95,7 @@ def steady_rotor_frame(system: System) -> bool:
     from ..simulate.pack import fast_paths
 
     sysl = _ideal(system)
-    symmetric = fast_paths(sysl, SpeedProfile.constant(1.0, 1.0), SimOptions())[3]
+    symmetric = fast_paths(sysl, SpeedProfile.constant(1.0, 1.0), SimOptions())[4]
     return bool(symmetric and system.rotor.unbalance_table()[0].size == 1)
 
 
@@ -279,7 +279,7 @@ def floquet_full(system: System, speed: float, alpha: npt.ArrayLike, iters: int 
     b = system.balancer
     n = b.n_balls
     sysl = _ideal(system)
-    opts = SimOptions(save_dt=-1.0, rtol=rtol, atol_scale=1e-9, exact_holds=False)
+    opts = SimOptions(save_dt=-1.0, rtol=rtol, atol_scale=1e-9)
 
     a0 = np.asarray(alpha, float)
     z = np.concatenate([steady_orbit_start(sysl, w, a0), a0, np.zeros(n)])
