@@ -229,14 +229,14 @@ def test_simulate_plot_speed_axis_and_grade_line(tmp_path, monkeypatch):
     import autobalance.plotting as plotting
 
     figures = []
-    real = plotting.plot_simulation
+    real = plotting.plot_run
 
     def spy(sim, **kw):
         fig = real(sim, **kw)
         figures.append(fig)
         return fig
 
-    monkeypatch.setattr(plotting, "plot_simulation", spy)
+    monkeypatch.setattr(plotting, "plot_run", spy)      # the figure the CLI draws (and saves)
     png = tmp_path / "c.png"
     r = run("simulate", CENTRIFUGE, *sets(SHORT), "--grade", "2.5", "--plot", png)
     assert r.exit_code == 0, r.stderr

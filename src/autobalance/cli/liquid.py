@@ -27,7 +27,7 @@ from ..jsonable import to_jsonable
 from ..models import ParameterError
 from .common import (JsonOpt, PlotOpt, SetOpt, UnitsOpt, as_options, check_plot, load_machine,
                      print_json)
-from .liquid_figures import plot_run, save_plot
+from .liquid_figures import plot_liquid_response, save_plot
 
 app = typer.Typer(name="liquid", no_args_is_help=True, add_completion=False,
                   rich_markup_mode=None,     # help as written: no rich markup or :emoji: codes
@@ -389,9 +389,9 @@ def _liquid_text_or_json(cfg, out: dict, plot: Optional[str], as_json: bool,
         out["run_up"] = ru.summary()
     if plot:
         m = liquid_machine(cfg.system, out["model"], out["placement"])
-        plot_run(plot, out, out["omega_0_rad_s"], out["omega_n_rad_s"], ru,
-                 out.get("fill_sweep"), cfg.system.liquid, out["liquid"], m.rotor, m.lumped,
-                 "physical model" if m.physical else None)
+        plot_liquid_response(plot, out, out["omega_0_rad_s"], out["omega_n_rad_s"], ru,
+                             out.get("fill_sweep"), cfg.system.liquid, out["liquid"], m.rotor,
+                             m.lumped, "physical model" if m.physical else None)
         out["plot"] = plot
     if not as_json:
         out = {k: v for k, v in out.items() if not isinstance(v, (np.ndarray, list, dict))} | {

@@ -29,9 +29,9 @@ def save_plot(fig: Figure, plot: str) -> None:
     save_figure(fig, plot, "--plot", dpi=120)
 
 
-def plot_run(plot: str, st: dict, w0: float, wn: float, ru: RunUp | None, sw: list | None,
-             device: LiquidDevice, name: str, rot: VerticalRotor, model: LiquidModel,
-             label: str | None = None) -> None:
+def plot_liquid_response(plot: str, st: dict, w0: float, wn: float, ru: RunUp | None,
+                         sw: list | None, device: LiquidDevice, name: str, rot: VerticalRotor,
+                         model: LiquidModel, label: str | None = None) -> None:
     """The figure of a liquid machine's ``response``: the steady response (with the run-up) or, with a fill
     sweep, the amplitude vs fill.
 
