@@ -15,6 +15,7 @@ import autobalance as ab
 from autobalance.physics.vibratory import vibratory_forces
 from autobalance.simulate.pack import pack_params, spin_arrays
 from autobalance.core.rhs import rhs
+from autobalance.core.work import rhs_work
 
 from conftest import RPM, washer_000
 
@@ -33,13 +34,12 @@ def test_vibratory_force_is_the_revolution_average_of_the_kernel_force(angles):
     ut, uu = s.rotor.unbalance_table()
     N, nq = 2, 5
     stuck, sgn, spin = np.ones(N, np.int64), np.ones(N), np.zeros(2)
-    dy, lam = np.zeros(2 * nq), np.zeros(3 * N + 1)
-    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
-    fv, bb, idx = np.zeros(nq), np.zeros(nq), np.zeros(nq, np.int64)
+    dy, rw = np.zeros(2 * nq), rhs_work(N)
+    lam = rw[0]
     k = sim.t >= 6.0 - 2 * np.pi / W - 1e-12          # the last revolution (transient < 1e-9)
     lams = []
     for y, t in zip(sim.states[k], sim.t[k]):
-        rhs(t, y.copy(), P, B, N, 0, pt, pw, ut, uu, stuck, sgn, spin, dy, lam, Mm, fv, A, bb, idx)
+        rhs(t, y.copy(), P, B, N, 0, pt, pw, ut, uu, stuck, sgn, spin, dy, rw)
         lams.append(lam[:N].copy())
     avg = trapezoid(np.array(lams), sim.t[k], axis=0) / (sim.t[k][-1] - sim.t[k][0])
     F = vibratory_forces(s, W, np.array(sim.alpha[-1]))
@@ -64,9 +64,8 @@ def test_prescribed_spin_solve_equals_dense_solve_of_the_mass_matrix(law, n, rho
     nq = n + 3
     ip = nq - 1
     spin = np.zeros(2)
-    dy, lam = np.zeros(2 * nq), np.zeros(3 * n + 1)
-    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
-    fv, bb, idx = np.zeros(nq), np.zeros(nq), np.zeros(nq, np.int64)
+    dy, rw = np.zeros(2 * nq), rhs_work(n)
+    lam, Mm, fv = rw[:3]
     for _ in range(50):
         t = rng.uniform(0.5, 9.5)
         y = np.concatenate([rng.normal(0, 1e-3, 2), np.sort(rng.uniform(0, 6.0, n)),
@@ -74,7 +73,7 @@ def test_prescribed_spin_solve_equals_dense_solve_of_the_mass_matrix(law, n, rho
                             [15.0 * t]])
         stuck = rng.integers(0, 2, n).astype(np.int64)
         sgn = rng.choice([-1.0, 1.0], n)
-        assert rhs(t, y, P, B, n, 0, pt, pw, ut, uu, stuck, sgn, spin, dy, lam, Mm, fv, A, bb, idx)
+        assert rhs(t, y, P, B, n, 0, pt, pw, ut, uu, stuck, sgn, spin, dy, rw)
         psidd = dy[nq + ip]
         assert psidd == pytest.approx(15.0)
         free = [0, 1] + [2 + i for i in range(n) if law == "tanh" or stuck[i] == 0]

@@ -93,14 +93,15 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
 
 @kernel
 def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
-               out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, lam, Mm, fv, A, bb, idx,
-               stuck, sgn, gs, ge, spin, in_contact, viol, trig, ser, qr, ew3, ew1, t_pause,
-               carry):
+               out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, rw, stuck, sgn, gs, ge,
+               spin, in_contact, viol, ser, qr, ew3, ew1, t_pause, carry):
     """The integration loop of integrate(), on preallocated work arrays (no allocation: the
     kernel runs without the numba runtime, core/jit.py). y holds the initial state on entry and
     the final state on return; gs / ge: stick margins mu_s N R - |lambda| at the start / end of
-    the trial step; in_contact, viol: per-ball flags; trig: the cos/sin cache of rhs(); ser, qr:
-    work arrays of ramp_jump(); t_pause, carry: see integrate_span()."""
+    the trial step; in_contact, viol: per-ball flags; rw: the work arrays of rhs()
+    (work.rhs_work; rw[0] = lam, its friction bookkeeping); ser, qr: work arrays of
+    ramp_jump(); t_pause, carry: see integrate_span()."""
+    lam = rw[0]
     nq = N + 3
     n = 2 * nq
     ip = nq - 1
@@ -136,7 +137,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     sgn[i] = 1.0 if y[nq + 2 + i] >= 0.0 else -1.0
         seg = profile_segment(t, prof_t)
         _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
-                 lam, Mm, fv, A, bb, idx, trig)
+                 rw)
         nrhs = N + 1
         for i in range(N):
             gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -166,11 +167,11 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         seg = profile_segment(t, prof_t)
         if where == 3:                # the hold's end, with its breakaway if any (ev_i)
             nev += _hold_arrival(ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
-                                 sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs)
+                                 sgn, spin, f0, rw, gs)
             nrhs += 2 * N + 3
         else:                         # a jump's end (no event) or a step's
             nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                           stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs, stats,
+                           stuck, sgn, spin, f0, rw, gs, stats,
                            exact)
         if where == 4 and stall > 50:
             status = 2
@@ -195,8 +196,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 # ---- linear speed ramp with every ball stuck: no stepping (core/ramp.py) ----
                 t_new, kout, ne = ramp_jump(t, t_seg, h, y, P, B, N, seg, prof_t, prof_w,
                                             unb_t, unb_u, stuck, sgn, spin, atol, rtol, out_t,
-                                            out_y, kout, stats, ser, qr, ytmp, ftmp, lam, Mm,
-                                            fv, A, bb, idx, trig)
+                                            out_y, kout, stats, ser, qr, ytmp, ftmp, rw)
                 nrhs += ne
                 if t_new > t:
                     t = t_new
@@ -209,8 +209,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         break
                     seg = profile_segment(t, prof_t)
                     nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, prof_t, prof_w,
-                                   unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx,
-                                   trig, gs, stats, exact)
+                                   unb_t, unb_u, stuck, sgn, spin, f0, rw, gs, stats, exact)
                     continue
                 next_try = nsteps + 20
             if flat and all_stuck and t_seg - t > 20.0 * h:
@@ -226,7 +225,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 ytmp[nq] = 0.0
                 ytmp[nq + 1] = 0.0
                 rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                    ftmp, lam, Mm, fv, A, bb, idx, trig)
+                    ftmp, rw)
                 nrhs += 1
                 p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
                 p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
@@ -236,7 +235,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         # stuck balls creep (tanh slow manifold): jump at most CREEP_CHUNK of
                         # creep, at the creep speeds of the chunk's midpoint (f1[2 + i])
                         rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                            ftmp, lam, Mm, fv, A, bb, idx, trig)
+                            ftmp, rw)
                         cmax = 0.0
                         for i in range(N):
                             cmax = max(cmax, abs(ftmp[2 + i]))
@@ -249,7 +248,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         y1[0], y1[1], y1[nq], y1[nq + 1] = w.real, w.imag, wd.real, wd.imag
                         y1[ip] = y[ip] + 0.5 * W * tau_end
                         rhs(t + 0.5 * tau_end, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                            stuck, sgn, spin, f1, lam, Mm, fv, A, bb, idx, trig)
+                            stuck, sgn, spin, f1, rw)
                         nrhs += 2
                     else:
                         for i in range(N):
@@ -264,15 +263,13 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         break
                     seg = profile_segment(t, prof_t)
                     nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, prof_t, prof_w,
-                                   unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx,
-                                   trig, gs, stats, exact)
+                                   unb_t, unb_u, stuck, sgn, spin, f0, rw, gs, stats, exact)
                     continue
                 if can_ramp:
                     # ---- the hold until its first breakaway, without stepping (ramp.py R5) ----
                     tau_b, ib, ne = hold_breakaway(t, t_seg - t, W, wss, s1, s2, c1, c2, y, P,
                                                    B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                                   stuck, sgn, spin, qr, ytmp, ftmp, lam, Mm,
-                                                   fv, A, bb, idx, trig, STICK_TOL)
+                                                   stuck, sgn, spin, qr, ytmp, ftmp, rw, STICK_TOL)
                     nrhs += ne
                     if tau_b > 1e-12 * max(1.0, t):
                         t_to = t_seg if ib == -1 else t + tau_b
@@ -291,8 +288,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             break
                         seg = profile_segment(t, prof_t)
                         nev += _hold_arrival(ib, t, y, P, B, N, seg, prof_t, prof_w, unb_t,
-                                             unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb,
-                                             idx, trig, gs)
+                                             unb_u, stuck, sgn, spin, f0, rw, gs)
                         nrhs += 2 * N + 3
                         continue
                 next_try = nsteps + 20
@@ -312,7 +308,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             if slipping and t_w - t > 20.0 * h:
                 ok_e, ne, h_etd, a_e, ta_e, next_etd, t_reach = slip_window(
                     t, t_w, y, h_etd, P, B, N, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
-                    atol, rtol, ew3, ew1, lam, Mm, fv, A, bb, idx, trig, STICK_TOL, h_max)
+                    atol, rtol, ew3, ew1, rw, STICK_TOL, h_max)
                 nrhs += ne
                 if ok_e:
                     t = t_reach
@@ -331,8 +327,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         break
                     seg = profile_segment(t, prof_t)
                     nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, prof_t, prof_w,
-                                   unb_t, unb_u, stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx,
-                                   trig, gs, stats, exact)
+                                   unb_t, unb_u, stuck, sgn, spin, f0, rw, gs, stats, exact)
                     continue
         # two balls in compliant contact: DOPRI5 resolves the contact's oscillation (docs/
         # numerics/contacts.md, "Resting contacts"); at its stability limit it chatters spuriously.
@@ -356,7 +351,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             status = 2
             break
         ok = _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                         spin, K, ytmp, y1, f1, err, lam, Mm, fv, A, bb, idx, trig)
+                         spin, K, ytmp, y1, f1, err, rw)
         nrhs += 6
         en = 0.0
         finite = ok
@@ -402,7 +397,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             for _ in range(30):
                                 gp = _event_g(SLIP_STOP, i, thp, t, h, y, f0, y1, f1, ytmp, P, B,
                                               N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                                              spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
+                                              spin, ftmp, rw)
                                 if gp > 0.0:
                                     a_ = thp
                                     ga = gp
@@ -416,7 +411,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         else:
                             th, ne = _locate(SLIP_STOP, i, ga, gb, a_, t, h, y, f0, y1, f1, ytmp,
                                              P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck,
-                                             sgn, spin, ftmp, lam, Mm, fv, A, bb, idx, trig)
+                                             sgn, spin, ftmp, rw)
                         if th < th_ev:
                             th_ev = th
                             ev_kind = 0
@@ -443,8 +438,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         else:
                             th, ne = _locate(BREAKAWAY, i, ga, gb, 0.0, t, h, y, f0, y1, f1,
                                              ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                                             stuck, sgn, spin, ftmp, lam, Mm, fv, A, bb, idx,
-                                             trig)
+                                             stuck, sgn, spin, ftmp, rw)
                             nrhs += ne
                         if th < th_ev:
                             th_ev = th
@@ -474,7 +468,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     for j in range(n):
                         y1[j] = ytmp[j]
                     rhs(t + h_ev, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-                        spin, f1, lam, Mm, fv, A, bb, idx, trig)
+                        spin, f1, rw)
                     nrhs += 1
                 else:
                     for j in range(n):
@@ -549,7 +543,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         # ---- mode changes ----------------------------------------------------------------
         if ev_kind >= 0 or last:
             nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u,
-                           stuck, sgn, spin, f0, lam, Mm, fv, A, bb, idx, trig, gs, stats,
+                           stuck, sgn, spin, f0, rw, gs, stats,
                            exact)
             if stall > 50:
                 status = 2

@@ -167,9 +167,9 @@ def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.nd
              P: np.ndarray, B: np.ndarray, N: int, seg: int, prof_t: np.ndarray,
              prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray,
              sgn: np.ndarray, spin: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
-             lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray, bb: np.ndarray,
-             idx: np.ndarray, trig: np.ndarray, qc: np.ndarray) -> None:
+             rw: tuple, qc: np.ndarray) -> None:
     """qc[i] = mu_s N_i R (1 - 1e-9) - |lambda_i,p| [N*m] on the particular state (R4)."""
+    lam = rw[0]
     nq = N + 3
     n = 2 * nq
     for j in range(n):
@@ -180,8 +180,7 @@ def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.nd
     ytmp[nq + 1] = wpd.imag
     ytmp[nq - 1] = psi
     ytmp[n - 1] = W
-    rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp, lam, Mm,
-        fv, A, bb, idx, trig)
+    rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp, rw)
     for i in range(N):
         qc[i] = lam[N + i] * (1.0 - 1e-9) - abs(lam[i])
 
@@ -313,8 +312,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
               unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
               atol: np.ndarray, rtol: float, out_t: np.ndarray, out_y: np.ndarray, kout: int,
               stats: np.ndarray, ser: np.ndarray, q: np.ndarray, ytmp: np.ndarray,
-              ftmp: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray,
-              bb: np.ndarray, idx: np.ndarray, trig: np.ndarray) -> tuple[float, int, int]:
+              ftmp: np.ndarray, rw: tuple) -> tuple[float, int, int]:
     """Advance a stuck-ball ramp from t towards t_seg [s] without stepping (R1-R4).
 
     On return y holds the state at the new time; outputs in (t, new time] are written to out_y
@@ -351,7 +349,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     p1 = abs(s1 * s1 * c1)
     p2 = abs(s2 * s2 * c2)
     _margins(t, W0, psi0, wp, wpd, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-             spin, ytmp, ftmp, lam, Mm, fv, A, bb, idx, trig, q[0])
+             spin, ytmp, ftmp, rw, q[0])
     nrhs += 1
     for i in range(N):
         if q[0, i] - B[i, B_M] * P[P_R] * (p1 + p2) <= 0.0:
@@ -369,12 +367,10 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
         tb = tau + dt
         wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B,
-                 N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
-                 fv, A, bb, idx, trig, q[1])
+                 N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, rw, q[1])
         wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B,
-                 N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, lam, Mm,
-                 fv, A, bb, idx, trig, q[2])
+                 N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ytmp, ftmp, rw, q[2])
         nrhs += 2
         ok = (_err_ok(rm, wpm, wpdm, L0, L1, W0 + a * tm, atol, rtol, nq)
               and _err_ok(rb, wpb, wpdb, L0, L1, W0 + a * tb, atol, rtol, nq))
@@ -425,14 +421,13 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
 def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray,
                  N: int, seg: int, prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray,
                  unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
-                 q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray, lam: np.ndarray,
-                 Mm: np.ndarray, fv: np.ndarray, A: np.ndarray, bb: np.ndarray, idx: np.ndarray,
-                 trig: np.ndarray) -> None:
+                 q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray, rw: tuple) -> None:
     """The friction each stuck ball needs and its static limit [N*m] as affine functions of
     (w - w_ss, w') during a hold (R5): with the balls' angles and the speed fixed, the kernel's
     constrained solve is linear in the rotor state. Rows 0-4 of q: lambda_i at the steady
     state and its derivatives along Re w, Im w, Re w', Im w'; rows 5-9: the same for the
     limit. Five right-hand-side evaluations."""
+    lam = rw[0]
     nq = N + 3
     dw = max(abs(wss), 1e-12)
     dv = dw * max(W, 1.0)
@@ -443,8 +438,7 @@ def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray,
         ytmp[1] = wss.imag + (dw if k == 2 else 0.0)
         ytmp[nq] = dv if k == 3 else 0.0
         ytmp[nq + 1] = dv if k == 4 else 0.0
-        rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp, lam,
-            Mm, fv, A, bb, idx, trig)
+        rhs(t, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, ftmp, rw)
         for i in range(N):
             if k == 0:
                 q[0, i] = lam[i]
@@ -482,8 +476,7 @@ def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex
                    N: int, seg: int, prof_t: np.ndarray, prof_w: np.ndarray,
                    unb_t: np.ndarray, unb_u: np.ndarray, stuck: np.ndarray, sgn: np.ndarray,
                    spin: np.ndarray, q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
-                   lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray, A: np.ndarray,
-                   bb: np.ndarray, idx: np.ndarray, trig: np.ndarray,
+                   rw: tuple,
                    stick_tol: float) -> tuple[float, int, int]:
     """First breakaway of a hold at speed W [rad/s] starting at t [s], within tau_max [s] (R5).
 
@@ -492,7 +485,7 @@ def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex
     breakaway (sample budget).
     """
     _hold_affine(t, W, wss, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, q,
-                 ytmp, ftmp, lam, Mm, fv, A, bb, idx, trig)
+                 ytmp, ftmp, rw)
     f_max = max(abs(s1.imag), abs(s2.imag))
     dtau = 2.0 * math.pi / (16.0 * max(f_max, 1e-300))
     if dtau > tau_max:

@@ -181,9 +181,8 @@ def _suspension_force(t, u, v, ud, vd, psi, psid, P):
 @kernel
 def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
         prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray,
-        stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray, lam: np.ndarray,
-        Mm: np.ndarray, fv: np.ndarray, A: np.ndarray, bb: np.ndarray, idx: np.ndarray,
-        trig: np.ndarray | None = None) -> bool:
+        stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray,
+        rw: tuple) -> bool:
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
 
     Parameters
@@ -204,20 +203,20 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
         spin[0]: 0 prescribed profile, 1 motor-driven, 2 held at constant speed spin[1] [rad/s].
     dy : ndarray (2*nq,)
         Output derivative.
-    lam : ndarray (3N,)
-        Output: lam[i] = friction torque a stuck ball needs [N*m]; lam[N+i] = static limit
-        mu_s*N_i*R [N*m]; lam[2N+i] = normal force N_i [N].
-    Mm, fv, A, bb, idx : work arrays (nq, nq), (nq,), (nq, nq), (nq,), int (nq,).
-    trig : float array (3N,), optional
-        Cache of (alpha_i, cos alpha_i, sin alpha_i) across calls, NaN-initialised: a stuck
-        ball keeps its angle bit for bit through the stages of a step, so its cos/sin are
-        reused (values identical to recomputing them).
+    rw : tuple
+        The work arrays (lam, Mm, fv, A, bb, idx, trig) of :func:`autobalance.core.work.
+        rhs_work`. Output in lam: lam[i] = friction torque a stuck ball needs [N*m];
+        lam[N+i] = static limit mu_s*N_i*R [N*m]; lam[2N+i] = normal force N_i [N]. trig
+        caches (alpha_i, cos alpha_i, sin alpha_i) across calls, NaN-initialised: a stuck ball
+        keeps its angle bit for bit through the stages of a step, so its cos/sin are reused
+        (values identical to recomputing them).
 
     Returns
     -------
     ok : bool
         False if the mass matrix is not positive definite (non-physical parameters).
     """
+    lam, Mm, fv, A, bb, idx, trig = rw
     nq = N + 3
     ip = nq - 1
     u = y[0]
@@ -308,7 +307,7 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
 @inline_kernel
 def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.ndarray,
                sgn: np.ndarray, lam: np.ndarray, Mm: np.ndarray, fv: np.ndarray,
-               trig: np.ndarray | None, psi: float, psid: float, a_u: float, a_v: float,
+               trig: np.ndarray, psi: float, psid: float, a_u: float, a_v: float,
                cb: float, sb: float, driven: bool, Mpp: float,
                fpp: float) -> tuple[float, float, float, float, float, float, float]:
     """The balls' rows of M and f (Lagrange in alpha_i), their normal forces and friction
@@ -336,10 +335,7 @@ def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.nd
         m = B[i, B_M]
         Ii = B[i, B_I]
         rr = B[i, B_RR]
-        if trig is None:
-            c = math.cos(a)
-            s = math.sin(a)
-        elif a == trig[i]:
+        if a == trig[i]:
             c = trig[N + i]
             s = trig[2 * N + i]
         else:

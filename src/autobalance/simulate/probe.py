@@ -47,6 +47,7 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike,
     from ..physics.response import steady_orbit_start
     from .pack import pack_params, spin_arrays
     from ..core.rhs import profile_segment, rhs
+    from ..core.work import rhs_work
     from ..models import SimOptions, SpeedProfile
 
     spin = SpeedProfile.constant(float(speed), 1.0)
@@ -65,11 +66,10 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike,
     st[psi_index(N)] = float(phase)
     prof_t, prof_w, _ = spin_arrays(spin)
     unb_t, unb_u = system.rotor.unbalance_table()
-    dy, lam = np.zeros(2 * nq), np.zeros(3 * N + 1)
-    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
-    fv, bb, idx = np.zeros(nq), np.zeros(nq), np.zeros(nq, dtype=np.int64)
+    dy, rw = np.zeros(2 * nq), rhs_work(N)
+    lam = rw[0]
     rhs(0.0, st, P, B, N, profile_segment(0.0, prof_t), prof_t, prof_w, unb_t, unb_u,
-        np.ones(N, dtype=np.int64), np.ones(N), np.array([0.0, 0.0]), dy, lam, Mm, fv, A, bb, idx)
+        np.ones(N, dtype=np.int64), np.ones(N), np.array([0.0, 0.0]), dy, rw)
     inv = np.argsort(order)
     return lam[:N][inv], lam[N:2 * N][inv], dy[nq:nq + 2]
 
@@ -111,6 +111,7 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
     """
     from ..core.layout import P_LQDX, P_LQDY, P_LQX, P_LQY, n_q, psi_index, speed_index
     from ..core.rhs import profile_segment, rhs
+    from ..core.work import rhs_work
     from ..models import SimOptions, SpeedProfile
     from .pack import pack_params, spin_arrays
 
@@ -125,9 +126,7 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
     prof_t, prof_w, _ = spin_arrays(spin)
     unb_t, unb_u = system.rotor.unbalance_table()
     seg = profile_segment(0.0, prof_t)
-    dy, lam = np.zeros(2 * nq), np.zeros(3 * N + 1)
-    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
-    fv, bb, idx = np.zeros(nq), np.zeros(nq), np.zeros(nq, dtype=np.int64)
+    dy, rw = np.zeros(2 * nq), rhs_work(N)
     held = np.array([2.0, w])
     out = np.empty_like(Z)
     for k, z in enumerate(Z):
@@ -141,7 +140,7 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
         y[psi_index(N)] = float(phase)
         y[speed_index(N)] = w
         rhs(0.0, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, np.zeros(N, dtype=np.int64),
-            np.ones(N), held, dy, lam, Mm, fv, A, bb, idx)
+            np.ones(N), held, dy, rw)
         inv = np.argsort(order)
         out[k, :2] = dy[:2]
         out[k, 2:2 + N] = dy[2:2 + N][inv]

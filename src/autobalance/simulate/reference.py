@@ -15,6 +15,7 @@ from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..core.layout import P_FLAW, P_VSAT, n_q
 from .pack import initial_vector, pack_params, spin_arrays
 from ..core.rhs import profile_segment, rhs
+from ..core.work import rhs_work
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -54,16 +55,13 @@ def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-
     stuck = np.zeros(N, dtype=np.int64)
     sgn = np.ones(N)
     spin_state = np.array([1.0 if isinstance(spin, MotorDrive) else 0.0, 0.0])
-    lam = np.zeros(3 * N + 1)
-    Mm, A = np.zeros((nq, nq)), np.zeros((nq, nq))
-    fv, bb = np.zeros(nq), np.zeros(nq)
-    idx = np.zeros(nq, dtype=np.int64)
+    rw = rhs_work(N)
 
     def f(t, y):
         dy = np.empty(2 * nq)
         seg = profile_segment(t, prof_t)
         rhs(t, np.ascontiguousarray(y), P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-            spin_state, dy, lam, Mm, fv, A, bb, idx)
+            spin_state, dy, rw)
         return dy
 
     return f
