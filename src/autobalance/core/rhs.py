@@ -180,7 +180,7 @@ def _suspension_force(t, u, v, ud, vd, psi, psid, P):
 
 @kernel
 def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
-        prof_t: np.ndarray, prof_w: np.ndarray, unb_t: np.ndarray, unb_u: np.ndarray,
+        sched: tuple,
         stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray,
         rw: tuple) -> bool:
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
@@ -195,6 +195,9 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
         Scalar and per-ball parameters (layout.py), SI.
     seg : int
         Segment of the speed profile the current step lies in.
+    sched : tuple
+        The prescribed schedules (prof_t, prof_w, unb_t, unb_u): the speed profile's knots [s]
+        and speeds [rad/s], the unbalance table's times [s] and values [kg*m].
     stuck : int array (N,)
         1 if ball i is stuck to the race (alpha_i'' = 0, friction from the constraint).
     sgn : float array (N,)
@@ -216,6 +219,7 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     ok : bool
         False if the mass matrix is not positive definite (non-physical parameters).
     """
+    prof_t, prof_w, unb_t, unb_u = sched
     lam, Mm, fv, A, bb, idx, trig = rw
     nq = N + 3
     ip = nq - 1

@@ -76,35 +76,35 @@ def _dense(y0, f0, y1, f1, K, h, th, out):
 
 
 @kernel
-def _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+def _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin,
                 K, ytmp, y1, f1, err, rw):
     """One DOPRI5 step; returns (ok); y1, f1 (FSAL) and the error vector err are filled."""
     n = y.shape[0]
     for j in range(n):
         ytmp[j] = y[j] + h * A21 * f0[j]
-    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
              K[1], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A31 * f0[j] + A32 * K[1, j])
-    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
               K[2], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A41 * f0[j] + A42 * K[1, j] + A43 * K[2, j])
-    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
               K[3], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A51 * f0[j] + A52 * K[1, j] + A53 * K[2, j] + A54 * K[3, j])
-    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
               K[4], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A61 * f0[j] + A62 * K[1, j] + A63 * K[2, j] + A64 * K[3, j]
                               + A65 * K[4, j])
-    ok &= rhs(t + h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    ok &= rhs(t + h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
               K[5], rw)
     for j in range(n):
         y1[j] = y[j] + h * (A71 * f0[j] + A73 * K[2, j] + A74 * K[3, j] + A75 * K[4, j]
                             + A76 * K[5, j])
-    ok &= rhs(t + h, y1, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    ok &= rhs(t + h, y1, P, B, N, seg, sched, stuck, sgn, spin,
               f1, rw)
     for j in range(n):
         err[j] = h * (E1 * f0[j] + E3 * K[2, j] + E4 * K[3, j] + E5 * K[4, j] + E6 * K[5, j]
@@ -113,7 +113,7 @@ def _dopri_step(t, y, f0, h, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, 
 
 
 @kernel
-def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f,
+def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f,
              rw):
     """Consistent stick/slip modes at a switching instant (a small friction complementarity
     problem solved by pivoting): release the stuck ball whose required friction exceeds its
@@ -122,7 +122,7 @@ def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
     lam = rw[0]
     nq = N + 3
     for _ in range(4 * N + 4):
-        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f, rw)
+        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f, rw)
         worst = -1
         wr = 1.0
         for i in range(N):
@@ -150,8 +150,7 @@ def _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
 
 
 @kernel
-def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
-             unb_t, unb_u, stuck, sgn, spin, ftmp, rw):
+def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw):
     """Switching function of event (kind, i) at fraction th of the step."""
     lam = rw[0]
     nq = N + 3
@@ -161,14 +160,13 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof
         return P[P_WHOLD] - _hermite(y0, f0, y1, f1, h, th, 2 * nq - 1)
     for j in range(y0.shape[0]):   # stuck ball breaks away
         ytmp[j] = _hermite(y0, f0, y1, f1, h, th, j)
-    rhs(t + th * h, ytmp, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+    rhs(t + th * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
         ftmp, rw)
     return lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
 
 
 @kernel
-def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
-            unb_t, unb_u, stuck, sgn, spin, ftmp, rw):
+def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw):
     """Step fraction in (a_, 1] where the switching function (kind, i) crosses from g(a_) = ga
     > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-7 in fraction).
     Returns (fraction, number of evaluations)."""
@@ -178,8 +176,7 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
     th = b_
     for _ in range(40):
         th = (a_ * gb - b_ * ga) / (gb - ga)
-        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_t, prof_w,
-                      unb_t, unb_u, stuck, sgn, spin, ftmp, rw)
+        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
         nev += 1
         if gt > 0.0:
             a_ = th
@@ -199,7 +196,7 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, prof_
 
 
 @kernel
-def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin,
            f0, rw, gs, stats, exact):
     """The modes after a step that ends in an event (``ev_kind`` of ball ``ev_i``) or at a
     profile knot, or after a closed-form jump (ev_kind -1, every ball stuck): the event's mode
@@ -231,17 +228,17 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
                 y[nq + 2 + i] = 0.0
                 stuck[i] = 1
         if ev_kind == 1:
-            _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
+            _resolve(t, y, P, B, N, seg, sched, stuck, sgn,
                      spin, f0, rw)
             # the released ball must stay released even if lambda is marginal now
             if stuck[ev_i] == 1:
                 stuck[ev_i] = 0
                 sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
-        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin,
+        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin,
                  f0, rw)
         ne = N + 1
     else:
-        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0,
             rw)
         ne = 1
     for i in range(N):
@@ -250,7 +247,7 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuc
 
 
 @kernel
-def _hold_arrival(ib, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0,
+def _hold_arrival(ib, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0,
                   rw, gs):
     """The end of a hold solved until its first breakaway (ramp.hold_breakaway): ball ``ib``
     (>= 0) breaks away there and is released as the integrator releases it (ev_kind 1), then
@@ -258,14 +255,14 @@ def _hold_arrival(ib, t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, s
     lam = rw[0]
     nev = 0
     if ib >= 0:
-        rhs(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, rw)
+        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
         nev = 1
         sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
-        _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, rw)
+        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
         if stuck[ib] == 1:
             stuck[ib] = 0
             sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
-    _resolve(t, y, P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn, spin, f0, rw)
+    _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
     for i in range(N):
         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
     return nev

@@ -56,12 +56,12 @@ def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-
     sgn = np.ones(N)
     spin_state = np.array([1.0 if isinstance(spin, MotorDrive) else 0.0, 0.0])
     rw = rhs_work(N)
+    sched = (prof_t, prof_w, unb_t, unb_u)
 
     def f(t, y):
         dy = np.empty(2 * nq)
         seg = profile_segment(t, prof_t)
-        rhs(t, np.ascontiguousarray(y), P, B, N, seg, prof_t, prof_w, unb_t, unb_u, stuck, sgn,
-            spin_state, dy, rw)
+        rhs(t, np.ascontiguousarray(y), P, B, N, seg, sched, stuck, sgn, spin_state, dy, rw)
         return dy
 
     return f
