@@ -26,7 +26,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .jit import kernel
-from .layout import (B_M, P_CX, P_KX, P_MT,
+from .layout import (B_M, NR, P_CX, P_KX, P_MT,
                      P_R, S_AMAX, S_TAMAX, S_XMAX, S_YMAX)
 
 if TYPE_CHECKING:
@@ -138,16 +138,16 @@ def hold_outputs(t: float, t_to: float, kout: int, out_t: np.ndarray, out_y: np.
                  y: np.ndarray, N: int, W: float, wss: complex, s1: complex, s2: complex,
                  c1: complex, c2: complex, rate: np.ndarray) -> int:
     """Outputs at out_t in (.., t_to] [s] of a hold starting at t [s] at speed W [rad/s], from
-    the closed form; ball i's angle advances at rate[2 + i] [rad/s] (its creep speed, or 0).
+    the closed form; ball i's angle advances at rate[NR + i] [rad/s] (its creep speed, or 0).
     Returns the next output index."""
-    nq = N + 3
+    nq = N + NR + 1
     while kout < out_t.shape[0] and out_t[kout] <= t_to:
         tau = out_t[kout] - t
         w, wd = hold_state(tau, wss, s1, s2, c1, c2)
         for j in range(2 * nq):
             out_y[kout, j] = y[j]
         for i in range(N):
-            out_y[kout, 2 + i] += rate[2 + i] * tau
+            out_y[kout, NR + i] += rate[NR + i] * tau
         out_y[kout, 0] = w.real
         out_y[kout, 1] = w.imag
         out_y[kout, nq] = wd.real
@@ -164,8 +164,8 @@ def hold_finish(t: float, tau_end: float, t_out: float, kout: int, out_t: np.nda
                 stats: np.ndarray) -> int:
     """Take a hold from t to t + tau_end [s] in closed form: outputs up to t_out [s]
     (hold_outputs), the amplitude monitor (hold_peak), and y advanced to the end (balls at
-    rate[2 + i] [rad/s]). Returns the next output index."""
-    nq = N + 3
+    rate[NR + i] [rad/s]). Returns the next output index."""
+    nq = N + NR + 1
     kout = hold_outputs(t, t_out, kout, out_t, out_y, y, N, W, wss, s1, s2, c1, c2, rate)
     hold_peak(t, tau_end, wss, s1, s2, c1, c2, stats)
     w, wd = hold_state(tau_end, wss, s1, s2, c1, c2)
@@ -175,7 +175,7 @@ def hold_finish(t: float, tau_end: float, t_out: float, kout: int, out_t: np.nda
     y[nq + 1] = wd.imag
     y[nq - 1] += W * tau_end
     for i in range(N):
-        y[2 + i] += rate[2 + i] * tau_end
+        y[NR + i] += rate[NR + i] * tau_end
     return kout
 
 
@@ -186,7 +186,7 @@ def ball_unbalance(y: np.ndarray, B: np.ndarray, N: int, R: float, rho: float, b
     ut = complex(U, 0.0)
     for i in range(N):
         m = B[i, B_M]
-        ut += m * (R * cmath.exp(1j * y[2 + i]) + rho * cmath.exp(1j * beta))
+        ut += m * (R * cmath.exp(1j * y[NR + i]) + rho * cmath.exp(1j * beta))
     return ut
 
 

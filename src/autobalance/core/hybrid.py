@@ -38,7 +38,7 @@ from numba import njit
 from .jit import kernel
 
 from .integrate import _integrate
-from .layout import P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS, RunStatus
+from .layout import NR, P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS, RunStatus
 from .rhs import profile_eval, profile_segment
 from .work import ball_work
 from .shallow_water import (_emit, accept_state, films_dt, films_moment, films_spin, films_step,
@@ -123,7 +123,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     the balls' outputs; rows before t0 are left alone), out_psi the kernel's spin angle [rad]
     there. Returns the film steps; -1 on a non-finite film. The run's status is the ball
     kernel's (stats)."""
-    nq = N + 3
+    nq = N + NR + 1
     n = 2 * nq
     n_c = h.shape[0]
     np_ = prof_t.shape[0] + 1

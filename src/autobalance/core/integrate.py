@@ -29,7 +29,7 @@ import math
 import numpy as np
 
 from .jit import kernel
-from .layout import (B_KC, B_MUS, C_WHERE, carry_size, N_S, P_BETA, P_DELTA, P_ETD,
+from .layout import (B_KC, B_MUS, C_WHERE, carry_size, N_S, NR, P_BETA, P_DELTA, P_ETD,
                      P_FLAW, P_HC, P_HOLDS, P_R, P_RAMPS, P_RHO, P_SPIN, P_SYM, P_WHOLD, S_AMAX,
                      S_EVENTS, S_HOLDS, S_IMPACTS, S_RAMPS, S_REJECTED, S_RHS, S_STATUS, S_STEPS,
                      S_TAMAX, S_TFINAL, S_THOLD, S_XMAX, S_YMAX)
@@ -103,7 +103,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
     ramp_jump(); t_pause, carry: see integrate_span()."""
     sched = (prof_t, prof_w, unb_t, unb_u)
     lam = rw[0]
-    nq = N + 3
+    nq = N + NR + 1
     n = 2 * nq
     ip = nq - 1
     nout = out_t.shape[0]
@@ -132,10 +132,10 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         # initial modes: balls at rest relative to the race start stuck if they can
         if exact:
             for i in range(N):
-                if B[i, B_MUS] > 0.0 and y[nq + 2 + i] == 0.0:
+                if B[i, B_MUS] > 0.0 and y[nq + NR + i] == 0.0:
                     stuck[i] = 1
                 else:
-                    sgn[i] = 1.0 if y[nq + 2 + i] >= 0.0 else -1.0
+                    sgn[i] = 1.0 if y[nq + NR + i] >= 0.0 else -1.0
         seg = profile_segment(t, prof_t)
         _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0,
                  rw)
@@ -232,12 +232,12 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     tau_end = t_seg - t
                     if creep:
                         # stuck balls creep (tanh slow manifold): jump at most CREEP_CHUNK of
-                        # creep, at the creep speeds of the chunk's midpoint (f1[2 + i])
+                        # creep, at the creep speeds of the chunk's midpoint (f1[NR + i])
                         rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin,
                             ftmp, rw)
                         cmax = 0.0
                         for i in range(N):
-                            cmax = max(cmax, abs(ftmp[2 + i]))
+                            cmax = max(cmax, abs(ftmp[NR + i]))
                         if cmax * tau_end > CREEP_CHUNK:
                             tau_end = CREEP_CHUNK / cmax
                             t_seg = t + tau_end
@@ -251,7 +251,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         nrhs += 2
                     else:
                         for i in range(N):
-                            f1[2 + i] = 0.0
+                            f1[NR + i] = 0.0
                     kout = hold_finish(t, tau_end, t_seg, kout, out_t, out_y, y, N, W, wss, s1,
                                        s2, c1, c2, f1, stats)
                     t = t_seg
@@ -272,7 +272,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     if tau_b > 1e-12 * max(1.0, t):
                         t_to = t_seg if ib == -1 else t + tau_b
                         for i in range(N):
-                            f1[2 + i] = 0.0
+                            f1[NR + i] = 0.0
                         kout = hold_finish(t, tau_b, t_to, kout, out_t, out_y, y, N, W, wss,
                                            s1, s2, c1, c2, f1, stats)
                         t = t_to
@@ -381,13 +381,13 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         if exact:
             for i in range(N):
                 if stuck[i] == 0 and B[i, B_MUS] > 0.0:
-                    g1 = sgn[i] * y1[nq + 2 + i]
+                    g1 = sgn[i] * y1[nq + NR + i]
                     if g1 < 0.0:
-                        g0 = sgn[i] * y[nq + 2 + i]
+                        g0 = sgn[i] * y[nq + NR + i]
                         a_ = 0.0
                         ga = g0
                         gb = g1
-                        if ga <= 0.0 and sgn[i] * f0[nq + 2 + i] > 0.0:
+                        if ga <= 0.0 and sgn[i] * f0[nq + NR + i] > 0.0:
                             # freshly released ball (alpha_dot = 0): bracket a positive value
                             thp = 0.5
                             for _ in range(30):

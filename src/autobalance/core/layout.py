@@ -1,8 +1,9 @@
 """Index layout of the flat arrays passed to the numba kernels (plain SI floats, no units).
 
-State vector y (length 2*nq, nq = N + 3):
-    y[0] = u, y[1] = v               rotor displacement in the rotor-fixed frame [m]
-    y[2 + i] = alpha_i                ball angle from the unbalance direction [rad]
+State vector y (length 2*nq, nq = NR + N + 1):
+    y[0] = u, y[1] = v               rotor displacement in the rotor-fixed frame [m] (the NR = 2
+                                      rotor coordinates ahead of the balls)
+    y[NR + i] = alpha_i               ball angle from the unbalance direction [rad]
     y[nq - 1] = psi                   spin angle [rad]
     y[nq + j]                         time derivative of y[j]
 Scalar parameter vector P: indices below. Ball table B[i, :]: columns below.
@@ -10,6 +11,9 @@ Scalar parameter vector P: indices below. Ball table B[i, :]: columns below.
 from __future__ import annotations
 
 import enum
+
+# --- the generalised coordinates q (y = (q, q')) --------------------------------------------
+NR = 2            # rotor coordinates ahead of the balls: u, v [m]; ball i is q[NR + i], psi q[nq - 1]
 
 # --- scalar parameters P ------------------------------------------------------------------
 P_MT = 0          # total translating mass M + sum(m_i) [kg]
@@ -174,8 +178,8 @@ STATUS = {int(s): s.label for s in RunStatus if s is not RunStatus.UNKNOWN}
 
 # --- the state vector (the one Python-side description; the kernels index it the same way) ---
 def n_q(n_balls: int) -> int:
-    """Number of generalised coordinates nq = N + 3 (u, v, alpha_1..N, psi) [-]."""
-    return int(n_balls) + 3
+    """Number of generalised coordinates nq = NR + N + 1 (u, v, alpha_1..N, psi) [-]."""
+    return NR + int(n_balls) + 1
 
 
 def state_size(n_balls: int) -> int:
@@ -200,9 +204,9 @@ def rate_index(j: int, n_balls: int) -> int:
 
 def alpha_slice(n_balls: int) -> slice:
     """Slice of the ball angles alpha_i [rad] in y."""
-    return slice(2, 2 + n_balls)
+    return slice(NR, NR + n_balls)
 
 
 def alpha_dot_slice(n_balls: int) -> slice:
     """Slice of the ball angular rates alpha_dot_i [rad/s] in y."""
-    return slice(n_q(n_balls) + 2, n_q(n_balls) + 2 + n_balls)
+    return slice(n_q(n_balls) + NR, n_q(n_balls) + NR + n_balls)

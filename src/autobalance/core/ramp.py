@@ -69,7 +69,7 @@ import numpy as np
 from .hold import (ball_unbalance, hold_coeffs, hold_roots, hold_state, peak_samples,
                    record_amplitude, vertex)
 from .jit import inline_kernel, kernel
-from .layout import B_M, P_BETA, P_CX, P_KX, P_MT, P_R, P_RHO, S_AMAX
+from .layout import B_M, NR, P_BETA, P_CX, P_KX, P_MT, P_R, P_RHO, S_AMAX
 from .rhs import profile_eval, rhs
 
 #: correction terms g_1..g_J of the series (R2); the work array holds (J + 1, 2 J + 3) complex
@@ -169,7 +169,7 @@ def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.nd
              rw: tuple, qc: np.ndarray) -> None:
     """qc[i] = mu_s N_i R (1 - 1e-9) - |lambda_i,p| [N*m] on the particular state (R4)."""
     lam = rw[0]
-    nq = N + 3
+    nq = N + NR + 1
     n = 2 * nq
     for j in range(n):
         ytmp[j] = y[j]
@@ -288,7 +288,7 @@ def _outputs(t: float, t_to: float, kout: int, out_t: np.ndarray, out_y: np.ndar
              s1: complex, s2: complex, c1: complex, c2: complex, ser: np.ndarray) -> int:
     """Outputs at out_t in (.., t_to] [s] of a ramp starting at t [s] from the closed form (the
     balls' angles and rates as in y); returns the next output index."""
-    nq = N + 3
+    nq = N + NR + 1
     n = 2 * nq
     while kout < out_t.shape[0] and out_t[kout] <= t_to:
         tk = out_t[kout] - t
@@ -319,7 +319,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     a (>= 3, N) float work array; h [s] is the integrator's current step.
     """
     prof_t, prof_w, unb_t, unb_u = sched
-    nq = N + 3
+    nq = N + NR + 1
     n = 2 * nq
     ip = nq - 1
     W0, a = profile_eval(t, seg, prof_t, prof_w)
@@ -426,7 +426,7 @@ def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray,
     state and its derivatives along Re w, Im w, Re w', Im w'; rows 5-9: the same for the
     limit. Five right-hand-side evaluations."""
     lam = rw[0]
-    nq = N + 3
+    nq = N + NR + 1
     dw = max(abs(wss), 1e-12)
     dv = dw * max(W, 1.0)
     for k in range(5):

@@ -25,7 +25,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .jit import inline_kernel, kernel
-from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, P_BAX, P_BAY, P_BETA, P_BPX,
+from .layout import (B_CC, B_D, B_I, B_KC, B_M, B_MU, B_MUS, B_RR, NR, P_BAX, P_BAY, P_BETA, P_BPX,
                      P_BPY, P_BW, P_BZ, P_CPHI, P_CX, P_CY, P_DELTA, P_FDRY, P_FLAW, P_G, P_GDIR,
                      P_GDRY, P_KX, P_KY, P_LAW, P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY,
                      P_MT, P_NMODEL, P_R, P_RHO, P_T0, P_VDRY, P_VSAT, P_WF, P_ISO)
@@ -111,7 +111,7 @@ def neighbour_gap(y: np.ndarray, i: int, N: int, delta: float) -> tuple[int, flo
     if j == N:
         j = 0
         wrap = 2.0 * math.pi
-    return j, y[2 + j] + wrap - y[2 + i] - delta
+    return j, y[NR + j] + wrap - y[NR + i] - delta
 
 
 @kernel
@@ -221,7 +221,7 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     """
     prof_t, prof_w, unb_t, unb_u = sched
     lam, Mm, fv, A, bb, idx, trig = rw
-    nq = N + 3
+    nq = N + NR + 1
     ip = nq - 1
     u = y[0]
     v = y[1]
@@ -261,7 +261,7 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
         fv[i] = 0.0
     for i in range(N):       # ball-ball entries of the mass matrix are zero
         for j in range(N):
-            Mm[2 + i, 2 + j] = 0.0
+            Mm[NR + i, NR + j] = 0.0
 
     a_u = 2.0 * psid * vd + psid * psid * u       # -(Re of velocity part of rotated accel.)
     a_v = 2.0 * psid * ud - psid * psid * v       # +(Im of velocity part of rotated accel.)
@@ -277,8 +277,8 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     Mm[0, 0] = Mt
     Mm[1, 1] = Mt
     for i in range(N):
-        Mm[0, 2 + i] = Mm[2 + i, 0]
-        Mm[1, 2 + i] = Mm[2 + i, 1]
+        Mm[0, NR + i] = Mm[NR + i, 0]
+        Mm[1, NR + i] = Mm[NR + i, 1]
     Mm[0, ip] = -Mt * v - Sm * rho * sb - R * SmS
     Mm[1, ip] = Mt * u + U + Sm * rho * cb + R * SmC
     fv[0] = Fu + Mt * a_u + U * psid * psid + Sm * rho * psid * psid * cb + R * cent_u
@@ -318,7 +318,7 @@ def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.nd
     limits into lam, and (motor-driven spin) their share of the psi row; returns the sums
     (sum m, sum m sin a, sum m cos a, centrifugal u and v sums, M_psipsi, f_psi) the rotor's
     rows need. Part of :func:`rhs` (inlined; see there for the arguments)."""
-    nq = N + 3
+    nq = N + NR + 1
     ip = nq - 1
     u = y[0]
     v = y[1]
@@ -334,8 +334,8 @@ def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.nd
     cent_u = 0.0
     cent_v = 0.0
     for i in range(N):
-        a = y[2 + i]
-        ad = y[nq + 2 + i]
+        a = y[NR + i]
+        ad = y[nq + NR + i]
         m = B[i, B_M]
         Ii = B[i, B_I]
         rr = B[i, B_RR]
@@ -355,7 +355,7 @@ def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.nd
         SmC += m * c
         cent_u += m * thd * thd * c
         cent_v += m * thd * thd * s
-        k = 2 + i
+        k = NR + i
         # ball row (Lagrange in alpha_i; 000 eq 4/18/36/50, 004 eq 10)
         Mm[k, 0] = -m * R * s
         Mm[k, 1] = m * R * c
@@ -406,17 +406,17 @@ def _ball_rows(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np.nd
 @inline_kernel
 def _contacts(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, fv: np.ndarray) -> None:
     """Ball-ball contact forces into fv. Part of :func:`rhs` (inlined)."""
-    nq = N + 3
+    nq = N + NR + 1
     # ball-ball contact: compliant spring-dashpot between neighbours (order preserved)
     if N > 1:
         for i in range(N):
             j, gap = neighbour_gap(y, i, N, P[P_DELTA])
             if gap < 0.0:
-                pen_rate = y[nq + 2 + i] - y[nq + 2 + j]
+                pen_rate = y[nq + NR + i] - y[nq + NR + j]
                 fc = B[i, B_KC] * (-gap) + B[i, B_CC] * pen_rate
                 if fc > 0.0:
-                    fv[2 + j] += fc
-                    fv[2 + i] -= fc
+                    fv[NR + j] += fc
+                    fv[NR + i] -= fc
 
 
 @inline_kernel
@@ -425,12 +425,12 @@ def _solve_prescribed(y: np.ndarray, P: np.ndarray, N: int, stuck: np.ndarray, M
                       B: np.ndarray, psid: float, psidd: float) -> bool:
     """dy for a prescribed spin (the 2x2 Schur complement below); lam of the stuck balls.
     Part of :func:`rhs` (inlined)."""
-    nq = N + 3
+    nq = N + NR + 1
     ip = nq - 1
     R = P[P_R]
     Mt = P[P_MT]
     # Prescribed spin (psi'' = psidd known). The balls couple only to the rotor: ball row
-    # k = 2 + i reads b_i . (u'', v'') + J_i alpha_i'' = g_i, b_i = (M[k,0], M[k,1]),
+    # k = NR + i reads b_i . (u'', v'') + J_i alpha_i'' = g_i, b_i = (M[k,0], M[k,1]),
     # J_i = M[k,k] (constant), g_i = f_k - M[k,psi] psidd. Eliminating the free balls'
     # alpha_i'' leaves the 2x2 Schur complement S = M_t I - sum b_i b_i^T / J_i for
     # x = (u'', v''); then alpha_i'' = (g_i - b_i . x) / J_i. The reduced mass matrix is
@@ -445,7 +445,7 @@ def _solve_prescribed(y: np.ndarray, P: np.ndarray, N: int, stuck: np.ndarray, M
     ok = Mt > 0.0
     for i in range(N):
         if fric or stuck[i] == 0:
-            k = 2 + i
+            k = NR + i
             J = Mm[k, k]
             if J <= 0.0:
                 ok = False
@@ -474,7 +474,7 @@ def _solve_prescribed(y: np.ndarray, P: np.ndarray, N: int, stuck: np.ndarray, M
     dy[nq] = x0
     dy[nq + 1] = x1
     for i in range(N):
-        k = 2 + i
+        k = NR + i
         if fric or stuck[i] == 0:
             dy[nq + k] = (fv[k] - Mm[k, ip] * psidd - Mm[k, 0] * x0 - Mm[k, 1] * x1) * bb[i]
         else:
@@ -497,7 +497,7 @@ def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np
                   fpp: float) -> bool:
     """dy for a motor-driven spin (Cholesky solve of the free unknowns); lam of the stuck
     balls. Part of :func:`rhs` (inlined)."""
-    nq = N + 3
+    nq = N + NR + 1
     ip = nq - 1
     u = y[0]
     v = y[1]
@@ -516,7 +516,7 @@ def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np
     nf_ += 1
     for i in range(N):
         if P[P_FLAW] == 1.0 or stuck[i] == 0:
-            idx[nf_] = 2 + i
+            idx[nf_] = NR + i
             nf_ += 1
     # psi row = old psi row + u*(v row) - v*(u row)  (coordinate change, docs/model.md)
     Mm[ip, 0] = -Sm * rho * sb - R * SmS - P[P_LQY]      # (+ the liquid's held moment)
@@ -552,7 +552,7 @@ def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np
     if P[P_FLAW] != 1.0:
         for i in range(N):
             if stuck[i] == 1:
-                k = 2 + i
+                k = NR + i
                 s_ = -fv[k]
                 for j in range(nq):
                     s_ += Mm[k, j] * dy[nq + j]

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .jit import inline_kernel, kernel
-from .layout import (B_MUS, C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C_NETD,
+from .layout import (B_MUS, NR, C_EN, C_ENOLD, C_EVI, C_EVK, C_H, C_HACC, C_HETD, C_KOUT, C_NETD,
                      C_NEV, C_NEXT, C_NHOLD, C_NRAMP, C_NREJ, C_NRHS, C_NSTEPS, C_SPIN0, C_SPIN1,
                      C_STALL, C_T, C_WHERE, N_C, P_WHOLD, RunStatus, S_THOLD)
 from .rhs import rhs
@@ -120,7 +120,7 @@ def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f,
     static limit by the largest ratio; re-stick a ball at zero relative speed whose
     acceleration opposes its assigned sliding direction (it cannot slide that way); repeat."""
     lam = rw[0]
-    nq = N + 3
+    nq = N + NR + 1
     for _ in range(4 * N + 4):
         rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f, rw)
         worst = -1
@@ -140,8 +140,8 @@ def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f,
             continue
         back = -1
         for i in range(N):
-            if (stuck[i] == 0 and B[i, B_MUS] > 0.0 and y[nq + 2 + i] == 0.0
-                    and sgn[i] * f[nq + 2 + i] < 0.0):
+            if (stuck[i] == 0 and B[i, B_MUS] > 0.0 and y[nq + NR + i] == 0.0
+                    and sgn[i] * f[nq + NR + i] < 0.0):
                 back = i
                 break
         if back < 0:
@@ -153,9 +153,9 @@ def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f,
 def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw):
     """Switching function of event (kind, i) at fraction th of the step."""
     lam = rw[0]
-    nq = N + 3
+    nq = N + NR + 1
     if kind == 0:      # slipping ball stops
-        return sgn[i] * _hermite(y0, f0, y1, f1, h, th, nq + 2 + i)
+        return sgn[i] * _hermite(y0, f0, y1, f1, h, th, nq + NR + i)
     if kind == 2:      # driven spin reaches hold speed
         return P[P_WHOLD] - _hermite(y0, f0, y1, f1, h, th, 2 * nq - 1)
     for j in range(y0.shape[0]):   # stuck ball breaks away
@@ -203,14 +203,14 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin,
     change, the balls that stopped within round-off, the constrained solve (f0, lam, stick
     margins gs). Returns the RHS evaluations it made."""
     lam = rw[0]
-    nq = N + 3
+    nq = N + NR + 1
     v_ev = 0.0
     if ev_kind == 0:
         # the stop is located on the Hermite interpolant and the state comes from the continuous
         # extension, where the stopping ball's speed is zero to its accuracy, not exactly: a
         # ball in exactly its state (coincident balls) stops with it
-        v_ev = y[nq + 2 + ev_i]
-        y[nq + 2 + ev_i] = 0.0
+        v_ev = y[nq + NR + ev_i]
+        y[nq + NR + ev_i] = 0.0
         stuck[ev_i] = 1
     elif ev_kind == 1:
         stuck[ev_i] = 0
@@ -223,9 +223,9 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin,
         # any other slipping ball that stopped within round-off joins the stuck set
         for i in range(N):
             if stuck[i] == 0 and B[i, B_MUS] > 0.0 and (
-                    sgn[i] * y[nq + 2 + i] <= 0.0
-                    or (y[nq + 2 + i] == v_ev and sgn[i] == sgn[ev_i])):
-                y[nq + 2 + i] = 0.0
+                    sgn[i] * y[nq + NR + i] <= 0.0
+                    or (y[nq + NR + i] == v_ev and sgn[i] == sgn[ev_i])):
+                y[nq + NR + i] = 0.0
                 stuck[i] = 1
         if ev_kind == 1:
             _resolve(t, y, P, B, N, seg, sched, stuck, sgn,

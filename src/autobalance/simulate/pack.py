@@ -7,7 +7,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.layout import N_S, n_q, psi_index, speed_index
+from ..core.layout import N_S, alpha_dot_slice, alpha_slice, n_q, psi_index, speed_index
 from ..limits import check_memory
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from ..physics.response import steady_orbit_start
@@ -263,8 +263,8 @@ def initial_vector(system: System, spin: SpeedProfile | MotorDrive, initial: Ini
     # initial rotor position/velocity given in the inertial frame at psi = 0
     y[0], y[1] = x0, y0_
     y[nq], y[nq + 1] = vx + w0 * y0_, vy - w0 * x0
-    y[2:2 + n] = a_sorted
-    y[nq + 2:nq + 2 + n] = ad[order]
+    y[alpha_slice(n)] = a_sorted
+    y[alpha_dot_slice(n)] = ad[order]
     y[psi_index(n)] = 0.0
     y[speed_index(n)] = w0
     return y, order

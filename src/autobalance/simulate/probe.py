@@ -43,7 +43,7 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike,
     accel : ndarray (2,)
         Rotor-frame accelerations (u'', v'') [m/s^2].
     """
-    from ..core.layout import P_FLAW, n_q, psi_index, speed_index
+    from ..core.layout import P_FLAW, alpha_slice, n_q, psi_index, speed_index
     from ..physics.response import steady_orbit_start
     from .pack import pack_params, spin_arrays
     from ..core.rhs import profile_segment, rhs
@@ -61,7 +61,7 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike,
     st = np.zeros(2 * nq)
     st[0], st[1] = x, y                         # psi = 0: rotor frame = inertial frame
     st[nq], st[nq + 1] = vx + speed * y, vy - speed * x
-    st[2:2 + N] = np.mod(a[order], 2 * np.pi)
+    st[alpha_slice(N)] = np.mod(a[order], 2 * np.pi)
     st[speed_index(N)] = speed
     st[psi_index(N)] = float(phase)
     prof_t, prof_w, _ = spin_arrays(spin)
@@ -109,7 +109,8 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
     ndarray, the shape of ``states``
         dz/dt [m/s, rad/s, m/s^2, rad/s^2].
     """
-    from ..core.layout import P_LQDX, P_LQDY, P_LQX, P_LQY, n_q, psi_index, speed_index
+    from ..core.layout import (P_LQDX, P_LQDY, P_LQX, P_LQY, alpha_dot_slice, alpha_slice, n_q,
+                               psi_index, speed_index)
     from ..core.rhs import profile_segment, rhs
     from ..core.work import rhs_work
     from ..models import SimOptions, SpeedProfile
@@ -134,16 +135,16 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
         order = np.argsort(a)
         y = np.zeros(2 * nq)
         y[0], y[1] = z[0], z[1]
-        y[2:2 + N] = a[order]
+        y[alpha_slice(N)] = a[order]
         y[nq], y[nq + 1] = z[N + 2], z[N + 3]
-        y[nq + 2:nq + 2 + N] = z[N + 4:][order]
+        y[alpha_dot_slice(N)] = z[N + 4:][order]
         y[psi_index(N)] = float(phase)
         y[speed_index(N)] = w
         rhs(0.0, y, P, B, N, seg, (prof_t, prof_w, unb_t, unb_u), np.zeros(N, dtype=np.int64),
             np.ones(N), held, dy, rw)
         inv = np.argsort(order)
         out[k, :2] = dy[:2]
-        out[k, 2:2 + N] = dy[2:2 + N][inv]
+        out[k, 2:2 + N] = dy[alpha_slice(N)][inv]
         out[k, N + 2:N + 4] = dy[nq:nq + 2]
-        out[k, N + 4:] = dy[nq + 2:nq + 2 + N][inv]
+        out[k, N + 4:] = dy[alpha_dot_slice(N)][inv]
     return out.reshape(np.shape(states))
