@@ -65,11 +65,10 @@ def _F(z, n, P, B, N, sched, stuck, sgn, spin, out, yw, fw, rw):
 
 
 @kernel
-def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int,
-             sched: tuple,
-             stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, scale: np.ndarray,
-             L: np.ndarray, f0: np.ndarray, f1: np.ndarray, zt: np.ndarray, yw: np.ndarray,
-             fw: np.ndarray, rw: tuple) -> None:
+def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int, sched: tuple,
+             stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, scale: np.ndarray, L: np.ndarray,
+             f0: np.ndarray, f1: np.ndarray, zt: np.ndarray, yw: np.ndarray, fw: np.ndarray,
+             rw: tuple) -> None:
     """L = dF/dz (m = n - 1 components of z: ``etd_window``) by forward differences, column j
     with the increment 1.5e-8 max(|z_j|, scale[j]) (scale: each component's typical magnitude).
     Any L serves the method (its order holds for every fixed L); a good one makes the remainder
@@ -88,8 +87,7 @@ def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int,
 
 
 @kernel
-def _stage(U, n, L, Gi, P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-           rw):
+def _stage(U, n, L, Gi, P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw):
     """Gi = F(U) - L U, Gi a row of the stages' G (fz: work). The row, not G and its index: an
     index passed as a constant would compile a copy per stage (core/jit.py)."""
     m = n - 1
@@ -103,8 +101,7 @@ def _stage(U, n, L, Gi, P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
 def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf: np.ndarray,
              P: np.ndarray, B: np.ndarray, N: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray,
              spin: np.ndarray, G: np.ndarray, U: np.ndarray, fz: np.ndarray, yw: np.ndarray,
-             fw: np.ndarray, rw: tuple, V: np.ndarray, W: np.ndarray,
-             X: np.ndarray) -> None:
+             fw: np.ndarray, rw: tuple, V: np.ndarray, W: np.ndarray, X: np.ndarray) -> None:
     """One ETDRK4-B step of size h [s] on the method's state z in place (module docstring;
     layout: ``etd_window``). Ph, Pf: phi_0..3 of h L / 2 and h L (phi_functions of h L); G
     (5, n - 1), U (n + 1,), fz, V, W, X (n - 1,), yw, fw (n,) work arrays. The terms the stages
@@ -115,22 +112,19 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     U[m + 1] = z[m + 1]
     for r in range(m):
         U[r] = z[r]
-    _stage(U, n, L, G[0], P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-           rw)
+    _stage(U, n, L, G[0], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
     # U2 = e^{hL/2} z + h/2 phi1(hL/2) G1
     _matvec_add(Ph[0], z, V, m, 1.0, False)
     _matvec_add(Ph[1], G[0], V, m, 0.5 * h, True)
     for r in range(m):
         U[r] = V[r]
-    _stage(U, n, L, G[1], P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-           rw)
+    _stage(U, n, L, G[1], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
     # U3 = e^{hL/2} z + h [(phi1/2 - phi2)(hL/2) G1 + phi2(hL/2) G2] = U2 + h phi2(hL/2) (G2 - G1)
     for r in range(m):
         U[r] = V[r]
         X[r] = G[1, r] - G[0, r]
     _matvec_add(Ph[2], X, U, m, h, True)
-    _stage(U, n, L, G[2], P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-           rw)
+    _stage(U, n, L, G[2], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
     # U4 = e^{hL} z + h [(phi1 - 2 phi2)(hL) G1 + phi2(hL) (G2 + G3)]
     #    = W + h phi2(hL) (G2 + G3 - 2 G1),  W = e^{hL} z + h phi1(hL) G1
     _matvec_add(Pf[0], z, W, m, 1.0, False)
@@ -139,8 +133,7 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
         U[r] = W[r]
         X[r] = G[1, r] + G[2, r] - 2.0 * G[0, r]
     _matvec_add(Pf[2], X, U, m, h, True)
-    _stage(U, n, L, G[3], P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-           rw)
+    _stage(U, n, L, G[3], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
     # U5 = e^{hL/2} z + h [a51 G1 + a52 (G2 + G3) + a54 G4] with
     # a52 = phi2(hL/2)/2 - phi3(hL) + phi2(hL)/4 - phi3(hL/2)/2, a54 = phi2(hL/2)/4 - a52,
     # a51 = phi1(hL/2)/2 - 2 a52 - a54 = phi1(hL/2)/2 - a52 - phi2(hL/2)/4; with
@@ -154,8 +147,7 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     _matvec_add(Pf[2], fz, U, m, 0.25 * h, True)
     _matvec_add(Pf[3], fz, U, m, -h, True)
     _matvec_add(Ph[3], fz, U, m, -0.5 * h, True)
-    _stage(U, n, L, G[4], P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-           rw)
+    _stage(U, n, L, G[4], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
     # z_new = e^{hL} z + h [(phi1 - 3 phi2 + 4 phi3) G1 + (4 phi3 - phi2) G4 + (4 phi2 - 8 phi3) G5]
     #       = W + h phi2(hL) (4 G5 - 3 G1 - G4) + h phi3(hL) (4 G1 + 4 G4 - 8 G5)
     for r in range(m):
@@ -275,12 +267,11 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc,
     for k in range(K):
         mon[3 + N] = z[m - 1]                  # the step's start: the last end that passed
         if k % refresh == 0 and not (given and k == 0):
-            jacobian(z, n, P, B, N, sched, stuck, sgn, spin, sc, L, f0,
-                     fz, zt, yw, fw, rw)
+            jacobian(z, n, P, B, N, sched, stuck, sgn, spin, sc, L, f0, fz, zt, yw, fw, rw)
             ne += m + 1
             _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ph[:0], Pf[:0])
-        etd_step(z, h, n, L, Ph, Pf, P, B, N, sched, stuck, sgn, spin,
-                 G, U, fz, yw, fw, rw, ew1[16], ew1[17], ew1[18])
+        etd_step(z, h, n, L, Ph, Pf, P, B, N, sched, stuck, sgn, spin, G, U, fz, yw, fw, rw,
+                 ew1[16], ew1[17], ew1[18])
         ne += 5
         if k == K - 1:
             z[m - 1] = t1                      # the window's end exactly, not by summed steps
@@ -301,8 +292,7 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc,
                     return False, ne
                 held = held or stuck[i] == 1
             if held:            # a stuck ball's margin mu_s N R (1 + stick_tol) - |lambda|
-                _F(z, n, P, B, N, sched, stuck, sgn, spin, fz, yw, fw,
-                   rw)
+                _F(z, n, P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
                 ne += 1
                 for i in range(N):
                     if stuck[i] == 1 and lam[N + i] * (1.0 + stick_tol) - abs(lam[i]) <= 0.0:
@@ -338,8 +328,8 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol,
     # give the coarse run's by one more doubling (_scaled_phi)
     L, L0, hL, work = ew3[0], ew3[16], ew3[1], ew3[10:16]
     Ph, Pf, Fh, Ff = ew3[2:6], ew3[6:10], ew3[17:21], ew3[21:25]
-    jacobian(zs, n, P, B, N, sched, stuck, sgn, spin, sc, L0, ew1[7],
-             ew1[6], ew1[8], ew1[12], ew1[13], rw)
+    jacobian(zs, n, P, B, N, sched, stuck, sgn, spin, sc, L0, ew1[7], ew1[6], ew1[8], ew1[12],
+             ew1[13], rw)
     ne = m + 1
     _scaled_phi(L0, T / (2 * K), sc, m, hL, Fh, Ff, work, Ph, Pf)
     for j in range(m + 2):
@@ -348,9 +338,8 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol,
         for j in range(m):
             L[i, j] = L0[i, j]
     mon[0] = 0.0
-    ok, e = _etd_run(zc, t1, K, REFRESH, n, P, B, N, sched, stuck, sgn,
-                     spin, sc, ew3, ew1, rw, True, mon, stick_tol,
-                     Ph, Pf, True)
+    ok, e = _etd_run(zc, t1, K, REFRESH, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1, rw,
+                     True, mon, stick_tol, Ph, Pf, True)
     ne += e
     for attempt in range(3):
         if not ok:
@@ -364,9 +353,8 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol,
                 L[i, j] = L0[i, j]
         mon[0] = 0.0
         mon[1] = t
-        ok, e = _etd_run(zf, t1, 2 * K, REFRESH, n, P, B, N, sched,
-                         stuck, sgn, spin, sc, ew3, ew1, rw, True,
-                         mon, stick_tol, Fh, Ff, True)
+        ok, e = _etd_run(zf, t1, 2 * K, REFRESH, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1,
+                         rw, True, mon, stick_tol, Fh, Ff, True)
         ne += e
         if not ok:
             return 0, ne, h_etd, 0.0, 0.0, mon[2]
@@ -391,10 +379,9 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol,
 
 
 @kernel
-def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
-                B: np.ndarray, N: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray,
-                spin: np.ndarray, atol: np.ndarray, rtol: float, ew3: np.ndarray,
-                ew1: np.ndarray, rw: tuple,
+def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray, B: np.ndarray,
+                N: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
+                atol: np.ndarray, rtol: float, ew3: np.ndarray, ew1: np.ndarray, rw: tuple,
                 stick_tol: float,
                 h_max: float) -> tuple[bool, int, float, float, float, float, float]:
     """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
@@ -418,15 +405,16 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
     """
     h = max(min(h_etd, h_max), 1e-9)
     K = max(2, int(math.ceil((t1 - t) / h)))
-    st, ne, h_new, a, ta, t_next = _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew3, ew1, rw, stick_tol)
+    st, ne, h_new, a, ta, t_next = _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin,
+                                           atol, rtol, ew3, ew1, rw, stick_tol)
     if st == 1:
         return True, ne, h_new, a, ta, t1, t1
     t_good = ew1[15][3 + N]
     h = (t1 - t) / K
     if st == 0 and t_good - t >= h * (1.0 - 1e-9):
-        st2, ne2, _, a, ta, _ = _window(t, t_good, max(2, int(round((t_good - t) / h))),
-                                         h_etd, y, P, B, N, sched,
-                                         stuck, sgn, spin, atol, rtol, ew3, ew1, rw, stick_tol)
+        st2, ne2, _, a, ta, _ = _window(t, t_good, max(2, int(round((t_good - t) / h))), h_etd, y,
+                                        P, B, N, sched, stuck, sgn, spin, atol, rtol, ew3, ew1, rw,
+                                        stick_tol)
         ne += ne2
         if st2 == 1:
             return True, ne, h_etd, a, ta, t_next, t_good
@@ -454,9 +442,8 @@ def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w:
     z, sc = ew1[11], ew1[14]
     _pack(y, t0, z, n)
     _scales(scale, 1.0, t1, sc, n)
-    _etd_run(z, t1, nsteps, refresh, n, P, B, N, sched, stuck, sgn, spin,
-             sc, ew3, ew1, rw, False, ew1[15], 0.0, ew3[2:6],
-             ew3[6:10], False)
+    _etd_run(z, t1, nsteps, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1, rw, False,
+             ew1[15], 0.0, ew3[2:6], ew3[6:10], False)
     out = np.empty(n)
     _unpack(z, out, n, prof_t, prof_w, t0, y[n // 2 - 1])
     return out

@@ -183,8 +183,8 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         m = with_knot(prof_t, prof_w, t1, pt, pw)
         t_pause = t1 if t1 < t_end else np.inf
         _integrate(P, B, N, pt[:m], pw[:m], unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
-                   out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, rw, stuck, sgn, gs,
-                   ge, spin, in_contact, viol, ser, qr, ew3, ew1, t_pause, carry)
+                   out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, rw, stuck, sgn, gs, ge,
+                   spin, in_contact, viol, ser, qr, ew3, ew1, t_pause, carry)
         # 3. the films' update, taken up by the chamber
         steps += 1
         if not accept_state(h, q, hn, qn):

@@ -347,8 +347,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     c1, c2 = hold_coeffs(dw * rot0, (dwd + 1j * W0 * dw) * rot0, 0j, s1, s2)
     p1 = abs(s1 * s1 * c1)
     p2 = abs(s2 * s2 * c2)
-    _margins(t, W0, psi0, wp, wpd, y, P, B, N, seg, sched, stuck, sgn,
-             spin, ytmp, ftmp, rw, q[0])
+    _margins(t, W0, psi0, wp, wpd, y, P, B, N, seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[0])
     nrhs += 1
     for i in range(N):
         if q[0, i] - B[i, B_M] * P[P_R] * (p1 + p2) <= 0.0:
@@ -365,11 +364,11 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
         tm = tau + 0.5 * dt
         tb = tau + dt
         wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
-        _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B,
-                 N, seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[1])
+        _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B, N,
+                 seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[1])
         wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
-        _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B,
-                 N, seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[2])
+        _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B, N,
+                 seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[2])
         nrhs += 2
         ok = (_err_ok(rm, wpm, wpdm, L0, L1, W0 + a * tm, atol, rtol, nq)
               and _err_ok(rb, wpb, wpdb, L0, L1, W0 + a * tb, atol, rtol, nq))
@@ -418,8 +417,9 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
 
 @kernel
 def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray,
-                 N: int, seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
-                 q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray, rw: tuple) -> None:
+                 N: int, seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray,
+                 spin: np.ndarray, q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
+                 rw: tuple) -> None:
     """The friction each stuck ball needs and its static limit [N*m] as affine functions of
     (w - w_ss, w') during a hold (R5): with the balls' angles and the speed fixed, the kernel's
     constrained solve is linear in the rotor state. Rows 0-4 of q: lambda_i at the steady
@@ -470,10 +470,9 @@ def _hold_margin(tau: float, s1: complex, s2: complex, c1: complex, c2: complex,
 
 @kernel
 def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex, s2: complex,
-                   c1: complex, c2: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray,
-                   N: int, seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray,
-                   spin: np.ndarray, q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
-                   rw: tuple,
+                   c1: complex, c2: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int,
+                   seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
+                   q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray, rw: tuple,
                    stick_tol: float) -> tuple[float, int, int]:
     """First breakaway of a hold at speed W [rad/s] starting at t [s], within tau_max [s] (R5).
 
@@ -481,8 +480,7 @@ def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex
     ball >= 0 breaks away at tau; -1: none within tau_max; -2: the scan ended at tau without a
     breakaway (sample budget).
     """
-    _hold_affine(t, W, wss, y, P, B, N, seg, sched, stuck, sgn, spin, q,
-                 ytmp, ftmp, rw)
+    _hold_affine(t, W, wss, y, P, B, N, seg, sched, stuck, sgn, spin, q, ytmp, ftmp, rw)
     f_max = max(abs(s1.imag), abs(s2.imag))
     dtau = 2.0 * math.pi / (16.0 * max(f_max, 1e-300))
     if dtau > tau_max:

@@ -179,10 +179,8 @@ def _suspension_force(t, u, v, ud, vd, psi, psid, P):
 
 
 @kernel
-def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
-        sched: tuple,
-        stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray,
-        rw: tuple) -> bool:
+def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int, sched: tuple,
+        stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray, rw: tuple) -> bool:
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
 
     Parameters

@@ -76,36 +76,29 @@ def _dense(y0, f0, y1, f1, K, h, th, out):
 
 
 @kernel
-def _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin,
-                K, ytmp, y1, f1, err, rw):
+def _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin, K, ytmp, y1, f1, err, rw):
     """One DOPRI5 step; returns (ok); y1, f1 (FSAL) and the error vector err are filled."""
     n = y.shape[0]
     for j in range(n):
         ytmp[j] = y[j] + h * A21 * f0[j]
-    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
-             K[1], rw)
+    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[1], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A31 * f0[j] + A32 * K[1, j])
-    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
-              K[2], rw)
+    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[2], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A41 * f0[j] + A42 * K[1, j] + A43 * K[2, j])
-    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
-              K[3], rw)
+    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[3], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A51 * f0[j] + A52 * K[1, j] + A53 * K[2, j] + A54 * K[3, j])
-    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
-              K[4], rw)
+    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[4], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A61 * f0[j] + A62 * K[1, j] + A63 * K[2, j] + A64 * K[3, j]
                               + A65 * K[4, j])
-    ok &= rhs(t + h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
-              K[5], rw)
+    ok &= rhs(t + h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[5], rw)
     for j in range(n):
         y1[j] = y[j] + h * (A71 * f0[j] + A73 * K[2, j] + A74 * K[3, j] + A75 * K[4, j]
                             + A76 * K[5, j])
-    ok &= rhs(t + h, y1, P, B, N, seg, sched, stuck, sgn, spin,
-              f1, rw)
+    ok &= rhs(t + h, y1, P, B, N, seg, sched, stuck, sgn, spin, f1, rw)
     for j in range(n):
         err[j] = h * (E1 * f0[j] + E3 * K[2, j] + E4 * K[3, j] + E5 * K[4, j] + E6 * K[5, j]
                       + E7 * f1[j])
@@ -113,8 +106,7 @@ def _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin,
 
 
 @kernel
-def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f,
-             rw):
+def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f, rw):
     """Consistent stick/slip modes at a switching instant (a small friction complementarity
     problem solved by pivoting): release the stuck ball whose required friction exceeds its
     static limit by the largest ratio; re-stick a ball at zero relative speed whose
@@ -150,7 +142,8 @@ def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f,
 
 
 @kernel
-def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw):
+def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp,
+             rw):
     """Switching function of event (kind, i) at fraction th of the step."""
     lam = rw[0]
     nq = N + NR + 1
@@ -160,13 +153,13 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck
         return P[P_WHOLD] - _hermite(y0, f0, y1, f1, h, th, 2 * nq - 1)
     for j in range(y0.shape[0]):   # stuck ball breaks away
         ytmp[j] = _hermite(y0, f0, y1, f1, h, th, j)
-    rhs(t + th * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
-        ftmp, rw)
+    rhs(t + th * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
     return lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
 
 
 @kernel
-def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw):
+def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
+            ftmp, rw):
     """Step fraction in (a_, 1] where the switching function (kind, i) crosses from g(a_) = ga
     > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-7 in fraction).
     Returns (fraction, number of evaluations)."""
@@ -176,7 +169,8 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched
     th = b_
     for _ in range(40):
         th = (a_ * gb - b_ * ga) / (gb - ga)
-        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn,
+                      spin, ftmp, rw)
         nev += 1
         if gt > 0.0:
             a_ = th
@@ -196,8 +190,7 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched
 
 
 @kernel
-def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin,
-           f0, rw, gs, stats, exact):
+def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs, stats, exact):
     """The modes after a step that ends in an event (``ev_kind`` of ball ``ev_i``) or at a
     profile knot, or after a closed-form jump (ev_kind -1, every ball stuck): the event's mode
     change, the balls that stopped within round-off, the constrained solve (f0, lam, stick
@@ -228,18 +221,15 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin,
                 y[nq + NR + i] = 0.0
                 stuck[i] = 1
         if ev_kind == 1:
-            _resolve(t, y, P, B, N, seg, sched, stuck, sgn,
-                     spin, f0, rw)
+            _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
             # the released ball must stay released even if lambda is marginal now
             if stuck[ev_i] == 1:
                 stuck[ev_i] = 0
                 sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
-        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin,
-                 f0, rw)
+        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
         ne = N + 1
     else:
-        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0,
-            rw)
+        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
         ne = 1
     for i in range(N):
         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -247,8 +237,7 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin,
 
 
 @kernel
-def _hold_arrival(ib, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0,
-                  rw, gs):
+def _hold_arrival(ib, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs):
     """The end of a hold solved until its first breakaway (ramp.hold_breakaway): ball ``ib``
     (>= 0) breaks away there and is released as the integrator releases it (ev_kind 1), then
     the constrained solve (f0, lam, stick margins gs). Returns the events (0 or 1)."""
