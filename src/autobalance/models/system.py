@@ -190,7 +190,7 @@ class SimOptions:
 
     The kernel takes its fast paths wherever their conditions hold (closed-form holds, stuck
     ramps without stepping, slip jumps; ``autobalance.simulate.pack.fast_paths``) and steps
-    everything else by DOPRI5; neither is an option (docs/numerics/stuck-phases.md).
+    everything else by DOPRI5; no option chooses between them (docs/numerics/stuck-phases.md).
 
     Parameters
     ----------
