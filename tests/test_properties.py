@@ -122,8 +122,9 @@ def test_batch_matches_single_runs_exactly():
 
 
 def test_failure_is_a_status_not_an_exception():
-    """A run that needs more steps than its budget (holds stepped: the closed forms would
-    finish this one in a few steps)."""
+    """A run that needs more steps than its budget: one run with its hold stepped (the closed
+    form would finish it in a few steps), and a batch under the tanh law (no closed-form
+    holds)."""
     s = vub_004()
     prof = ab.SpeedProfile.constant(2 * np.pi * 100, 1.0)
     o = ab.SimOptions(max_steps=20)
