@@ -73,8 +73,10 @@ def test_steady_deflection_is_the_synchronous_orbit():
      (False, False, False, False, False)),
     (lambda s, o: (dataclasses.replace(s, suspension=dataclasses.replace(s.suspension, dry_friction_force=1.0)), o),
      (False, False, False, False, False)),
-    (lambda s, o: (s, dataclasses.replace(o, friction_law="tanh")), (False, False, False, True, True)),
-    (lambda s, o: (s, dataclasses.replace(o, friction_law="creep")), (True, False, False, True, True)),
+    (lambda s, o: (s, dataclasses.replace(o, friction_law="tanh")),
+     (False, False, False, True, True)),
+    (lambda s, o: (s, dataclasses.replace(o, friction_law="creep")),
+     (True, False, False, True, True)),
     (lambda s, o: (dataclasses.replace(s, rotor=dataclasses.replace(
         s.rotor, unbalance_schedule=((0.0, 3e-4), (1.0, 2e-4)))), o),
      (False, False, False, True, True)),

@@ -2,8 +2,8 @@
 exponential integrator for the slipping phases").
 
 Used by ``integrate`` as the slip jump (``slip_window``, under the conditions of
-``simulate.pack.fast_paths``); ``etd_window`` takes constant steps over an event-free window of a run, for
-``benchmarks/slip_etd_bench.py``.
+``simulate.pack.fast_paths``); ``etd_window`` takes constant steps over an event-free window of a
+run, for ``benchmarks/slip_etd_bench.py``.
 
 The stiffness of 004's rig in the rotor frame lives in the coupled rotor-ball dynamics (rotor
 modes at omega_n +- Omega, up to ~1640 1/s). DOPRI5 then steps at its stability limit (~2 ms)
@@ -245,8 +245,8 @@ def _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ch, Cf):
 
 
 @kernel
-def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc,
-             ew3, ew1, rw, check, mon, stick_tol, Ph, Pf, given):
+def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1, rw, check,
+             mon, stick_tol, Ph, Pf, given):
     """z from its time to t1 [s] in K equal ETDRK4-B steps, L refreshed every ``refresh``
     steps into ew3[0] and Ph, Pf (phi_k of h L / 2 and h L); with ``given`` the first L and
     phi are already there. With ``check``, after each step every slipping ball must still slide
@@ -306,8 +306,8 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc,
 
 
 @kernel
-def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol,
-            rtol, ew3, ew1, rw, stick_tol):
+def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew3, ew1, rw,
+            stick_tol):
     """One try of a slip jump from t to t1 [s] with K coarse steps (``slip_window``). Returns
     (1 accepted, 0 a check failed, -1 the error estimate failed; right-hand-side evaluations;
     next h_etd [s]; max |w| [m] and its time [s]; the failing step's end [s] or t1)."""
@@ -382,8 +382,8 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol,
 def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray, B: np.ndarray,
                 N: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
                 atol: np.ndarray, rtol: float, ew3: np.ndarray, ew1: np.ndarray, rw: tuple,
-                stick_tol: float,
-                h_max: float) -> tuple[bool, int, float, float, float, float, float]:
+                stick_tol: float, h_max: float) -> tuple[bool, int, float, float, float, float,
+                                                          float]:
     """A slip jump: some ball slipping, y [state, layout.py] from t to t1 [s] by ETDRK4-B
     (integrate.py, ``P[P_ETD]``; docs/numerics/exponential-slip.md).
 

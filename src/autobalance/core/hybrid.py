@@ -38,7 +38,8 @@ from numba import njit
 from .jit import kernel
 
 from .integrate import _integrate
-from .layout import NR, P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS, RunStatus
+from .layout import (NR, P_LQDX, P_LQDY, P_LQI, P_LQT, P_LQX, P_LQY, P_MT, P_SPIN, S_STATUS,
+                     RunStatus)
 from .rhs import profile_eval, profile_segment
 from .work import ball_work
 from .shallow_water import (_emit, accept_state, films_dt, films_moment, films_spin, films_step,

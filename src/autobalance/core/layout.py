@@ -13,7 +13,8 @@ from __future__ import annotations
 import enum
 
 # --- the generalised coordinates q (y = (q, q')) --------------------------------------------
-NR = 2            # rotor coordinates ahead of the balls: u, v [m]; ball i is q[NR + i], psi q[nq - 1]
+NR = 2            # rotor coordinates ahead of the balls: u, v [m]; ball i is q[NR + i],
+                  # psi is q[nq - 1]
 
 # --- scalar parameters P ------------------------------------------------------------------
 P_MT = 0          # total translating mass M + sum(m_i) [kg]

@@ -14,7 +14,8 @@ from ..core.batch import integrate_batch, integrate_branches
 from ..core.integrate import integrate
 from ..core.layout import N_S, S_STATUS, RunStatus
 from ..limits import check_run
-from .pack import RunInputs, _h_max, atol_vector, initial_vector, pack_params, run_inputs, spin_arrays
+from .pack import (RunInputs, _h_max, atol_vector, initial_vector, pack_params, run_inputs,
+                   spin_arrays)
 from ..models import InitialState, MotorDrive, SimOptions, SpeedProfile, System
 from .result import BatchResult, Simulation, SimulationError
 
