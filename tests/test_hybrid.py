@@ -1,4 +1,4 @@
-"""Balls beside a liquid (core/hybrid.py, simulate/hybrid.py; docs/liquid/balls-beside-liquid/index.md sec. 3i): the ball
+"""Balls beside a liquid (core/hybrid.py, simulate/hybrid.py; docs/liquid/balls-beside-liquid.md sec. 3i): the ball
 simulator with the wall films on the same rotor, checked against its two limits (a liquid of no
 mass: the ball run; balls that cannot move: the Jeffcott rotor with the film), bad input, the
 NetCDF file and the CLI end to end."""

@@ -1,5 +1,5 @@
-"""A motor drive beside a liquid (core/hybrid.py with a motor-driven spin; docs/liquid/index.md sec.
-3i): the limits of a massless liquid and of a liquid locked to its wall, the angular momentum
+"""A motor drive beside a liquid (core/hybrid.py with a motor-driven spin;
+docs/liquid/balls-beside-liquid.md sec. 3i): the limits of a massless liquid and of a liquid locked to its wall, the angular momentum
 of rotor, balls and films against the motor's impulse, and the one-line refusals."""
 from __future__ import annotations
 

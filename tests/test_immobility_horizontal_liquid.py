@@ -1,5 +1,5 @@
-"""`study immobility` beside a liquid on a horizontal axis (studies/_immobility.py, docs/liquid/index.md
-sec. 3k): the balls at rest on the steady orbit with the planar quasi-static liquid, gravity's
+"""`study immobility` beside a liquid on a horizontal axis (studies/_immobility.py,
+docs/liquid/stability.md sec. 3k): the balls at rest on the steady orbit with the planar quasi-static liquid, gravity's
 pull on the balls kept; checked against the fill map's steady amplitude, the pool machine below
 the film's start, and the run of balls beside the films under gravity (core/hybrid.py)."""
 from __future__ import annotations

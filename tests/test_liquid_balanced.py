@@ -1,5 +1,5 @@
-"""The balanced state of balls beside a liquid (studies/liquid_balanced.py, docs/liquid/index.md sec.
-3k): its linearisation against the run of balls beside a liquid, against the liquid alone and
+"""The balanced state of balls beside a liquid (studies/liquid_balanced.py,
+docs/liquid/stability.md sec. 3k): its linearisation against the run of balls beside a liquid, against the liquid alone and
 the balls alone, and its refusals."""
 from __future__ import annotations
 

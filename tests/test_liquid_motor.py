@@ -1,4 +1,4 @@
-"""A liquid under a motor drive (docs/liquid/balls-beside-liquid/index.md sec. 3i): a liquid alone through the kernel of
+"""A liquid under a motor drive (docs/liquid/balls-beside-liquid.md sec. 3i): a liquid alone through the kernel of
 balls beside a liquid with no balls (`simulate_liquid_motor`), the pool's spin-up from rest
 beside a motor-driven spin (`_pool_phase`), the CLI, and the one-line refusals. The references
 are the prescribed-profile models run through the motor run's own speed history: the film

@@ -42,13 +42,26 @@ def project_files() -> list[Path]:
             and "__pycache__" not in f.parts]
 
 
+#: What opens a continued line: indentation and a comment or quote marker.
+LEAD = re.compile(r"^\s*(?:#+|>|\*|//)?\s*")
+
+
+def _reads_as_history(text: str) -> bool:
+    return bool(PATTERN.search(FOREIGN.sub("", text)))
+
+
 def history_lines(files: list[Path]) -> list[str]:
-    """``path:line: text`` of every line that reads as development history."""
+    """``path:line: text`` of every line that reads as development history, alone or joined
+    with the next line (a phrase wrapped across two lines: "until stop" / "33")."""
     out = []
     for f in files:
         name = f.relative_to(ROOT) if ROOT in f.parents else f.name
-        for i, line in enumerate(f.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
-            if PATTERN.search(FOREIGN.sub("", line)):
+        lines = f.read_text(encoding="utf-8", errors="replace").splitlines()
+        for i, line in enumerate(lines, 1):
+            nxt = lines[i] if i < len(lines) else ""
+            if _reads_as_history(line) or (
+                    not _reads_as_history(nxt)
+                    and _reads_as_history(line.rstrip() + " " + LEAD.sub("", nxt))):
                 out.append(f"{name}:{i}: {line.strip()[:100]}")
     return out
 
@@ -67,6 +80,14 @@ def test_the_check_finds_planted_history(tmp_path, text):
     f.write_text(f"A line.\n{text}\nnumba issue #2350 uses it the same way.\n")
     found = history_lines([f])
     assert len(found) == 1 and found[0].startswith("planted.md:2:")
+
+
+def test_the_check_finds_history_wrapped_across_two_lines(tmp_path):
+    """Self-test: a phrase split by a line break (here inside a comment) is found once, on its
+    first line."""
+    f = tmp_path / "planted.py"
+    f.write_text("x = 1\n# refused until stop\n# 33, now accepted\ny = 2\n")
+    assert [line.split(":")[1] for line in history_lines([f])] == ["2"]
 
 
 def test_the_check_reads_every_part_of_the_project():

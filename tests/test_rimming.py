@@ -1,5 +1,5 @@
-"""The liquid on a horizontal axis in time (core/rimming.py, liquid/rimming.py; docs/liquid/index.md
-sec. 3n): the puddle at rest (the thin layer's horizontal chord) kept to round-off, volume to
+"""The liquid on a horizontal axis in time (core/rimming.py, liquid/rimming.py;
+docs/liquid/horizontal-axis.md sec. 3n): the puddle at rest (the thin layer's horizontal chord) kept to round-off, volume to
 round-off, the friction's lag under a constant spin-up and the ring's forced wave under gravity
 against their closed forms, grid convergence, the model's quasi-static ring, and the runs'
 events: a ring breaking on a run-down, a puddle leaving the model on a run-up."""

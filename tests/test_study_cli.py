@@ -306,9 +306,9 @@ def test_design_ranks_cheapest_meeting_design_first_and_marks_the_pareto_front()
 def test_design_of_a_machine_on_its_own_ramp():
     """A machine on a ramp (000's washer run up to 1000 rpm) has no std/slow/tsr variants:
     `design` designs for its own profile ('given') and says so; `--profiles given` is that
-    choice, and asking for a variant it lacks is one line naming the profile kind. Until stop
-    33 the default refused every such machine ("none applies ..., available: given") and
-    `--profiles given` was itself refused."""
+    choice, and asking for a variant it lacks is one line naming the profile kind. Neither the
+    default nor `--profiles given` refuses such a machine ("none applies ..., available:
+    given")."""
     ramp = ["--profile", "ramp", "--set", "profile.start_speed=0 rpm", "--set",
             "profile.end_speed=1000 rpm", "--set", "profile.ramp_time=6 s", "--set",
             "profile.duration=8 s"]

@@ -1,4 +1,4 @@
-"""The tolerance bound of balls beside a liquid (docs/liquid/balls-beside-liquid/index.md sec. 3l): the liquid's
+"""The tolerance bound of balls beside a liquid (docs/liquid/balls-beside-liquid.md sec. 3l): the liquid's
 synchronous moment as an added mass (autobalance.liquid.synchronous), checked against the films
 (partitions), the quasi-static liquid (a rest state solved with the full nonlinear liquid), and
 runs of balls beside the films."""

@@ -1,5 +1,4 @@
-"""``python -m autobalance.cli ...``: the same as the ``autobalance`` command (kept for scripts
-that ran the former module ``autobalance/cli.py``)."""
+"""``python -m autobalance.cli ...``: the same as the ``autobalance`` command."""
 from . import main
 
 if __name__ == "__main__":

@@ -372,7 +372,7 @@ def tolerances(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
             f"its synchronous moment is an added mass of {res['liquid_added_mass_kg']:.4g} kg "
             f"on the rotor while its rings hold (whirl up to {du.fmt(r_lin, 'length')})"
             if math.isfinite(r_lin) else "a pool at this speed (below its entrainment speed, "
-            "003 eq 6): no moment, its mass moves with the rotor") + " (docs/liquid/balls-beside-liquid/index.md sec. 3l)")
+            "003 eq 6): no moment, its mass moves with the rotor") + " (docs/liquid/balls-beside-liquid.md sec. 3l)")
     for wmsg in notes:
         typer.echo(f"  note: {wmsg}")
     if "simulation_check" in res:

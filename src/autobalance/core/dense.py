@@ -9,8 +9,8 @@ body inlined with the size a constant), and any other to the loop body with m. E
 the same operations in the same order: the results are bit for bit those of the generic loop
 (tests/test_dense.py). On this machine (2 balls, m = 9) a product costs 208 instead of 334 ns,
 a matrix-vector product 25 instead of 36 ns. The sized matrix-vector products are called, not
-inlined into their callers: inlined, they added 15 s to the kernels' compilation (110 s in all,
-89 s before this module) and ran no faster.
+inlined into their callers: inlined, they added 15 s to the kernels' compilation and ran no
+faster.
 """
 from __future__ import annotations
 

@@ -22,7 +22,7 @@ rotor): over a step [t, t + dt] (the films' CFL step)
 With a film of no mass this is the ball kernel's run stepped at the films' pace; with balls that
 cannot move it is the Jeffcott rotor with a film (tests/test_hybrid.py checks both).
 
-A motor-driven spin (layout.P_SPIN = 1; docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i): the films take
+A motor-driven spin (layout.P_SPIN = 1; docs/liquid/balls-beside-liquid.md sec. 3i): the films take
 Omega = psi' from the kernel's state at t and Omega' from its last step; the kernel holds, besides U
 and U', the films' second moment I_c (in its spin row, with -i psi'' U in its mass matrix) and their
 torque on the spin, -(the films' change of relative angular momentum H_rel) / dt of the last

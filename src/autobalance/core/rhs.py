@@ -294,7 +294,7 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
 
     if not driven:
         return _solve_prescribed(y, P, N, stuck, Mm, fv, dy, lam, bb, B, psid, psidd)
-    # a motor-driven spin beside a liquid (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i): -i psi'' U
+    # a motor-driven spin beside a liquid (docs/liquid/balls-beside-liquid.md sec. 3i): -i psi'' U
     # joins M (the translational rows here, the psi row in _solve_driven); the psi row gains the
     # films' second moment I_c, Re(conj(U) w) and Im(conj(U) a), a the velocity part of the
     # rotor-frame acceleration, and their held torque (0 without a liquid: no bit changes)
@@ -527,7 +527,7 @@ def _solve_driven(y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, stuck: np
         if P[P_LQX] != 0.0 or P[P_LQY] != 0.0:
             # and on a liquid's held moment U_L beside the balls (core/hybrid.py; a horizontal
             # axis): -g Im(U_L e^(i(psi - gdir))), as on the unbalance
-            # (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i)
+            # (docs/liquid/balls-beside-liquid.md sec. 3i)
             fpp -= g * (P[P_LQX] * sg + P[P_LQY] * math.cos(psi - gdir))
     for j in range(nq):
         Mm[ip, j] += u * Mm[1, j] - v * Mm[0, j]

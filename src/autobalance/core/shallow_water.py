@@ -332,7 +332,7 @@ def films_spin(h: np.ndarray, q: np.ndarray, starts: np.ndarray, Rs: np.ndarray,
     """The thin films' (:func:`films_moment`'s layout) second moment about the chamber centre
     I_c = sum rho H R^3 sum(eta) dtheta [kg*m^2] (the liquid at R) and their angular momentum
     relative to the wall H_rel = sum rho H R^2 sum(q) dtheta [kg*m^2/s] (q = eta v, v relative
-    to the wall): the liquid's terms in the spin equation (docs/liquid/balls-beside-liquid/index.md
+    to the wall): the liquid's terms in the spin equation (docs/liquid/balls-beside-liquid.md
     sec. 3i)."""
     ic = 0.0
     hr = 0.0

@@ -409,7 +409,7 @@ def rigid_pool(radius: float, inner_radius: float, volume: float, speed: float, 
 class PoolSpin:
     """A chamber's liquid in its spin-up (:func:`spinup_run`'s model) advanced one coupling step
     at a time under a spin known only step by step: a motor drive, whose torque the liquid's
-    change of angular momentum loads (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i). From rest (a flat
+    change of angular momentum loads (docs/liquid/balls-beside-liquid.md sec. 3i). From rest (a flat
     layer at rest in the inertial frame) or, for a drive that starts turning, from the pool turning
     with the chamber (:func:`rigid_pool`); until its surface reaches the lid at the outer wall.
 

@@ -157,7 +157,7 @@ def _lid(radius: float, height: float, inner_radius: float, volume: float, visco
 
 def pool_machine(system: System) -> System:
     """The machine with its liquid as a pool (below the film's start,
-    docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i): its mass moves with the rotor and it pulls nothing,
+    docs/liquid/balls-beside-liquid.md sec. 3i): its mass moves with the rotor and it pulls nothing,
     so the ball models take the machine with the liquid's mass added to the rotor's and no
     ``[liquid]`` section. M_t is kept.
 

@@ -1,7 +1,7 @@
 """The liquid of a Leblanc chamber as the balls' averaged (kinetic-static) model sees it: its
 moment in a synchronous whirl of the rotor, for the worst-case bound of balls beside a liquid
 (:func:`autobalance.physics.worst_case.residual_bound`, ``liquid=``;
-docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3l).
+docs/liquid/balls-beside-liquid.md sec. 3l).
 
 In a synchronous whirl the rotor frame is steady: the liquid turns rigidly about the rotation
 axis while the chamber's centre is displaced by the rotor's whirl z_r. While every layer's

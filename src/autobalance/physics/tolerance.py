@@ -393,7 +393,7 @@ def tolerances_for_grade(system: System, speed: float, grade: float = 16.0, *,
     if liquid is not None and not liquid.linear_range > 0:
         return {**out, "feasible": False,
                 "reason": f"at {w:.4g} rad/s the liquid's rings are not intact (they touch a "
-                          "wall): no bound beside it (docs/liquid/balls-beside-liquid/index.md sec. 3l)"}
+                          "wall): no bound beside it (docs/liquid/balls-beside-liquid.md sec. 3l)"}
     gain = base["gain_m_per_kg_m"]
     per_n = residual_bound(system, w, **{**zero, "friction_force": 1.0})["friction_displacement_m"]
 

@@ -1,6 +1,6 @@
 """One run of a machine with balls beside a liquid (a ``[balancer]`` with balls and a
 ``[liquid]`` section): the ball simulator with the wall films of the liquid's chambers on the
-same rotor (:mod:`autobalance.core.hybrid`; docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i).
+same rotor (:mod:`autobalance.core.hybrid`; docs/liquid/balls-beside-liquid.md sec. 3i).
 :func:`autobalance.simulate` runs it for such a machine.
 
 Before the film starts (:func:`autobalance.liquid.simulate.film_start`: from rest on a vertical
@@ -34,11 +34,11 @@ from .pack import run_inputs
 from .result import Simulation, SimulationError
 
 #: Coupling step of a pool's spin-up beside a motor-driven spin (:func:`_pool_phase`) [s]: the
-#: pools' torque lags by one step (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i).
+#: pools' torque lags by one step (docs/liquid/balls-beside-liquid.md sec. 3i).
 POOL_STEP = 1.0e-3
 #: The note of a run whose motor started below the film's start on a horizontal axis.
 RIGID_NOTE = ("before the film's start the liquid turned with the drum: its pool flow is not "
-              "modelled, its effect on the run-up is bounded (docs/liquid/balls-beside-liquid/index.md sec. 3i)")
+              "modelled, its effect on the run-up is bounded (docs/liquid/balls-beside-liquid.md sec. 3i)")
 
 __all__ = ["LiquidPart", "check_hybrid", "check_liquid", "liquid_run", "simulate_hybrid",
            "simulate_liquid_motor"]
@@ -125,7 +125,7 @@ def check_liquid(system: System, spin: SpeedProfile | MotorDrive,
 
 
 def _motor_start(system: System, spin: MotorDrive, g_axial: float) -> FilmStart:
-    """A motor drive beside a liquid (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i). A drive that
+    """A motor drive beside a liquid (docs/liquid/balls-beside-liquid.md sec. 3i). A drive that
     starts at or above the film's start speed starts the films at t = 0 turning with the chamber
     (rule "quasi-static"); one that starts below it runs :func:`_pool_phase` first (rule "pool"):
     on a vertical axis the pools spin up beside the kernel, on a horizontal one the liquid turns
@@ -162,7 +162,7 @@ def _pool_phase(system: System, g_axial: float, P: np.ndarray, B: np.ndarray, N:
                 y: np.ndarray, t_end: float, rtol: float, atol: np.ndarray, h_max: float,
                 budget: int, out_t: np.ndarray, out_y: np.ndarray, stats: np.ndarray,
                 carry: np.ndarray) -> FilmStart | None:
-    """A motor drive from below the film's start speed (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i),
+    """A motor drive from below the film's start speed (docs/liquid/balls-beside-liquid.md sec. 3i),
     one coupling step of :data:`POOL_STEP` at a time. On a vertical axis each chamber's pool spins
     up (:class:`autobalance.liquid.spinup.PoolSpin`, the axisymmetric model of sec. 3h) beside
     the kernel: the pools' change of angular momentum reaches the spin as a torque one step late
@@ -224,7 +224,7 @@ def simulate_hybrid(system: System, spin: SpeedProfile | MotorDrive, *,
     spin : SpeedProfile or MotorDrive
         Prescribed speed [rad/s] over time [s], or a motor drive (from any speed, on a
         vertical axis with every chamber at most half full below the film's start; to a speed
-        at or above the film's start [rad/s]; docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i).
+        at or above the film's start [rad/s]; docs/liquid/balls-beside-liquid.md sec. 3i).
     initial : InitialState, optional
         Ball angles [rad] and rotor state at t = 0 (:func:`autobalance.simulate`'s default).
     options : SimOptions, optional
@@ -344,7 +344,7 @@ def simulate_liquid_motor(system: System, spin: MotorDrive, *, n_cells: int = 25
                           g_axial: float = G_STANDARD) -> LiquidSimulation:
     """A liquid alone (no balls) under a motor drive: :func:`simulate_hybrid`'s kernel with no
     balls, the spin a degree of freedom taking the films' inertia and torque
-    (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3i), read as a run of
+    (docs/liquid/balls-beside-liquid.md sec. 3i), read as a run of
     :func:`autobalance.liquid.simulate.simulate_liquid`. The drive ends at or above the film's start
     speed. The run starts on the steady orbit of the rotor carrying the liquid as a rigid centred
     mass (as ``simulate_liquid``'s); from the film's start speed or above with the films turning

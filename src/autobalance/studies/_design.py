@@ -46,7 +46,7 @@ if TYPE_CHECKING:
 __all__ = ["DesignSpace", "candidate_designs", "compute_design", "design_summary",
            "profile_variants"]
 
-#: Why a design beside a liquid may have no tolerances (docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3l),
+#: Why a design beside a liquid may have no tolerances (docs/liquid/balls-beside-liquid.md sec. 3l),
 #: before the bound's one-line refusal (a horizontal axis, two partitions, an anisotropic
 #: suspension).
 TOLERANCES_BESIDE_LIQUID = ("beside this liquid the tolerance bound does not hold; judge a "

@@ -4,7 +4,7 @@ Carlo of real simulations of the machine built with the tolerances at their limi
 
 Beside a liquid (vertical axis, isotropic suspension) the bounds take the liquid's synchronous
 moment (:func:`autobalance.liquid.synchronous.synchronous_liquid`,
-docs/liquid/balls-beside-liquid/balls-beside-liquid/index.md sec. 3l) and the simulations are runs of balls beside the films
+docs/liquid/balls-beside-liquid.md sec. 3l) and the simulations are runs of balls beside the films
 (:mod:`autobalance.simulate.hybrid`).
 
 :func:`compute_tolerances` is closed form (:mod:`autobalance.physics.tolerance`,

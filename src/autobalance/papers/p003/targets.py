@@ -49,7 +49,7 @@ TARGETS = [
     Target("003-fig7", "003", ("Fig. 7",), "Liquid states vs speed (video frames a-d)",
            fig7.run_fig7, PUBLISHED["003-fig7"],
            notes=PHYSICAL_NOTE + " Frames at 18, 30, 54, 80 1/s with 300 ml; the figure's "
-                 "run-up is the wall film coupled with the rotor from omega_0 (docs/liquid/index.md "
+                 "run-up is the wall film coupled with the rotor from omega_0 (docs/liquid/film.md "
                  "sec. 3c). Nothing is calibrated: the onset of balancing is predicted.",
            quick=QUICK),
 ]
