@@ -184,6 +184,16 @@ def test_immobility_json_and_the_stick_threshold_closed_form(tmp_path):
     assert xr.load_dataset(tmp_path / "i.nc")["G_stick"].attrs["units"] == "mm/s"
 
 
+def test_immobility_quick_keeps_the_starts_given():
+    """--quick coarsens the speed grid and the default positions per ball (36), never the
+    --starts a user gives."""
+    from autobalance.studies._immobility import QUICK_N_CONF, compute_immobility
+
+    given = compute_immobility(CENTRIFUGE, n_conf=5, quick=True)
+    assert given.attrs["n_conf"] == 5 and given["speed"].size == 91
+    assert compute_immobility(CENTRIFUGE, quick=True).attrs["n_conf"] == QUICK_N_CONF == 36
+
+
 def test_immobility_figure_speaks_the_configs_speed_unit(tmp_path):
     from autobalance.plotting.tsr import plot_immobility
     from autobalance.studies._immobility import compute_immobility

@@ -349,8 +349,9 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
                                                  "resistance, e.g. '0.5,1,2'.")] = "1",
                c_r: Annotated[str, typer.Option("--c-r", help="Factors on the suspension "
                                                 "damping, e.g. '0.5,1'.")] = "1",
-               n_conf: Annotated[int, typer.Option("--starts", help="Positions per ball of the "
-                                                   "grid of balls at rest.")] = 100,
+               n_conf: Annotated[Optional[int], typer.Option(
+                   "--starts", help="Positions per ball of the grid of balls at rest (default "
+                   "100; 36 with --quick).")] = None,
                quick: QuickOpt = False, out: OutOpt = None, plot: PlotOpt = None,
                json_: JsonOpt = False) -> None:
     """Immobility of balls at rest against speed and the stick threshold G*(speed) for this
@@ -365,8 +366,8 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
         Initial grade [mm/s] (default: the machine's unbalance at its nominal speed).
     mu_r, c_r : str
         Comma-separated factors [-] on the balls' rolling resistance and the suspension damping.
-    n_conf : int
-        Positions per ball (>= 2; n_conf^N configurations).
+    n_conf : int or None
+        Positions per ball (>= 2; n_conf^N configurations; None: the library's default).
     """
     from ..physics.iso1940 import grade_value
     from ..studies._immobility import compute_immobility, immobility_summary
@@ -380,7 +381,7 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
               if g_ini is None else g_ini)
         if not (math.isfinite(gi) and gi >= 0):
             raise ConfigError(f"--g-ini = {g_ini}: must be a finite grade >= 0 [mm/s], e.g. 20")
-        if n_conf < 2:
+        if n_conf is not None and n_conf < 2:
             raise ConfigError(f"--starts = {n_conf}: must be an integer >= 2")
         mus, cs = _factors(mu_r, "--mu-r"), _factors(c_r, "--c-r")
         ds = compute_immobility(cfg, G_ini=gi, mu_r=mus, c_r=cs, n_conf=n_conf, quick=quick,

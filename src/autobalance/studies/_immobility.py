@@ -120,9 +120,13 @@ def ring_holds(system: System, speeds: npt.ArrayLike, n_conf: int,
     return out
 
 
+#: Positions per ball of the grid of balls at rest: the default, and with ``quick``.
+DEFAULT_N_CONF, QUICK_N_CONF = 100, 36
+
+
 def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[float] = (1.0,),
                        c_r: Sequence[float] = (1.0,), speeds_hz: npt.ArrayLike | None = None,
-                       n_conf: int = 100, quick: bool = False,
+                       n_conf: int | None = None, quick: bool = False,
                        field: str = "n_conf") -> xr.Dataset:
     """004 Fig. 8/10: immobility [-] against speed for the mu_r x c_r factors [-] on the machine's
     rolling resistance and damping, at G_ini [mm/s]
@@ -144,8 +148,9 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     speeds_hz : array_like or None
         Spin speeds [Hz]; None = 361 speeds (91 when ``quick``) from 0.2 x the natural
         frequency to 1.2 x the nominal speed (004 Fig. 8: 20-200 Hz).
-    n_conf : int
-        Equispaced positions per ball (36 when ``quick``).
+    n_conf : int or None
+        Equispaced positions per ball (None: :data:`DEFAULT_N_CONF`, 36 when ``quick``); a
+        value given is used as given, also with ``quick``.
     quick : bool
         Coarser speed and configuration grids.
     field : str
@@ -176,7 +181,8 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     fn = s0.natural_frequencies[0] / (2 * np.pi)
     f = (np.linspace(0.2 * fn, 1.2 * wn / (2 * np.pi), 91 if quick else 361)
          if speeds_hz is None else np.asarray(speeds_hz, float))
-    n_conf = 36 if quick else n_conf
+    if n_conf is None:
+        n_conf = QUICK_N_CONF if quick else DEFAULT_N_CONF
     check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
     U = float(grade_to_unbalance(G_ini, s0.total_mass, wn))
     horizontal = s0.liquid is not None and s0.liquid.axis == "horizontal"

@@ -313,7 +313,7 @@ def speed_map(machine: Any, *, changes: Mapping[str, Any] | None = None, profile
 
 def immobility(machine: Any, *, changes: Mapping[str, Any] | None = None, profile: Any = None,
                g_ini: Any = None, mu_r: Sequence[float] = (1.0,), c_r: Sequence[float] = (1.0,),
-               starts: int = 100, quick: bool = False) -> StudyResult:
+               starts: int | None = None, quick: bool = False) -> StudyResult:
     """Immobility of balls at rest against speed and the stick threshold G* (004 sec.
     4.4-4.5, closed form): :func:`autobalance.studies._immobility.compute_immobility`.
 
@@ -325,10 +325,10 @@ def immobility(machine: Any, *, changes: Mapping[str, Any] | None = None, profil
         Initial grade [mm/s] (None: the machine's unbalance at its nominal speed).
     mu_r, c_r : sequence of float
         Factors [-] on the rolling resistance and the suspension damping.
-    starts : int
-        Positions per ball of the grid of balls at rest (>= 2).
+    starts : int or None
+        Positions per ball of the grid of balls at rest (>= 2; None: 100, 36 when ``quick``).
     quick : bool
-        The coarse speed grid.
+        The coarse speed grid (and 36 positions per ball unless ``starts`` is given).
     """
     from ..physics.iso1940 import grade_value
     from ..plotting.tsr import plot_immobility

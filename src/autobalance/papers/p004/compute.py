@@ -79,10 +79,11 @@ def compute_profile(*, G: ArrayLike | None = None, n: int = 50, quick: bool = Fa
 
 def compute_immobility(*, G_ini: float = 20.0, mu_r: Sequence[float] = MU_R,
                        c_r: Sequence[float] = C_R, speeds_hz: ArrayLike | None = None,
-                       n_conf: int = 100, quick: bool = False,
+                       n_conf: int | None = None, quick: bool = False,
                        field: str = "n_conf") -> xr.Dataset:
     """004 Fig. 8/10 (:func:`autobalance.studies._immobility.compute_immobility`); G_ini [mm/s],
-    speeds_hz [Hz]."""
+    speeds_hz [Hz], n_conf positions per ball (None: the study's default, coarser when
+    ``quick``)."""
     speeds_hz = immobility_speeds_hz(quick) if speeds_hz is None else speeds_hz
     return _imm.compute_immobility(PRESET, G_ini=G_ini, mu_r=mu_r, c_r=c_r, speeds_hz=speeds_hz,
                                    n_conf=n_conf, quick=quick, field=field)
