@@ -39,7 +39,7 @@ def test_vibratory_force_is_the_revolution_average_of_the_kernel_force(angles):
     k = sim.t >= 6.0 - 2 * np.pi / W - 1e-12          # the last revolution (transient < 1e-9)
     lams = []
     for y, t in zip(sim.states[k], sim.t[k]):
-        rhs(t, y.copy(), P, B, N, 0, (pt, pw, ut, uu), stuck, sgn, spin, dy, rw)
+        rhs(t, y.copy(), P, B, N, 0, (pt, pw, ut, uu), (stuck, sgn, spin), dy, rw)
         lams.append(lam[:N].copy())
     avg = trapezoid(np.array(lams), sim.t[k], axis=0) / (sim.t[k][-1] - sim.t[k][0])
     F = vibratory_forces(s, W, np.array(sim.alpha[-1]))
@@ -73,7 +73,7 @@ def test_prescribed_spin_solve_equals_dense_solve_of_the_mass_matrix(law, n, rho
                             [15.0 * t]])
         stuck = rng.integers(0, 2, n).astype(np.int64)
         sgn = rng.choice([-1.0, 1.0], n)
-        assert rhs(t, y, P, B, n, 0, (pt, pw, ut, uu), stuck, sgn, spin, dy, rw)
+        assert rhs(t, y, P, B, n, 0, (pt, pw, ut, uu), (stuck, sgn, spin), dy, rw)
         psidd = dy[nq + ip]
         assert psidd == pytest.approx(15.0)
         free = [0, 1] + [2 + i for i in range(n) if law == "tanh" or stuck[i] == 0]

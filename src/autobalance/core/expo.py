@@ -46,7 +46,7 @@ def _to_state(z, y, n):
 
 
 @kernel
-def _F(z, n, P, B, N, sched, stuck, sgn, spin, out, yw, fw, rw):
+def _F(z, n, P, B, N, sched, md, out, yw, fw, rw):
     """F(z) of the method's state z (``etd_window``): the right-hand side of the run with its
     modes, without the spin's rows (prescribed), and dt/dt = 1. yw, fw: work (n,)."""
     prof_t, prof_w, unb_t, unb_u = sched
@@ -57,7 +57,7 @@ def _F(z, n, P, B, N, sched, stuck, sgn, spin, out, yw, fw, rw):
     yw[nq - 1] = z[m]          # psi and psi' ride along; the prescribed spin uses the profile
     yw[n - 1] = z[m + 1]
     seg = profile_segment(t, prof_t)
-    rhs(t, yw, P, B, N, seg, sched, stuck, sgn, spin, fw, rw)
+    rhs(t, yw, P, B, N, seg, sched, md, fw, rw)
     for i in range(nq - 1):
         out[i] = fw[i]
         out[nq - 1 + i] = fw[nq + i]
@@ -66,7 +66,7 @@ def _F(z, n, P, B, N, sched, stuck, sgn, spin, out, yw, fw, rw):
 
 @kernel
 def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int, sched: tuple,
-             stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, scale: np.ndarray, L: np.ndarray,
+             md: tuple, scale: np.ndarray, L: np.ndarray,
              f0: np.ndarray, f1: np.ndarray, zt: np.ndarray, yw: np.ndarray, fw: np.ndarray,
              rw: tuple) -> None:
     """L = dF/dz (m = n - 1 components of z: ``etd_window``) by forward differences, column j
@@ -74,24 +74,24 @@ def jacobian(z: np.ndarray, n: int, P: np.ndarray, B: np.ndarray, N: int, sched:
     Any L serves the method (its order holds for every fixed L); a good one makes the remainder
     small."""
     m = n - 1
-    _F(z, n, P, B, N, sched, stuck, sgn, spin, f0, yw, fw, rw)
+    _F(z, n, P, B, N, sched, md, f0, yw, fw, rw)
     for i in range(m + 2):
         zt[i] = z[i]
     for j in range(m):
         d = 1.5e-8 * max(scale[j], abs(z[j]))
         zt[j] = z[j] + d
-        _F(zt, n, P, B, N, sched, stuck, sgn, spin, f1, yw, fw, rw)
+        _F(zt, n, P, B, N, sched, md, f1, yw, fw, rw)
         zt[j] = z[j]
         for i in range(m):
             L[i, j] = (f1[i] - f0[i]) / d
 
 
 @kernel
-def _stage(U, n, L, Gi, P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw):
+def _stage(U, n, L, Gi, P, B, N, sched, md, fz, yw, fw, rw):
     """Gi = F(U) - L U, Gi a row of the stages' G (fz: work). The row, not G and its index: an
     index passed as a constant would compile a copy per stage (core/jit.py)."""
     m = n - 1
-    _F(U, n, P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+    _F(U, n, P, B, N, sched, md, fz, yw, fw, rw)
     for r in range(m):
         Gi[r] = fz[r]
     _matvec_add(L, U, Gi, m, -1.0, True)      # fz - L U, each row's sum as before
@@ -99,9 +99,9 @@ def _stage(U, n, L, Gi, P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw):
 
 @kernel
 def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf: np.ndarray,
-             P: np.ndarray, B: np.ndarray, N: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray,
-             spin: np.ndarray, G: np.ndarray, U: np.ndarray, fz: np.ndarray, yw: np.ndarray,
-             fw: np.ndarray, rw: tuple, V: np.ndarray, W: np.ndarray, X: np.ndarray) -> None:
+             P: np.ndarray, B: np.ndarray, N: int, sched: tuple, md: tuple, G: np.ndarray,
+             U: np.ndarray, fz: np.ndarray, yw: np.ndarray, fw: np.ndarray, rw: tuple,
+             V: np.ndarray, W: np.ndarray, X: np.ndarray) -> None:
     """One ETDRK4-B step of size h [s] on the method's state z in place (module docstring;
     layout: ``etd_window``). Ph, Pf: phi_0..3 of h L / 2 and h L (phi_functions of h L); G
     (5, n - 1), U (n + 1,), fz, V, W, X (n - 1,), yw, fw (n,) work arrays. The terms the stages
@@ -112,19 +112,19 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     U[m + 1] = z[m + 1]
     for r in range(m):
         U[r] = z[r]
-    _stage(U, n, L, G[0], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+    _stage(U, n, L, G[0], P, B, N, sched, md, fz, yw, fw, rw)
     # U2 = e^{hL/2} z + h/2 phi1(hL/2) G1
     _matvec_add(Ph[0], z, V, m, 1.0, False)
     _matvec_add(Ph[1], G[0], V, m, 0.5 * h, True)
     for r in range(m):
         U[r] = V[r]
-    _stage(U, n, L, G[1], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+    _stage(U, n, L, G[1], P, B, N, sched, md, fz, yw, fw, rw)
     # U3 = e^{hL/2} z + h [(phi1/2 - phi2)(hL/2) G1 + phi2(hL/2) G2] = U2 + h phi2(hL/2) (G2 - G1)
     for r in range(m):
         U[r] = V[r]
         X[r] = G[1, r] - G[0, r]
     _matvec_add(Ph[2], X, U, m, h, True)
-    _stage(U, n, L, G[2], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+    _stage(U, n, L, G[2], P, B, N, sched, md, fz, yw, fw, rw)
     # U4 = e^{hL} z + h [(phi1 - 2 phi2)(hL) G1 + phi2(hL) (G2 + G3)]
     #    = W + h phi2(hL) (G2 + G3 - 2 G1),  W = e^{hL} z + h phi1(hL) G1
     _matvec_add(Pf[0], z, W, m, 1.0, False)
@@ -133,7 +133,7 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
         U[r] = W[r]
         X[r] = G[1, r] + G[2, r] - 2.0 * G[0, r]
     _matvec_add(Pf[2], X, U, m, h, True)
-    _stage(U, n, L, G[3], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+    _stage(U, n, L, G[3], P, B, N, sched, md, fz, yw, fw, rw)
     # U5 = e^{hL/2} z + h [a51 G1 + a52 (G2 + G3) + a54 G4] with
     # a52 = phi2(hL/2)/2 - phi3(hL) + phi2(hL)/4 - phi3(hL/2)/2, a54 = phi2(hL/2)/4 - a52,
     # a51 = phi1(hL/2)/2 - 2 a52 - a54 = phi1(hL/2)/2 - a52 - phi2(hL/2)/4; with
@@ -147,7 +147,7 @@ def etd_step(z: np.ndarray, h: float, n: int, L: np.ndarray, Ph: np.ndarray, Pf:
     _matvec_add(Pf[2], fz, U, m, 0.25 * h, True)
     _matvec_add(Pf[3], fz, U, m, -h, True)
     _matvec_add(Ph[3], fz, U, m, -0.5 * h, True)
-    _stage(U, n, L, G[4], P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+    _stage(U, n, L, G[4], P, B, N, sched, md, fz, yw, fw, rw)
     # z_new = e^{hL} z + h [(phi1 - 3 phi2 + 4 phi3) G1 + (4 phi3 - phi2) G4 + (4 phi2 - 8 phi3) G5]
     #       = W + h phi2(hL) (4 G5 - 3 G1 - G4) + h phi3(hL) (4 G1 + 4 G4 - 8 G5)
     for r in range(m):
@@ -245,7 +245,7 @@ def _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ch, Cf):
 
 
 @kernel
-def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1, rw, check,
+def _etd_run(z, t1, K, refresh, n, P, B, N, sched, md, sc, ew3, ew1, rw, check,
              mon, stick_tol, Ph, Pf, given):
     """z from its time to t1 [s] in K equal ETDRK4-B steps, L refreshed every ``refresh``
     steps into ew3[0] and Ph, Pf (phi_k of h L / 2 and h L); with ``given`` the first L and
@@ -257,6 +257,7 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew
     last step end that passed) in mon[3 + N]. And
     mon[:2] = (max |w| [m], its time [s]) is updated at the step ends. Returns (ok,
     right-hand-side evaluations)."""
+    stuck, sgn, spin = md
     lam = rw[0]
     m = n - 1
     nq = n // 2
@@ -267,10 +268,10 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew
     for k in range(K):
         mon[3 + N] = z[m - 1]                  # the step's start: the last end that passed
         if k % refresh == 0 and not (given and k == 0):
-            jacobian(z, n, P, B, N, sched, stuck, sgn, spin, sc, L, f0, fz, zt, yw, fw, rw)
+            jacobian(z, n, P, B, N, sched, md, sc, L, f0, fz, zt, yw, fw, rw)
             ne += m + 1
             _scaled_phi(L, h, sc, m, hL, Ph, Pf, work, Ph[:0], Pf[:0])
-        etd_step(z, h, n, L, Ph, Pf, P, B, N, sched, stuck, sgn, spin, G, U, fz, yw, fw, rw,
+        etd_step(z, h, n, L, Ph, Pf, P, B, N, sched, md, G, U, fz, yw, fw, rw,
                  ew1[16], ew1[17], ew1[18])
         ne += 5
         if k == K - 1:
@@ -292,7 +293,7 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew
                     return False, ne
                 held = held or stuck[i] == 1
             if held:            # a stuck ball's margin mu_s N R (1 + stick_tol) - |lambda|
-                _F(z, n, P, B, N, sched, stuck, sgn, spin, fz, yw, fw, rw)
+                _F(z, n, P, B, N, sched, md, fz, yw, fw, rw)
                 ne += 1
                 for i in range(N):
                     if stuck[i] == 1 and lam[N + i] * (1.0 + stick_tol) - abs(lam[i]) <= 0.0:
@@ -306,7 +307,7 @@ def _etd_run(z, t1, K, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew
 
 
 @kernel
-def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew3, ew1, rw,
+def _window(t, t1, K, h_etd, y, P, B, N, sched, md, atol, rtol, ew3, ew1, rw,
             stick_tol):
     """One try of a slip jump from t to t1 [s] with K coarse steps (``slip_window``). Returns
     (1 accepted, 0 a check failed, -1 the error estimate failed; right-hand-side evaluations;
@@ -328,7 +329,7 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew
     # give the coarse run's by one more doubling (_scaled_phi)
     L, L0, hL, work = ew3[0], ew3[16], ew3[1], ew3[10:16]
     Ph, Pf, Fh, Ff = ew3[2:6], ew3[6:10], ew3[17:21], ew3[21:25]
-    jacobian(zs, n, P, B, N, sched, stuck, sgn, spin, sc, L0, ew1[7], ew1[6], ew1[8], ew1[12],
+    jacobian(zs, n, P, B, N, sched, md, sc, L0, ew1[7], ew1[6], ew1[8], ew1[12],
              ew1[13], rw)
     ne = m + 1
     _scaled_phi(L0, T / (2 * K), sc, m, hL, Fh, Ff, work, Ph, Pf)
@@ -338,7 +339,7 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew
         for j in range(m):
             L[i, j] = L0[i, j]
     mon[0] = 0.0
-    ok, e = _etd_run(zc, t1, K, REFRESH, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1, rw,
+    ok, e = _etd_run(zc, t1, K, REFRESH, n, P, B, N, sched, md, sc, ew3, ew1, rw,
                      True, mon, stick_tol, Ph, Pf, True)
     ne += e
     for attempt in range(3):
@@ -353,7 +354,7 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew
                 L[i, j] = L0[i, j]
         mon[0] = 0.0
         mon[1] = t
-        ok, e = _etd_run(zf, t1, 2 * K, REFRESH, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1,
+        ok, e = _etd_run(zf, t1, 2 * K, REFRESH, n, P, B, N, sched, md, sc, ew3, ew1,
                          rw, True, mon, stick_tol, Fh, Ff, True)
         ne += e
         if not ok:
@@ -380,7 +381,7 @@ def _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin, atol, rtol, ew
 
 @kernel
 def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray, B: np.ndarray,
-                N: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
+                N: int, sched: tuple, md: tuple,
                 atol: np.ndarray, rtol: float, ew3: np.ndarray, ew1: np.ndarray, rw: tuple,
                 stick_tol: float, h_max: float) -> tuple[bool, int, float, float, float, float,
                                                           float]:
@@ -405,7 +406,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
     """
     h = max(min(h_etd, h_max), 1e-9)
     K = max(2, int(math.ceil((t1 - t) / h)))
-    st, ne, h_new, a, ta, t_next = _window(t, t1, K, h_etd, y, P, B, N, sched, stuck, sgn, spin,
+    st, ne, h_new, a, ta, t_next = _window(t, t1, K, h_etd, y, P, B, N, sched, md,
                                            atol, rtol, ew3, ew1, rw, stick_tol)
     if st == 1:
         return True, ne, h_new, a, ta, t1, t1
@@ -413,7 +414,7 @@ def slip_window(t: float, t1: float, y: np.ndarray, h_etd: float, P: np.ndarray,
     h = (t1 - t) / K
     if st == 0 and t_good - t >= h * (1.0 - 1e-9):
         st2, ne2, _, a, ta, _ = _window(t, t_good, max(2, int(round((t_good - t) / h))), h_etd, y,
-                                        P, B, N, sched, stuck, sgn, spin, atol, rtol, ew3, ew1, rw,
+                                        P, B, N, sched, md, atol, rtol, ew3, ew1, rw,
                                         stick_tol)
         ne += ne2
         if st2 == 1:
@@ -438,11 +439,13 @@ def etd_window(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray, prof_w:
     """
     sched = (prof_t, prof_w, unb_t, unb_u)
     n = y.shape[0]
-    _, _, _, _, _, _, _, rw, _, _, _, _, spin, _, _, _, _, ew3, ew1 = ball_work(N)
+    _, rw, md, _, jw = ball_work(N)
+    md = (stuck, sgn, md[2])                      # the caller's modes, the work's spin
+    ew3, ew1 = jw[2], jw[3]
     z, sc = ew1[11], ew1[14]
     _pack(y, t0, z, n)
     _scales(scale, 1.0, t1, sc, n)
-    _etd_run(z, t1, nsteps, refresh, n, P, B, N, sched, stuck, sgn, spin, sc, ew3, ew1, rw, False,
+    _etd_run(z, t1, nsteps, refresh, n, P, B, N, sched, md, sc, ew3, ew1, rw, False,
              ew1[15], 0.0, ew3[2:6], ew3[6:10], False)
     out = np.empty(n)
     _unpack(z, out, n, prof_t, prof_w, t0, y[n // 2 - 1])

@@ -132,8 +132,8 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
     pw = np.zeros(np_)
     fw = np.zeros((9, n_c))              # the films' work arrays
     hn, qn, fh, fq, fqr, hl, hr, b, a = fw[0], fw[1], fw[2], fw[3], fw[4], fw[5], fw[6], fw[7], fw[8]
-    K, ytmp, y1, f0, f1, ftmp, err, rw, stuck, sgn, gs, ge, spin, in_contact, viol, ser, qr, \
-        ew3, ew1 = ball_work(N)
+    sw, rw, md, ct, jw = ball_work(N)
+    spin = md[2]
 
     Mt = P[P_MT]
     motor = P[P_SPIN] == 1.0
@@ -184,8 +184,7 @@ def hybrid_integrate(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
         m = with_knot(prof_t, prof_w, t1, pt, pw)
         t_pause = t1 if t1 < t_end else np.inf
         _integrate(P, B, N, pt[:m], pw[:m], unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
-                   out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, rw, stuck, sgn, gs, ge,
-                   spin, in_contact, viol, ser, qr, ew3, ew1, t_pause, carry)
+                   out_t, out_y, stats, y, sw, rw, md, ct, jw, t_pause, carry)
         # 3. the films' update, taken up by the chamber
         steps += 1
         if not accept_state(h, q, hn, qn):

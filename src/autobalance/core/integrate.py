@@ -93,15 +93,18 @@ def integrate_span(P: np.ndarray, B: np.ndarray, N: int, prof_t: np.ndarray,
 
 @kernel
 def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, max_steps,
-               out_t, out_y, stats, y, K, ytmp, y1, f0, f1, ftmp, err, rw, stuck, sgn, gs, ge,
-               spin, in_contact, viol, ser, qr, ew3, ew1, t_pause, carry):
+               out_t, out_y, stats, y, sw, rw, md, ct, jw, t_pause, carry):
     """The integration loop of integrate(), on preallocated work arrays (no allocation: the
     kernel runs without the numba runtime, core/jit.py). y holds the initial state on entry and
-    the final state on return; gs / ge: stick margins mu_s N R - |lambda| at the start / end of
-    the trial step; in_contact, viol: per-ball flags; rw: the work arrays of rhs()
-    (work.rhs_work; rw[0] = lam, its friction bookkeeping); ser, qr: work arrays of
-    ramp_jump(); t_pause, carry: see integrate_span()."""
+    the final state on return; sw, rw, md, ct, jw: the step's work, the work of rhs() (rw[0] =
+    lam, its friction bookkeeping), the modes, the contacts and the jumps' work
+    (work.ball_work); gs / ge: stick margins mu_s N R - |lambda| at the start / end of the trial
+    step; t_pause, carry: see integrate_span()."""
     sched = (prof_t, prof_w, unb_t, unb_u)
+    K, ytmp, y1, f0, f1, ftmp, err = sw
+    stuck, sgn, spin = md
+    gs, ge, in_contact, viol = ct
+    ser, qr, ew3, ew1 = jw
     lam = rw[0]
     nq = N + NR + 1
     n = 2 * nq
@@ -137,7 +140,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 else:
                     sgn[i] = 1.0 if y[nq + NR + i] >= 0.0 else -1.0
         seg = profile_segment(t, prof_t)
-        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+        _resolve(t, y, P, B, N, seg, sched, md, f0, rw)
         nrhs = N + 1
         for i in range(N):
             gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -166,10 +169,10 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                                                        gs, lam, f0)
         seg = profile_segment(t, prof_t)
         if where == 3:                # the hold's end, with its breakaway if any (ev_i)
-            nev += _hold_arrival(ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs)
+            nev += _hold_arrival(ev_i, t, y, P, B, N, seg, sched, md, f0, rw, gs)
             nrhs += 2 * N + 3
         else:                         # a jump's end (no event) or a step's
-            nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs,
+            nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, md, f0, rw, gs,
                            stats, exact)
         if where == 4 and stall > 50:
             status = 2
@@ -192,7 +195,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 t_seg = prof_t[seg + 1]
             if can_ramp and not flat and all_stuck and t_seg - t > 20.0 * h:
                 # ---- linear speed ramp with every ball stuck: no stepping (core/ramp.py) ----
-                t_new, kout, ne = ramp_jump(t, t_seg, h, y, P, B, N, seg, sched, stuck, sgn, spin,
+                t_new, kout, ne = ramp_jump(t, t_seg, h, y, P, B, N, seg, sched, md,
                                             atol, rtol, out_t, out_y, kout, stats, ser, qr, ytmp,
                                             ftmp, rw)
                 nrhs += ne
@@ -206,7 +209,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         ev_kind = NO_EVENT
                         break
                     seg = profile_segment(t, prof_t)
-                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, sched, stuck, sgn, spin,
+                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, sched, md,
                                    f0, rw, gs, stats, exact)
                     continue
                 next_try = nsteps + 20
@@ -222,7 +225,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                 ytmp[1] = wss.imag
                 ytmp[nq] = 0.0
                 ytmp[nq + 1] = 0.0
-                rhs(t, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+                rhs(t, ytmp, P, B, N, seg, sched, md, ftmp, rw)
                 nrhs += 1
                 p1 = (s1 * s1 + 2j * W * s1 - W * W) * c1
                 p2 = (s2 * s2 + 2j * W * s2 - W * W) * c2
@@ -231,7 +234,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     if creep:
                         # stuck balls creep (tanh slow manifold): jump at most CREEP_CHUNK of
                         # creep, at the creep speeds of the chunk's midpoint (f1[NR + i])
-                        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+                        rhs(t, y, P, B, N, seg, sched, md, ftmp, rw)
                         cmax = 0.0
                         for i in range(N):
                             cmax = max(cmax, abs(ftmp[NR + i]))
@@ -243,7 +246,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             y1[j] = y[j] + 0.5 * tau_end * ftmp[j] if NR <= j < ip else y[j]
                         y1[0], y1[1], y1[nq], y1[nq + 1] = w.real, w.imag, wd.real, wd.imag
                         y1[ip] = y[ip] + 0.5 * W * tau_end
-                        rhs(t + 0.5 * tau_end, y1, P, B, N, seg, sched, stuck, sgn, spin, f1, rw)
+                        rhs(t + 0.5 * tau_end, y1, P, B, N, seg, sched, md, f1, rw)
                         nrhs += 2
                     else:
                         for i in range(N):
@@ -257,13 +260,13 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         ev_kind = NO_EVENT
                         break
                     seg = profile_segment(t, prof_t)
-                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, sched, stuck, sgn, spin,
+                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, sched, md,
                                    f0, rw, gs, stats, exact)
                     continue
                 if can_ramp:
                     # ---- the hold until its first breakaway, without stepping (ramp.py R5) ----
                     tau_b, ib, ne = hold_breakaway(t, t_seg - t, W, wss, s1, s2, c1, c2, y, P, B, N,
-                                                   seg, sched, stuck, sgn, spin, qr, ytmp, ftmp, rw,
+                                                   seg, sched, md, qr, ytmp, ftmp, rw,
                                                    STICK_TOL)
                     nrhs += ne
                     if tau_b > 1e-12 * max(1.0, t):
@@ -282,7 +285,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             ev_i = ib
                             break
                         seg = profile_segment(t, prof_t)
-                        nev += _hold_arrival(ib, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0,
+                        nev += _hold_arrival(ib, t, y, P, B, N, seg, sched, md, f0,
                                              rw, gs)
                         nrhs += 2 * N + 3
                         continue
@@ -302,10 +305,9 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     slipping = True
             if slipping and t_w - t > 20.0 * h:
                 ok_e, ne, h_etd, a_e, ta_e, next_etd, t_reach = slip_window(t, t_w, y, h_etd, P, B,
-                                                                            N, sched, stuck, sgn,
-                                                                            spin, atol, rtol, ew3,
-                                                                            ew1, rw, STICK_TOL,
-                                                                            h_max)
+                                                                            N, sched, md, atol,
+                                                                            rtol, ew3, ew1, rw,
+                                                                            STICK_TOL, h_max)
                 nrhs += ne
                 if ok_e:
                     t = t_reach
@@ -323,7 +325,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                         ev_kind = NO_EVENT
                         break
                     seg = profile_segment(t, prof_t)
-                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, sched, stuck, sgn, spin,
+                    nrhs += _modes(NO_EVENT, NO_EVENT, t, y, P, B, N, seg, sched, md,
                                    f0, rw, gs, stats, exact)
                     continue
         # two balls in compliant contact: DOPRI5 resolves the contact's oscillation (docs/
@@ -347,7 +349,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
         if h < 1e-14 * max(1.0, t):
             status = 2
             break
-        ok = _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin, K, ytmp, y1, f1, err,
+        ok = _dopri_step(t, y, f0, h, P, B, N, seg, sched, md, K, ytmp, y1, f1, err,
                          rw)
         nrhs += 6
         en = 0.0
@@ -393,7 +395,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             thp = 0.5
                             for _ in range(30):
                                 gp = _event_g(SLIP_STOP, i, thp, t, h, y, f0, y1, f1, ytmp, P, B, N,
-                                              seg, sched, stuck, sgn, spin, ftmp, rw)
+                                              seg, sched, md, ftmp, rw)
                                 if gp > 0.0:
                                     a_ = thp
                                     ga = gp
@@ -406,7 +408,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             th = 0.0
                         else:
                             th, ne = _locate(SLIP_STOP, i, ga, gb, a_, t, h, y, f0, y1, f1, ytmp, P,
-                                             B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+                                             B, N, seg, sched, md, ftmp, rw)
                         if th < th_ev:
                             th_ev = th
                             ev_kind = 0
@@ -432,7 +434,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                             th = 0.0 if ga <= 0.0 else 1.0
                         else:
                             th, ne = _locate(BREAKAWAY, i, ga, gb, 0.0, t, h, y, f0, y1, f1, ytmp,
-                                             P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+                                             P, B, N, seg, sched, md, ftmp, rw)
                             nrhs += ne
                         if th < th_ev:
                             th_ev = th
@@ -461,7 +463,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
                     _dense(y, f0, y1, f1, K, h, th_ev, ytmp)
                     for j in range(n):
                         y1[j] = ytmp[j]
-                    rhs(t + h_ev, y1, P, B, N, seg, sched, stuck, sgn, spin, f1, rw)
+                    rhs(t + h_ev, y1, P, B, N, seg, sched, md, f1, rw)
                     nrhs += 1
                 else:
                     for j in range(n):
@@ -535,7 +537,7 @@ def _integrate(P, B, N, prof_t, prof_w, unb_t, unb_u, t_end, rtol, atol, h_max, 
             break
         # ---- mode changes ----------------------------------------------------------------
         if ev_kind >= 0 or last:
-            nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs,
+            nrhs += _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, md, f0, rw, gs,
                            stats, exact)
             if stall > 50:
                 status = 2

@@ -164,9 +164,8 @@ def _state(tau: float, psi0: float, W0: float, a: float, P: np.ndarray, ut: comp
 
 @kernel
 def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.ndarray,
-             P: np.ndarray, B: np.ndarray, N: int, seg: int, sched: tuple, stuck: np.ndarray,
-             sgn: np.ndarray, spin: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
-             rw: tuple, qc: np.ndarray) -> None:
+             P: np.ndarray, B: np.ndarray, N: int, seg: int, sched: tuple, md: tuple,
+             ytmp: np.ndarray, ftmp: np.ndarray, rw: tuple, qc: np.ndarray) -> None:
     """qc[i] = mu_s N_i R (1 - 1e-9) - |lambda_i,p| [N*m] on the particular state (R4)."""
     lam = rw[0]
     nq = N + NR + 1
@@ -179,7 +178,7 @@ def _margins(t: float, W: float, psi: float, wp: complex, wpd: complex, y: np.nd
     ytmp[nq + 1] = wpd.imag
     ytmp[nq - 1] = psi
     ytmp[n - 1] = W
-    rhs(t, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+    rhs(t, ytmp, P, B, N, seg, sched, md, ftmp, rw)
     for i in range(N):
         qc[i] = lam[N + i] * (1.0 - 1e-9) - abs(lam[i])
 
@@ -307,7 +306,7 @@ def _outputs(t: float, t_to: float, kout: int, out_t: np.ndarray, out_y: np.ndar
 
 @kernel
 def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B: np.ndarray,
-              N: int, seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
+              N: int, seg: int, sched: tuple, md: tuple,
               atol: np.ndarray, rtol: float, out_t: np.ndarray, out_y: np.ndarray, kout: int,
               stats: np.ndarray, ser: np.ndarray, q: np.ndarray, ytmp: np.ndarray,
               ftmp: np.ndarray, rw: tuple) -> tuple[float, int, int]:
@@ -347,7 +346,7 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
     c1, c2 = hold_coeffs(dw * rot0, (dwd + 1j * W0 * dw) * rot0, 0j, s1, s2)
     p1 = abs(s1 * s1 * c1)
     p2 = abs(s2 * s2 * c2)
-    _margins(t, W0, psi0, wp, wpd, y, P, B, N, seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[0])
+    _margins(t, W0, psi0, wp, wpd, y, P, B, N, seg, sched, md, ytmp, ftmp, rw, q[0])
     nrhs += 1
     for i in range(N):
         if q[0, i] - B[i, B_M] * P[P_R] * (p1 + p2) <= 0.0:
@@ -365,10 +364,10 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
         tb = tau + dt
         wm, _, wpm, wpdm, rm = _state(tm, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tm, W0 + a * tm, psi0 + W0 * tm + 0.5 * a * tm * tm, wpm, wpdm, y, P, B, N,
-                 seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[1])
+                 seg, sched, md, ytmp, ftmp, rw, q[1])
         wb, _, wpb, wpdb, rb = _state(tb, psi0, W0, a, P, ut, s1, s2, c1, c2, sj)
         _margins(t + tb, W0 + a * tb, psi0 + W0 * tb + 0.5 * a * tb * tb, wpb, wpdb, y, P, B, N,
-                 seg, sched, stuck, sgn, spin, ytmp, ftmp, rw, q[2])
+                 seg, sched, md, ytmp, ftmp, rw, q[2])
         nrhs += 2
         ok = (_err_ok(rm, wpm, wpdm, L0, L1, W0 + a * tm, atol, rtol, nq)
               and _err_ok(rb, wpb, wpdb, L0, L1, W0 + a * tb, atol, rtol, nq))
@@ -417,9 +416,8 @@ def ramp_jump(t: float, t_seg: float, h: float, y: np.ndarray, P: np.ndarray, B:
 
 @kernel
 def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray,
-                 N: int, seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray,
-                 spin: np.ndarray, q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray,
-                 rw: tuple) -> None:
+                 N: int, seg: int, sched: tuple, md: tuple, q: np.ndarray, ytmp: np.ndarray,
+                 ftmp: np.ndarray, rw: tuple) -> None:
     """The friction each stuck ball needs and its static limit [N*m] as affine functions of
     (w - w_ss, w') during a hold (R5): with the balls' angles and the speed fixed, the kernel's
     constrained solve is linear in the rotor state. Rows 0-4 of q: lambda_i at the steady
@@ -436,7 +434,7 @@ def _hold_affine(t: float, W: float, wss: complex, y: np.ndarray, P: np.ndarray,
         ytmp[1] = wss.imag + (dw if k == 2 else 0.0)
         ytmp[nq] = dv if k == 3 else 0.0
         ytmp[nq + 1] = dv if k == 4 else 0.0
-        rhs(t, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+        rhs(t, ytmp, P, B, N, seg, sched, md, ftmp, rw)
         for i in range(N):
             if k == 0:
                 q[0, i] = lam[i]
@@ -471,7 +469,7 @@ def _hold_margin(tau: float, s1: complex, s2: complex, c1: complex, c2: complex,
 @kernel
 def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex, s2: complex,
                    c1: complex, c2: complex, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int,
-                   seg: int, sched: tuple, stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray,
+                   seg: int, sched: tuple, md: tuple,
                    q: np.ndarray, ytmp: np.ndarray, ftmp: np.ndarray, rw: tuple,
                    stick_tol: float) -> tuple[float, int, int]:
     """First breakaway of a hold at speed W [rad/s] starting at t [s], within tau_max [s] (R5).
@@ -480,7 +478,7 @@ def hold_breakaway(t: float, tau_max: float, W: float, wss: complex, s1: complex
     ball >= 0 breaks away at tau; -1: none within tau_max; -2: the scan ended at tau without a
     breakaway (sample budget).
     """
-    _hold_affine(t, W, wss, y, P, B, N, seg, sched, stuck, sgn, spin, q, ytmp, ftmp, rw)
+    _hold_affine(t, W, wss, y, P, B, N, seg, sched, md, q, ytmp, ftmp, rw)
     f_max = max(abs(s1.imag), abs(s2.imag))
     dtau = 2.0 * math.pi / (16.0 * max(f_max, 1e-300))
     if dtau > tau_max:

@@ -180,7 +180,7 @@ def _suspension_force(t, u, v, ud, vd, psi, psid, P):
 
 @kernel
 def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int, sched: tuple,
-        stuck: np.ndarray, sgn: np.ndarray, spin: np.ndarray, dy: np.ndarray, rw: tuple) -> bool:
+        md: tuple, dy: np.ndarray, rw: tuple) -> bool:
     """Time derivative dy of the state y; also the friction bookkeeping in lam.
 
     Parameters
@@ -196,12 +196,12 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     sched : tuple
         The prescribed schedules (prof_t, prof_w, unb_t, unb_u): the speed profile's knots [s]
         and speeds [rad/s], the unbalance table's times [s] and values [kg*m].
-    stuck : int array (N,)
-        1 if ball i is stuck to the race (alpha_i'' = 0, friction from the constraint).
-    sgn : float array (N,)
-        Direction of sliding of a slipping ball (+1/-1); kinetic friction opposes it.
-    spin : float array (2,)
-        spin[0]: 0 prescribed profile, 1 motor-driven, 2 held at constant speed spin[1] [rad/s].
+    md : tuple
+        The modes (stuck, sgn, spin) of :func:`autobalance.core.work.ball_work`: stuck int
+        (N,), 1 if ball i is stuck to the race (alpha_i'' = 0, friction from the constraint);
+        sgn (N,), the direction of sliding of a slipping ball (+1/-1), which kinetic friction
+        opposes; spin (2,), spin[0] 0 a prescribed profile, 1 motor-driven, 2 held at the
+        constant speed spin[1] [rad/s].
     dy : ndarray (2*nq,)
         Output derivative.
     rw : tuple
@@ -217,6 +217,7 @@ def rhs(t: float, y: np.ndarray, P: np.ndarray, B: np.ndarray, N: int, seg: int,
     ok : bool
         False if the mass matrix is not positive definite (non-physical parameters).
     """
+    stuck, sgn, spin = md
     prof_t, prof_w, unb_t, unb_u = sched
     lam, Mm, fv, A, bb, idx, trig = rw
     nq = N + NR + 1

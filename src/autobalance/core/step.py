@@ -76,29 +76,29 @@ def _dense(y0, f0, y1, f1, K, h, th, out):
 
 
 @kernel
-def _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin, K, ytmp, y1, f1, err, rw):
+def _dopri_step(t, y, f0, h, P, B, N, seg, sched, md, K, ytmp, y1, f1, err, rw):
     """One DOPRI5 step; returns (ok); y1, f1 (FSAL) and the error vector err are filled."""
     n = y.shape[0]
     for j in range(n):
         ytmp[j] = y[j] + h * A21 * f0[j]
-    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[1], rw)
+    ok = rhs(t + C2 * h, ytmp, P, B, N, seg, sched, md, K[1], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A31 * f0[j] + A32 * K[1, j])
-    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[2], rw)
+    ok &= rhs(t + C3 * h, ytmp, P, B, N, seg, sched, md, K[2], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A41 * f0[j] + A42 * K[1, j] + A43 * K[2, j])
-    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[3], rw)
+    ok &= rhs(t + C4 * h, ytmp, P, B, N, seg, sched, md, K[3], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A51 * f0[j] + A52 * K[1, j] + A53 * K[2, j] + A54 * K[3, j])
-    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[4], rw)
+    ok &= rhs(t + C5 * h, ytmp, P, B, N, seg, sched, md, K[4], rw)
     for j in range(n):
         ytmp[j] = y[j] + h * (A61 * f0[j] + A62 * K[1, j] + A63 * K[2, j] + A64 * K[3, j]
                               + A65 * K[4, j])
-    ok &= rhs(t + h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, K[5], rw)
+    ok &= rhs(t + h, ytmp, P, B, N, seg, sched, md, K[5], rw)
     for j in range(n):
         y1[j] = y[j] + h * (A71 * f0[j] + A73 * K[2, j] + A74 * K[3, j] + A75 * K[4, j]
                             + A76 * K[5, j])
-    ok &= rhs(t + h, y1, P, B, N, seg, sched, stuck, sgn, spin, f1, rw)
+    ok &= rhs(t + h, y1, P, B, N, seg, sched, md, f1, rw)
     for j in range(n):
         err[j] = h * (E1 * f0[j] + E3 * K[2, j] + E4 * K[3, j] + E5 * K[4, j] + E6 * K[5, j]
                       + E7 * f1[j])
@@ -106,15 +106,16 @@ def _dopri_step(t, y, f0, h, P, B, N, seg, sched, stuck, sgn, spin, K, ytmp, y1,
 
 
 @kernel
-def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f, rw):
+def _resolve(t, y, P, B, N, seg, sched, md, f, rw):
     """Consistent stick/slip modes at a switching instant (a small friction complementarity
     problem solved by pivoting): release the stuck ball whose required friction exceeds its
     static limit by the largest ratio; re-stick a ball at zero relative speed whose
     acceleration opposes its assigned sliding direction (it cannot slide that way); repeat."""
+    stuck, sgn, spin = md
     lam = rw[0]
     nq = N + NR + 1
     for _ in range(4 * N + 4):
-        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f, rw)
+        rhs(t, y, P, B, N, seg, sched, md, f, rw)
         worst = -1
         wr = 1.0
         for i in range(N):
@@ -142,9 +143,10 @@ def _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f, rw):
 
 
 @kernel
-def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp,
+def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, md, ftmp,
              rw):
     """Switching function of event (kind, i) at fraction th of the step."""
+    stuck, sgn, spin = md
     lam = rw[0]
     nq = N + NR + 1
     if kind == 0:      # slipping ball stops
@@ -153,12 +155,12 @@ def _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck
         return P[P_WHOLD] - _hermite(y0, f0, y1, f1, h, th, 2 * nq - 1)
     for j in range(y0.shape[0]):   # stuck ball breaks away
         ytmp[j] = _hermite(y0, f0, y1, f1, h, th, j)
-    rhs(t + th * h, ytmp, P, B, N, seg, sched, stuck, sgn, spin, ftmp, rw)
+    rhs(t + th * h, ytmp, P, B, N, seg, sched, md, ftmp, rw)
     return lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
 
 
 @kernel
-def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn, spin,
+def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, md,
             ftmp, rw):
     """Step fraction in (a_, 1] where the switching function (kind, i) crosses from g(a_) = ga
     > 0 to g(1) = gb <= 0 (Illinois method on the Hermite interpolant, 1e-7 in fraction).
@@ -169,8 +171,7 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched
     th = b_
     for _ in range(40):
         th = (a_ * gb - b_ * ga) / (gb - ga)
-        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, stuck, sgn,
-                      spin, ftmp, rw)
+        gt = _event_g(kind, i, th, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched, md, ftmp, rw)
         nev += 1
         if gt > 0.0:
             a_ = th
@@ -190,11 +191,12 @@ def _locate(kind, i, ga, gb, a_, t, h, y0, f0, y1, f1, ytmp, P, B, N, seg, sched
 
 
 @kernel
-def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs, stats, exact):
+def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, md, f0, rw, gs, stats, exact):
     """The modes after a step that ends in an event (``ev_kind`` of ball ``ev_i``) or at a
     profile knot, or after a closed-form jump (ev_kind -1, every ball stuck): the event's mode
     change, the balls that stopped within round-off, the constrained solve (f0, lam, stick
     margins gs). Returns the RHS evaluations it made."""
+    stuck, sgn, spin = md
     lam = rw[0]
     nq = N + NR + 1
     v_ev = 0.0
@@ -221,15 +223,15 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, g
                 y[nq + NR + i] = 0.0
                 stuck[i] = 1
         if ev_kind == 1:
-            _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+            _resolve(t, y, P, B, N, seg, sched, md, f0, rw)
             # the released ball must stay released even if lambda is marginal now
             if stuck[ev_i] == 1:
                 stuck[ev_i] = 0
                 sgn[ev_i] = -1.0 if lam[ev_i] > 0.0 else 1.0
-        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+        _resolve(t, y, P, B, N, seg, sched, md, f0, rw)
         ne = N + 1
     else:
-        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+        rhs(t, y, P, B, N, seg, sched, md, f0, rw)
         ne = 1
     for i in range(N):
         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
@@ -237,21 +239,22 @@ def _modes(ev_kind, ev_i, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, g
 
 
 @kernel
-def _hold_arrival(ib, t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw, gs):
+def _hold_arrival(ib, t, y, P, B, N, seg, sched, md, f0, rw, gs):
     """The end of a hold solved until its first breakaway (ramp.hold_breakaway): ball ``ib``
     (>= 0) breaks away there and is released as the integrator releases it (ev_kind 1), then
     the constrained solve (f0, lam, stick margins gs). Returns the events (0 or 1)."""
+    stuck, sgn, spin = md
     lam = rw[0]
     nev = 0
     if ib >= 0:
-        rhs(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+        rhs(t, y, P, B, N, seg, sched, md, f0, rw)
         nev = 1
         sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
-        _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+        _resolve(t, y, P, B, N, seg, sched, md, f0, rw)
         if stuck[ib] == 1:
             stuck[ib] = 0
             sgn[ib] = -1.0 if lam[ib] > 0.0 else 1.0
-    _resolve(t, y, P, B, N, seg, sched, stuck, sgn, spin, f0, rw)
+    _resolve(t, y, P, B, N, seg, sched, md, f0, rw)
     for i in range(N):
         gs[i] = lam[N + i] * (1.0 + STICK_TOL) - abs(lam[i])
     return nev

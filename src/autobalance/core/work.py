@@ -27,12 +27,25 @@ def rhs_work(N: int) -> tuple:
 
 @njit(cache=True)
 def ball_work(N: int) -> tuple:
-    """The work arrays of _integrate for N balls, in the order of its arguments from K to ew1
-    (rw: :func:`rhs_work`; ew3, ew1: the slip jumps' matrices and vectors, core/expo.py) [-]."""
+    """The arrays of _integrate's loop for N balls, as the five groups it takes [-]:
+
+    * sw, the step's work: K (6, n) the stages, ytmp, y1, f0, f1, ftmp, err (n,);
+    * rw, the work of rhs (:func:`rhs_work`);
+    * md, the modes: stuck int (N,) (1: ball i stuck), sgn (N,) the sign of its slip, spin
+      (2,) the spin's state under a motor drive (layout.P_SPIN);
+    * ct, the contacts: gs, ge (N,) the stick margins at the start and end of a trial step,
+      in_contact, viol int (N,) per-ball flags;
+    * jw, the jumps' work: ser, qr (the stuck ramps, core/ramp.py), ew3, ew1 (the slip jumps'
+      matrices and vectors, core/expo.py);
+
+    n = 2 nq, nq = N + NR + 1 (layout.py).
+    """
     nq = N + NR + 1
     n = 2 * nq
-    return (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-            np.zeros(n), rhs_work(N), np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(N),
-            np.zeros(N), np.zeros(2), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64),
-            np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
-            np.zeros((25, n - 1, n - 1)), np.zeros((19, n + 1)))
+    sw = (np.zeros((6, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+          np.zeros(n))
+    md = (np.zeros(N, dtype=np.int64), np.ones(N), np.zeros(2))
+    ct = (np.zeros(N), np.zeros(N), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64))
+    jw = (np.zeros((RAMP_TERMS + 1, RAMP_TAYLOR), dtype=np.complex128), np.zeros((10, N)),
+          np.zeros((25, n - 1, n - 1)), np.zeros((19, n + 1)))
+    return sw, rhs_work(N), md, ct, jw

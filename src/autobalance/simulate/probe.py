@@ -69,7 +69,7 @@ def kernel_required_friction(system: System, speed: float, alpha: npt.ArrayLike,
     dy, rw = np.zeros(2 * nq), rhs_work(N)
     lam = rw[0]
     rhs(0.0, st, P, B, N, profile_segment(0.0, prof_t), (prof_t, prof_w, unb_t, unb_u),
-        np.ones(N, dtype=np.int64), np.ones(N), np.array([0.0, 0.0]), dy, rw)
+        (np.ones(N, dtype=np.int64), np.ones(N), np.array([0.0, 0.0])), dy, rw)
     inv = np.argsort(order)
     return lam[:N][inv], lam[N:2 * N][inv], dy[nq:nq + 2]
 
@@ -140,8 +140,8 @@ def rotor_frame_derivative(system: System, speed: float, states: npt.ArrayLike,
         y[alpha_dot_slice(N)] = z[N + 4:][order]
         y[psi_index(N)] = float(phase)
         y[speed_index(N)] = w
-        rhs(0.0, y, P, B, N, seg, (prof_t, prof_w, unb_t, unb_u), np.zeros(N, dtype=np.int64),
-            np.ones(N), held, dy, rw)
+        rhs(0.0, y, P, B, N, seg, (prof_t, prof_w, unb_t, unb_u),
+            (np.zeros(N, dtype=np.int64), np.ones(N), held), dy, rw)
         inv = np.argsort(order)
         out[k, :2] = dy[:2]
         out[k, 2:2 + N] = dy[alpha_slice(N)][inv]

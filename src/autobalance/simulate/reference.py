@@ -61,7 +61,7 @@ def make_rhs(system: System, spin: SpeedProfile | MotorDrive, v_sat: float = 1e-
     def f(t, y):
         dy = np.empty(2 * nq)
         seg = profile_segment(t, prof_t)
-        rhs(t, np.ascontiguousarray(y), P, B, N, seg, sched, stuck, sgn, spin_state, dy, rw)
+        rhs(t, np.ascontiguousarray(y), P, B, N, seg, sched, (stuck, sgn, spin_state), dy, rw)
         return dy
 
     return f
