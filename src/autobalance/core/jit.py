@@ -29,14 +29,19 @@ from numba import njit
 
 
 def _drop_stale_cache(here: Path = Path(__file__).parent) -> bool:
-    """Delete the compiled cache of every kernel in this package when any of its sources changed.
+    """In a source checkout, delete the compiled cache of every kernel in this package when any
+    of its sources changed.
 
     numba keys a cached kernel on its own file only, so a kernel that calls one in another file
     (batch -> integrate -> rhs) kept stale machine code after that file changed: a silently wrong
     result in a working copy. One hash of all ``core/*.py`` sources, stamped beside the cache,
-    makes a change anywhere in core recompile everything. Unwritable caches (an installed
-    release, whose files all change together) are left alone. Returns True if it deleted.
+    makes a change anywhere in core recompile everything. A source checkout is ``src/autobalance/
+    core`` under a ``pyproject.toml``; anywhere else (an installed release, whose files an
+    install replaces together, so numba's own check of each file invalidates every kernel) this
+    does nothing, and so it does where the cache is unwritable. Returns True if it deleted.
     """
+    if not (here.parents[2] / "pyproject.toml").is_file():
+        return False
     try:
         h = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(here.glob("*.py")))).hexdigest()
         cache = here / "__pycache__"
