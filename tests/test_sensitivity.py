@@ -80,8 +80,9 @@ def test_default_variants_follow_the_machine():
 def test_cli_json_netcdf_and_bad_input(tmp_path):
     r = runner.invoke(app, ["study", "sensitivity", CENTRIFUGE, "--random", "4", "--executor",
                             "serial", "--vary", "balancer.contact=none", "--json",
-                            "--out", str(tmp_path / "s.nc")])
+                            "--out", str(tmp_path / "s.nc"), "--plot", str(tmp_path / "s.png")])
     assert r.exit_code == 0, r.output
+    assert (tmp_path / "s.png").stat().st_size > 10_000
     d = json.loads(r.stdout)
     assert d["runs_used"] == 4 and list(d["variants"]) == ["balancer.contact=none"]
     assert set(d["base"]) == set(QUANTITIES)
@@ -96,3 +97,26 @@ def test_cli_json_netcdf_and_bad_input(tmp_path):
         assert len(lines) == 1 and lines[0].startswith("error:") and field in lines[0], r.stderr
     with pytest.raises(ParameterError):
         compute_sensitivity(CENTRIFUGE, {}, samples=2)
+
+
+def test_the_figure_shows_each_effect_and_greys_the_noise():
+    """plot_sensitivity on a planted dataset: one cell per variant and quantity, its text the
+    effect (mm/s for a grade, percentage points for a share), grey within z standard errors,
+    the colour effect / SE clipped at Z_CLIP."""
+    from autobalance.plotting.sensitivity import Z_CLIP, plot_sensitivity
+
+    eff = np.array([[0.0, 0.0], [1.5, 0.02], [-0.3, -0.25]])
+    se = np.array([[0.0, 0.0], [0.5, 0.05], [0.5, 0.0]])
+    ds = xr.Dataset({"effect": (("variant", "quantity"), eff),
+                     "effect_se": (("variant", "quantity"), se)},
+                    coords={"variant": ["base", "mu x2", "contact none"],
+                            "quantity": ["median_last", "share_last"]}, attrs={"starts": 12})
+    ax = plot_sensitivity(ds, z=2.0).axes[0]
+    cells = {(round(t.get_position()[1]), round(t.get_position()[0])): t for t in ax.texts}
+    assert {k: t.get_text() for k, t in cells.items()} == {
+        (0, 0): "+1.50", (0, 1): "+2", (1, 0): "-0.30", (1, 1): "-25"}
+    grey = {k for k, t in cells.items() if t.get_color() == "0.6"}
+    assert grey == {(0, 1), (1, 0)}                  # 0.4 and 0.6 standard errors
+    z = ax.images[0].get_array()
+    assert z[0, 0] == pytest.approx(3.0) and z[1, 1] == -Z_CLIP   # -0.25 with no noise: clipped
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["mu x2", "contact none"]

@@ -36,8 +36,9 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
                     "--z", help="An effect counts when it exceeds this many standard "
                                 "errors.")] = 2.0,
                 quick: QuickOpt = False, store: StoreOpt = None, out: OutOpt = None,
-                scheduler: SchedulerOpt = None, workers: WorkersOpt = None,
-                executor: ExecutorOpt = None, json_: JsonOpt = False) -> None:
+                plot: PlotOpt = None, scheduler: SchedulerOpt = None,
+                workers: WorkersOpt = None, executor: ExecutorOpt = None,
+                json_: JsonOpt = False) -> None:
     """Which modelling choices move which results: the start-position Monte Carlo of the
     machine and of each variant over the same starts, and each variant's effect on the modes,
     medians, 95th percentile, shares <= --grade and 004 Table 2's regions, with its bootstrap
@@ -45,8 +46,10 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
 
     Parameters
     ----------
-    source, set_, profile, grade, units, quick, store, out, scheduler, workers, executor, json_
-        The options of every study (:mod:`autobalance.cli.study`).
+    source, set_, profile, grade, units, quick, store, out, plot, scheduler, workers, executor,
+    json_
+        The options of every study (:mod:`autobalance.cli.study`); the figure is each
+        variant's effect on each quantity against its standard error.
     vary : list of str
         Variants: "path=value" overrides joined by ';'.
     n, samples, seed : int
@@ -54,11 +57,12 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
     z : float
         Significance threshold [-] (> 0).
     """
+    from ..plotting.sensitivity import plot_sensitivity
     from ..studies._sensitivity import compute_sensitivity, sensitivity_summary
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
-        cfg, G, du = _prepare(source, set_, profile, grade, None, out, workers, executor,
+        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, workers, executor,
                               scheduler, store, units, balls="beside")
         _counts(starts=n, random=samples)
         if not (math.isfinite(z) and z > 0):
@@ -79,7 +83,8 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
                                  executor=executor, workers=workers,
                                  scheduler=scheduler, progress=not json_)
         res = {**sensitivity_summary(ds, z), "machine": cfg.name}
-        res.update(_finish(ds, cfg, out, None, None, "study sensitivity", t0))
+        res.update(_finish(ds, cfg, out, plot, lambda: plot_sensitivity(
+            ds, z, f"{cfg.name}: sensitivity"), "study sensitivity", t0))
     if json_:
         print_json(res)
         return

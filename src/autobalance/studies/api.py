@@ -373,6 +373,7 @@ def sensitivity(machine: Any, *, changes: Mapping[str, Any] | None = None, profi
     store, executor, workers, scheduler, progress : str, Path, int, bool or None
         Where the simulations run (module docstring).
     """
+    from ..plotting.sensitivity import plot_sensitivity
     from ._sensitivity import compute_sensitivity, sensitivity_summary
 
     cfg = as_config(machine, changes, profile)
@@ -380,7 +381,8 @@ def sensitivity(machine: Any, *, changes: Mapping[str, Any] | None = None, profi
                              grade=_si(grade, "grade"), quick=quick, store_dir=store,
                              executor=executor, workers=workers, scheduler=scheduler,
                              progress=progress)
-    return StudyResult("sensitivity", cfg, ds, lambda: sensitivity_summary(ds, z))
+    return StudyResult("sensitivity", cfg, ds, lambda: sensitivity_summary(ds, z),
+                       lambda: plot_sensitivity(ds, z, f"{cfg.name}: sensitivity"))
 
 
 def runup(machine: Any, *, changes: Mapping[str, Any] | None = None, profile: Any = None,
