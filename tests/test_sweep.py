@@ -766,3 +766,31 @@ def test_code_digest_follows_the_simulator_not_the_cli(tmp_path):
     assert len(base) == 16
     assert digest("core/rhs.py") != base
     assert digest("cli/simulate.py") == base
+
+
+def test_progress_in_a_log_is_a_line_per_5_percent():
+    """Progress on a stream that is not a terminal (a log file, a pipe): one line per 5 % of
+    the runs and one at the end, never a line per update; on a terminal one line rewritten."""
+    import io
+
+    from autobalance.sweep.execute import Progress
+
+    log = io.StringIO()
+    p = Progress(400, stream=log)
+    for _ in range(400):
+        p.update(1)
+    import re
+
+    done = [int(re.search(r"\] (\d+)/400 runs", x).group(1))
+            for x in log.getvalue().splitlines()]
+    assert done == [1, *range(20, 401, 20)]                 # 21 lines
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    tty = Tty()
+    p = Progress(50, stream=tty)
+    for _ in range(50):
+        p.update(1)
+    assert tty.getvalue().count("\r") == 50 and tty.getvalue().count("\n") == 1

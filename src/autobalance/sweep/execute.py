@@ -33,7 +33,11 @@ EXECUTORS = ("serial", "local", "dask")
 
 
 class Progress:
-    """A one-line progress bar with rate and ETA on stderr (a line per 10 % when not a tty)."""
+    """A one-line progress bar with rate and ETA on stderr; when the stream is not a terminal
+    (a log, a pipe), one line per :attr:`STEPS`-th of the runs (every 5 %) and the last."""
+
+    #: Lines of a non-terminal stream over the whole sweep (a line per 100 / STEPS %).
+    STEPS = 20
 
     def __init__(self, total_runs: int, done_runs: int = 0, enabled: bool = True,
                  stream: TextIO | None = None):
@@ -44,7 +48,7 @@ class Progress:
         self.stream = stream or sys.stderr
         self.enabled = enabled
         self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
-        self._last_decile = -1
+        self._last_step = -1
 
     def update(self, n: int) -> None:
         self.done += n
@@ -63,8 +67,8 @@ class Progress:
             if self.done >= self.total:
                 self.stream.write("\n")
             self.stream.flush()
-        elif int(frac * 10) != self._last_decile:
-            self._last_decile = int(frac * 10)
+        elif (k := self.done * self.STEPS // max(self.total, 1)) != self._last_step:
+            self._last_step = k
             self.stream.write(line + "\n")
             self.stream.flush()
 
