@@ -299,3 +299,14 @@ def test_reproduce_passes_the_scheduler_in_the_context(tmp_path, monkeypatch):
     assert "DASK_SCHEDULER_ADDRESS" not in os.environ
     err = json.loads(r.stdout)["targets"][0]["error"]
     assert "stopped by the test" in err
+
+
+def test_version_is_printed_and_exits_0(capsys):
+    """``autobalance --version``: the package's version on stdout, exit code 0, no command run."""
+    import autobalance
+    from autobalance.cli import main
+
+    with pytest.raises(SystemExit) as e:
+        main(["--version"])
+    assert e.value.code == 0
+    assert capsys.readouterr().out == f"autobalance {autobalance.__version__}\n"

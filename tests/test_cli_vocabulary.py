@@ -18,15 +18,12 @@ from autobalance.cli.vocabulary import (DEPRECATED, DEPRECATED_COMMANDS, STUDY_S
 
 
 def options(typer_app) -> dict[tuple, dict[str, str]]:
-    """Command path -> {option name: the kind of value it takes} of every command of an app:
+    """Command path -> {option name: the kind of value it takes} of every command of an app
+    (and of a group that has options of its own, the program at path ()):
     "flag", or the annotated type ("int", "float", "str", "Path", with "[]" when repeatable)."""
     out = {}
 
     def walk(c, path):
-        if hasattr(c, "commands"):
-            for name, sub in c.commands.items():
-                walk(sub, path + (name,))
-            return
         kinds = {}
         for p in c.params:
             if not type(p).__name__.endswith("Option"):
@@ -39,6 +36,12 @@ def options(typer_app) -> dict[tuple, dict[str, str]]:
                 kind += "[]" if p.multiple else ""
             for o in (*p.opts, *p.secondary_opts):
                 kinds[o] = kind
+        if hasattr(c, "commands"):          # a group: its own options (the program's --version)
+            if set(kinds) - {"--help"}:
+                out[path] = kinds
+            for name, sub in c.commands.items():
+                walk(sub, path + (name,))
+            return
         out[path] = kinds
     walk(typer.main.get_command(typer_app), ())
     return out

@@ -32,6 +32,24 @@ app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False
                   help="Simulate and design passive automatic balancers: presets, show, simulate, "
                        "response, sweep, study, design, analyze, liquid, reproduce, demo.")
 
+
+
+def _print_version(value: bool) -> None:
+    if value:
+        from .. import __version__
+
+        typer.echo(f"autobalance {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(version: bool = typer.Option(False, "--version", is_eager=True,
+                                       callback=_print_version,
+                                       help="Print the version and exit.")) -> None:
+    """Simulate and design passive automatic balancers: presets, show, simulate, response,
+    sweep, study, design, analyze, liquid, reproduce, demo."""
+
+
 app.command()(machine.presets)
 app.command()(machine.show)
 app.command("simulate")(simulate.simulate_cmd)
@@ -68,7 +86,10 @@ def main(argv: Optional[list[str]] = None) -> None:
     SystemExit
         Always, with the command's exit code.
     """
-    from typer._click.exceptions import NoArgsIsHelpError, UsageError
+    try:                          # typer vendors click as typer._click (pyproject: typer>=0.29)
+        from typer._click.exceptions import NoArgsIsHelpError, UsageError
+    except ImportError:           # pragma: no cover - a typer that uses click itself
+        from click.exceptions import NoArgsIsHelpError, UsageError
 
     forget_written()
     printed = ERRORS_PRINTED[0]

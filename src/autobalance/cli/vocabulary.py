@@ -90,6 +90,7 @@ VOCABULARY: dict[str, str] = {
     "--out-dir": "write the files into this directory",
     "--plot": "write the figure to this file (.png, .svg, .pdf)",
     "--json": "print one JSON object in SI on stdout",
+    "--version": "print the version and exit (the program's own option)",
     "--list": "list the choices and exit",
 }
 
