@@ -211,6 +211,7 @@ def test_cli_spinup_on_a_horizontal_axis(tmp_path):
     t = runner.invoke(app, ["spinup", "leblanc_washer", "--cells", "128", *DOWN_SETS])
     assert t.exit_code == 0, t.output
     line = t.output.splitlines()[0]
+    assert line.startswith("R = 0.26 m, 1000 ml: ")                # the radius as written
     assert "the ring broke" in line and " rpm, t = " in line
     assert "the film model starts at 185.49 rpm" in t.output
 

@@ -168,6 +168,10 @@ def test_cli_end_to_end(tmp_path):
     c = json.loads(r.stdout)["chambers"][0]
     assert c["entrainment_time_s"] == 0.0 and c["entrainment_speed_rad_s"] == pytest.approx(
         600 * 2 * math.pi / 60)
+    mm = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "spinup", "leblanc_003",
+                         "--set", "liquid.chamber_radius=200 mm"],
+                        capture_output=True, text=True, timeout=600)
+    assert mm.returncode == 0 and mm.stdout.startswith("R = 200 mm, 150 ml: "), mm.stdout
     bad = subprocess.run([sys.executable, "-m", "autobalance", "liquid", "spinup",
                           "leblanc_003", "--set", "profile.kind=motor"],
                          capture_output=True, text=True, timeout=600)

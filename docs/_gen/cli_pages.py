@@ -131,9 +131,11 @@ def vocabulary_page() -> str:
            "`tests/test_cli_vocabulary.py`); this page is generated from it when the site is "
            "built. Each command's own options are in [Commands and options](commands.md).", "",
            "| option | meaning | taken by |", "|---|---|---|"]
+    own = set(option_names(_root()))                   # the program's own: --version
     for name, meaning in vocab.VOCABULARY.items():
         cmds = takers.get(name, [])
-        where = ", ".join(f"[{c}](commands.md#{c.replace(' ', '-')})" for c in cmds)
+        where = ", ".join([f"`{PROG}`"] * (name in own)
+                          + [f"[{c}](commands.md#{c.replace(' ', '-')})" for c in cmds])
         out.append(f"| `{name}` | {_cell(meaning)} | {where} |")
     studies = [" ".join(p) for p, _c, _x in commands() if p[0] == "study"]
     out += ["", "## Options of every study", "",
@@ -141,6 +143,7 @@ def vocabulary_page() -> str:
             + ", ".join(f"`{o}`" for o in vocab.STUDY_SHARED) + " ("
             + ", ".join(f"`{s}`" for s in studies) + "); the other options of each are in "
             "its section of [Commands and options](commands.md).", "",
+            *study_matrix(), "",
             "## Former option names", "",
             f"These names are still accepted, with a warning that names the new one, until "
             f"version {vocab.REMOVED_IN}:", "",
@@ -156,4 +159,24 @@ def vocabulary_page() -> str:
     return "\n".join(out) + "\n"
 
 
-__all__ = ["commands", "commands_page", "vocabulary_page"]
+#: The options some studies take and others do not, in the order of the matrix's columns.
+MATRIX_OPTIONS = ("--grade", "--quick", "--out", "--plot", "--starts", "--random", "--seed",
+                  "--budget", "--speeds", "--store", "--executor", "--workers", "--scheduler")
+
+
+def study_matrix() -> list[str]:
+    """The lines of a table: which study (and ``design``) takes which of
+    :data:`MATRIX_OPTIONS`."""
+    rows = [(p, c) for p, c, _x in commands() if p[0] == "study" or p == ("design",)]
+    out = ["### Which study takes which option", "",
+           "| command | " + " | ".join(f"`{o}`" for o in MATRIX_OPTIONS) + " |",
+           "|---|" + "---|" * len(MATRIX_OPTIONS)]
+    for path, cmd in rows:
+        names = set(option_names(cmd))
+        cells = ["yes" if o in names else "" for o in MATRIX_OPTIONS]
+        out.append(f"| [{' '.join(path)}](commands.md#{_anchor(path)}) | "
+                   + " | ".join(cells) + " |")
+    return out
+
+
+__all__ = ["MATRIX_OPTIONS", "commands", "commands_page", "study_matrix", "vocabulary_page"]

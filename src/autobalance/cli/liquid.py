@@ -465,22 +465,23 @@ def spinup(source: Annotated[str, typer.Argument(
            "model": "axisymmetric shallow water, apparent bottom, Ekman/laminar bottom and "
                     "side-wall shear (autobalance.liquid.spinup)",
            "cells": cells, "chambers": chambers}
+    from ..config.display import display_units
+    from .liquid_figures import chamber_label
+
+    du = display_units(cfg)                     # speeds and lengths as the config writes them
     if plot:
         from ..plotting.liquid import spinup_figure
 
-        fig = spinup_figure(runs, [f"R = {c.chamber_radius:g} m, {c.volume * 1e6:.4g} ml"
+        fig = spinup_figure(runs, [chamber_label(du, c.chamber_radius, c.volume)
                                    for c in cfg.system.liquid.chambers],
                             [c["quasi_static"]["omega_0_rad_s"] for c in chambers],
                             f"{cfg.system.name}: the liquid's spin-up from rest")
         save_plot(fig, plot)
         out["plot"] = str(plot)
     if not as_json:
-        from ..config.display import display_units
-
-        du = display_units(cfg)                 # speeds as the config writes them
         for c in chambers:
             e = c["entrainment_speed_rad_s"]
-            typer.echo(f"R = {c['chamber_radius_m']:g} m, V = {c['volume_m3'] * 1e6:.4g} ml: "
+            typer.echo(chamber_label(du, c["chamber_radius_m"], c["volume_m3"]) + ": "
                        + (f"entrained (lid) at {du.fmt(e, 'speed', 5)}, t = "
                           f"{c['entrainment_time_s']:.3f} s"
                           if e is not None else "not entrained by the profile's end")

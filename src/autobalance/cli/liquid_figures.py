@@ -14,6 +14,13 @@ if TYPE_CHECKING:
     from ..models import LiquidDevice
 
 
+def chamber_label(du, radius: float, volume: float) -> str:
+    """A chamber as text: its radius in the config's length unit and its fill in ml, e.g.
+    "R = 200 mm, 150 ml" (``du``: :func:`autobalance.config.display.display_units`; radius
+    [m], volume [m^3])."""
+    return f"R = {du.fmt(radius, 'length')}, {volume * 1e6:.4g} ml"
+
+
 def save_plot(fig: Figure, plot: str) -> None:
     """Save a liquid command's figure to its ``--plot`` file (120 dpi), atomically: a failed
     write leaves the previous file (:func:`autobalance.atomic.save_figure`, one line naming

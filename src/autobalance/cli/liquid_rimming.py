@@ -71,6 +71,7 @@ def horizontal_spinup_command(cfg: Config, cells: int, plot: str | None,
     from ..config.display import display_units
     from ..liquid.rimming import horizontal_spinup
     from ..liquid.start import film_start_speed
+    from .liquid_figures import chamber_label
 
     s = cfg.system
     runs = horizontal_spinup(s, cfg.spin, n_cells=cells)
@@ -80,11 +81,12 @@ def horizontal_spinup_command(cfg: Config, cells: int, plot: str | None,
            "model": "circumferential shallow water, the liquid's own rotation and gravity "
                     "normal to the wall, second order (autobalance.liquid.rimming)",
            "cells": cells, "film_start_rad_s": w_f, "chambers": chambers}
+    du = display_units(cfg)                     # speeds and lengths as the config writes them
     if plot:
         from ..plotting.rimming import rimming_figure
         from .liquid_figures import save_plot
 
-        fig = rimming_figure(runs, [f"R = {c.chamber_radius:g} m, {c.volume * 1e6:.4g} ml"
+        fig = rimming_figure(runs, [chamber_label(du, c.chamber_radius, c.volume)
                                     for c in s.liquid.chambers], w_f,
                              f"{s.name}: the liquid on its horizontal axis")
         save_plot(fig, plot)
@@ -92,9 +94,8 @@ def horizontal_spinup_command(cfg: Config, cells: int, plot: str | None,
     if as_json:
         print_json(out)
         return
-    du = display_units(cfg)
     for c in chambers:
-        typer.echo(f"R = {c['chamber_radius_m']:g} m, V = {c['volume_m3'] * 1e6:.4g} ml: "
+        typer.echo(chamber_label(du, c["chamber_radius_m"], c["volume_m3"]) + ": "
                    f"{ENDS[c['status']]} at {du.fmt(c['stop_speed_rad_s'], 'speed', 5)}, "
                    f"t = {c['stop_time_s']:.3f} s; the liquid at "
                    f"{du.fmt(c['liquid_speed_at_stop_rad_s'], 'speed', 4)}, its centre of mass "
