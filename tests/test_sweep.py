@@ -150,7 +150,7 @@ def test_serial_equals_local_processes(tiny_ds, tmp_path):
 #: change of the simulator's code; an empty update leaves the digest as it was). It changes with
 #: the package version and with what the resolved cells hold (the models' fields and defaults);
 #: pinned so that a change of how the cells are built cannot change it unnoticed.
-TINY_IDENTITY = "7b31a6ce73c74110"
+TINY_IDENTITY = "9d9d3113ee9f6d71"
 
 
 def test_tiny_identity_unchanged_by_building_cells_on_the_models(monkeypatch):

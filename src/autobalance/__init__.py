@@ -4,7 +4,7 @@ Public API: the parameter dataclasses, :func:`simulate` (one run), :func:`simula
 (many runs in one compiled call) and :func:`simulate_branches` (many runs under several speed
 profiles that share their start). Configs and presets: :mod:`autobalance.config`.
 """
-__version__ = "0.3.1"
+__version__ = "0.3.2"
 
 import os as _os
 
