@@ -1,5 +1,6 @@
-"""The figures of ``autobalance response`` of a liquid machine (:mod:`autobalance.cli.response`) and the one
-way the liquid commands save their ``--plot`` (:func:`save_plot`)."""
+"""The figures of ``autobalance response`` of a liquid machine (:mod:`autobalance.cli.response`), the one
+way the liquid commands save their ``--plot`` (:func:`save_plot`) and name a chamber
+(:func:`chamber_label`)."""
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
@@ -9,12 +10,13 @@ from ..atomic import save_figure
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
+    from ..config.display import DisplayUnits
     from ..liquid import LiquidModel, RunUp
     from ..models.liquid_balancer import VerticalRotor
     from ..models import LiquidDevice
 
 
-def chamber_label(du, radius: float, volume: float) -> str:
+def chamber_label(du: DisplayUnits, radius: float, volume: float) -> str:
     """A chamber as text: its radius in the config's length unit and its fill in ml, e.g.
     "R = 200 mm, 150 ml" (``du``: :func:`autobalance.config.display.display_units`; radius
     [m], volume [m^3])."""
