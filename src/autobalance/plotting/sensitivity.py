@@ -60,6 +60,8 @@ def plot_sensitivity(ds: xr.Dataset, z: float = 2.0, title: str | None = None) -
     ax.set_yticks(range(len(variants)), variants, fontsize=8)
     bar = fig.colorbar(im, ax=ax, shrink=0.9)
     bar.set_label("effect / standard error [-]", fontsize=8)
-    ax.set_title(title or f"effect of each variant against the base over the same "
-                 f"{ds.attrs.get('starts', '')} starts (grey: within {z:g} SE)", fontsize=9)
+    starts = ds.attrs.get("starts")
+    ax.set_title((title or "effect of each variant against the base")
+                 + (f"; the same starts ({starts})" if starts else "")
+                 + f"; grey: within {z:g} SE", fontsize=9)
     return fig
