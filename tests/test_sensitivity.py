@@ -110,7 +110,8 @@ def test_the_figure_shows_each_effect_and_greys_the_noise():
     ds = xr.Dataset({"effect": (("variant", "quantity"), eff),
                      "effect_se": (("variant", "quantity"), se)},
                     coords={"variant": ["base", "mu x2", "contact none"],
-                            "quantity": ["median_last", "share_last"]}, attrs={"starts": 12})
+                            "quantity": ["median_last", "share_last"],
+                            "unit": ("quantity", ["mm/s", "-"])}, attrs={"starts": 12})
     ax = plot_sensitivity(ds, z=2.0).axes[0]
     cells = {(round(t.get_position()[1]), round(t.get_position()[0])): t for t in ax.texts}
     assert {k: t.get_text() for k, t in cells.items()} == {

@@ -33,7 +33,6 @@ app = typer.Typer(name="autobalance", no_args_is_help=True, add_completion=False
                        "response, sweep, study, design, analyze, liquid, reproduce, demo.")
 
 
-
 def _print_version(value: bool) -> None:
     if value:
         from .. import __version__
@@ -46,8 +45,7 @@ def _print_version(value: bool) -> None:
 def _root(version: bool = typer.Option(False, "--version", is_eager=True,
                                        callback=_print_version,
                                        help="Print the version and exit.")) -> None:
-    """Simulate and design passive automatic balancers: presets, show, simulate, response,
-    sweep, study, design, analyze, liquid, reproduce, demo."""
+    """The program's own options (its help is the app's)."""
 
 
 app.command()(machine.presets)

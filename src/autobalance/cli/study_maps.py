@@ -91,16 +91,18 @@ def sensitivity(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = No
     typer.echo(f"{cfg.name}: {res['runs_used']} runs per variant ({res['starts']}); target "
                f"{grade_text(G)}; effects beyond {z:g} standard errors (paired bootstrap)")
     b = res["base"]
-    typer.echo("  base: " + ", ".join(f"{q} {_q_text(q, v)}" for q, v in b.items()))
+    u = res["units"]
+    typer.echo("  base: " + ", ".join(f"{q} {_q_text(u[q], v)}" for q, v in b.items()))
     for name, d in res["variants"].items():
-        sig = [f"{q} {_q_text(q, e['effect'], sign=True)} (+-{_q_text(q, e['se'])})"
+        sig = [f"{q} {_q_text(u[q], e['effect'], sign=True)} (+-{_q_text(u[q], e['se'])})"
                for q, e in d["effects"].items() if e["significant"]]
         typer.echo(f"  {name}: " + (", ".join(sig) if sig else "no effect beyond the noise"))
 
 
-def _q_text(q: str, v: float, sign: bool = False) -> str:
-    """A sensitivity quantity as text: grades in mm/s, shares in %."""
-    if q.startswith(("mode", "median", "p95")):
+def _q_text(unit: str, v: float, sign: bool = False) -> str:
+    """A sensitivity quantity of the given unit (the study's ``units``) as text: grades
+    ("mm/s") in mm/s, shares ("-") in %."""
+    if unit == "mm/s":
         return f"{v:+.2f}" if sign else f"{v:.2f}"
     return f"{100 * v:+.1f} %" if sign else f"{100 * v:.1f} %"
 

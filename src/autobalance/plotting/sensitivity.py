@@ -16,10 +16,11 @@ if TYPE_CHECKING:
 Z_CLIP = 4.0
 
 
-def effect_text(quantity: str, effect: float) -> str:
-    """A variant's effect on one quantity as the cell's text: grades in mm/s, shares in
-    percentage points."""
-    if quantity.startswith(("mode", "median", "p95")):
+def effect_text(unit: str, effect: float) -> str:
+    """A variant's effect on one quantity of the given unit (the dataset's ``unit``
+    coordinate) as the cell's text: grades ("mm/s") in mm/s, shares ("-") in percentage
+    points."""
+    if unit == "mm/s":
         return f"{effect:+.2f}"
     return f"{100 * effect:+.0f}"
 
@@ -42,6 +43,7 @@ def plot_sensitivity(ds: xr.Dataset, z: float = 2.0, title: str | None = None) -
     """
     variants = [str(v) for v in ds["variant"].values[1:]]
     qs = [str(q) for q in ds["quantity"].values]
+    units = [str(u) for u in ds["unit"].values]
     eff = ds["effect"].values[1:]
     se = ds["effect_se"].values[1:]
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -53,8 +55,8 @@ def plot_sensitivity(ds: xr.Dataset, z: float = 2.0, title: str | None = None) -
     im = ax.imshow(np.clip(zs, -Z_CLIP, Z_CLIP), cmap="RdBu_r", vmin=-Z_CLIP, vmax=Z_CLIP,
                    aspect="auto")
     for i in range(len(variants)):
-        for j, q in enumerate(qs):
-            ax.text(j, i, effect_text(q, eff[i, j]), ha="center", va="center", fontsize=7,
+        for j, unit in enumerate(units):
+            ax.text(j, i, effect_text(unit, eff[i, j]), ha="center", va="center", fontsize=7,
                     color="k" if abs(zs[i, j]) > z else "0.6")
     ax.set_xticks(range(len(qs)), qs, rotation=45, ha="right", fontsize=8)
     ax.set_yticks(range(len(variants)), variants, fontsize=8)
