@@ -60,10 +60,11 @@ def test_immobility_beside_a_liquid_on_a_horizontal_axis():
     s = cfg.system
     w_f = film_start_speed(s.liquid, s.gravity.g)
     f = np.array([0.5, 0.9, 1.5, 2.4, 4.0, 5.5]) * w_f / (2 * np.pi)        # [Hz]
-    ds = compute_immobility(cfg, speeds_hz=f, n_conf=24)
+    ds = compute_immobility(cfg, G_ini=20.0, speeds=2 * np.pi * np.asarray(f), n_conf=24)
     from autobalance.config import from_models
 
-    pool = compute_immobility(from_models(pool_machine(s), cfg.spin), speeds_hz=f, n_conf=24)
+    pool = compute_immobility(from_models(pool_machine(s), cfg.spin), G_ini=20.0,
+                              speeds=2 * np.pi * np.asarray(f), n_conf=24)
     below = f * 2 * np.pi < w_f
     np.testing.assert_allclose(ds["immobility"].values[..., below],
                                pool["immobility"].values[..., below], atol=1e-12)

@@ -240,8 +240,9 @@ def test_immobility_beside_a_liquid():
     s = cfg.system
     w0 = film_start_speed(s.liquid)
     f = np.array([0.5, 0.9, 1.5, 2.4, 3.0]) * w0 / (2 * np.pi)        # [Hz]
-    ds = compute_immobility(cfg, speeds_hz=f, n_conf=24)
-    pool = compute_immobility(from_models(pool_machine(s), cfg.spin), speeds_hz=f, n_conf=24)
+    ds = compute_immobility(cfg, G_ini=20.0, speeds=2 * np.pi * np.asarray(f), n_conf=24)
+    pool = compute_immobility(from_models(pool_machine(s), cfg.spin), G_ini=20.0,
+                              speeds=2 * np.pi * np.asarray(f), n_conf=24)
     below = f * 2 * np.pi < w0
     np.testing.assert_allclose(ds["immobility"].values[..., below],
                                pool["immobility"].values[..., below], atol=1e-12)
@@ -270,7 +271,7 @@ def test_immobility_refuses_partitions():
 
     cfg = load_config("leblanc_003", [*BALLS, "liquid.partitions=4"])
     with pytest.raises(ParameterError) as e:
-        compute_immobility(cfg, speeds_hz=[10.0, 20.0], n_conf=12)
+        compute_immobility(cfg, speeds=[10.0, 20.0], n_conf=12)
     assert e.value.field == "liquid.partitions" and "quasi-static" in str(e.value)
 
 

@@ -41,8 +41,8 @@ def test_unbalance_and_plateau_on_a_python_config(machine):
 
 
 def test_immobility_scales_the_machines_own_friction(machine):
-    ds = immobility.compute_immobility(machine, mu_r=(0.5, 2.0), speeds_hz=[80.0, 100.0, 160.0],
-                                       n_conf=24)
+    ds = immobility.compute_immobility(machine, G_ini=20.0, mu_r=(0.5, 2.0), n_conf=24,
+                                       speeds=2 * np.pi * np.array([80.0, 100.0, 160.0]))
     im = ds["immobility"].values[:, 0, :]
     assert np.all((0.0 <= im) & (im <= 1.0)) and np.all(im[1] >= im[0])   # more friction: stickier
     assert ds.attrs["plateau_hz"] == pytest.approx(100.0)

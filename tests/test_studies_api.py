@@ -81,3 +81,22 @@ def test_bad_machines_are_refused_in_one_line():
     from autobalance.config import ConfigError
     with pytest.raises(ConfigError, match="rotor.nothing"):
         studies.as_config(CENTRIFUGE, {"rotor.nothing": 1})
+
+
+def test_fill_map_composes_the_linear_map_like_the_command_line():
+    """studies.fill_map(linear=True) is the fill map with the balanced state's stability at
+    every point, as `study fill-map --linear` writes it; volumes and speeds as quantities."""
+    u = registry()
+    r = studies.fill_map("leblanc_003", fills=[150 * u("ml")], speeds=["30 rad/s", "60 rad/s"],
+                         linear=True)
+    ds = r.to_xarray()
+    assert ds["growth_rate"].shape == (1, 2) and ds["fill"].values == pytest.approx([150e-6])
+    from autobalance.studies._fill_map import compute_fill_map, compute_linear_map
+
+    ref = compute_linear_map("leblanc_003", fills=ds["fill"].values, speeds=[30.0, 60.0])
+    assert np.array_equal(ds["growth_rate"].values, ref["growth_rate"].values)
+    plain = studies.fill_map("leblanc_003", fills=[150e-6], speeds=[30.0, 60.0]).to_xarray()
+    assert "growth_rate" not in plain
+    assert np.array_equal(plain["amplitude"].values,
+                          compute_fill_map("leblanc_003", fills=[150e-6],
+                                           speeds=[30.0, 60.0])["amplitude"].values)

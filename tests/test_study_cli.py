@@ -194,6 +194,31 @@ def test_immobility_quick_keeps_the_starts_given():
     assert compute_immobility(CENTRIFUGE, quick=True).attrs["n_conf"] == QUICK_N_CONF == 36
 
 
+def test_immobility_defaults_to_the_machines_grade_and_takes_rad_s():
+    """The library owns the initial grade's default (the machine's own unbalance at its
+    nominal speed, which the CLI and the API pass through as None), and takes speeds in rad/s;
+    the Hz keyword warns and gives the same result."""
+    from autobalance.physics.iso1940 import grade_value
+    from autobalance.studies._immobility import compute_immobility, machine_grade
+    from autobalance.studies.common import load
+
+    cfg = load(CENTRIFUGE)
+    s = cfg.system
+    G = grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed)
+    assert machine_grade(cfg) == pytest.approx(float(G), rel=1e-12) and G > 0
+    w = 2 * np.pi * np.array([20.0, 40.0])
+    ds = compute_immobility(cfg, speeds=w, n_conf=12)
+    assert ds.attrs["G_ini"] == machine_grade(cfg)
+    assert ds["speed"].values == pytest.approx([20.0, 40.0], rel=1e-12)   # the axis in Hz
+    with pytest.warns(DeprecationWarning, match="speeds"):
+        old = compute_immobility(cfg, speeds_hz=[20.0, 40.0], n_conf=12)
+    assert np.array_equal(old["immobility"].values, ds["immobility"].values)
+    other = compute_immobility(cfg, G_ini=3 * machine_grade(cfg), speeds=w, n_conf=12)
+    assert other.attrs["G_ini"] == pytest.approx(3 * ds.attrs["G_ini"])
+    d = run_json("immobility", CENTRIFUGE, "--quick", "--starts", "6")
+    assert d["G_ini_mm_s"] == pytest.approx(machine_grade(cfg), rel=1e-9)
+
+
 def test_immobility_figure_speaks_the_configs_speed_unit(tmp_path):
     from autobalance.plotting.tsr import plot_immobility
     from autobalance.studies._immobility import compute_immobility

@@ -369,23 +369,20 @@ def immobility(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = Non
     n_conf : int or None
         Positions per ball (>= 2; n_conf^N configurations; None: the library's default).
     """
-    from ..physics.iso1940 import grade_value
     from ..studies._immobility import compute_immobility, immobility_summary
 
     t0 = time.perf_counter()
     with guard():
         cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units,
                               balls="beside")
-        s = cfg.system
-        gi = (float(grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed))
-              if g_ini is None else g_ini)
-        if not (math.isfinite(gi) and gi >= 0):
+        if g_ini is not None and not (math.isfinite(g_ini) and g_ini >= 0):
             raise ConfigError(f"--g-ini = {g_ini}: must be a finite grade >= 0 [mm/s], e.g. 20")
         if n_conf is not None and n_conf < 2:
             raise ConfigError(f"--starts = {n_conf}: must be an integer >= 2")
         mus, cs = _factors(mu_r, "--mu-r"), _factors(c_r, "--c-r")
-        ds = compute_immobility(cfg, G_ini=gi, mu_r=mus, c_r=cs, n_conf=n_conf, quick=quick,
+        ds = compute_immobility(cfg, G_ini=g_ini, mu_r=mus, c_r=cs, n_conf=n_conf, quick=quick,
                                 field="--starts")
+        gi = ds.attrs["G_ini"]
 
         def fig():
             from ..plotting.tsr import plot_immobility

@@ -30,8 +30,9 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
                  "--dynamic", help="Also run the wall film coupled with the rotor at constant "
                                    "speeds (up to 8, --quick 4, above every fill's entrainment "
                                    "speed): is the steady synchronous whirl reached?")] = False,
-             duration: Annotated[str, typer.Option(
-                 "--duration", help="Time at each speed of --dynamic, e.g. '6 s'.")] = "6 s",
+             duration: Annotated[Optional[str], typer.Option(
+                 "--duration", help="Time at each speed of --dynamic, e.g. '10 s' (default "
+                                    "6 s).")] = None,
              linear: Annotated[bool, typer.Option(
                  "--linear", help="Also the linear stability of the balanced state at every "
                                   "fill and speed (vertical axis; 0.02 s per point on 64 "
@@ -58,34 +59,25 @@ def fill_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
     linear : bool
         Add the balanced state's linear stability (:func:`autobalance.studies.fill_map.
         compute_linear_map`).
-    duration : str
-        Time at each speed of the stability map [s or with units].
+    duration : str or None
+        Time at each speed of the stability map [s or with units] (None: the library's).
     workers, executor
         The sweep's processes (:mod:`autobalance.cli.common`).
     """
     from ..config import parse_quantity
-    from ..studies._fill_map import (compute_fill_map, compute_linear_map,
-                                    compute_stability_map, dynamic_speeds, fill_map_summary)
+    from ..studies._fill_map import compute_fill_study, fill_map_summary
     from .liquid import _list
 
     t0 = time.perf_counter()
     with guard():
         cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units,
                               balls="liquid", workers=workers, executor=executor)
-        T = parse_quantity(duration, "time", "--duration")
+        T = None if duration is None else parse_quantity(duration, "time", "--duration")
         V = None if fills is None else _list(fills, "volume", "--fills")
         W = None if speeds is None else _list(speeds, "speed", "--speeds")
-        ds = compute_fill_map(cfg, fills=V, speeds=W, quick=quick)
-        if linear:
-            ds = ds.merge(compute_linear_map(cfg, fills=ds["fill"].values,
-                                             speeds=ds["speed"].values))
-        stab = None
-        if dynamic:
-            stab = compute_stability_map(cfg, fills=ds["fill"].values,
-                                         speeds=dynamic_speeds(ds, 4 if quick else 8),
-                                         duration=T, executor=executor, workers=workers,
-                                         progress=not json_)
-            ds = ds.merge(stab.rename(speed="dynamic_speed"))
+        ds = compute_fill_study(cfg, fills=V, speeds=W, quick=quick, linear=linear,
+                                dynamic=dynamic, duration=T, executor=executor, workers=workers,
+                                progress=not json_)
 
         def fig():
             from ..plotting.liquid import fill_map_figure

@@ -56,10 +56,8 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
     seed : int
         Seed of the added starts.
     """
-    import numpy as np
-
     from ..studies.common import capacity_grades, default_starts
-    from ..studies.unbalance import compute_unbalance, unbalance_summary
+    from ..studies.unbalance import compute_unbalance, default_grades, unbalance_summary
 
     t0 = time.perf_counter()
     with guard(), _study_errors():
@@ -71,8 +69,8 @@ def unbalance_range(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt 
         check_budget(budget)
         s = cfg.system
         G_b, G_l = capacity_grades(cfg)
-        top = 1.5 * (G_b + G_l) if g_max is None else g_max
-        Gv = np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
+        Gv = default_grades(G_b + G_l, quick, g_max, steps)
+        top = float(Gv[-1])
         nn = n or default_starts(s.balancer.n_balls, quick)
         ds = compute_unbalance(cfg, G=Gv, n=nn, grade=G, budget=budget, seed=seed,
                                store_dir=_store(store, cfg, "unbalance-range", list(Gv)),

@@ -24,8 +24,11 @@ if TYPE_CHECKING:
     from ..config import Config
     from ..models import LiquidDevice
 
-__all__ = ["compute_fill_map", "compute_linear_map", "compute_stability_map", "default_fills",
-           "dynamic_speeds", "fill_map_summary"]
+__all__ = ["compute_fill_map", "compute_fill_study", "compute_linear_map", "compute_stability_map",
+           "default_fills", "dynamic_speeds", "fill_map_summary"]
+
+#: Time at each speed of the coupled film's runs of the stability map [s].
+DYNAMIC_DURATION = 6.0
 
 #: Default speeds, as fractions of the natural frequency with the chamber's liquid [-].
 SPEED_RATIOS = (0.3, 2.0)
@@ -279,7 +282,7 @@ SPREAD_MAX = 0.05
 
 
 def compute_stability_map(base: str | Path | Config, *, fills: Sequence[float],
-                          speeds: Sequence[float], duration: float = 6.0,
+                          speeds: Sequence[float], duration: float = DYNAMIC_DURATION,
                           store: str | Path | None = None, executor: str | None = None,
                           workers: int | None = None, progress: bool = False) -> xr.Dataset:
     """Whether the steady synchronous whirl is reached, over fill x speed: the wall film
@@ -391,3 +394,45 @@ def dynamic_speeds(ds: xr.Dataset, n: int) -> np.ndarray:
         raise ParameterError("speeds", f"up to {W[-1]:.4g} rad/s", "none above every fill's "
                              "entrainment speed: no film to run")
     return ok[np.unique(np.linspace(0, ok.size - 1, min(int(n), ok.size)).round().astype(int))]
+
+
+def compute_fill_study(base: str | Path | Config, *, fills: Sequence[float] | None = None,
+                       speeds: Sequence[float] | None = None, quick: bool = False,
+                       linear: bool = False, dynamic: bool = False,
+                       duration: float | None = None,
+                       executor: str | None = None, workers: int | None = None,
+                       progress: bool = False) -> xr.Dataset:
+    """The fill map (:func:`compute_fill_map`) with, on request, the balanced state's linear
+    stability at every point (:func:`compute_linear_map`) and the wall film coupled with the
+    rotor at up to 8 speeds (4 when ``quick``) above every fill's entrainment speed
+    (:func:`compute_stability_map` at :func:`dynamic_speeds`, its axis ``dynamic_speed``).
+
+    Parameters
+    ----------
+    base : str, Path or Config
+        The machine, with a ``[liquid]`` section.
+    fills, speeds : sequence of float or None
+        Fills [m^3] and speeds [rad/s] (None: :func:`compute_fill_map`'s defaults).
+    quick : bool
+        The coarse grids.
+    linear : bool
+        Add the linear stability (vertical axis).
+    dynamic : bool
+        Add the coupled film's runs.
+    duration : float or None
+        Time at each speed of the coupled runs [s] (None: :data:`DYNAMIC_DURATION`).
+    executor, workers, progress : str, int, bool or None
+        Where the coupled runs go (:func:`compute_stability_map`).
+    """
+    ds = compute_fill_map(base, fills=fills, speeds=speeds, quick=quick)
+    if linear:
+        ds = ds.merge(compute_linear_map(base, fills=ds["fill"].values,
+                                         speeds=ds["speed"].values))
+    if dynamic:
+        stab = compute_stability_map(base, fills=ds["fill"].values,
+                                     speeds=dynamic_speeds(ds, 4 if quick else 8),
+                                     duration=DYNAMIC_DURATION if duration is None else duration,
+                                     executor=executor, workers=workers,
+                                     progress=progress)
+        ds = ds.merge(stab.rename(speed="dynamic_speed"))
+    return ds

@@ -19,9 +19,10 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     import xarray as xr
 
+    from ..config import Config
     from ..models import System
 
-__all__ = ["compute_immobility", "immobility_summary", "liquid_response"]
+__all__ = ["compute_immobility", "immobility_summary", "liquid_response", "machine_grade"]
 
 #: Magnitudes of the residual unbalance |U_t| on which the liquid's steady orbit is tabulated
 #: (full, quick) [-]. Each costs one quasi-static whirl over the speeds (~0.1-0.2 s per 91
@@ -124,10 +125,11 @@ def ring_holds(system: System, speeds: npt.ArrayLike, n_conf: int,
 DEFAULT_N_CONF, QUICK_N_CONF = 100, 36
 
 
-def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[float] = (1.0,),
-                       c_r: Sequence[float] = (1.0,), speeds_hz: npt.ArrayLike | None = None,
-                       n_conf: int | None = None, quick: bool = False,
-                       field: str = "n_conf") -> xr.Dataset:
+def compute_immobility(base: str | Path, *, G_ini: float | None = None,
+                       mu_r: Sequence[float] = (1.0,), c_r: Sequence[float] = (1.0,),
+                       speeds: npt.ArrayLike | None = None, n_conf: int | None = None,
+                       quick: bool = False, field: str = "n_conf",
+                       speeds_hz: npt.ArrayLike | None = None) -> xr.Dataset:
     """004 Fig. 8/10: immobility [-] against speed for the mu_r x c_r factors [-] on the machine's
     rolling resistance and damping, at G_ini [mm/s]
     (closed form :func:`immobility`; no time integration). ``n_conf`` positions per ball [-];
@@ -139,14 +141,15 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
     base : str or Path
         The machine: a preset name or a TOML config path (its system, profile, options and
         balls).
-    G_ini : float
-        Initial grade of the rotor [mm/s] at the profile's nominal speed (sets U).
+    G_ini : float or None
+        Initial grade of the rotor [mm/s] at the profile's nominal speed (sets U); None: the
+        machine's own unbalance (:func:`machine_grade`).
     mu_r : sequence of float
         Factors on the machine's rolling-resistance coefficient [-] (stiction follows it).
     c_r : sequence of float
         Factors on the suspension damping [-].
-    speeds_hz : array_like or None
-        Spin speeds [Hz]; None = 361 speeds (91 when ``quick``) from 0.2 x the natural
+    speeds : array_like or None
+        Spin speeds [rad/s]; None = 361 speeds (91 when ``quick``) from 0.2 x the natural
         frequency to 1.2 x the nominal speed (004 Fig. 8: 20-200 Hz).
     n_conf : int or None
         Equispaced positions per ball (None: :data:`DEFAULT_N_CONF`, 36 when ``quick``); a
@@ -155,6 +158,8 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
         Coarser speed and configuration grids.
     field : str
         Parameter name a refused grid's error names.
+    speeds_hz : array_like or None
+        Deprecated: the speeds in Hz; use ``speeds`` [rad/s] (a DeprecationWarning).
 
     Returns
     -------
@@ -179,8 +184,16 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
                              "isotropic suspension (kx = ky, cx = cy)")
     wn = cfg.spin.nominal_speed
     fn = s0.natural_frequencies[0] / (2 * np.pi)
-    f = (np.linspace(0.2 * fn, 1.2 * wn / (2 * np.pi), 91 if quick else 361)
-         if speeds_hz is None else np.asarray(speeds_hz, float))
+    if speeds_hz is not None:
+        import warnings
+
+        warnings.warn("compute_immobility(speeds_hz=...) is deprecated: give speeds [rad/s]",
+                      DeprecationWarning, stacklevel=2)
+        speeds = 2 * np.pi * np.asarray(speeds_hz, float)
+    w = (2 * np.pi * np.linspace(0.2 * fn, 1.2 * wn / (2 * np.pi), 91 if quick else 361)
+         if speeds is None else np.asarray(speeds, float))
+    f = w / (2 * np.pi)
+    G_ini = machine_grade(cfg) if G_ini is None else float(G_ini)
     if n_conf is None:
         n_conf = QUICK_N_CONF if quick else DEFAULT_N_CONF
     check_immobility(n_conf, s0.balancer.n_balls, f.size, len(mu_r) * len(c_r), field)
@@ -202,14 +215,14 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
                     s0.balancer, rolling_resistance=tuple(float(m) for m in mu0 * mr),
                     stiction=None))
             if s0.liquid is not None and j not in resps:     # the orbit depends on c, not mu
-                resps[j] = liquid_response(s, 2 * np.pi * f, LIQUID_MAGNITUDES_QUICK if quick
+                resps[j] = liquid_response(s, w, LIQUID_MAGNITUDES_QUICK if quick
                                            else LIQUID_MAGNITUDES)
                 if horizontal:
-                    holds[j] = ring_holds(s, 2 * np.pi * f, n_conf, resps[j])
-            out[i, j] = immobility(s, 2 * np.pi * f, n_conf, resps.get(j))
+                    holds[j] = ring_holds(s, w, n_conf, resps[j])
+            out[i, j] = immobility(s, w, n_conf, resps.get(j))
     ds = xr.Dataset({"immobility": (("mu_r", "c_r", "speed"), out,
                                     {"units": "-", "long_name": "share of immobile configurations"}),
-                     "G_stick": ("speed", stick_threshold_grade(s0, 2 * np.pi * f, wn)
+                     "G_stick": ("speed", stick_threshold_grade(s0, w, wn)
                                  if s0.liquid is None else np.full(f.size, np.nan),
                                  {"units": "mm/s", "long_name": "stick threshold G* (mu_r = c_r = 1)"})},
                     coords={"mu_r": list(mu_r), "c_r": list(c_r),
@@ -230,6 +243,22 @@ def compute_immobility(base: str | Path, *, G_ini: float = 20.0, mu_r: Sequence[
                                   else ""),
                      "wall_s": time.perf_counter() - t0})
     return ds
+
+
+def machine_grade(cfg: Config) -> float:
+    """The ISO 1940 grade [mm/s] of the machine's own rotor unbalance at its profile's nominal
+    speed (ISO 1940-1: G = e Omega, :func:`autobalance.physics.iso1940.grade_value`): the
+    default initial grade of the immobility study.
+
+    Parameters
+    ----------
+    cfg : Config
+        The machine (its rotor unbalance [kg m], total mass [kg] and nominal speed [rad/s]).
+    """
+    from ..physics.iso1940 import grade_value
+
+    s = cfg.system
+    return float(grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed))
 
 
 def _plateau_hz(spin) -> float:

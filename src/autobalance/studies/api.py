@@ -330,16 +330,15 @@ def immobility(machine: Any, *, changes: Mapping[str, Any] | None = None, profil
     quick : bool
         The coarse speed grid (and 36 positions per ball unless ``starts`` is given).
     """
-    from ..physics.iso1940 import grade_value
     from ..plotting.tsr import plot_immobility
     from ._immobility import compute_immobility, immobility_summary
 
     cfg = as_config(machine, changes, profile)
     s = cfg.system
-    gi = (float(grade_value(s.rotor.unbalance, s.total_mass, cfg.spin.nominal_speed))
-          if g_ini is None else _si(g_ini, "grade"))
-    ds = compute_immobility(cfg, G_ini=gi, mu_r=tuple(mu_r), c_r=tuple(c_r), n_conf=starts,
-                            quick=quick, field="starts")
+    ds = compute_immobility(cfg, G_ini=None if g_ini is None else _si(g_ini, "grade"),
+                            mu_r=tuple(mu_r), c_r=tuple(c_r), n_conf=starts, quick=quick,
+                            field="starts")
+    gi = ds.attrs["G_ini"]
     return StudyResult("immobility", cfg, ds,
                        lambda: immobility_summary(ds, cfg.spin.nominal_speed),
                        lambda: plot_immobility(ds, f"{cfg.name}: immobility at G_ini = "
@@ -413,9 +412,13 @@ def runup(machine: Any, *, changes: Mapping[str, Any] | None = None, profile: An
 
 
 def fill_map(machine: Any, *, changes: Mapping[str, Any] | None = None, profile: Any = None,
-             fills: Any = None, speeds: Any = None, quick: bool = False) -> StudyResult:
-    """A liquid balancer's steady whirl over fill x speed:
-    :func:`autobalance.studies._fill_map.compute_fill_map`.
+             fills: Any = None, speeds: Any = None, linear: bool = False,
+             dynamic: bool = False, duration: Any = None, quick: bool = False,
+             executor: str = "local", workers: int | None = None,
+             progress: bool = False) -> StudyResult:
+    """A liquid balancer's steady whirl over fill x speed, with the balanced state's linear
+    stability and the coupled wall film on request:
+    :func:`autobalance.studies._fill_map.compute_fill_study`.
 
     Parameters
     ----------
@@ -425,15 +428,25 @@ def fill_map(machine: Any, *, changes: Mapping[str, Any] | None = None, profile:
         Liquid volumes [m^3].
     speeds : array_like, pint quantity or None
         Speeds [rad/s].
+    linear : bool
+        Add the linear stability of the balanced state at every fill and speed.
+    dynamic : bool
+        Add the wall film coupled with the rotor at up to 8 speeds (4 when ``quick``).
+    duration : float, pint quantity or None
+        Time at each speed of ``dynamic`` [s] (None: 6 s).
     quick : bool
         The coarse grid.
+    executor, workers, progress : str, int, bool or None
+        Where the coupled runs go (module docstring).
     """
     from ..plotting.liquid import fill_map_figure
-    from ._fill_map import compute_fill_map, fill_map_summary
+    from ._fill_map import compute_fill_study, fill_map_summary
 
     cfg = as_config(machine, changes, profile)
-    ds = compute_fill_map(cfg, fills=_si(fills, "volume"), speeds=_si(speeds, "speed"),
-                          quick=quick)
+    ds = compute_fill_study(cfg, fills=_si(fills, "volume"), speeds=_si(speeds, "speed"),
+                            quick=quick, linear=linear, dynamic=dynamic,
+                            duration=_si(duration, "time"), executor=executor, workers=workers,
+                            progress=progress)
     du = _du(cfg)
     return StudyResult("fill-map", cfg, ds, lambda: fill_map_summary(ds),
                        lambda: fill_map_figure(ds, du.unit("speed"), du.factor("speed"),

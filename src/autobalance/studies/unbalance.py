@@ -26,7 +26,8 @@ __all__ = ["compute_profile", "compute_unbalance", "default_grades", "operating_
            "unbalance_summary"]
 
 
-def default_grades(G_balls: float, quick: bool) -> np.ndarray:
+def default_grades(G_balls: float, quick: bool, g_max: float | None = None,
+                   steps: int | None = None) -> np.ndarray:
     """Initial grades [mm/s] of the unbalance study of a machine whose balancer makes the grade
     G_balls [mm/s]: [0, 1.5 G_balls] in 25 steps (quick: 10), which covers the balls' whole
     operating range (under- and over-excited balancer, 004 sec. 4.3: [G0, G50] for G34 balls).
@@ -38,13 +39,18 @@ def default_grades(G_balls: float, quick: bool) -> np.ndarray:
         m R, plus a liquid's rho V R (:func:`autobalance.studies.common.capacity_grades`).
     quick : bool
         10 steps instead of 25.
+    g_max : float or None
+        The grid's largest grade [mm/s] (None: 1.5 G_balls).
+    steps : int or None
+        Intervals of the grid (None: 25, 10 when ``quick``).
 
     Returns
     -------
     ndarray
         G_ini [mm/s].
     """
-    return np.linspace(0.0, 1.5 * G_balls, 11 if quick else 26)
+    top = 1.5 * G_balls if g_max is None else float(g_max)
+    return np.linspace(0.0, top, (steps or (10 if quick else 25)) + 1)
 
 
 def compute_unbalance(base: str | Path, cases: dict[str, tuple[float, float]] | None = None, *,

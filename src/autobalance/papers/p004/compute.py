@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from ...studies import _immobility as _imm
 from ...studies import _plateau as _pl
 from ...studies import _start_positions as _sp
@@ -84,8 +86,8 @@ def compute_immobility(*, G_ini: float = 20.0, mu_r: Sequence[float] = MU_R,
     """004 Fig. 8/10 (:func:`autobalance.studies._immobility.compute_immobility`); G_ini [mm/s],
     speeds_hz [Hz], n_conf positions per ball (None: the study's default, coarser when
     ``quick``)."""
-    speeds_hz = immobility_speeds_hz(quick) if speeds_hz is None else speeds_hz
-    return _imm.compute_immobility(PRESET, G_ini=G_ini, mu_r=mu_r, c_r=c_r, speeds_hz=speeds_hz,
+    f = immobility_speeds_hz(quick) if speeds_hz is None else np.asarray(speeds_hz, float)
+    return _imm.compute_immobility(PRESET, G_ini=G_ini, mu_r=mu_r, c_r=c_r, speeds=2 * np.pi * f,
                                    n_conf=n_conf, quick=quick, field=field)
 
 
