@@ -194,3 +194,21 @@ def test_a_former_name_still_works_and_says_what_to_use(capsys):
     code, _, err = run_main(capsys, ["study", "immobility", "examples/centrifuge.toml",
                                      "--n-conf", "1"])
     assert code == 2 and "--starts = 1" in err          # the error names the option's name now
+
+
+@pytest.mark.parametrize("argv, expect", [
+    (["study", "speed-map", "m.toml", "--grade", "6.3", "--quick"],
+     ["study", "speed-map", "m.toml", "--quick"]),
+    (["study", "speed-map", "m.toml", "--grade=6.3"], ["study", "speed-map", "m.toml"]),
+    (["study", "plateau", "m.toml", "--grade", "6.3"], ["study", "plateau", "m.toml", "--grade",
+                                                         "6.3"]),
+])
+def test_an_option_without_effect_is_dropped_with_its_value_and_said(argv, expect):
+    out, warnings = rewrite_deprecated(argv)
+    assert out == expect
+    if out != argv:
+        assert warnings == ["warning: study speed-map --grade has no effect (its verdict is "
+                            "whether the balanced state exists and is stable, which no target "
+                            "grade changes); it goes in 0.4.0"]
+    else:
+        assert warnings == []

@@ -131,7 +131,7 @@ def map_speeds(spec: Optional[str]):
 
 @app.command("speed-map")
 def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None,
-              grade: GradeOpt = 16.0, units: UnitsOpt = None,
+              units: UnitsOpt = None,
               speeds: Annotated[Optional[str], typer.Option(
                   "--speeds", metavar="LO:HI:N", help=grammar_help(
                       "Speed grid", "200:5000 rpm:120", lists=False,
@@ -151,8 +151,9 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
 
     Parameters
     ----------
-    source, set_, profile, grade, units, quick, out, plot, json_
-        The options of every study (:mod:`autobalance.cli.study`).
+    source, set_, profile, units, quick, out, plot, json_
+        The options of every study (:mod:`autobalance.cli.study`; no ``--grade``: the verdict
+        is the balanced state's existence and stability).
     speeds : str
         "LO:HI:N" speeds (:func:`autobalance.config.ranges.parse_range`; a unit written
         once applies to both ends, bare numbers rad/s), 2 <= N <= MAX_MAP_SPEEDS points.
@@ -165,7 +166,7 @@ def speed_map(source: SourceArg, set_: SetOpt = None, profile: ProfileOpt = None
 
     t0 = time.perf_counter()
     with guard():
-        cfg, G, du = _prepare(source, set_, profile, grade, plot, out, units=units,
+        cfg, _, du = _prepare(source, set_, profile, 16.0, plot, out, units=units,
                               balls="beside")
         grid = map_speeds(speeds)
         facs = None if damping is None else _factors(damping, "--c-r")

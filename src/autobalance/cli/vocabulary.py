@@ -5,13 +5,13 @@
 takes the same kind of value everywhere, each study takes the shared study options) and the
 documentation's reference of the options is generated from it. :data:`DEPRECATED` holds the
 names an option had before, per command, and :data:`DEPRECATED_COMMANDS` the commands merged
-into another: :func:`rewrite_deprecated` still accepts them for one version and says what to
-use instead.
+into another, :data:`IGNORED` the options a command takes without effect:
+:func:`rewrite_deprecated` still accepts them for one version and says what to use instead.
 """
 from __future__ import annotations
 
-__all__ = ["DEPRECATED", "DEPRECATED_COMMANDS", "REMOVED_IN", "STUDY_SHARED", "VOCABULARY",
-           "rewrite_deprecated"]
+__all__ = ["DEPRECATED", "DEPRECATED_COMMANDS", "IGNORED", "REMOVED_IN", "STUDY_SHARED",
+           "VOCABULARY", "rewrite_deprecated"]
 
 #: Option name -> its meaning, the same in every command that takes it.
 VOCABULARY: dict[str, str] = {
@@ -123,6 +123,13 @@ DEPRECATED: dict[tuple[str, ...], dict[str, str]] = {
     ("liquid", "kinetostatic"): {"--omega": "--speed"},
 }
 
+#: Command -> {an option that has no effect there, taking one value: why}, accepted (and
+#: ignored, with a warning) until :data:`REMOVED_IN`.
+IGNORED: dict[tuple[str, ...], dict[str, str]] = {
+    ("study", "speed-map"): {"--grade": "its verdict is whether the balanced state exists and "
+                                        "is stable, which no target grade changes"},
+}
+
 #: Former command -> (the command it is now, or None where it still runs itself; what to use,
 #: for the warning), accepted until :data:`REMOVED_IN`.
 DEPRECATED_COMMANDS: dict[tuple[str, ...], tuple[tuple[str, ...] | None, str]] = {
@@ -155,20 +162,31 @@ def rewrite_deprecated(argv: list[str]) -> tuple[list[str], list[str]]:
     n = 2 if argv and argv[0] in GROUPS else 1
     command = tuple(argv[:n])
     table = DEPRECATED.get(command, {})
+    ignored = IGNORED.get(command, {})
     said: dict[str, str] = {}
+    dropped: list[str] = []
     head = list(command)
     if command in DEPRECATED_COMMANDS:
         now, use = DEPRECATED_COMMANDS[command]
         said[" ".join(command)] = use
         head = list(now) if now is not None else head
-    if not table and not said:
+    if not table and not said and not ignored:
         return list(argv), []
     out = head
+    skip = False
     for k, tok in enumerate(argv[n:], n):
+        if skip:                              # the value of an ignored option
+            skip = False
+            continue
         if tok == "--":                       # the rest are values
             out += argv[k:]
             break
         name, eq, value = tok.partition("=")
+        if name in ignored:
+            dropped.append(f"warning: {' '.join(command)} {name} has no effect ("
+                           f"{ignored[name]}); it goes in {REMOVED_IN}")
+            skip = not eq
+            continue
         if name in table:
             said[f"{' '.join(command)} {name}"] = table[name]
             *extra, name = table[name].split()
@@ -176,4 +194,4 @@ def rewrite_deprecated(argv: list[str]) -> tuple[list[str], list[str]]:
             tok = name + eq + value
         out.append(tok)
     return out, [f"warning: {old} is deprecated: use {new} (the old name goes in {REMOVED_IN})"
-                 for old, new in said.items()]
+                 for old, new in said.items()] + list(dict.fromkeys(dropped))
