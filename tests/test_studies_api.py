@@ -100,3 +100,23 @@ def test_fill_map_composes_the_linear_map_like_the_command_line():
     assert np.array_equal(plain["amplitude"].values,
                           compute_fill_map("leblanc_003", fills=[150e-6],
                                            speeds=[30.0, 60.0])["amplitude"].values)
+
+
+def test_tolerances_gives_its_budget_per_cause_a_figure_and_a_check(tmp_path):
+    """studies.tolerances: the budget per cause of 000 eq 56 as data (summing to the target),
+    the residual at each allowed limit within its share, a figure in the config's unbalance
+    unit, and check= simulated runs (refused when not an integer >= 0)."""
+    r = studies.tolerances(CENTRIFUGE, grade=6.3, check=2)
+    ds = r.to_xarray()
+    s = r.summary()
+    assert list(ds["cause"].values) == ["eccentricity", "rolling", "friction", "other"]
+    assert float(ds["budget"].sum()) == pytest.approx(s["target_unbalance_kg_m"], rel=1e-12)
+    lim, bud = ds["at_limit"].values[:3], ds["budget"].values[:3]
+    assert np.all(lim <= bud * (1 + 1e-9)) and np.isnan(ds["at_limit"].values[3])
+    assert ds["simulated_residual"].size == 2 == len(s["simulation_check"]["residuals_kg_m"])
+    fig = r.plot(tmp_path / "t.png")
+    assert fig.axes[0].get_ylabel() == "residual unbalance [g*m]"
+    assert (tmp_path / "t.png").stat().st_size > 10_000
+    assert "simulation_check" not in studies.tolerances(CENTRIFUGE, grade=6.3).summary()
+    with pytest.raises(ValueError, match="check = -1"):
+        studies.tolerances(CENTRIFUGE, check=-1)

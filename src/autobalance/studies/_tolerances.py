@@ -33,11 +33,13 @@ from .statistics import plateau_speed
 if TYPE_CHECKING:
     from pathlib import Path
 
+    import xarray as xr
+
     from ..config import Config
     from ..models import System
 
-__all__ = ["check_tolerances_by_simulation", "collinear_residuals", "compute_tolerances",
-           "machine_with_tolerances"]
+__all__ = ["CAUSES", "check_tolerances_by_simulation", "collinear_residuals",
+           "compute_tolerances", "machine_with_tolerances", "tolerances_dataset"]
 
 #: The tolerance designs :func:`compute_tolerances` offers: the true bound for any balancer,
 #: or 000's one-ball estimate (the paper's method, kept for its reproduction).
@@ -453,3 +455,45 @@ def _collinear(alpha, contact_angle: float) -> bool:
         if d.max() <= contact_angle:
             return True
     return False
+
+
+#: The causes of the residual of a tolerance budget, in the order of 000 eq 56.
+CAUSES = ("eccentricity", "rolling", "friction", "other")
+
+
+def tolerances_dataset(res: dict) -> xr.Dataset:
+    """A tolerance study (:func:`compute_tolerances`, with its ``simulation_check`` if run) as
+    a dataset: per cause of 000 eq 56 its share of the target residual ``budget`` [kg m], the
+    worst-case residual of that tolerance at its allowed limit ``at_limit`` [kg m] (NaN where
+    the method gives none) and of the machine's own ``own`` [kg m]; the summary's numbers and
+    texts as attrs.
+
+    Parameters
+    ----------
+    res : dict
+        :func:`compute_tolerances`'s result.
+    """
+    import xarray as xr
+
+    def per_cause(d: dict | None) -> np.ndarray:
+        d = d or {}
+        return np.array([float(d.get(c, np.nan)) for c in CAUSES])
+
+    scalars = {k: v for k, v in res.items()           # NetCDF attrs: numbers and text
+               if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
+    scalars.update({k: int(v) for k, v in res.items() if isinstance(v, bool)})
+    unit = {"units": "kg m"}
+    ds = xr.Dataset(
+        {"budget": ("cause", per_cause(res.get("budget_kg_m")),
+                    {**unit, "long_name": "share of the target residual (000 eq 56)"}),
+         "at_limit": ("cause", per_cause(res.get("bound_at_max_kg_m")),
+                      {**unit, "long_name": "worst-case residual at the allowed tolerance"}),
+         "own": ("cause", per_cause(res.get("cause_residual_kg_m")),
+                 {**unit, "long_name": "worst-case residual of the machine's own tolerance"})},
+        coords={"cause": list(CAUSES)}, attrs=scalars)
+    sim = res.get("simulation_check")
+    if sim:
+        ds["simulated_residual"] = ("run", np.asarray(sim["residuals_kg_m"], float),
+                                    {**unit, "long_name": "residual of a simulated run with "
+                                     "the tolerances at their limits"})
+    return ds

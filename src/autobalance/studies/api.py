@@ -455,10 +455,13 @@ def fill_map(machine: Any, *, changes: Mapping[str, Any] | None = None, profile:
 
 def tolerances(machine: Any, *, changes: Mapping[str, Any] | None = None, profile: Any = None,
                grade: Any = 16.0, speed: Any = None, split: dict | None = None,
-               residual_fraction: float | None = None, method: str = "bound") -> StudyResult:
+               residual_fraction: float | None = None, method: str = "bound",
+               check: int = 0) -> StudyResult:
     """The tolerances a target grade allows (000 eq 56-66 on the true worst-case bound):
-    :func:`autobalance.studies._tolerances.compute_tolerances`. Its dataset holds the
-    summary's numbers as attrs.
+    :func:`autobalance.studies._tolerances.compute_tolerances`, with ``check`` simulated runs
+    of the machine built with them (:func:`autobalance.studies._tolerances.
+    check_tolerances_by_simulation`). Its dataset holds the budget per cause and the
+    summary's numbers as attrs (:func:`autobalance.studies._tolerances.tolerances_dataset`).
 
     Parameters
     ----------
@@ -474,17 +477,26 @@ def tolerances(machine: Any, *, changes: Mapping[str, Any] | None = None, profil
         Also 000's one-ball method with this required residual / M e [-].
     method : str
         "bound" (the true worst case) or "000".
+    check : int
+        Random starts simulated with the tolerances at their limits (0: none; only where the
+        tolerances are feasible).
     """
-    import xarray as xr
+    from ..plotting.tolerances import plot_tolerances
+    from ._tolerances import check_tolerances_by_simulation, compute_tolerances, tolerances_dataset
 
-    from ._tolerances import compute_tolerances
-
+    if isinstance(check, bool) or not isinstance(check, (int, np.integer)) or check < 0:
+        raise ValueError(f"check = {check!r}: must be an integer >= 0 (simulated runs)")
     cfg = as_config(machine, changes, profile)
     res = compute_tolerances(cfg, grade=_si(grade, "grade"), speed=_si(speed, "speed"),
                              split=split, residual_fraction=residual_fraction, method=method)
-    scalars = {k: v for k, v in res.items()            # NetCDF attrs: numbers and text
-               if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
-    return StudyResult("tolerances", cfg, xr.Dataset(attrs=scalars), lambda: dict(res))
+    if check and res.get("feasible"):
+        res["simulation_check"] = check_tolerances_by_simulation(cfg, res, n=int(check))
+    ds = tolerances_dataset(res)
+    du = _du(cfg)
+    return StudyResult("tolerances", cfg, ds, lambda: dict(res),
+                       lambda: plot_tolerances(ds, du.unit("unbalance"), du.factor("unbalance"),
+                                               f"{cfg.name}: tolerances for "
+                                               f"G{res['target_grade_G_mm_s']:.3g}"))
 
 
 def design(machine: Any, *, changes: Mapping[str, Any] | None = None, profile: Any = None,
